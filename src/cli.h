@@ -1,0 +1,44 @@
+/* cli: the command-line layer.  Only files of this layer (cli.c, cmd_*.c)
+ * print errors and choose exit codes.  Exit status: 0 success, 2 bad input
+ * (usage, flag, preset, file), 1 runtime failure (I/O). */
+#ifndef SKINBAKE_CLI_H
+#define SKINBAKE_CLI_H
+#include <stdio.h>
+
+#define CLI_EXIT_OK 0
+#define CLI_EXIT_FAIL 1
+#define CLI_EXIT_USAGE 2
+
+/* Print "skinbake CMD: message" to stderr; returns CLI_EXIT_USAGE. */
+int cli_usage_error(const char *cmd, const char *fmt, ...) __attribute__((format(printf, 2, 3)));
+/* Print "skinbake CMD: message" to stderr; returns CLI_EXIT_FAIL. */
+int cli_fail(const char *cmd, const char *fmt, ...) __attribute__((format(printf, 2, 3)));
+
+/* Progress bar on stderr, shown only when stderr is a terminal. */
+struct cli_progress {
+	const char *label;
+	double t0;	/* start [s] */
+	int shown;	/* last permille drawn */
+	int tty;
+};
+void cli_progress_start(struct cli_progress *p, const char *label);
+/* Usable as a sim_run progress callback: user = struct cli_progress *. */
+void cli_progress_update(void *user, long done, long total);
+void cli_progress_end(struct cli_progress *p);
+
+/* Parse helpers for option values: on failure print a message naming the
+ * option, the value and the allowed range, and return -1. */
+int cli_double(const char *cmd, const char *opt, const char *s, double lo, double hi, double *out);
+int cli_long(const char *cmd, const char *opt, const char *s, long lo, long hi, long *out);
+
+/* Subcommands (each in its own cmd_*.c). */
+int cmd_simulate(int argc, char **argv);
+int cmd_presets(int argc, char **argv);
+int cmd_preset(int argc, char **argv);
+int cmd_bake(int argc, char **argv);
+int cmd_eval(int argc, char **argv);
+int cmd_texture(int argc, char **argv);
+int cmd_export(int argc, char **argv);
+int cmd_export_pov(int argc, char **argv);
+int cmd_export_blender(int argc, char **argv);
+#endif

@@ -1,0 +1,51 @@
+/* phase: the Henyey-Greenstein phase function and the direction update
+ * ("spin").  Pure functions of their uniform inputs.
+ *
+ * The seed paper (Li & Ng, eqs. 2 and 16) misprints the inversion of the HG
+ * cumulative distribution; this is the correct one (Henyey & Greenstein 1941,
+ * as in Wang & Jacques' MCML manual eq. 3.28):
+ *   cos = (1 + g^2 - ((1 - g^2) / (1 - g + 2 g u))^2) / (2 g),  cos = 2u - 1 at g = 0. */
+#ifndef SKINBAKE_PHASE_H
+#define SKINBAKE_PHASE_H
+#include <math.h>
+
+/* HG density of cos(theta) on [-1, 1] (integrates to 1 over cos). */
+double hg_pdf_cos(double g, double cos_theta);
+
+/* Sample cos(theta) from HG with anisotropy g in (-1, 1) and u in (0, 1).
+ * Stable for g near 0 of either sign and for |g| near 1; result in [-1, 1]. */
+static inline double hg_sample_cos(double g, double u)
+{
+	double xi = 2.0 * u - 1.0, c;
+	if (g > -0.5 && g < 0.5) {
+		/* The textbook form divides by 2g and cancels catastrophically as
+		 * g -> 0.  Expanding it over the common denominator D^2, D = 1 + g xi,
+		 * leaves a polynomial with no cancellation (exactly xi at g = 0). */
+		double d = 1.0 + g * xi;
+		double num = xi + g * (0.5 * (xi * xi + 3.0) + g * (xi + 0.5 * g * (xi * xi - 1.0)));
+		c = num / (d * d);
+	} else {
+		double s = (1.0 - g * g) / (1.0 + g * xi);
+		c = (1.0 + g * g - s * s) / (2.0 * g);
+	}
+	return c < -1.0 ? -1.0 : (c > 1.0 ? 1.0 : c);
+}
+
+/* Rotate the unit direction (*ux, *uy, *uz) by polar cosine cos_t and the
+ * azimuth whose cosine and sine are cos_p, sin_p (MCML's Spin, in cosines). */
+static inline void spin_dir(double *ux, double *uy, double *uz, double cos_t, double cos_p, double sin_p)
+{
+	double sin_t = sqrt(1.0 - cos_t * cos_t);	/* sqrt() is cheaper than sin() */
+	double x = *ux, y = *uy, z = *uz;
+	if (z > 0.99999 || z < -0.99999) {
+		*ux = sin_t * cos_p;
+		*uy = sin_t * sin_p;
+		*uz = z > 0.0 ? cos_t : -cos_t;
+	} else {
+		double t = sqrt(1.0 - z * z);
+		*ux = sin_t * (x * z * cos_p - y * sin_p) / t + x * cos_t;
+		*uy = sin_t * (y * z * cos_p + x * sin_p) / t + y * cos_t;
+		*uz = -sin_t * cos_p * t + z * cos_t;
+	}
+}
+#endif
