@@ -27,7 +27,7 @@ static inline void rng_seed(struct rng *r, uint64_t seed, uint32_t stream, uint6
 
 /* Uniform in the open interval (0, 1): never 0 (safe for log) nor 1.
  * 32 bits of resolution are ample for path lengths and angles. */
-static inline double rng_uniform(struct rng *r)
+static inline __attribute__((always_inline)) double rng_uniform(struct rng *r)
 {
 	if (r->used == 4) {
 		r->out = philox4x32(r->ctr, r->key);

@@ -26,8 +26,8 @@
 void transport_opts_default(struct transport_opts *o)
 {
 	o->fresnel = OPTICS_FRESNEL_EXACT;
-	o->roulette_w = 1e-4;
-	o->roulette_chance = 0.1;
+	o->roulette_w = 0.05;
+	o->roulette_chance = 0.3;
 	o->max_steps = 1000000;
 }
 
@@ -140,8 +140,9 @@ void transport_run(const struct slab *s, const struct launch *ln, const struct t
 					break;
 				/* Spin. */
 				double ct = hg_sample_cos(L[l].g, rng_uniform(&r));
-				double psi = 2.0 * M_PI * rng_uniform(&r);
-				spin_dir(&ux, &uy, &uz, ct, cos(psi), sin(psi));
+				double cp, sp;
+				azimuth_sample(rng_uniform(&r), &cp, &sp);
+				spin_dir(&ux, &uy, &uz, ct, cp, sp);
 				scattered = 1;
 				t->events += 1.0;
 				/* Roulette; its weight change is booked against A (see top). */

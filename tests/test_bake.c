@@ -1,0 +1,238 @@
+/* The bake driver and the bake directory: round trip through the files is
+ * exact, tables agree with independent `simulate` runs within error, the
+ * target error is met, energy is conserved, threads do not change bits,
+ * reciprocity holds within error. */
+#include <stdarg.h>
+#include <stddef.h>
+#include <stdint.h>
+#include <setjmp.h>
+#include <cmocka.h>
+#include <math.h>
+#include <stdio.h>
+#include <stdlib.h>
+#include <string.h>
+#include <unistd.h>
+
+#include "bake.h"
+#include "bakefile.h"
+#include "sim.h"
+#include "util.h"
+
+/* The engine issue's skin stack at 550 nm. */
+static void skin_slab(struct slab *s)
+{
+	char *cause = NULL;
+	slab_init(s, 1.0, 1.4);
+	struct layer l1 = { 0.001, 1.5, 0, 0, 0 }, l2 = { 0.01, 1.4, 50, 370, 0.8 }, l3 = { 0.25, 1.4, 7, 370, 0.8 };
+	slab_add(s, &l1, &cause);
+	slab_add(s, &l2, &cause);
+	slab_add(s, &l3, &cause);
+	assert_int_equal(slab_check(s, &cause), 0);
+	slab_prepare(s);
+}
+
+static void base_spec(struct bake_spec *s)
+{
+	memset(s, 0, sizeof *s);
+	s->n_wl = 2;
+	s->wl_nm[0] = 550;
+	s->wl_nm[1] = 600;
+	skin_slab(&s->slab[0]);
+	skin_slab(&s->slab[1]);
+	s->slab[1].layer[2].mu_a = 20;	/* a second "wavelength": less absorbing epidermis */
+	slab_prepare(&s->slab[1]);
+	s->n_ti = 3;
+	s->theta_i[0] = 0;
+	s->theta_i[1] = 30 * M_PI / 180;
+	s->theta_i[2] = 60 * M_PI / 180;
+	s->n_to = 6;
+	s->n_phi = 4;
+	s->n_r = 20;
+	s->dr = 0.01;
+	transport_opts_default(&s->opts);
+	s->seed = 11;
+	s->batch_photons = 2000;
+	s->min_batches = 8;
+	s->target_error = 0;
+	s->max_photons = 6L * 16 * 2000;
+	s->n_ranks = 1;
+}
+
+static char tmpdir[64];
+
+static void test_roundtrip_exact(void **state)
+{
+	(void)state;
+	static struct bake_spec s;
+	base_spec(&s);
+	struct bake_result r;
+	bake_run(&s, &r);
+	double m[6] = { 0.3, 0.7, 0.5, 0.5, 0.9, 0.1 };
+	struct bake_meta meta = { .preset = "test", .ior = 1.5, .roughness = 0.3, .rgb_from_wl = m };
+	char *cause = NULL;
+	snprintf(tmpdir, sizeof tmpdir, "tests/bake.tmp.%ld", (long)getpid());
+	assert_int_equal(bake_write(tmpdir, &s, &r, &meta, &cause), 0);
+	struct bake *b = bake_load(tmpdir, &cause);
+	if (b == NULL)
+		fail_msg("%s", cause);
+	assert_int_equal(b->n_wl, 2);
+	assert_int_equal(b->n_ti, 3);
+	assert_int_equal(b->n_to, 6);
+	assert_int_equal(b->n_phi, 4);
+	size_t per = (size_t)b->n_ti * b->n_to * b->n_phi;
+	for (int w = 0; w < 2; w++)
+		for (int ti = 0; ti < 3; ti++)
+			for (int k = 0; k < 24; k++) {
+				float want = (float)r.job[w * 3 + ti].fr[k];
+				assert_memory_equal(&b->fr[w * per + (size_t)ti * 24 + k], &want, sizeof want);
+				float werr = (float)r.job[w * 3 + ti].fr_err[k];
+				assert_memory_equal(&b->fr_err[w * per + (size_t)ti * 24 + k], &werr, sizeof werr);
+			}
+	/* RGB table is the stated linear combination. */
+	for (size_t k = 0; k < per; k++) {
+		double want = 0.3 * b->fr[k] + 0.7 * b->fr[per + k];
+		assert_float_equal(b->fr_rgb[k], want, 1e-6 * (fabs(want) + 1e-6));
+	}
+	/* Interpolation reproduces the table at its nodes. */
+	double f[2], e[2];
+	bake_eval_diffuse(b, b->theta_i[1], b->theta_o[2], b->phi[3], f, e);
+	assert_float_equal(f[0], b->fr[(size_t)1 * 24 + 2 * 4 + 3], 1e-7);
+	assert_float_equal(e[1], b->fr_err[per + (size_t)1 * 24 + 2 * 4 + 3], 1e-7);
+	/* A missing file makes loading fail with a message. */
+	char *p = xasprintf("%s/brdf_rgb.exr", tmpdir);
+	unlink(p);
+	free(p);
+	struct bake *b2 = bake_load(tmpdir, &cause);
+	assert_null(b2);
+	assert_non_null(strstr(cause, "brdf_rgb.exr"));
+	free(cause);
+	bake_free(b);
+	bake_result_free(&r);
+	char *cmd = xasprintf("rm -rf %s", tmpdir);
+	assert_int_equal(system(cmd), 0);
+	free(cmd);
+}
+
+static void test_energy_and_threads(void **state)
+{
+	(void)state;
+	static struct bake_spec s;
+	base_spec(&s);
+	s.threads = 1;
+	struct bake_result a, b;
+	bake_run(&s, &a);
+	s.threads = 2;
+	bake_run(&s, &b);
+	for (int j = 0; j < a.n_jobs; j++) {
+		const struct bake_job *x = &a.job[j], *y = &b.job[j];
+		assert_memory_equal(x->fr, y->fr, sizeof(double) * 24);
+		assert_memory_equal(x->fr_err, y->fr_err, sizeof(double) * 24);
+		assert_memory_equal(&x->albedo, &y->albedo, sizeof(double));
+		double sum = x->rsp + x->albedo + x->rd_unscat + x->tt + x->a_total + x->lost;
+		assert_float_equal(sum, 1.0, 1e-9);
+		/* The table integrates to the albedo (bins are cos-weighted means). */
+		double integ = 0.0;
+		for (int it = 0; it < 6; it++)
+			for (int ip = 0; ip < 4; ip++)
+				integ += x->fr[it * 4 + ip] * sim_cos_solid_angle(it * M_PI / 12, (it + 1) * M_PI / 12, M_PI / 4);
+		assert_float_equal(integ, x->albedo, 1e-9);
+	}
+	bake_result_free(&a);
+	bake_result_free(&b);
+}
+
+/* Bake entries against independent simulate runs (other seed): the mean
+ * squared z-score over all bins is 1 within its own statistical spread. */
+static void test_agrees_with_simulate(void **state)
+{
+	(void)state;
+	static struct bake_spec s;
+	base_spec(&s);
+	s.max_photons = 6L * 40 * 2000;
+	struct bake_result r;
+	bake_run(&s, &r);
+	double z2 = 0.0, zmax = 0.0;
+	int n = 0;
+	for (int j = 0; j < r.n_jobs; j++) {
+		static struct sim_config c;
+		sim_config_default(&c);
+		c.slab = s.slab[j / 3];
+		c.theta_in = s.theta_i[j % 3];
+		c.grid = (struct tally_grid){ .n_theta = 6, .n_phi = 4, .n_r = 0, .dr = 0.01 };
+		c.photons = 80000;
+		c.seed = 999;
+		struct sim_result sr;
+		sim_run(&c, &sr, NULL, NULL);
+		for (int k = 0; k < 24; k++) {
+			double d = r.job[j].fr[k] - sr.fr[k];
+			double se = sqrt(r.job[j].fr_err[k] * r.job[j].fr_err[k] + sr.fr_err[k] * sr.fr_err[k]);
+			double z = d / se;
+			z2 += z * z;
+			zmax = fmax(zmax, fabs(z));
+			n++;
+		}
+		sim_result_free(&sr);
+	}
+	z2 /= n;
+	print_message("# bake vs simulate: %d bins, mean z^2 = %.3f, max |z| = %.2f\n", n, z2, zmax);
+	/* chi^2/n has standard deviation sqrt(2/n); allow 4 of them, and no bin beyond 4.5 sigma. */
+	assert_true(z2 < 1.0 + 4.0 * sqrt(2.0 / n));
+	assert_true(z2 > 1.0 - 4.0 * sqrt(2.0 / n));
+	assert_true(zmax < 4.5);
+	bake_result_free(&r);
+}
+
+static void test_target_error_met(void **state)
+{
+	(void)state;
+	static struct bake_spec s;
+	base_spec(&s);
+	s.n_wl = 1;
+	s.n_ti = 2;
+	s.target_error = 0.05;
+	s.max_photons = 100000000L;
+	struct bake_result r;
+	bake_run(&s, &r);
+	print_message("# target 0.05: reached %.4f with %ld photons\n", r.rms_rel_err, r.photons);
+	assert_true(r.target_met);
+	assert_true(r.rms_rel_err <= 0.05);
+	for (int j = 0; j < r.n_jobs; j++)
+		assert_true(r.job[j].rms_rel_err <= 0.05);
+	bake_result_free(&r);
+}
+
+/* f(i, o) = f(o, i): incidence nodes at bin centres, compare the
+ * azimuth-averaged values of the two bins at (a, b) and (b, a). */
+static void test_reciprocity(void **state)
+{
+	(void)state;
+	static struct bake_spec s;
+	base_spec(&s);
+	s.n_wl = 1;
+	s.n_to = 9;
+	s.n_phi = 1;
+	s.n_ti = 2;
+	s.theta_i[0] = 25 * M_PI / 180;	/* centre of bin 2 (20-30) */
+	s.theta_i[1] = 55 * M_PI / 180;	/* centre of bin 5 (50-60) */
+	s.max_photons = 2L * 200 * 2000;
+	struct bake_result r;
+	bake_run(&s, &r);
+	double f_ab = r.job[0].fr[5], e_ab = r.job[0].fr_err[5];
+	double f_ba = r.job[1].fr[2], e_ba = r.job[1].fr_err[2];
+	double z = (f_ab - f_ba) / sqrt(e_ab * e_ab + e_ba * e_ba);
+	print_message("# reciprocity: f(25,55) = %.5f +- %.5f, f(55,25) = %.5f +- %.5f, z = %.2f\n", f_ab, e_ab, f_ba, e_ba, z);
+	assert_true(fabs(z) < 3.5);
+	bake_result_free(&r);
+}
+
+int main(void)
+{
+	const struct CMUnitTest tests[] = {
+		cmocka_unit_test(test_roundtrip_exact),
+		cmocka_unit_test(test_energy_and_threads),
+		cmocka_unit_test(test_agrees_with_simulate),
+		cmocka_unit_test(test_target_error_met),
+		cmocka_unit_test(test_reciprocity),
+	};
+	return cmocka_run_group_tests_name("bake", tests, NULL, NULL);
+}
