@@ -8,6 +8,8 @@
 #include <omp.h>
 #endif
 
+#include "nee.h"
+#include "rng.h"
 #include "sim.h"
 #include "tally.h"
 #include "util.h"
@@ -145,14 +147,25 @@ void bake_run(const struct bake_spec *s, struct bake_result *r)
 #pragma omp parallel num_threads(nthreads)
 		{
 			struct tally t;
+			struct nee ne;
 			tally_alloc(&t, &g);
+			if (s->nee)
+				nee_alloc(&ne, s->n_to, s->n_phi, SLAB_MAX_LAYERS);
 #pragma omp for schedule(dynamic, 1)
 			for (long u = 0; u < nu; u++) {
 				if (u % s->n_ranks != s->rank)
 					continue;
 				int j = uj[u];
+				const struct slab *sl = &s->slab[j / s->n_ti];
 				tally_zero(&t, &g);
-				transport_run(&s->slab[j / s->n_ti], &ln[j], &s->opts, &g, s->seed, (uint32_t)j,
+				if (s->nee) {
+					/* One sub-bin offset per batch, from a counter no photon uses. */
+					struct rng jr;
+					rng_seed(&jr, s->seed, (uint32_t)j, (UINT64_C(1) << 62) + (uint64_t)ub[u]);
+					double xt = rng_uniform(&jr), xp = rng_uniform(&jr);
+					nee_prepare(&ne, sl, s->opts.fresnel, xt, xp);
+				}
+				transport_run(sl, &ln[j], &s->opts, &g, s->nee ? &ne : NULL, s->seed, (uint32_t)j,
 				    (uint64_t)ub[u] * (uint64_t)s->batch_photons, (uint64_t)s->batch_photons, &t);
 				batch_values(s, &t, vals + (size_t)u * (size_t)(nq + 1));
 				vals[(size_t)u * (size_t)(nq + 1) + nq] = t.events;
@@ -165,6 +178,8 @@ void bake_run(const struct bake_spec *s, struct bake_result *r)
 				}
 			}
 			tally_free(&t);
+			if (s->nee)
+				nee_free(&ne);
 		}
 		/* Units of other ranks are zero here; the sum brings them in. */
 		if (s->allreduce)

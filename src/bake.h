@@ -31,6 +31,7 @@ struct bake_spec {
 	int min_batches;			/* batches per job in the first round, >= 4 */
 	double target_error;			/* RMS relative error to reach; 0 = run max_photons */
 	long max_photons;			/* total photon budget of the bake */
+	int nee;				/* exit bins by next-event estimation (nee.h) instead of escapes */
 	int threads;				/* 0 = all cores */
 	int rank, n_ranks;			/* MPI: this process takes units u with u % n_ranks == rank */
 	/* MPI reduction hook: sum `n` doubles over ranks in place (NULL = single process). */

@@ -44,6 +44,9 @@ static void help(FILE *fp)
 	    "  --r-step CM            radial bin of Rd(r) [cm] (default 0.002)\n"
 	    "  --r-bins N             radial bins [1, 100000] (default 250)\n"
 	    "  --fresnel exact|schlick  boundary reflectance model (default exact)\n"
+	    "  --estimator nee|bins   how the table is scored: next-event estimation toward every\n"
+	    "                         bin (nee), or binning the escaping photons (bins), both\n"
+	    "                         unbiased for the bin means (default nee)\n"
 	    "  --seed N               random seed [0, 2^63] (default 1)\n"
 	    "  --threads N            OpenMP threads [0, 1024], 0 = all cores (default 0)\n"
 	    "  --quiet                no summary on stdout\n"
@@ -144,7 +147,7 @@ static int parse_theta(const char *s, double *th, int *n)
 int cmd_bake(int argc, char **argv)
 {
 	enum { O_PRESET = 256, O_PFILE, O_OUT, O_WL, O_SPEC, O_TH, O_RES, O_TE, O_MAXP, O_BATCH, O_RS, O_RB, O_FR,
-		O_SEED, O_THR, O_QUIET, O_HELP };
+		O_SEED, O_THR, O_QUIET, O_EST, O_HELP };
 	static const struct option opts[] = {
 		{ "preset", required_argument, 0, O_PRESET }, { "preset-file", required_argument, 0, O_PFILE },
 		{ "out", required_argument, 0, O_OUT }, { "wavelengths", required_argument, 0, O_WL },
@@ -154,7 +157,7 @@ int cmd_bake(int argc, char **argv)
 		{ "r-step", required_argument, 0, O_RS }, { "r-bins", required_argument, 0, O_RB },
 		{ "fresnel", required_argument, 0, O_FR }, { "seed", required_argument, 0, O_SEED },
 		{ "threads", required_argument, 0, O_THR }, { "quiet", no_argument, 0, O_QUIET },
-		{ "help", no_argument, 0, O_HELP }, { 0, 0, 0, 0 }
+		{ "estimator", required_argument, 0, O_EST }, { "help", no_argument, 0, O_HELP }, { 0, 0, 0, 0 }
 	};
 	static struct bake_spec s;
 	memset(&s, 0, sizeof s);
@@ -175,6 +178,7 @@ int cmd_bake(int argc, char **argv)
 	s.target_error = 0.02;
 	s.max_photons = 200000000L;
 	s.n_ranks = 1;
+	s.nee = 1;
 
 	opterr = 0;
 	optind = 1;
@@ -218,6 +222,11 @@ int cmd_bake(int argc, char **argv)
 		case O_SEED: if (cli_long(CMD, "--seed", optarg, 0, 9223372036854775807L, &lv)) return CLI_EXIT_USAGE; s.seed = (uint64_t)lv; break;
 		case O_THR: if (cli_long(CMD, "--threads", optarg, 0, 1024, &lv)) return CLI_EXIT_USAGE; s.threads = (int)lv; break;
 		case O_QUIET: quiet = 1; break;
+		case O_EST:
+			if (strcmp(optarg, "nee") == 0) s.nee = 1;
+			else if (strcmp(optarg, "bins") == 0) s.nee = 0;
+			else return cli_usage_error(CMD, "--estimator = '%s' is not one of nee, bins", optarg);
+			break;
 		case 'h':
 		case O_HELP: help(stdout); return CLI_EXIT_OK;
 		default:

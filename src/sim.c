@@ -68,7 +68,7 @@ void sim_run(const struct sim_config *c, struct sim_result *res,
 #pragma omp parallel for schedule(dynamic, 1) num_threads(nthreads)
 	for (int b = 0; b < nb; b++) {
 		uint64_t first = (uint64_t)(c->photons * b / nb);
-		transport_run(&c->slab, &ln, &c->opts, g, c->seed, c->stream, first, (uint64_t)bn[b], &bt[b]);
+		transport_run(&c->slab, &ln, &c->opts, g, NULL, c->seed, c->stream, first, (uint64_t)bn[b], &bt[b]);
 		if (progress) {
 #pragma omp critical(sim_progress)
 			{

@@ -59,7 +59,7 @@ void transport_launch(const struct slab *s, double theta_in, enum optics_fresnel
 
 /* Score a photon leaving the top with weight w, ambient direction cosines
  * (ux, uy, uz > 0 pointing up out of the skin) at lateral position (x, y). */
-static inline void score_top(const struct tally_grid *g, struct tally *t, double w, int scattered,
+static inline void score_top(const struct tally_grid *g, struct tally *t, double w, int scattered, int bin,
     double ux, double uy, double cos_o, double x, double y)
 {
 	t->rd += w;
@@ -67,6 +67,14 @@ static inline void score_top(const struct tally_grid *g, struct tally *t, double
 		t->rd_unscat += w;
 		return;
 	}
+	if (g->n_r > 0) {
+		double r = sqrt(x * x + y * y);
+		long ir = (long)(r / g->dr);
+		if (ir < g->n_r)
+			t->radial[ir] += w;
+	}
+	if (!bin)
+		return;
 	/* Incident light travels along +x, so the direction toward the source has
 	 * azimuth pi; delta_phi = 0 is back toward the source, pi the mirror side. */
 	double theta = acos(cos_o > 1.0 ? 1.0 : cos_o);
@@ -80,18 +88,13 @@ static inline void score_top(const struct tally_grid *g, struct tally *t, double
 	if (ip >= g->n_phi)
 		ip = g->n_phi - 1;
 	t->exit[it * g->n_phi + ip] += w;
-	if (g->n_r > 0) {
-		double r = sqrt(x * x + y * y);
-		long ir = (long)(r / g->dr);
-		if (ir < g->n_r)
-			t->radial[ir] += w;
-	}
 }
 
 void transport_run(const struct slab *s, const struct launch *ln, const struct transport_opts *o,
-    const struct tally_grid *grid, uint64_t seed, uint32_t stream, uint64_t first, uint64_t count,
-    struct tally *t)
+    const struct tally_grid *grid, const struct nee *nee, uint64_t seed, uint32_t stream, uint64_t first,
+    uint64_t count, struct tally *t)
 {
+	const int ft = s->first_turbid;
 	const int nl = s->n_layers;
 	const struct layer *L = s->layer;
 	const double w_th = o->roulette_w, chance = o->roulette_chance, inv_chance = 1.0 / o->roulette_chance;
@@ -110,6 +113,7 @@ void transport_run(const struct slab *s, const struct launch *ln, const struct t
 		double w = ln->w0;
 		double tau = 0.0;	/* optical depth left of the current step */
 		int l = ln->layer, scattered = 0;
+		int direct = 0;	/* flying straight on since the last scattering (what nee scores) */
 		long steps = 0;
 
 		for (;;) {
@@ -138,6 +142,10 @@ void transport_run(const struct slab *s, const struct launch *ln, const struct t
 				w -= wa;
 				if (w <= 0.0)
 					break;
+				if (nee) {
+					nee_score(nee, s, l, z, ux, uy, uz, w, rng_uniform(&r), t->exit);
+					direct = 1;
+				}
 				/* Spin. */
 				double ct = hg_sample_cos(L[l].g, rng_uniform(&r));
 				double cp, sp;
@@ -188,6 +196,8 @@ void transport_run(const struct slab *s, const struct launch *ln, const struct t
 			}
 			if (reflect) {
 				uz = -uz;
+				if (l >= ft)
+					direct = 0;	/* back into the turbid layers: nee did not count this path */
 				if (++steps >= o->max_steps) {
 					t->lost += w;
 					break;
@@ -199,7 +209,7 @@ void transport_run(const struct slab *s, const struct launch *ln, const struct t
 			uy *= eta;
 			uz = up ? -ct : ct;
 			if (nb == 0) {
-				score_top(grid, t, w, scattered, ux, uy, ct, x, y);
+				score_top(grid, t, w, scattered, !(nee && direct), ux, uy, ct, x, y);
 				break;
 			}
 			if (nb == nl + 1) {

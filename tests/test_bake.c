@@ -182,6 +182,50 @@ static void test_agrees_with_simulate(void **state)
 	bake_result_free(&r);
 }
 
+/* The next-event estimator's table against plain binning of an independent
+ * run: the same bin means within the combined errors (chi-square per bin). */
+static void test_nee_unbiased(void **state)
+{
+	(void)state;
+	static struct bake_spec a, b;
+	base_spec(&a);
+	a.n_to = 9;
+	a.n_phi = 6;
+	a.max_photons = 6L * 12 * 2000;
+	b = a;
+	a.nee = 1;
+	b.nee = 0;
+	b.seed = 4242;
+	b.max_photons = 6L * 150 * 2000;
+	struct bake_result ra, rb;
+	bake_run(&a, &ra);
+	bake_run(&b, &rb);
+	double z2 = 0.0, zmax = 0.0, ea = 0.0, eb = 0.0;
+	int n = 0;
+	for (int j = 0; j < ra.n_jobs; j++) {
+		for (int k = 0; k < 54; k++) {
+			double se = sqrt(ra.job[j].fr_err[k] * ra.job[j].fr_err[k] + rb.job[j].fr_err[k] * rb.job[j].fr_err[k]);
+			double z = (ra.job[j].fr[k] - rb.job[j].fr[k]) / se;
+			z2 += z * z;
+			zmax = fmax(zmax, fabs(z));
+			n++;
+		}
+		ea += ra.job[j].rms_rel_err;
+		eb += rb.job[j].rms_rel_err;
+		/* Totals are scored by escapes either way: energy still balances. */
+		const struct bake_job *x = &ra.job[j];
+		assert_float_equal(x->rsp + x->albedo + x->rd_unscat + x->tt + x->a_total + x->lost, 1.0, 1e-9);
+	}
+	z2 /= n;
+	print_message("# nee vs bins: %d bins, mean z^2 = %.3f, max |z| = %.2f; mean RMS error nee %.4f "
+	    "(%ld photons), bins %.4f (%ld photons)\n", n, z2, zmax, ea / ra.n_jobs, ra.photons, eb / rb.n_jobs, rb.photons);
+	assert_true(z2 < 1.0 + 4.0 * sqrt(2.0 / n));
+	assert_true(z2 > 1.0 - 4.0 * sqrt(2.0 / n));
+	assert_true(zmax < 4.5);
+	bake_result_free(&ra);
+	bake_result_free(&rb);
+}
+
 static void test_target_error_met(void **state)
 {
 	(void)state;
@@ -231,6 +275,7 @@ int main(void)
 		cmocka_unit_test(test_roundtrip_exact),
 		cmocka_unit_test(test_energy_and_threads),
 		cmocka_unit_test(test_agrees_with_simulate),
+		cmocka_unit_test(test_nee_unbiased),
 		cmocka_unit_test(test_target_error_met),
 		cmocka_unit_test(test_reciprocity),
 	};

@@ -1,0 +1,108 @@
+#include "config.h"
+#include "nee.h"
+
+#include <math.h>
+#include <stdlib.h>
+#include <string.h>
+
+#include "optics.h"
+#include "util.h"
+
+void nee_alloc(struct nee *e, int n_to, int n_phi, int n_layers)
+{
+	memset(e, 0, sizeof *e);
+	e->n_to = n_to;
+	e->n_phi = n_phi;
+	e->n_slots = n_layers + 2;
+	e->eps = 2.0;	/* tuned on the paper preset: efficiency flat for 1..5, see BENCHMARKS.md */
+	size_t kl = (size_t)n_to * (size_t)e->n_slots;
+	e->inv_mu = xcalloc(kl, sizeof(double));
+	e->c = xcalloc(kl, sizeof(double));
+	e->sz = xcalloc(kl, sizeof(double));
+	e->sxy = xcalloc(kl, sizeof(double));
+	e->cphi = xcalloc((size_t)n_phi, sizeof(double));
+	e->sphi = xcalloc((size_t)n_phi, sizeof(double));
+}
+
+void nee_free(struct nee *e)
+{
+	free(e->inv_mu);
+	free(e->c);
+	free(e->sz);
+	free(e->sxy);
+	free(e->cphi);
+	free(e->sphi);
+	memset(e, 0, sizeof *e);
+}
+
+/* Reflectance of the clear stack above the first turbid layer, seen from
+ * the air at cosine c0 (a lossless stack reflects alike from both sides). */
+static double clear_stack_r(const struct slab *s, enum optics_fresnel model, double c0)
+{
+	double R = 0.0, c = c0;
+	for (int j = 1; j <= s->first_turbid; j++) {
+		double ct, r = optics_fresnel(model, s->layer[j - 1].n, s->layer[j].n, c, &ct);
+		R = (R * r >= 1.0) ? 1.0 : R + (1.0 - R) * (1.0 - R) * r / (1.0 - R * r);
+		if (r >= 1.0)
+			return 1.0;
+		c = ct;
+	}
+	return R;
+}
+
+void nee_prepare(struct nee *e, const struct slab *s, enum optics_fresnel model, double xi_t, double xi_p)
+{
+	const int ns = e->n_slots, nl = s->n_layers, ft = s->first_turbid;
+	const double dth = 0.5 * M_PI / e->n_to, dph = M_PI / e->n_phi, n0 = s->layer[0].n;
+	for (int p = 0; p < e->n_phi; p++) {
+		double ph = (p + xi_p) * dph;
+		e->cphi[p] = cos(ph);
+		e->sphi[p] = sin(ph);
+	}
+	for (int i = 0; i <= nl + 1; i++) {
+		double g = s->layer[i].g;
+		e->g2p1[i] = 1.0 + g * g;
+		e->two_g[i] = 2.0 * g;
+	}
+	for (int k = 0; k < e->n_to; k++) {
+		double th = (k + xi_t) * dth, c0 = cos(th), s0 = sin(th);
+		double *C = e->c + k * ns;
+		memset(C, 0, sizeof(double) * (size_t)ns);
+		if (c0 <= 0.0 || ft > nl)
+			continue;
+		/* The internal ray in every layer: n sin is conserved. */
+		int tir = 0;
+		for (int l = 1; l <= nl; l++) {
+			double sl = n0 * s0 / s->layer[l].n;
+			if (sl >= 1.0) {
+				tir = 1;
+				break;
+			}
+			double cl = sqrt(1.0 - sl * sl);
+			e->inv_mu[k * ns + l] = 1.0 / cl;
+			e->sz[k * ns + l] = -cl;
+			e->sxy[k * ns + l] = sl;
+		}
+		if (tir)
+			continue;
+		/* Walk down from the first turbid layer, accumulating the
+		 * transmission and attenuation of the path above each layer. */
+		double T = 1.0 - clear_stack_r(s, model, c0);
+		for (int l = ft; l <= nl && T > 0.0; l++) {
+			if (l > ft) {
+				double ct;
+				double cu = 1.0 / e->inv_mu[k * ns + l];
+				double r = optics_fresnel(model, s->layer[l].n, s->layer[l - 1].n, cu, &ct);
+				T *= (1.0 - r) * exp(-s->mu_t[l - 1] * s->layer[l - 1].d * e->inv_mu[k * ns + l - 1]);
+			}
+			if (slab_layer_clear(s, l))
+				continue;	/* no events happen there */
+			double nl0 = n0 / s->layer[l].n;
+			double jac = nl0 * nl0 * c0 * e->inv_mu[k * ns + l];
+			double g = s->layer[l].g;
+			/* HG per steradian = (1-g^2) / (4 pi s^1.5); bin measure
+			 * sin(theta) dtheta dphi per side; both sides are summed. */
+			C[l] = T * jac * (1.0 - g * g) / (4.0 * M_PI) * s0 * dth * dph;
+		}
+	}
+}
