@@ -11,6 +11,12 @@
 
 #include "util.h"
 
+#ifdef SKINBAKE_MPI
+#include <mpi.h>
+#endif
+
+struct cli_parallel cli_par = { 0, 1, NULL };
+
 struct command {
 	const char *name;
 	const char *summary;
@@ -36,7 +42,7 @@ static void usage(FILE *fp)
 	    "  skinbake --version        prints the version.\n");
 }
 
-int main(int argc, char **argv)
+static int cli_main(int argc, char **argv)
 {
 	if (argc < 2) {
 		usage(stderr);
@@ -63,6 +69,39 @@ int main(int argc, char **argv)
 	usage(stderr);
 	return CLI_EXIT_USAGE;
 }
+
+#ifdef SKINBAKE_MPI
+/* Every value belongs to one rank and is zero on the others, so the sum is
+ * exact whatever order MPI adds in. */
+static void mpi_allreduce(double *v, long n)
+{
+	for (long off = 0; off < n; off += 1L << 28) {
+		int k = (int)(n - off < (1L << 28) ? n - off : (1L << 28));
+		MPI_Allreduce(MPI_IN_PLACE, v + off, k, MPI_DOUBLE, MPI_SUM, MPI_COMM_WORLD);
+	}
+}
+
+int main(int argc, char **argv)
+{
+	MPI_Init(&argc, &argv);
+	MPI_Comm_rank(MPI_COMM_WORLD, &cli_par.rank);
+	MPI_Comm_size(MPI_COMM_WORLD, &cli_par.size);
+	cli_par.allreduce = mpi_allreduce;
+	if (cli_par.rank != 0 && freopen("/dev/null", "w", stdout) == NULL)
+		fatalx("cannot silence stdout on rank %d", cli_par.rank);
+	int rc = cli_main(argc, argv);
+	/* A rank that failed on bad input must not leave the others waiting. */
+	int worst = rc;
+	MPI_Allreduce(&rc, &worst, 1, MPI_INT, MPI_MAX, MPI_COMM_WORLD);
+	MPI_Finalize();
+	return worst;
+}
+#else
+int main(int argc, char **argv)
+{
+	return cli_main(argc, argv);
+}
+#endif
 
 static void vmsg(const char *cmd, const char *fmt, va_list ap)
 {

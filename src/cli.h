@@ -31,6 +31,15 @@ void cli_progress_end(struct cli_progress *p);
 int cli_double(const char *cmd, const char *opt, const char *s, double lo, double hi, double *out);
 int cli_long(const char *cmd, const char *opt, const char *s, long lo, long hi, long *out);
 
+/* Process layout for bakes split over MPI ranks: {0, 1, NULL} in the plain
+ * build; skinbake-mpi fills it after MPI_Init.  Only rank 0 prints and writes. */
+struct cli_parallel {
+	int rank;				/* this process */
+	int size;				/* processes */
+	void (*allreduce)(double *v, long n);	/* in-place sum over ranks */
+};
+extern struct cli_parallel cli_par;
+
 /* Subcommands (each in its own cmd_*.c). */
 int cmd_simulate(int argc, char **argv);
 int cmd_presets(int argc, char **argv);

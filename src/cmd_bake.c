@@ -266,8 +266,13 @@ int cmd_bake(int argc, char **argv)
 	}
 	double *m = xmalloc(sizeof(double) * 3 * (size_t)s.n_wl);
 	colour_rgb_weights(s.n_wl, s.wl_nm, m);
+	s.rank = cli_par.rank;
+	s.n_ranks = cli_par.size;
+	s.allreduce = cli_par.allreduce;
 	struct cli_progress pr;
 	cli_progress_start(&pr, "bake");
+	if (cli_par.rank != 0)
+		pr.tty = 0;
 	s.progress = cli_progress_update;
 	s.progress_user = &pr;
 	struct bake_result r;
@@ -291,7 +296,9 @@ int cmd_bake(int argc, char **argv)
 		.command = cmdline,
 	};
 	int rc = CLI_EXIT_OK;
-	if (bake_write(out, &s, &r, &meta, &cause) != 0) {
+	if (cli_par.rank != 0) {
+		/* Every rank holds the whole result; rank 0 writes it. */
+	} else if (bake_write(out, &s, &r, &meta, &cause) != 0) {
 		rc = cli_fail(CMD, "%s", cause);
 		free(cause);
 	} else if (!quiet) {
