@@ -9,7 +9,6 @@
 #endif
 
 #include "nee.h"
-#include "rng.h"
 #include "sim.h"
 #include "tally.h"
 #include "util.h"
@@ -158,13 +157,6 @@ void bake_run(const struct bake_spec *s, struct bake_result *r)
 				int j = uj[u];
 				const struct slab *sl = &s->slab[j / s->n_ti];
 				tally_zero(&t, &g);
-				if (s->nee) {
-					/* One sub-bin offset per batch, from a counter no photon uses. */
-					struct rng jr;
-					rng_seed(&jr, s->seed, (uint32_t)j, (UINT64_C(1) << 62) + (uint64_t)ub[u]);
-					double xt = rng_uniform(&jr), xp = rng_uniform(&jr);
-					nee_prepare(&ne, sl, s->opts.fresnel, xt, xp);
-				}
 				transport_run(sl, &ln[j], &s->opts, &g, s->nee ? &ne : NULL, s->seed, (uint32_t)j,
 				    (uint64_t)ub[u] * (uint64_t)s->batch_photons, (uint64_t)s->batch_photons, &t);
 				batch_values(s, &t, vals + (size_t)u * (size_t)(nq + 1));

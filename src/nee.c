@@ -14,7 +14,7 @@ void nee_alloc(struct nee *e, int n_to, int n_phi, int n_layers)
 	e->n_to = n_to;
 	e->n_phi = n_phi;
 	e->n_slots = n_layers + 2;
-	e->eps = 2.0;	/* tuned on the paper preset: efficiency flat for 1..5, see BENCHMARKS.md */
+	e->eps = 0.1;	/* tuned on the paper preset (BENCHMARKS.md): best error x time */
 	size_t kl = (size_t)n_to * (size_t)e->n_slots;
 	e->inv_mu = xcalloc(kl, sizeof(double));
 	e->c = xcalloc(kl, sizeof(double));
@@ -50,12 +50,12 @@ static double clear_stack_r(const struct slab *s, enum optics_fresnel model, dou
 	return R;
 }
 
-void nee_prepare(struct nee *e, const struct slab *s, enum optics_fresnel model, double xi_t, double xi_p)
+void nee_prepare(struct nee *e, const struct slab *s, enum optics_fresnel model, double xi_t)
 {
 	const int ns = e->n_slots, nl = s->n_layers, ft = s->first_turbid;
 	const double dth = 0.5 * M_PI / e->n_to, dph = M_PI / e->n_phi, n0 = s->layer[0].n;
 	for (int p = 0; p < e->n_phi; p++) {
-		double ph = (p + xi_p) * dph;
+		double ph = p * dph;
 		e->cphi[p] = cos(ph);
 		e->sphi[p] = sin(ph);
 	}

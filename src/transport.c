@@ -91,7 +91,7 @@ static inline void score_top(const struct tally_grid *g, struct tally *t, double
 }
 
 void transport_run(const struct slab *s, const struct launch *ln, const struct transport_opts *o,
-    const struct tally_grid *grid, const struct nee *nee, uint64_t seed, uint32_t stream, uint64_t first,
+    const struct tally_grid *grid, struct nee *nee, uint64_t seed, uint32_t stream, uint64_t first,
     uint64_t count, struct tally *t)
 {
 	const int ft = s->first_turbid;
@@ -114,6 +114,8 @@ void transport_run(const struct slab *s, const struct launch *ln, const struct t
 		double tau = 0.0;	/* optical depth left of the current step */
 		int l = ln->layer, scattered = 0;
 		int direct = 0;	/* flying straight on since the last scattering (what nee scores) */
+		if (nee)
+			nee_prepare(nee, s, o->fresnel, rng_uniform(&r));
 		long steps = 0;
 
 		for (;;) {
@@ -143,7 +145,7 @@ void transport_run(const struct slab *s, const struct launch *ln, const struct t
 				if (w <= 0.0)
 					break;
 				if (nee) {
-					nee_score(nee, s, l, z, ux, uy, uz, w, rng_uniform(&r), t->exit);
+					nee_score(nee, s, l, z, ux, uy, uz, w, rng_uniform(&r), rng_uniform(&r), t->exit);
 					direct = 1;
 				}
 				/* Spin. */

@@ -40,10 +40,10 @@ void transport_launch(const struct slab *s, double theta_in, enum optics_fresnel
 /* Trace photons first .. first+count-1 of (seed, stream) and add their
  * weights to t (not zeroed here).  Photon i uses only the random numbers of
  * counter (seed, stream, i), so any split of the range gives the same sums.
- * With nee (prepared for s and grid's n_theta x n_phi), the exit bins are
+ * With nee (allocated for grid's n_theta x n_phi; refilled here per photon), the exit bins are
  * scored by next-event estimation instead of by the escapes (see nee.h);
  * the totals and Rd(r) are always scored by the escapes. */
 void transport_run(const struct slab *s, const struct launch *ln, const struct transport_opts *o,
-    const struct tally_grid *grid, const struct nee *nee, uint64_t seed, uint32_t stream, uint64_t first,
+    const struct tally_grid *grid, struct nee *nee, uint64_t seed, uint32_t stream, uint64_t first,
     uint64_t count, struct tally *t);
 #endif

@@ -233,15 +233,16 @@ static void test_target_error_met(void **state)
 	base_spec(&s);
 	s.n_wl = 1;
 	s.n_ti = 2;
-	s.target_error = 0.05;
+	s.target_error = 0.02;
+	s.nee = 1;	/* the default estimator */
 	s.max_photons = 100000000L;
 	struct bake_result r;
 	bake_run(&s, &r);
-	print_message("# target 0.05: reached %.4f with %ld photons\n", r.rms_rel_err, r.photons);
+	print_message("# target 0.02: reached %.4f with %ld photons\n", r.rms_rel_err, r.photons);
 	assert_true(r.target_met);
-	assert_true(r.rms_rel_err <= 0.05);
+	assert_true(r.rms_rel_err <= 0.02);
 	for (int j = 0; j < r.n_jobs; j++)
-		assert_true(r.job[j].rms_rel_err <= 0.05);
+		assert_true(r.job[j].rms_rel_err <= 0.02);
 	bake_result_free(&r);
 }
 
