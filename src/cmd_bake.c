@@ -247,8 +247,15 @@ int cmd_bake(int argc, char **argv)
 		free(cause);
 		return rc;
 	}
-	if (!have_wl)
+	if (!have_wl) {
+		if (p->n_wl > BAKE_MAX_WL) {
+			int rc = cli_usage_error(CMD, "preset %s lists %d wavelengths; a bake takes at most %d "
+			    "(choose with --wavelengths or --spectral)", preset ? preset : pfile, p->n_wl, BAKE_MAX_WL);
+			preset_free(p);
+			return rc;
+		}
 		s.n_wl = preset_default_wavelengths(p, s.wl_nm, BAKE_MAX_WL);
+	}
 	if ((long)s.n_wl * s.n_ti * s.min_batches * s.batch_photons > s.max_photons) {
 		preset_free(p);
 		return cli_usage_error(CMD, "--max-photons = %ld is below the first round of the bake "
@@ -256,13 +263,12 @@ int cmd_bake(int argc, char **argv)
 		    s.min_batches, s.batch_photons);
 	}
 	for (int w = 0; w < s.n_wl; w++) {
-		if (tissue_slab(p, s.wl_nm[w], &s.slab[w], &cause) != 0 || slab_check(&s.slab[w], &cause) != 0) {
+		if (tissue_slab(p, s.wl_nm[w], &s.slab[w], &cause) != 0) {
 			int rc = cli_usage_error(CMD, "%s at %.0f nm: %s", preset ? preset : pfile, s.wl_nm[w], cause);
 			free(cause);
 			preset_free(p);
 			return rc;
 		}
-		slab_prepare(&s.slab[w]);
 	}
 	double *m = xmalloc(sizeof(double) * 3 * (size_t)s.n_wl);
 	colour_rgb_weights(s.n_wl, s.wl_nm, m);

@@ -63,9 +63,9 @@ static inline void spin_dir(double *ux, double *uy, double *uz, double cos_t, do
 		*uy = sin_t * sin_p;
 		*uz = z > 0.0 ? cos_t : -cos_t;
 	} else {
-		double t = sqrt(1.0 - z * z);
-		*ux = sin_t * (x * z * cos_p - y * sin_p) / t + x * cos_t;
-		*uy = sin_t * (y * z * cos_p + x * sin_p) / t + y * cos_t;
+		double t = sqrt(1.0 - z * z), k = sin_t / t;
+		*ux = k * (x * z * cos_p - y * sin_p) + x * cos_t;
+		*uy = k * (y * z * cos_p + x * sin_p) + y * cos_t;
 		*uz = -sin_t * cos_p * t + z * cos_t;
 	}
 }

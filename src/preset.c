@@ -716,9 +716,10 @@ int preset_find(const char *name)
 
 int preset_default_wavelengths(const struct skin_params *p, double *wl_nm, int max)
 {
-	for (int i = 0; i < p->n_wl && i < max; i++)
+	int n = p->n_wl < max ? p->n_wl : max;
+	for (int i = 0; i < n; i++)
 		wl_nm[i] = p->wl[i];
-	return p->n_wl;
+	return n;
 }
 
 double preset_surface_ior(const struct skin_params *p)

@@ -30,8 +30,10 @@ const char *preset_builtin_text(int i);
 /* Index of a built-in preset or -1. */
 int preset_find(const char *name);
 
-/* Default wavelengths of this preset [nm] (paper: 470, 550, 656): copies up
- * to max of them into wl_nm and returns how many the preset has. */
+/* Default wavelengths of this preset [nm], ascending (paper: 470, 550, 656;
+ * physiological: 400..700 step 20): copies at most max of them into wl_nm and
+ * returns the number copied.  p->n_wl is the full count (up to SKIN_MAX_WL),
+ * so a caller with max < SKIN_MAX_WL should reject p->n_wl > max. */
 int preset_default_wavelengths(const struct skin_params *p, double *wl_nm, int max);
 /* Index of the top surface for the analytic specular: the sebum's n if there
  * is sebum, else the epidermis n at 550 nm. */

@@ -97,6 +97,7 @@ void slab_prepare(struct slab *s)
 	for (int i = 0; i <= n + 1; i++) {
 		s->mu_t[i] = L[i].mu_a + L[i].mu_s;
 		s->albedo[i] = s->mu_t[i] > 0.0 ? L[i].mu_s / s->mu_t[i] : 0.0;
+		s->inv_mu_t[i] = s->mu_t[i] > 0.0 ? 1.0 / s->mu_t[i] : 0.0;
 		s->cos_crit_up[i] = i > 0 ? optics_cos_critical(L[i].n, L[i - 1].n) : 0.0;
 		s->cos_crit_down[i] = i <= n ? optics_cos_critical(L[i].n, L[i + 1].n) : 0.0;
 	}

@@ -25,6 +25,7 @@ struct slab {
 	double z_top[SLAB_MAX_LAYERS + 2];	/* depth of the layer's top [cm] */
 	double z_bot[SLAB_MAX_LAYERS + 2];	/* depth of the layer's bottom [cm] */
 	double mu_t[SLAB_MAX_LAYERS + 2];	/* mu_a + mu_s [1/cm] */
+	double inv_mu_t[SLAB_MAX_LAYERS + 2];	/* 1 / mu_t [cm], 0 if clear */
 	double albedo[SLAB_MAX_LAYERS + 2];	/* mu_s / mu_t [-], 0 if clear */
 	double cos_crit_up[SLAB_MAX_LAYERS + 2];	/* critical cosine into the layer above, 0 if none */
 	double cos_crit_down[SLAB_MAX_LAYERS + 2];	/* critical cosine into the layer below */

@@ -124,16 +124,13 @@ void transport_run(const struct slab *s, const struct launch *ln, const struct t
 			if (tau == 0.0)
 				tau = -log(rng_uniform(&r));
 			double mu_t = s->mu_t[l];
-			double db;	/* distance to the boundary ahead [cm] */
-			if (uz > 0.0)
-				db = (s->z_bot[l] - z) / uz;
-			else if (uz < 0.0)
-				db = (s->z_top[l] - z) / uz;
-			else
-				db = INFINITY;
+			/* Distance to the boundary ahead along z; comparing optical
+			 * depths as tau |uz| < mu_t dz avoids a division per step. */
+			double auz = fabs(uz);
+			double dz = uz > 0.0 ? s->z_bot[l] - z : z - s->z_top[l];
 
-			if (mu_t > 0.0 && tau < mu_t * db) {
-				double step = tau / mu_t;
+			if (mu_t > 0.0 && tau * auz < mu_t * dz) {
+				double step = tau * s->inv_mu_t[l];
 				x += step * ux;
 				y += step * uy;
 				z += step * uz;
@@ -171,12 +168,13 @@ void transport_run(const struct slab *s, const struct launch *ln, const struct t
 				}
 				continue;
 			}
-			if (db == INFINITY) {
+			if (auz == 0.0 || isinf(dz)) {
 				/* Travelling parallel to the layers in a clear layer: it
 				 * would never arrive anywhere. */
 				t->lost += w;
 				break;
 			}
+			double db = dz / auz;
 			/* Move to the boundary and keep the unused optical depth. */
 			x += db * ux;
 			y += db * uy;
