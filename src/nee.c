@@ -35,21 +35,6 @@ void nee_free(struct nee *e)
 	memset(e, 0, sizeof *e);
 }
 
-/* Reflectance of the clear stack above the first turbid layer, seen from
- * the air at cosine c0 (a lossless stack reflects alike from both sides). */
-static double clear_stack_r(const struct slab *s, enum optics_fresnel model, double c0)
-{
-	double R = 0.0, c = c0;
-	for (int j = 1; j <= s->first_turbid; j++) {
-		double ct, r = optics_fresnel(model, s->layer[j - 1].n, s->layer[j].n, c, &ct);
-		R = (R * r >= 1.0) ? 1.0 : R + (1.0 - R) * (1.0 - R) * r / (1.0 - R * r);
-		if (r >= 1.0)
-			return 1.0;
-		c = ct;
-	}
-	return R;
-}
-
 void nee_prepare(struct nee *e, const struct slab *s, enum optics_fresnel model, double xi_t)
 {
 	const int ns = e->n_slots, nl = s->n_layers, ft = s->first_turbid;
@@ -87,7 +72,10 @@ void nee_prepare(struct nee *e, const struct slab *s, enum optics_fresnel model,
 			continue;
 		/* Walk down from the first turbid layer, accumulating the
 		 * transmission and attenuation of the path above each layer. */
-		double T = 1.0 - clear_stack_r(s, model, c0);
+		double n_list[SLAB_MAX_LAYERS + 2], c_ft;
+		for (int j = 0; j <= ft; j++)
+			n_list[j] = s->layer[j].n;
+		double T = 1.0 - optics_stack_reflectance(model, n_list, ft + 1, c0, &c_ft);
 		for (int l = ft; l <= nl && T > 0.0; l++) {
 			if (l > ft) {
 				double ct;

@@ -43,3 +43,19 @@ double optics_fresnel(enum optics_fresnel model, double n1, double n2, double co
 	double rp = (n1 * ct - n2 * cos_i) / (n1 * ct + n2 * cos_i);
 	return 0.5 * (rs * rs + rp * rp);
 }
+
+double optics_stack_reflectance(enum optics_fresnel model, const double *n, int count, double cos_i, double *cos_t)
+{
+	double R = 0.0, c = cos_i;
+	for (int j = 1; j < count; j++) {
+		double ct, r = optics_fresnel(model, n[j - 1], n[j], c, &ct);
+		if (r >= 1.0) {
+			*cos_t = 0.0;
+			return 1.0;
+		}
+		R = R + (1.0 - R) * (1.0 - R) * r / (1.0 - R * r);
+		c = ct;
+	}
+	*cos_t = c;
+	return R;
+}

@@ -21,4 +21,10 @@ double optics_cos_critical(double n1, double n2);
  * in [0, 1].  Stores the refraction cosine in *cos_t (0 on total internal
  * reflection, which returns 1).  n1 == n2 gives exactly 0. */
 double optics_fresnel(enum optics_fresnel model, double n1, double n2, double cos_i, double *cos_t);
+/* Reflectance of a stack of lossless interfaces n[0] | n[1] | ... | n[count-1]
+ * (clear layers between them, crossed incoherently) for light arriving from
+ * n[0] at cosine cos_i.  Adding: R' = R + (1-R)^2 r / (1 - R r), valid
+ * because a lossless stack reflects alike from both sides.  Stores the
+ * cosine in the last medium in *cos_t (0 on total internal reflection). */
+double optics_stack_reflectance(enum optics_fresnel model, const double *n, int count, double cos_i, double *cos_t);
 #endif

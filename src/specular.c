@@ -5,15 +5,8 @@
 
 double specular_stack_reflectance(const struct specular_stack *s, double cos_i)
 {
-	double R = 0.0, c = cos_i;
-	for (int j = 1; j < s->n; j++) {
-		double ct, r = optics_fresnel(s->model, s->n_list[j - 1], s->n_list[j], c, &ct);
-		R = (R * r >= 1.0) ? 1.0 : R + (1.0 - R) * (1.0 - R) * r / (1.0 - R * r);
-		if (r >= 1.0)
-			break;
-		c = ct;
-	}
-	return R;
+	double ct;
+	return optics_stack_reflectance(s->model, s->n_list, s->n, cos_i, &ct);
 }
 
 /* Smith's masking for GGX. */

@@ -34,25 +34,16 @@ void transport_opts_default(struct transport_opts *o)
 void transport_launch(const struct slab *s, double theta_in, enum optics_fresnel model, struct launch *ln)
 {
 	const struct layer *L = s->layer;
-	int k = s->first_turbid;
-	double c = cos(theta_in), sin0 = sin(theta_in);
-	/* Add the interfaces down to the first turbid layer.  A stack of lossless
-	 * interfaces reflects alike from both sides, so R' = R + T^2 r / (1 - R r). */
-	double R = 0.0;
-	for (int j = 1; j <= k && j <= s->n_layers + 1; j++) {
-		double ct;
-		double r = optics_fresnel(model, L[j - 1].n, L[j].n, c, &ct);
-		R = (R * r >= 1.0) ? 1.0 : R + (1.0 - R) * (1.0 - R) * r / (1.0 - R * r);
-		c = ct;
-		if (r >= 1.0)
-			break;
-	}
-	ln->rsp = R;
-	ln->w0 = 1.0 - R;
+	int k = s->first_turbid;	/* n_layers + 1 when all clear: then down to the ambient below */
+	double n_list[SLAB_MAX_LAYERS + 2], ct;
+	for (int j = 0; j <= k; j++)
+		n_list[j] = L[j].n;
+	ln->rsp = optics_stack_reflectance(model, n_list, k + 1, cos(theta_in), &ct);
+	ln->w0 = 1.0 - ln->rsp;
 	ln->layer = k;
 	ln->z = s->z_top[k];
 	/* n sin(theta) is conserved through parallel interfaces. */
-	double st = L[0].n * sin0 / L[k <= s->n_layers ? k : s->n_layers + 1].n;
+	double st = L[0].n * sin(theta_in) / L[k].n;
 	ln->ux = st;
 	ln->uz = sqrt(fmax(0.0, 1.0 - st * st));
 }

@@ -1,0 +1,91 @@
+/* blender: the image set that exporters/blender/import_skin.py turns into
+ * Blender materials.  Blender's shader nodes see the view direction but not
+ * the light's, and its EXR reader takes only R,G,B[,A] channels (see
+ * docs/blender.md and the measured notes behind it), so everything here is
+ * plain RGB images plus manifest.json:
+ *
+ *   albedo.exr      RGB float, linear Rec.709: bihemispherical diffuse albedo
+ *   brdf_lut.exr    RGB float atlas of pi * f_r (total BRDF) for the exact mode
+ *   roughness.png   16-bit gray: Blender roughness = sqrt(GGX alpha)
+ *   height.png      16-bit gray height (copied from `skinbake texture`, or flat)
+ *   normal.png      16-bit RGB tangent-space normal, OpenGL +Y (or flat)
+ *   manifest.json   format version, parameters, axes, units, light set-up
+ *
+ * brdf_lut.exr layout: n_phi tiles side by side, each n_cos x n_cos.  Tile k
+ * holds delta_phi_k = k pi / (n_phi - 1) (0 = view back toward the light);
+ * inside a tile column j is cos_view = j / (n_cos - 1) and file row r (row 0
+ * at the top) is cos_light = 1 - r / (n_cos - 1), so Blender's v = 0 (the
+ * bottom row) is cos_light = 0.  Texture coordinates of a node sit at texel
+ * centres: u = (k n_cos + j + 0.5) / width, v = (i + 0.5) / n_cos with
+ * cos_light = i / (n_cos - 1). */
+#ifndef SKINBAKE_BLENDER_H
+#define SKINBAKE_BLENDER_H
+
+#define BLENDER_FORMAT_VERSION 1	/* manifest "format_version"; the importer checks it */
+
+/* The BRDF to export, independent of where it comes from (a bake or an
+ * analytic test model).  f_rgb is the total BRDF [1/sr] in linear sRGB at
+ * incidence theta_i, exit theta_o in [0, pi/2] and delta_phi in [0, pi]
+ * (0 = back toward the light), all in radians. */
+struct blender_model {
+	void (*f_rgb)(void *ctx, double theta_i, double theta_o, double dphi, double rgb[3]);
+	void *ctx;			/* passed to f_rgb */
+	int n_albedo;			/* nodes of the albedo curve [1, ...] */
+	const double *theta_albedo;	/* [n_albedo] incidence angles [rad], ascending */
+	const double *albedo_rgb;	/* [3][n_albedo] directional-hemispherical diffuse albedo [-] */
+	double ior;			/* refractive index of the top surface [-] */
+	double roughness;		/* GGX alpha of the top surface [-] */
+	double sss_radius_cm[3];	/* subsurface radius (mean free path) per RGB [cm] */
+	const char *source;		/* bake directory or model name, for the manifest */
+	const char *preset;		/* preset name or NULL */
+};
+
+struct blender_options {
+	int lut_cos;		/* cosine nodes per LUT axis [BLENDER_LUT_COS_MIN, MAX] */
+	int lut_phi;		/* delta_phi nodes over [0, pi] [BLENDER_LUT_PHI_MIN, MAX] */
+	double sun_elevation;	/* sun above the horizon of a +Z-up world [rad], (0, pi/2] */
+	double sun_azimuth;	/* sun azimuth from +X toward +Y [rad] */
+	double sun_strength;	/* irradiance normal to the sun [W/m^2], > 0 */
+	double view_elevation;	/* reference camera above the horizon [rad], (0, pi/2] */
+	double view_azimuth;	/* reference camera azimuth from +X toward +Y [rad] */
+	int map_size;		/* side of the albedo, roughness and flat detail maps [px] */
+	const char *textures;	/* `skinbake texture` output directory, or NULL for flat maps */
+	const char *generator;	/* program name and version for the manifest */
+};
+
+#define BLENDER_LUT_COS_MIN 8
+#define BLENDER_LUT_COS_MAX 1024
+#define BLENDER_LUT_PHI_MIN 2
+#define BLENDER_LUT_PHI_MAX 361
+#define BLENDER_MAP_MIN 1
+#define BLENDER_MAP_MAX 4096
+
+void blender_options_default(struct blender_options *o);
+
+/* The pi * f_r atlas described above: three planes (R, G, B), each
+ * n_cos rows by n_phi * n_cos columns, row 0 at the top.  Caller frees the
+ * returned block (planes at offsets 0, w*h, 2*w*h). */
+float *blender_lut(const struct blender_model *m, int n_cos, int n_phi);
+/* What the importer's node tree reads from that atlas at cos_light, cos_view
+ * in [0, 1] and dphi in [0, pi]: bilinear inside the two neighbouring
+ * delta_phi tiles, then linear between them. */
+void blender_lut_sample(const float *lut, int n_cos, int n_phi, double cos_l, double cos_v, double dphi,
+    double rgb[3]);
+/* Bihemispherical (white-sky) albedo 2 * int a(mu) mu dmu per channel, with
+ * a(theta) linear between the model's nodes and clamped beyond them. */
+void blender_albedo_mean(const struct blender_model *m, double rgb[3]);
+/* Unit vector toward a direction at elevation/azimuth [rad] in a +Z-up world. */
+void blender_direction(double elevation, double azimuth, double v[3]);
+
+/* The image set in memory.  blender_prepare validates o and m, reads
+ * o->textures and computes every file; NULL and *cause (caller frees) on bad
+ * input.  blender_write writes it into DIR (created if needed), manifest.json
+ * last; -1 and *cause on an I/O failure.  blender_set_free(NULL) is a no-op. */
+struct blender_set;
+struct blender_set *blender_prepare(const struct blender_model *m, const struct blender_options *o, char **cause);
+int blender_write(const struct blender_set *s, const char *dir, char **cause);
+void blender_set_free(struct blender_set *s);
+/* prepare + write: nothing is written when an option or a texture is bad. */
+int blender_export(const struct blender_model *m, const struct blender_options *o, const char *dir,
+    char **cause);
+#endif

@@ -1,0 +1,31 @@
+/* blender_fixture DIR [TEXTURES]: write an image set from the analytic test
+ * BRDF through the exporter code, for tests/blender_import.sh. */
+#include "config.h"
+
+#include <stdio.h>
+#include <stdlib.h>
+
+#include "blender.h"
+#include "blender_analytic.h"
+
+int main(int argc, char **argv)
+{
+	if (argc < 2 || argc > 3) {
+		fprintf(stderr, "usage: blender_fixture DIR [TEXTURES]\n");
+		return 2;
+	}
+	struct blender_model m;
+	struct blender_options o;
+	char *cause = NULL;
+	analytic_model(&m);
+	blender_options_default(&o);
+	o.lut_cos = 32;
+	o.lut_phi = 19;
+	o.textures = argc == 3 ? argv[2] : NULL;
+	if (blender_export(&m, &o, argv[1], &cause) != 0) {
+		fprintf(stderr, "blender_fixture: %s\n", cause);
+		free(cause);
+		return 1;
+	}
+	return 0;
+}
