@@ -38,7 +38,7 @@ static void help(FILE *fp)
 	    "  --fresnel exact|schlick  reflectance model at every boundary (default exact)\n"
 	    "  --theta-out-step DEG   width of theta_out bands, must divide 90 (default 5)\n"
 	    "  --phi-step DEG         width of delta_phi bins, must divide 180 (default 5)\n"
-	    "  --r-step CM            radial bin width of Rd(r) [cm] (default 0.005)\n"
+	    "  --r-step CM            radial bin width of Rd(r) [cm] in [1e-7, 100] (default 0.005)\n"
 	    "  --r-bins N             radial bins of Rd(r) [0, 100000], 0 = off (default 100)\n"
 	    "  --roulette-w W         weight threshold for roulette [0, 1] (default 0.05)\n"
 	    "  --roulette-chance P    roulette survival probability (0, 1] (default 0.3)\n"
@@ -75,7 +75,17 @@ static int parse_layer(const char *spec, int idx, struct layer *l)
 			continue;
 		}
 		if (util_parse_double(v, &x) != 0) {
-			cli_usage_error(CMD, "--layer %d: %s = '%s' is not a number", idx, k, v);
+			static const char *const keys[] = { "d", "n", "mua", "mus", "g" };
+			static const char *const ranges[] = { "(0, inf) cm, or inf for the last layer", "[1, 10]",
+				"[0, 1e8] 1/cm", "[0, 1e8] 1/cm", "(-1, 1)" };
+			const char *range = NULL;
+			for (int i = 0; i < 5; i++)
+				if (strcmp(k, keys[i]) == 0)
+					range = ranges[i];
+			if (range == NULL)
+				cli_usage_error(CMD, "--layer %d: unknown key '%s' (keys d, n, mua, mus, g)", idx, k);
+			else
+				cli_usage_error(CMD, "--layer %d: %s = '%s' is not a number (allowed range %s)", idx, k, v, range);
 			goto out;
 		}
 		if (strcmp(k, "d") == 0)
@@ -110,11 +120,18 @@ static int divides(double whole, double step)
 	return fabs(n - round(n)) < 1e-9 && round(n) >= 1 && round(n) <= 10000;
 }
 
+/* JSON has no NaN: a value that cannot be estimated (e.g. the error of a
+ * single batch) is null. */
+static json_object *jnum(double v)
+{
+	return isfinite(v) ? json_object_new_double(v) : NULL;
+}
+
 static json_object *jarray(const double *v, int n)
 {
 	json_object *a = json_object_new_array_ext(n);
 	for (int i = 0; i < n; i++)
-		json_object_array_add(a, json_object_new_double(v[i]));
+		json_object_array_add(a, jnum(v[i]));
 	return a;
 }
 
@@ -123,27 +140,27 @@ static void print_json(const struct sim_config *c, const struct sim_result *r)
 	const struct tally_grid *g = &r->grid;
 	json_object *o = json_object_new_object();
 	json_object_object_add(o, "photons", json_object_new_int64(r->photons));
-	json_object_object_add(o, "seconds", json_object_new_double(r->seconds));
-	json_object_object_add(o, "theta_in_deg", json_object_new_double(c->theta_in * 180.0 / M_PI));
+	json_object_object_add(o, "seconds", jnum(r->seconds));
+	json_object_object_add(o, "theta_in_deg", jnum(c->theta_in * 180.0 / M_PI));
 	json_object_object_add(o, "seed", json_object_new_int64((int64_t)c->seed));
-	json_object_object_add(o, "Rsp", json_object_new_double(r->rsp));
-	json_object_object_add(o, "Rd", json_object_new_double(r->rd.v));
-	json_object_object_add(o, "Rd_err", json_object_new_double(r->rd.err));
-	json_object_object_add(o, "Rd_unscattered", json_object_new_double(r->rd_unscat.v));
-	json_object_object_add(o, "Rd_unscattered_err", json_object_new_double(r->rd_unscat.err));
-	json_object_object_add(o, "Tt", json_object_new_double(r->tt.v));
-	json_object_object_add(o, "Tt_err", json_object_new_double(r->tt.err));
-	json_object_object_add(o, "Tt_unscattered", json_object_new_double(r->tt_unscat.v));
+	json_object_object_add(o, "Rsp", jnum(r->rsp));
+	json_object_object_add(o, "Rd", jnum(r->rd.v));
+	json_object_object_add(o, "Rd_err", jnum(r->rd.err));
+	json_object_object_add(o, "Rd_unscattered", jnum(r->rd_unscat.v));
+	json_object_object_add(o, "Rd_unscattered_err", jnum(r->rd_unscat.err));
+	json_object_object_add(o, "Tt", jnum(r->tt.v));
+	json_object_object_add(o, "Tt_err", jnum(r->tt.err));
+	json_object_object_add(o, "Tt_unscattered", jnum(r->tt_unscat.v));
 	double a[SLAB_MAX_LAYERS], ae[SLAB_MAX_LAYERS];
 	for (int i = 0; i < r->n_layers; i++)
 		a[i] = r->a[i + 1].v, ae[i] = r->a[i + 1].err;
 	json_object_object_add(o, "A", jarray(a, r->n_layers));
 	json_object_object_add(o, "A_err", jarray(ae, r->n_layers));
-	json_object_object_add(o, "lost", json_object_new_double(r->lost.v));
-	json_object_object_add(o, "balance", json_object_new_double(r->balance));
-	json_object_object_add(o, "scattering_events", json_object_new_double(r->events));
-	json_object_object_add(o, "photons_per_second", json_object_new_double(r->photons / r->seconds));
-	json_object_object_add(o, "events_per_second", json_object_new_double(r->events / r->seconds));
+	json_object_object_add(o, "lost", jnum(r->lost.v));
+	json_object_object_add(o, "balance", jnum(r->balance));
+	json_object_object_add(o, "scattering_events", jnum(r->events));
+	json_object_object_add(o, "photons_per_second", jnum(r->photons / r->seconds));
+	json_object_object_add(o, "events_per_second", jnum(r->events / r->seconds));
 
 	double *edges = xmalloc(sizeof(double) * (size_t)(g->n_theta + 1));
 	for (int i = 0; i <= g->n_theta; i++)
