@@ -47,7 +47,7 @@ static void help(FILE *fp)
 	    "  --estimator nee|bins   how the table is scored: next-event estimation toward every\n"
 	    "                         bin (nee), or binning the escaping photons (bins), both\n"
 	    "                         unbiased for the bin means (default nee)\n"
-	    "  --seed N               random seed [0, 2^63] (default 1)\n"
+	    "  --seed N               random seed [0, 2^63-1] (default 1)\n"
 	    "  --threads N            OpenMP threads [0, 1024], 0 = all cores (default 0)\n"
 	    "  --quiet                no summary on stdout\n"
 	    "  --help                 this text\n",

@@ -32,7 +32,7 @@ static void help(FILE *fp)
 	    "  --n-below N            index of the medium below [1, 10] (default 1)\n"
 	    "  --theta-in DEG         incidence angle [0, 90) degrees (default 0)\n"
 	    "  --photons N            photons [1, 1e12] (default 1e6)\n"
-	    "  --seed N               random seed [0, 2^63] (default 1)\n"
+	    "  --seed N               random seed [0, 2^63-1] (default 1)\n"
 	    "  --threads N            OpenMP threads [0, 1024], 0 = all cores (default 0)\n"
 	    "  --batches N            independent batches for standard errors [2, 100000] (default 32)\n"
 	    "  --fresnel exact|schlick  reflectance model at every boundary (default exact)\n"
@@ -325,6 +325,9 @@ int cmd_simulate(int argc, char **argv)
 	c.theta_in = th * M_PI / 180.0;
 	c.grid.n_theta = (int)round(90.0 / tos);
 	c.grid.n_phi = (int)round(180.0 / phs);
+	if ((long)c.grid.n_theta * c.grid.n_phi > 1000000)
+		return cli_usage_error(CMD, "--theta-out-step %g and --phi-step %g give %ld bins; at most 1e6 are allowed",
+		    tos, phs, (long)c.grid.n_theta * c.grid.n_phi);
 
 	struct sim_result r;
 	struct cli_progress pr;

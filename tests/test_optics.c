@@ -84,6 +84,32 @@ static void test_against_trig_form(void **state)
 	}
 }
 
+/* Reciprocity: the reflectance is the same seen from either side, R(n1 -> n2,
+ * theta_i) = R(n2 -> n1, theta_t), for both models; and the dense side
+ * below its critical angle matches the trigonometric form too. */
+static void test_reciprocity(void **state)
+{
+	(void)state;
+	double pairs[][2] = { { 1.0, 1.4 }, { 1.0, 1.5 }, { 1.4, 1.5 }, { 1.0, 2.5 } };
+	for (size_t i = 0; i < sizeof pairs / sizeof pairs[0]; i++)
+		for (double c = 0.01; c <= 1.0; c += 0.01) {
+			double n1 = pairs[i][0], n2 = pairs[i][1], ct, cb;
+			for (int m = 0; m < 2; m++) {
+				enum optics_fresnel model = m ? OPTICS_FRESNEL_SCHLICK : OPTICS_FRESNEL_EXACT;
+				double r12 = optics_fresnel(model, n1, n2, c, &ct);
+				double r21 = optics_fresnel(model, n2, n1, ct, &cb);
+				assert_float_equal(r12, r21, 1e-12);
+				assert_float_equal(cb, c, 1e-12);
+				assert_true(r12 >= 0.0 && r12 <= 1.0);
+			}
+			double th = acos(ct), ti = acos(c);
+			double rs = sin(th - ti) / sin(th + ti), rp = tan(th - ti) / tan(th + ti);
+			if (c < 1.0)
+				assert_float_equal(optics_fresnel(OPTICS_FRESNEL_EXACT, n2, n1, ct, &cb),
+				    0.5 * (rs * rs + rp * rp), 1e-12);
+		}
+}
+
 int main(void)
 {
 	const struct CMUnitTest tests[] = {
@@ -92,6 +118,7 @@ int main(void)
 		cmocka_unit_test(test_critical_angle),
 		cmocka_unit_test(test_snell),
 		cmocka_unit_test(test_against_trig_form),
+		cmocka_unit_test(test_reciprocity),
 	};
 	return cmocka_run_group_tests_name("optics", tests, NULL, NULL);
 }
