@@ -24,15 +24,14 @@ for p in paper paper-dry; do
 		"$SKINBAKE" bake --preset "$p" --out "$work/bake-$p" --estimator bins \
 			--max-photons "$PHOTONS" --target-error 0 --threads "$THREADS" --quiet
 done
-for s in face hand; do
+for s in $(sed -n 's/^site *= *//p' "$top"/scenes/*.scene | sort -u); do
 	[ -f "$work/tex-$s/height.png" ] ||
 		"$SKINBAKE" texture --site "$s" --size 512 --out "$work/tex-$s" --quiet
 done
 
 for f in "$top"/scenes/*.scene; do
 	n=$(basename "$f" .scene)
-	site=face
-	[ "$n" = hand ] && site=hand
+	site=$(sed -n 's/^site *= *//p' "$f" | head -1)
 	out="$work/$n"
 	dry=""
 	grep -q '^\[skin dry\]' "$f" && dry="--bake dry=$work/bake-paper-dry"

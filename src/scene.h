@@ -1,0 +1,94 @@
+/* scene: the small INI scene format of skinbake's POV-Ray exporter
+ * (camera, lights, skins, objects), parsed through libinih and validated.
+ * The format is documented in scenes/README.md.  Lengths are scene units
+ * (one unit = unit_mm millimetres), angles radians once parsed (the file
+ * says degrees), colours linear RGB. */
+#ifndef SKINBAKE_SCENE_H
+#define SKINBAKE_SCENE_H
+
+#define SCENE_MAX_LIGHTS 16
+#define SCENE_MAX_SKINS 8
+#define SCENE_MAX_OBJECTS 64
+#define SCENE_NAME_MAX 32
+
+enum scene_light_type { SCENE_LIGHT_PARALLEL, SCENE_LIGHT_POINT };
+enum scene_strategy { SCENE_LIGHTS_AUTO, SCENE_LIGHTS_KEY, SCENE_LIGHTS_MIXTURE, SCENE_LIGHTS_PASSES,
+	SCENE_LIGHTS_SEPARABLE };
+enum scene_shape { SCENE_SPHERE, SCENE_BOX, SCENE_PLANE, SCENE_PATCH, SCENE_HAND, SCENE_HEAD };
+enum scene_material { SCENE_MAT_SKIN, SCENE_MAT_LAMBERT, SCENE_MAT_PHONG, SCENE_MAT_PLAIN };
+
+struct scene_camera {
+	int ortho;		/* 1 orthographic, 0 perspective */
+	double location[3];	/* [units] */
+	double look_at[3];	/* [units] */
+	double angle;		/* perspective: horizontal field of view [rad] */
+	double width;		/* orthographic: horizontal view size [units] */
+};
+
+struct scene_light {
+	char name[SCENE_NAME_MAX];
+	enum scene_light_type type;
+	double position[3];	/* point: position; parallel: a point on the light side [units] */
+	double point_at[3];	/* parallel: the light shines from position toward here [units] */
+	double color[3];	/* POV light colour: irradiance at normal incidence, linear RGB [-] */
+	double area_size;	/* side of a square area light, 0 = none [units] */
+	int area_samples;	/* area light samples per side [-] */
+};
+
+struct scene_skin {
+	char name[SCENE_NAME_MAX];
+	char *preset;		/* preset name the bake must have been made from */
+	char *site;		/* micro-geometry site (skinbake texture --list-sites) or NULL */
+	char *bake;		/* bake directory (resolved against the scene file) or NULL */
+	char *textures;		/* micro-geometry directory (resolved) or NULL */
+	int bumps;		/* use the height map as bump map [0/1] */
+	int reflection;		/* add reflection { fresnel } with the bake's index [0/1] */
+};
+
+struct scene_object {
+	char name[SCENE_NAME_MAX];
+	enum scene_shape shape;
+	enum scene_material material;
+	int skin;		/* index into scene.skins for skin-derived materials, else -1 */
+	double color[3];	/* plain material: diffuse albedo, linear RGB [-] */
+	double center[3];	/* sphere centre / patch centre [units] */
+	double radius;		/* sphere radius [units] */
+	double size[3];		/* box/patch edge lengths [units] */
+	double normal[3];	/* plane normal (unit) */
+	double offset;		/* plane: distance from origin along normal [units] */
+	double scale;		/* uniform scale (hand, head) [-] */
+	double rotate[3];	/* rotation about x, then y, then z [rad] */
+	double translate[3];	/* [units] */
+};
+
+struct scene {
+	char *path;		/* the scene file */
+	char *title;		/* one-line description */
+	int width, height;	/* image size [px] */
+	double unit_mm;		/* one scene unit [mm] */
+	double background[3];	/* linear RGB */
+	double antialias;	/* POV +A threshold, 0 = off */
+	enum scene_strategy lights_strategy;
+	struct scene_camera camera;
+	int n_lights;
+	struct scene_light lights[SCENE_MAX_LIGHTS];
+	int n_skins;
+	struct scene_skin skins[SCENE_MAX_SKINS];
+	int n_objects;
+	struct scene_object objects[SCENE_MAX_OBJECTS];
+};
+
+/* Parse and validate PATH; NULL with *cause ("FILE:LINE: ..." for syntax,
+ * unknown sections/keys and bad values) on failure.  Caller frees. */
+struct scene *scene_load(const char *path, char **cause);
+void scene_free(struct scene *s);
+/* The skin index named NAME, or -1. */
+int scene_find_skin(const struct scene *s, const char *name);
+/* Unit direction from a point toward the light (parallel: constant). */
+void scene_light_dir(const struct scene_light *l, const double p[3], double out[3]);
+/* Axis-aligned world bounds of object o (conservative for hand/head). */
+void scene_object_bounds(const struct scene_object *o, double lo[3], double hi[3]);
+/* Names of enum values, as written in scene files. */
+const char *scene_shape_name(enum scene_shape sh);
+const char *scene_strategy_name(enum scene_strategy st);
+#endif
