@@ -12,11 +12,28 @@
 /* HG density of cos(theta) on [-1, 1] (integrates to 1 over cos). */
 double hg_pdf_cos(double g, double cos_theta);
 
-/* Sample cos(theta) from HG with anisotropy g in (-1, 1) and u in (0, 1).
- * Stable for g near 0 of either sign and for |g| near 1; result in [-1, 1]. */
-static inline double hg_sample_cos(double g, double u)
+/* Per-layer constants of the HG inversion, so the kernel divides once per
+ * scattering instead of twice. */
+struct hg_const {
+	double g;		/* anisotropy [-] */
+	double one_m_g2;	/* 1 - g^2 */
+	double one_p_g2;	/* 1 + g^2 */
+	double inv_2g;		/* 1 / (2 g), 0 when |g| < 0.5 (unused there) */
+};
+
+static inline void hg_const_init(struct hg_const *h, double g)
 {
-	double xi = 2.0 * u - 1.0, c;
+	h->g = g;
+	h->one_m_g2 = 1.0 - g * g;
+	h->one_p_g2 = 1.0 + g * g;
+	h->inv_2g = (g > -0.5 && g < 0.5) ? 0.0 : 1.0 / (2.0 * g);
+}
+
+/* Sample cos(theta) from HG with u in (0, 1).  Stable for g near 0 of either
+ * sign and for |g| near 1; result in [-1, 1]. */
+static inline double hg_sample_cos_c(const struct hg_const *h, double u)
+{
+	double g = h->g, xi = 2.0 * u - 1.0, c;
 	if (g > -0.5 && g < 0.5) {
 		/* The textbook form divides by 2g and cancels catastrophically as
 		 * g -> 0.  Expanding it over the common denominator D^2, D = 1 + g xi,
@@ -25,10 +42,18 @@ static inline double hg_sample_cos(double g, double u)
 		double num = xi + g * (0.5 * (xi * xi + 3.0) + g * (xi + 0.5 * g * (xi * xi - 1.0)));
 		c = num / (d * d);
 	} else {
-		double s = (1.0 - g * g) / (1.0 + g * xi);
-		c = (1.0 + g * g - s * s) / (2.0 * g);
+		double s = h->one_m_g2 / (1.0 + g * xi);
+		c = (h->one_p_g2 - s * s) * h->inv_2g;
 	}
 	return c < -1.0 ? -1.0 : (c > 1.0 ? 1.0 : c);
+}
+
+/* The same for an anisotropy g in (-1, 1) given directly. */
+static inline double hg_sample_cos(double g, double u)
+{
+	struct hg_const h;
+	hg_const_init(&h, g);
+	return hg_sample_cos_c(&h, u);
 }
 
 /* A uniformly distributed azimuth from u in (0, 1), as its cosine and sine,

@@ -90,6 +90,10 @@ void transport_run(const struct slab *s, const struct launch *ln, const struct t
 	const struct layer *L = s->layer;
 	const double w_th = o->roulette_w, chance = o->roulette_chance, inv_chance = 1.0 / o->roulette_chance;
 
+	struct hg_const hg[SLAB_MAX_LAYERS + 2];
+	for (int i = 0; i <= nl + 1; i++)
+		hg_const_init(&hg[i], L[i].g);
+
 	if (ln->layer > nl) {
 		/* All clear: what is not reflected goes straight through. */
 		t->tt += ln->w0 * (double)count;
@@ -137,7 +141,7 @@ void transport_run(const struct slab *s, const struct launch *ln, const struct t
 					direct = 1;
 				}
 				/* Spin. */
-				double ct = hg_sample_cos(L[l].g, rng_uniform(&r));
+				double ct = hg_sample_cos_c(&hg[l], rng_uniform(&r));
 				double cp, sp;
 				azimuth_sample(rng_uniform(&r), &cp, &sp);
 				spin_dir(&ux, &uy, &uz, ct, cp, sp);
