@@ -39,7 +39,7 @@ run $SKIN --photons "$n" --threads 1 > "$OUT/target.json"
 J "'| photons | seconds | Rd | Rd std. error | AD reference | difference |\n|---|---|---|---|---|---|\n| %d | %.2f | %.6f | %.2e | 0.073813 | %+.2e (%.1f sigma) |' % (d['photons'], d['seconds'], d['Rd'], d['Rd_err'], d['Rd']-0.073813, (d['Rd']-0.073813)/d['Rd_err'])" < "$OUT/target.json"
 echo
 echo "Command: \`skinbake simulate $SKIN --photons $n --threads 1\`. Defaults: roulette below"
-echo "weight 0.05 with chance 0.3. For scale, MCML 1.2.2 needs about 100 s for this error on this"
+echo "weight 0.2 with chance 0.3. For scale, MCML 1.2.2 needs about 100 s for this error on this"
 echo "machine (about 37,000 photons/s) and reads 1.4% high (refs/README.md)."
 echo
 echo "### Skin stack: azimuth-averaged BRDF at normal incidence, 18 bands of 5 degrees, to 1% RMS relative error, all threads"

@@ -40,7 +40,7 @@ static void help(FILE *fp)
 	    "  --phi-step DEG         width of delta_phi bins, must divide 180 (default 5)\n"
 	    "  --r-step CM            radial bin width of Rd(r) [cm] in [1e-7, 100] (default 0.005)\n"
 	    "  --r-bins N             radial bins of Rd(r) [0, 100000], 0 = off (default 100)\n"
-	    "  --roulette-w W         weight threshold for roulette [0, 1] (default 0.05)\n"
+	    "  --roulette-w W         weight threshold for roulette [0, 1] (default 0.2)\n"
 	    "  --roulette-chance P    roulette survival probability (0, 1] (default 0.3)\n"
 	    "  --max-steps N          interactions per photon before the guard ends it,\n"
 	    "                         booked as 'lost' [1, 1e12] (default 1e6)\n"

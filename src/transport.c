@@ -26,7 +26,7 @@
 void transport_opts_default(struct transport_opts *o)
 {
 	o->fresnel = OPTICS_FRESNEL_EXACT;
-	o->roulette_w = 0.05;
+	o->roulette_w = 0.2;
 	o->roulette_chance = 0.3;
 	o->max_steps = 1000000;
 }

@@ -26,8 +26,8 @@ struct launch {
 	double ux, uz;	/* direction cosines in that layer (uy = 0: incidence plane is xz) */
 };
 
-/* Defaults: roulette below weight 0.05 with survival chance 0.3 (tuned on the
- * skin stack: 2.7x the efficiency of MCML's 1e-4 / 0.1, see BENCHMARKS.md),
+/* Defaults: roulette below weight 0.2 with survival chance 0.3 (tuned on the
+ * skin stack: about 3x the efficiency of MCML's 1e-4 / 0.1, see BENCHMARKS.md),
  * and a cap of 10^6 interactions. */
 void transport_opts_default(struct transport_opts *o);
 
