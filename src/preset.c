@@ -17,6 +17,7 @@
 #include <stdlib.h>
 #include <string.h>
 
+#include "inifile.h"
 #include "spectra.h"
 #include "util.h"
 
@@ -140,9 +141,7 @@ static const struct {
 
 struct ctx {
 	const char *origin;	/* for messages: a path or "built-in preset NAME" */
-	const char *pos;	/* next unread character of the text */
-	const char *cur;	/* start of the line last handed to libinih */
-	int line;		/* its number, 1-based */
+	struct inifile in;	/* the reader: current line and its number */
 	char *err;		/* first error, with origin:line */
 	int err_line;
 	struct skin_params *p;
@@ -166,32 +165,9 @@ static void set_err(struct ctx *c, const char *fmt, ...)
 	if (vasprintf(&m, fmt, ap) < 0)
 		fatalx("out of memory");
 	va_end(ap);
-	c->err = xasprintf("%s:%d: %s", c->origin, c->line, m);
-	c->err_line = c->line;
+	c->err = xasprintf("%s:%d: %s", c->origin, c->in.line, m);
+	c->err_line = c->in.line;
 	free(m);
-}
-
-/* libinih reader: one line per call, stripped of its end of line. */
-static char *reader(char *str, int num, void *stream)
-{
-	struct ctx *c = stream;
-	if (c->err || *c->pos == '\0')
-		return NULL;
-	const char *eol = strchr(c->pos, '\n');
-	size_t len = eol ? (size_t)(eol - c->pos) : strlen(c->pos);
-	size_t content = len;
-	if (content > 0 && c->pos[content - 1] == '\r')
-		content--;
-	c->line++;
-	c->cur = c->pos;
-	c->pos += eol ? len + 1 : len;
-	if (content > (size_t)num - 1) {
-		set_err(c, "line %d is longer than %d characters", c->line, num - 1);
-		return NULL;
-	}
-	memcpy(str, c->cur, content);
-	str[content] = '\0';
-	return str;
 }
 
 static void apply_defaults(struct skin_params *p);
@@ -492,15 +468,15 @@ static int handler(void *user, const char *section, const char *name, const char
 		return 0;
 	c->n_calls++;
 	/* libinih passes indented lines after a key as continuations of it. */
-	if (c->n_calls > 1 && c->line != c->last_line && strcmp(section, c->last_section) == 0
-	    && strcmp(name, c->last_name) == 0 && (*c->cur == ' ' || *c->cur == '\t')) {
+	if (c->n_calls > 1 && c->in.line != c->last_line && strcmp(section, c->last_section) == 0
+	    && strcmp(name, c->last_name) == 0 && (*c->in.cur == ' ' || *c->in.cur == '\t')) {
 		set_err(c, "indented line continues '%s'; continuation lines are not supported "
 		    "(remove the indentation)", name);
 		return 0;
 	}
 	snprintf(c->last_section, sizeof c->last_section, "%s", section);
 	snprintf(c->last_name, sizeof c->last_name, "%s", name);
-	c->last_line = c->line;
+	c->last_line = c->in.line;
 	if (*section == '\0') {
 		set_err(c, "key '%s' outside any section (sections: skin, sebum, epidermis, dermis, "
 		    "subcutis, surface, override.WL)", name);
@@ -543,16 +519,19 @@ static int handler(void *user, const char *section, const char *name, const char
 /* Parse text into c->p (already holding defaults); 0 or -1 with c->err. */
 static int parse_text(struct ctx *c, const char *text)
 {
-	c->pos = text;
-	c->line = 0;
-	int rc = ini_parse_stream(reader, c, handler, c);
-	if (rc > 0 && (c->err == NULL || rc < c->err_line)) {
+	int rc = inifile_parse(&c->in, c->origin, text, handler, c);
+	if (c->in.too_long && (c->err == NULL || c->in.too_long < c->err_line)) {
 		free(c->err);
 		c->err = NULL;
-		c->line = rc;
+		c->in.line = c->in.too_long;
+		set_err(c, "line %d is longer than %d characters", c->in.too_long, c->in.max_line);
+	} else if (rc > 0 && (c->err == NULL || rc < c->err_line)) {
+		free(c->err);
+		c->err = NULL;
+		c->in.line = rc;
 		set_err(c, "syntax error (expected '[section]', 'key = value' or a ';' or '#' comment)");
 	} else if (rc < 0 && c->err == NULL) {
-		c->line = 0;
+		c->in.line = 0;
 		set_err(c, "libinih failed (code %d)", rc);
 	}
 	return c->err ? -1 : 0;

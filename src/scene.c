@@ -14,12 +14,12 @@
 #include <string.h>
 #include <strings.h>
 
+#include "inifile.h"
 #include "util.h"
 
 struct parse {
 	struct scene *s;
-	FILE *fp;
-	int line;		/* line being parsed (counted by the reader) */
+	struct inifile in;	/* the reader: line being parsed and its number */
 	char *err;		/* first error message */
 	int have_camera;
 	int obj_line[SCENE_MAX_OBJECTS];	/* first line of each object section */
@@ -43,20 +43,10 @@ static int fail(struct parse *p, const char *fmt, ...)
 		if (vasprintf(&m, fmt, ap) < 0)
 			fatalx("out of memory");
 		va_end(ap);
-		p->err = xasprintf("%s:%d: %s", p->s->path, p->line, m);
+		p->err = xasprintf("%s:%d: %s", p->s->path, p->in.line, m);
 		free(m);
 	}
 	return 0;
-}
-
-/* libinih reader that counts lines, so handlers can report them. */
-static char *reader(char *str, int num, void *stream)
-{
-	struct parse *p = stream;
-	char *r = fgets(str, num, p->fp);
-	if (r != NULL)
-		p->line++;
-	return r;
 }
 
 static int parse_vec(const char *v, int n, double *out)
@@ -382,7 +372,7 @@ static int handler(void *user, const char *section, const char *k, const char *v
 		return key_scene(p, k, v);
 	if (!strcmp(section, "camera")) {
 		if (!p->have_camera)
-			p->cam_line = p->line;
+			p->cam_line = p->in.line;
 		p->have_camera = 1;
 		return key_camera(p, k, v);
 	}
@@ -400,7 +390,7 @@ static int handler(void *user, const char *section, const char *k, const char *v
 			struct scene_light *l = &s->lights[s->n_lights++];
 			*l = (struct scene_light){ .type = SCENE_LIGHT_PARALLEL, .color = { 1, 1, 1 }, .area_samples = 5 };
 			memcpy(l->name, name, strlen(name) + 1);
-			p->light_line[i] = p->line;
+			p->light_line[i] = p->in.line;
 		}
 		return key_light(p, &s->lights[i], k, v);
 	}
@@ -433,7 +423,7 @@ static int handler(void *user, const char *section, const char *k, const char *v
 			*o = (struct scene_object){ .material = SCENE_MAT_SKIN, .skin = -1, .color = { 0.8, 0.8, 0.8 },
 				.radius = 1, .size = { 1, 1, 1 }, .normal = { 0, 1, 0 }, .scale = 1 };
 			memcpy(o->name, name, strlen(name) + 1);
-			p->obj_line[i] = p->line;
+			p->obj_line[i] = p->in.line;
 		}
 		return key_object(p, i, k, v);
 	}
@@ -452,7 +442,7 @@ static int validate(struct parse *p)
 	struct scene *s = p->s;
 	if (!p->have_camera)
 		return p->err = xasprintf("%s: no [camera] section", s->path), -1;
-	p->line = p->cam_line;
+	p->in.line = p->cam_line;
 	if (!(p->cam_has & CAM_TYPE))
 		return fail(p, "[camera]: type is required (orthographic or perspective)"), -1;
 	if (s->camera.ortho && !(p->cam_has & CAM_WIDTH))
@@ -465,7 +455,7 @@ static int validate(struct parse *p)
 		return p->err = xasprintf("%s: no [light NAME] section", s->path), -1;
 	for (int i = 0; i < s->n_lights; i++) {
 		struct scene_light *l = &s->lights[i];
-		p->line = p->light_line[i];
+		p->in.line = p->light_line[i];
 		if (l->type == SCENE_LIGHT_PARALLEL && dist3(l->position, l->point_at) < 1e-9)
 			return fail(p, "[light %s]: position and point_at coincide", l->name), -1;
 	}
@@ -476,7 +466,7 @@ static int validate(struct parse *p)
 			return p->err = xasprintf("%s: [skin %s]: preset is required", s->path, s->skins[i].name), -1;
 	for (int i = 0; i < s->n_objects; i++) {
 		struct scene_object *o = &s->objects[i];
-		p->line = p->obj_line[i];
+		p->in.line = p->obj_line[i];
 		if (!(p->obj_has[i] & OBJ_SHAPE))
 			return fail(p, "[object %s]: shape is required", o->name), -1;
 		if (o->shape == SCENE_SPHERE && !(p->obj_has[i] & OBJ_RADIUS))
@@ -516,14 +506,15 @@ struct scene *scene_load(const char *path, char **cause)
 	s->unit_mm = 10;
 	s->lights_strategy = SCENE_LIGHTS_AUTO;
 	p.s = s;
-	p.fp = fopen(path, "r");
-	if (p.fp == NULL) {
-		*cause = xasprintf("%s: %s", path, strerror(errno));
+	char *text = inifile_read(path, cause);
+	if (text == NULL) {
 		scene_free(s);
 		return NULL;
 	}
-	int rc = ini_parse_stream(reader, &p, handler, &p);
-	fclose(p.fp);
+	int rc = inifile_parse(&p.in, path, text, handler, &p);
+	free(text);
+	if (p.in.too_long && p.err == NULL)
+		p.err = xasprintf("%s:%d: line %d is longer than %d characters", path, p.in.too_long, p.in.too_long, p.in.max_line);
 	if (rc != 0 && p.err == NULL) {
 		if (rc > 0)
 			p.err = xasprintf("%s:%d: syntax error (expected [section], key = value or ; comment)", path, rc);

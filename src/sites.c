@@ -43,6 +43,7 @@
 #include <stdlib.h>
 #include <string.h>
 
+#include "inifile.h"
 #include "util.h"
 
 #define MM(x) ((x) * 0.1)	/* mm -> cm */
@@ -345,14 +346,21 @@ bad:
 int sites_read_ini(const char *path, struct texture_config *cfg, char **cause)
 {
 	struct ini_state st = { cfg, path, 0, NULL };
+	char *text = inifile_read(path, cause);
+	if (text == NULL)
+		return -1;
 	for (st.pass = 0; st.pass < 2; st.pass++) {
-		int rc = ini_parse(path, on_ini, &st);
-		if (rc == -1) {
-			*cause = xasprintf("%s: cannot open: %s", path, strerror(errno));
+		struct inifile in;
+		int rc = inifile_parse(&in, path, text, on_ini, &st);
+		if (in.too_long) {
+			*cause = xasprintf("%s:%d: line %d is longer than %d characters", path, in.too_long, in.too_long, in.max_line);
+			free(st.error);
+			free(text);
 			return -1;
 		}
-		if (rc == -2) {
-			*cause = xasprintf("%s: out of memory", path);
+		if (rc < 0) {
+			*cause = xasprintf("%s: libinih failed (code %d)", path, rc);
+			free(text);
 			return -1;
 		}
 		if (rc > 0) {
@@ -361,8 +369,10 @@ int sites_read_ini(const char *path, struct texture_config *cfg, char **cause)
 			else
 				*cause = xasprintf("%s:%d: syntax error", path, rc);
 			free(st.error);
+			free(text);
 			return -1;
 		}
 	}
+	free(text);
 	return 0;
 }

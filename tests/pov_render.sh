@@ -194,6 +194,11 @@ check "unknown scene key: exit 2" test $rc -eq 2
 grep -q "typo.scene:[0-9]*: \[object ball\]: unknown key 'radiuss'" "$tmpd/bad2.stderr"
 check "unknown scene key: file:line and key ($(head -1 "$tmpd/bad2.stderr"))" test $? -eq 0
 check "unknown scene key: no output" test ! -e "$tmpd/bad2"
+printf '[scene]\ntitle = %s\n' "$(printf '%0250d' 0)" > "$tmpd/long.scene"
+"$SKINBAKE" export pov --scene "$tmpd/long.scene" --bake "$B" --out "$tmpd/long" 2>"$tmpd/long.stderr"
+rc=$?
+check "scene with an over-long line: exit 2, line named, no output" \
+	sh -c "[ $rc -eq 2 ] && grep -q 'long.scene:2: line 2 is longer than 199' '$tmpd/long.stderr' && [ ! -e '$tmpd/long' ]"
 export_pov bad3 --scene "$SC/sphere.scene" --bake "$B" --textures "$tmpd/no-such-tex"
 check "missing textures: exit 2" test $? -eq 2
 export_pov bad4 --scene "$SC/sphere.scene" --bake "$B" --nodes 300

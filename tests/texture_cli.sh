@@ -90,6 +90,8 @@ bad "unknown option" "unknown option" --frobnicate 1
 bad "missing preset file" "cannot open" --preset-file "$tmpd/nope.ini"
 printf '[texture]\nsize = 20\nwibble = 3\n' >"$tmpd/badkey.ini"
 bad "unknown preset key, with line" "badkey.ini:3: unknown key 'wibble'" --preset-file "$tmpd/badkey.ini"
+printf '[texture]\nsite = hand\n; %s\n' "$(printf '%0250d' 0)" > "$tmpd/long.ini"
+bad "over-long line is an error, not a silent split" "long.ini:3: line 3 is longer than 199" --preset-file "$tmpd/long.ini"
 printf '[texture]\npore_density = 500\n' >"$tmpd/badval.ini"
 bad "preset value out of range" "badval.ini:2: pore_density = 500 is out of range" --preset-file "$tmpd/badval.ini"
 "$S" texture --size 64 >"$tmpd/err" 2>&1
