@@ -9,6 +9,7 @@
 #include <string.h>
 #include <unistd.h>
 
+#include "optics.h"
 #include "util.h"
 
 #ifdef SKINBAKE_MPI
@@ -155,6 +156,19 @@ int cli_long(const char *cmd, const char *opt, const char *s, long lo, long hi, 
 		return -1;
 	}
 	*out = v;
+	return 0;
+}
+
+int cli_fresnel(const char *cmd, const char *s, int *model)
+{
+	if (strcmp(s, "exact") == 0)
+		*model = OPTICS_FRESNEL_EXACT;
+	else if (strcmp(s, "schlick") == 0)
+		*model = OPTICS_FRESNEL_SCHLICK;
+	else {
+		cli_usage_error(cmd, "--fresnel = '%s' is not one of exact, schlick", s);
+		return -1;
+	}
 	return 0;
 }
 

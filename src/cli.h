@@ -30,6 +30,8 @@ void cli_progress_end(struct cli_progress *p);
  * option, the value and the allowed range, and return -1. */
 int cli_double(const char *cmd, const char *opt, const char *s, double lo, double hi, double *out);
 int cli_long(const char *cmd, const char *opt, const char *s, long lo, long hi, long *out);
+/* --fresnel exact|schlick into *model (enum optics_fresnel). */
+int cli_fresnel(const char *cmd, const char *s, int *model);
 
 /* Process layout for bakes split over MPI ranks: {0, 1, NULL} in the plain
  * build; skinbake-mpi fills it after MPI_Init.  Only rank 0 prints and writes. */

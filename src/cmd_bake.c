@@ -214,11 +214,13 @@ int cmd_bake(int argc, char **argv)
 		case O_BATCH: if (cli_long(CMD, "--batch-photons", optarg, 100, 1000000000L, &s.batch_photons)) return CLI_EXIT_USAGE; break;
 		case O_RS: if (cli_double(CMD, "--r-step", optarg, 1e-6, 10, &s.dr)) return CLI_EXIT_USAGE; break;
 		case O_RB: if (cli_long(CMD, "--r-bins", optarg, 1, 100000, &lv)) return CLI_EXIT_USAGE; s.n_r = (int)lv; break;
-		case O_FR:
-			if (strcmp(optarg, "exact") == 0) s.opts.fresnel = OPTICS_FRESNEL_EXACT;
-			else if (strcmp(optarg, "schlick") == 0) s.opts.fresnel = OPTICS_FRESNEL_SCHLICK;
-			else return cli_usage_error(CMD, "--fresnel = '%s' is not one of exact, schlick", optarg);
+		case O_FR: {
+			int m;
+			if (cli_fresnel(CMD, optarg, &m))
+				return CLI_EXIT_USAGE;
+			s.opts.fresnel = (enum optics_fresnel)m;
 			break;
+		}
 		case O_SEED: if (cli_long(CMD, "--seed", optarg, 0, 9223372036854775807L, &lv)) return CLI_EXIT_USAGE; s.seed = (uint64_t)lv; break;
 		case O_THR: if (cli_long(CMD, "--threads", optarg, 0, 1024, &lv)) return CLI_EXIT_USAGE; s.threads = (int)lv; break;
 		case O_QUIET: quiet = 1; break;

@@ -273,11 +273,13 @@ int cmd_simulate(int argc, char **argv)
 			c.threads = (int)lv; break;
 		case O_BAT: if (cli_long(CMD, "--batches", optarg, 2, 100000, &lv)) return CLI_EXIT_USAGE;
 			c.batches = (int)lv; break;
-		case O_FR:
-			if (strcmp(optarg, "exact") == 0) c.opts.fresnel = OPTICS_FRESNEL_EXACT;
-			else if (strcmp(optarg, "schlick") == 0) c.opts.fresnel = OPTICS_FRESNEL_SCHLICK;
-			else return cli_usage_error(CMD, "--fresnel = '%s' is not one of exact, schlick", optarg);
+		case O_FR: {
+			int m;
+			if (cli_fresnel(CMD, optarg, &m))
+				return CLI_EXIT_USAGE;
+			c.opts.fresnel = (enum optics_fresnel)m;
 			break;
+		}
 		case O_TOS:
 			if (cli_double(CMD, "--theta-out-step", optarg, 0.01, 90, &tos)) return CLI_EXIT_USAGE;
 			if (!divides(90.0, tos))
