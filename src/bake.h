@@ -3,9 +3,9 @@
  * b*batch .. (b+1)*batch-1 of stream = job id), so a bake is a pure function
  * of its settings and seed, whatever the thread or rank count.  Batches run
  * in parallel and are merged in batch order.  With a target error, rounds of
- * batches are added per job until the job's solid-angle-weighted RMS
- * relative error of its table is below the target (so the whole table is
- * too), or the photon budget is spent.  No files are written here. */
+ * batches are added until the solid-angle-weighted RMS
+ * relative error of the whole table (all jobs) is below the target, or the
+ * photon budget is spent.  No files are written here. */
 #ifndef SKINBAKE_BAKE_H
 #define SKINBAKE_BAKE_H
 #include <stdint.h>

@@ -233,16 +233,19 @@ static void test_target_error_met(void **state)
 	base_spec(&s);
 	s.n_wl = 1;
 	s.n_ti = 2;
-	s.target_error = 0.02;
+	s.target_error = 0.01;
 	s.nee = 1;	/* the default estimator */
 	s.max_photons = 100000000L;
 	struct bake_result r;
 	bake_run(&s, &r);
-	print_message("# target 0.02: reached %.4f with %ld photons\n", r.rms_rel_err, r.photons);
+	long first = (long)r.n_jobs * s.min_batches * s.batch_photons;
+	print_message("# target 0.01: reached %.4f with %ld photons (first round %ld)\n", r.rms_rel_err, r.photons, first);
 	assert_true(r.target_met);
-	assert_true(r.rms_rel_err <= 0.02);
-	for (int j = 0; j < r.n_jobs; j++)
-		assert_true(r.job[j].rms_rel_err <= 0.02);
+	assert_true(r.rms_rel_err <= 0.01);
+	/* Beyond the first round the whole-table criterion stops close to the
+	 * target instead of driving every job below it. */
+	if (r.photons > first)
+		assert_true(r.rms_rel_err > 0.01 * 0.6);
 	bake_result_free(&r);
 }
 
