@@ -22,6 +22,10 @@ void nee_alloc(struct nee *e, int n_to, int n_phi, int n_layers)
 	e->sxy = xcalloc(kl, sizeof(double));
 	e->cphi = xcalloc((size_t)n_phi, sizeof(double));
 	e->sphi = xcalloc((size_t)n_phi, sizeof(double));
+	for (int p = 0; p < n_phi; p++) {
+		e->cphi[p] = cos(p * M_PI / n_phi);
+		e->sphi[p] = sin(p * M_PI / n_phi);
+	}
 }
 
 void nee_free(struct nee *e)
@@ -39,11 +43,6 @@ void nee_prepare(struct nee *e, const struct slab *s, enum optics_fresnel model,
 {
 	const int ns = e->n_slots, nl = s->n_layers, ft = s->first_turbid;
 	const double dth = 0.5 * M_PI / e->n_to, dph = M_PI / e->n_phi, n0 = s->layer[0].n;
-	for (int p = 0; p < e->n_phi; p++) {
-		double ph = p * dph;
-		e->cphi[p] = cos(ph);
-		e->sphi[p] = sin(ph);
-	}
 	for (int i = 0; i <= nl + 1; i++) {
 		double g = s->layer[i].g;
 		e->g2p1[i] = 1.0 + g * g;
