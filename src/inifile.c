@@ -73,3 +73,13 @@ char *inifile_read(const char *path, char **cause)
 	buf[n] = '\0';
 	return buf;
 }
+
+char *inifile_vmsg(const char *origin, int line, const char *fmt, va_list ap)
+{
+	char *m;
+	if (vasprintf(&m, fmt, ap) < 0)
+		fatalx("out of memory formatting a message");
+	char *r = xasprintf("%s:%d: %s", origin, line, m);
+	free(m);
+	return r;
+}

@@ -5,6 +5,7 @@
 #ifndef SKINBAKE_INIFILE_H
 #define SKINBAKE_INIFILE_H
 #include <ini.h>
+#include <stdarg.h>
 
 struct inifile {
 	const char *origin;	/* a path, or a description of the text, for messages */
@@ -20,6 +21,9 @@ struct inifile {
  * syntax error or a handler returning 0), or f->too_long when a line is
  * longer than f->max_line characters. */
 int inifile_parse(struct inifile *f, const char *origin, const char *text, ini_handler handler, void *user);
+/* "ORIGIN:LINE: message" (caller frees): how every INI error is worded. */
+char *inifile_vmsg(const char *origin, int line, const char *fmt, va_list ap) __attribute__((format(printf, 3, 0)));
+
 /* The whole file (caller frees), or NULL with *cause "PATH: reason". */
 char *inifile_read(const char *path, char **cause);
 #endif

@@ -160,14 +160,10 @@ static void set_err(struct ctx *c, const char *fmt, ...)
 	if (c->err)
 		return;
 	va_list ap;
-	char *m;
 	va_start(ap, fmt);
-	if (vasprintf(&m, fmt, ap) < 0)
-		fatalx("out of memory");
+	c->err = inifile_vmsg(c->origin, c->in.line, fmt, ap);
 	va_end(ap);
-	c->err = xasprintf("%s:%d: %s", c->origin, c->in.line, m);
 	c->err_line = c->in.line;
-	free(m);
 }
 
 static void apply_defaults(struct skin_params *p);

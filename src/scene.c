@@ -38,13 +38,9 @@ static int fail(struct parse *p, const char *fmt, ...)
 {
 	if (p->err == NULL) {
 		va_list ap;
-		char *m;
 		va_start(ap, fmt);
-		if (vasprintf(&m, fmt, ap) < 0)
-			fatalx("out of memory");
+		p->err = inifile_vmsg(p->s->path, p->in.line, fmt, ap);
 		va_end(ap);
-		p->err = xasprintf("%s:%d: %s", p->s->path, p->in.line, m);
-		free(m);
 	}
 	return 0;
 }
