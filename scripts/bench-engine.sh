@@ -28,6 +28,18 @@ for stack in MCML SKIN; do
 		J "'| %s | %s | %d | %.2f | %.3g | %.3g | %.1f |' % ('$stack'.replace('MCML','MCML benchmark slab').replace('SKIN','skin stack (550 nm)'), '$t'.replace('0','all ($(nproc))'), d['photons'], d['seconds'], d['photons_per_second'], d['events_per_second'], d['scattering_events']/d['photons'])" < "$OUT/tp.json"
 	done
 done
+# The paper preset's three wavelengths, with the layers `skinbake preset show paper` resolves.
+for wl in 470 550 656; do
+	L=$("$SKINBAKE" preset show paper | awk -v w=$wl '$1 == w { printf " --layer d=%s,n=%s,mua=%s,mus=%s,g=%s", $3, $4, $5, $6, $7 }')
+	for t in 1 0; do
+		# shellcheck disable=SC2086
+		run $L --n-below 1.4 --photons 1e6 --threads $t > "$OUT/tp.json"
+		J "'| paper preset, %s nm | %s | %d | %.2f | %.3g | %.3g | %.1f |' % ('$wl', '$t'.replace('0','all ($(nproc))'), d['photons'], d['seconds'], d['photons_per_second'], d['events_per_second'], d['scattering_events']/d['photons'])" < "$OUT/tp.json"
+	done
+done
+echo
+echo "Scaling (all threads over one) is the ratio of the photons/s columns. The paper rows use the"
+echo "layers of \`skinbake preset show paper\` with \`skinbake simulate ... --n-below 1.4 --photons 1e6\`."
 echo
 echo "### Skin stack: Rd to a standard error of 7.4e-5 (0.1%), one thread"
 echo
