@@ -113,6 +113,20 @@ static void put_rgb(FILE *fp, const double c[3])
 	fprintf(fp, "rgb <" G "," G "," G ">", c[0], c[1], c[2]);
 }
 
+/* One aoi color_map entry for exit angle to [rad]; the first entry of a
+ * map (first = 1) also pins the value at aoi 0, below grazing. */
+static void put_aoi_entry(FILE *fp, int first, double to, const double rgb[3])
+{
+	if (first) {
+		fputs(" [0 ", fp);
+		put_rgb(fp, rgb);
+		fputs("]", fp);
+	}
+	fprintf(fp, " [%.8f ", 1 - to / M_PI);
+	put_rgb(fp, rgb);
+	fputs("]", fp);
+}
+
 static void put_vec(FILE *fp, const double v[3])
 {
 	fprintf(fp, "<" G "," G "," G ">", v[0], v[1], v[2]);
@@ -173,14 +187,7 @@ static void aoi_row(FILE *fp, const struct pov_brdf *f, double ti, double cg, co
 		f->f_rgb(f->ctx, ti, to, pov_dphi(ti, to, cg), rgb);
 		for (int c = 0; c < 3; c++)
 			rgb[c] *= M_PI;
-		if (m == 0) {
-			fputs(" [0 ", fp);
-			put_rgb(fp, rgb);
-			fputs("]", fp);
-		}
-		fprintf(fp, " [%.8f ", 1 - to / M_PI);
-		put_rgb(fp, rgb);
-		fputs("]", fp);
+		put_aoi_entry(fp, m == 0, to, rgb);
 	}
 	fputs(" }", fp);
 }
@@ -311,14 +318,7 @@ void pov_write_mixture_pigment(FILE *fp, const char *name, const struct pov_brdf
 				}
 				for (int c = 0; c < 3; c++)
 					val[c] = M_PI * (den[c] > 1e-12 ? num[c] / den[c] : avg[c]);
-				if (m == 0) {
-					fputs(" [0 ", fp);
-					put_rgb(fp, val);
-					fputs("]", fp);
-				}
-				fprintf(fp, " [%.8f ", 1 - to / M_PI);
-				put_rgb(fp, val);
-				fputs("]", fp);
+				put_aoi_entry(fp, m == 0, to, val);
 			}
 			fputs(" }]\n", fp);
 		}
@@ -409,14 +409,7 @@ void pov_write_separable_pigment(FILE *fp, const char *name, const struct pov_se
 	for (int k = 0; k < POV_SEP_NODES; k++) {
 		int m = POV_SEP_NODES - 1 - k;
 		double to = (M_PI / 2) * m / (POV_SEP_NODES - 1);
-		if (k == 0) {
-			fputs(" [0 ", fp);
-			put_rgb(fp, sep->a[m]);
-			fputs("]", fp);
-		}
-		fprintf(fp, " [%.8f ", 1 - to / M_PI);
-		put_rgb(fp, sep->a[m]);
-		fputs("]", fp);
+		put_aoi_entry(fp, k == 0, to, sep->a[m]);
 	}
 	fputs(" }\n}\n", fp);
 }
