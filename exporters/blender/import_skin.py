@@ -113,14 +113,18 @@ def read_manifest(directory):
 _EXR_LINES = {0: 1, 1: 1, 2: 1, 3: 16, 4: 32, 5: 16, 6: 32, 7: 32, 8: 32, 9: 256}
 
 
+def _read_bytes(path):
+    try:
+        with open(path, "rb") as f:
+            return f.read()
+    except OSError as e:
+        raise ImageSetError(f"{path}: {e.strerror}") from None
+
+
 def check_exr(path, width, height):
     """Structure of a single-part scanline EXR: header, size, and every chunk inside the file."""
     import struct
-    try:
-        with open(path, "rb") as f:
-            b = f.read()
-    except OSError as e:
-        raise ImageSetError(f"{path}: {e.strerror}") from None
+    b = _read_bytes(path)
     bad = lambda why: ImageSetError(f"{path}: corrupt OpenEXR file ({why})")   # noqa: E731
     if len(b) < 8 or b[:4] != b"\x76\x2f\x31\x01":
         raise bad("no OpenEXR magic number")
@@ -158,11 +162,7 @@ def check_png(path, width, height):
     """Every chunk's CRC, IHDR size and the complete image data of a PNG."""
     import struct
     import zlib
-    try:
-        with open(path, "rb") as f:
-            b = f.read()
-    except OSError as e:
-        raise ImageSetError(f"{path}: {e.strerror}") from None
+    b = _read_bytes(path)
     bad = lambda why: ImageSetError(f"{path}: corrupt PNG file ({why})")       # noqa: E731
     if b[:8] != b"\x89PNG\r\n\x1a\n":
         raise bad("no PNG signature")
