@@ -447,6 +447,10 @@ struct bake *bake_load(const char *dir, char **cause)
 		*cause = xasprintf("%s: empty table axes", mpath);
 		goto fail;
 	}
+	if (b->n_wl > BAKE_MAX_WL) {
+		*cause = xasprintf("%s: %d wavelengths, more than a bake holds (%d)", mpath, b->n_wl, BAKE_MAX_WL);
+		goto fail;
+	}
 	for (int i = 0; i < b->n_ti; i++)
 		b->theta_i[i] *= M_PI / 180.0;
 	for (int i = 0; i < b->n_to; i++)
@@ -650,12 +654,11 @@ void bake_eval_rgb(const struct bake *b, double theta_i, double theta_o, double 
 {
 	size_t npx = (size_t)b->n_ti * b->n_to * b->n_phi;
 	double ph = fold_phi(dphi);
-	double *sp = xmalloc(sizeof(double) * (size_t)b->n_wl);
+	double sp[BAKE_MAX_WL];	/* bake_load guarantees n_wl <= BAKE_MAX_WL */
 	bake_eval_specular(b, theta_i, theta_o, ph, sp);
 	for (int c = 0; c < 3; c++) {
 		rgb[c] = interp(b, b->fr_rgb + c * npx, theta_i, theta_o, ph);
 		for (int w = 0; w < b->n_wl; w++)
 			rgb[c] += b->rgb_from_wl[c * b->n_wl + w] * sp[w];
 	}
-	free(sp);
 }
