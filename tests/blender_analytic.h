@@ -6,7 +6,7 @@
 #define SKINBAKE_TESTS_BLENDER_ANALYTIC_H
 #include <math.h>
 
-#include "blender.h"
+#include "export/blender/blender.h"
 
 #define ANALYTIC_B 0.3	/* strength of the delta_phi term [-] */
 static const double analytic_rho[3] = { 0.6, 0.4, 0.3 };

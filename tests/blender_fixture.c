@@ -5,7 +5,7 @@
 #include <stdio.h>
 #include <stdlib.h>
 
-#include "blender.h"
+#include "export/blender/blender.h"
 #include "blender_analytic.h"
 
 int main(int argc, char **argv)

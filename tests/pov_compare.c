@@ -30,11 +30,11 @@
 #include <stdlib.h>
 #include <string.h>
 
-#include "bakefile.h"
-#include "pngio.h"
-#include "pov.h"
-#include "scene.h"
-#include "util.h"
+#include "bake/bakefile.h"
+#include "io/pngio.h"
+#include "export/pov/pov.h"
+#include "export/pov/scene.h"
+#include "base/util.h"
 
 static float *load(const char *path, int *w, int *h)
 {

@@ -20,11 +20,11 @@
 #include <stdlib.h>
 #include <string.h>
 
-#include "colour.h"
-#include "preset.h"
-#include "sim.h"
-#include "tissue.h"
-#include "util.h"
+#include "skin/colour.h"
+#include "skin/preset.h"
+#include "engine/sim.h"
+#include "skin/tissue.h"
+#include "base/util.h"
 
 /* Measured envelope, see the header comment. */
 static const double L_LO = 38.1, L_HI = 67.7, A_LO = 4.3, A_HI = 12.7, B_LO = 10.1, B_HI = 19.2;

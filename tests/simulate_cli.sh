@@ -4,7 +4,7 @@
 # message naming field, value and range for bad input.
 . "$top_srcdir/tests/tap.sh"
 
-src="$top_srcdir/src/cmd_simulate.c"
+src="$top_srcdir/src/cli/cmd_simulate.c"
 # A cheap stack where roulette and multiple scattering both matter.
 L="--layer d=0.05,mua=30,mus=90,g=0.75,n=1.4"
 

@@ -13,10 +13,10 @@
 #include <string.h>
 #include <unistd.h>
 
-#include "bake.h"
-#include "bakefile.h"
-#include "sim.h"
-#include "util.h"
+#include "bake/bake.h"
+#include "bake/bakefile.h"
+#include "engine/sim.h"
+#include "base/util.h"
 
 /* The engine issue's skin stack at 550 nm. */
 static void skin_slab(struct slab *s)

@@ -16,11 +16,11 @@
 #include <sys/stat.h>
 #include <unistd.h>
 
-#include "blender.h"
+#include "export/blender/blender.h"
 #include "blender_analytic.h"
-#include "exrio.h"
-#include "pngio.h"
-#include "util.h"
+#include "io/exrio.h"
+#include "io/pngio.h"
+#include "base/util.h"
 
 /* Linear in cos_l, cos_v and dphi with a different mix per channel, so the
  * bilinear sampler reproduces it exactly and any axis swap shows. */

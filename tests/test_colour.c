@@ -8,7 +8,7 @@
 #include <stdio.h>
 #include <string.h>
 
-#include "colour.h"
+#include "skin/colour.h"
 
 /* D65 chromaticity with the 1931 fit: x 0.3127, y 0.3290 (CIE 15). */
 static void test_white_point(void **state)

@@ -9,8 +9,8 @@
 #include <stdlib.h>
 #include <string.h>
 
-#include "delaunay.h"
-#include "rng.h"
+#include "geom/delaunay.h"
+#include "base/rng.h"
 
 static double *random_points(int n, uint64_t seed)
 {

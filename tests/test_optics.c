@@ -6,7 +6,7 @@
 #include <cmocka.h>
 #include <math.h>
 
-#include "optics.h"
+#include "engine/optics.h"
 
 static void test_normal_incidence(void **state)
 {

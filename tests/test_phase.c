@@ -8,8 +8,8 @@
 #include <math.h>
 #include <stdio.h>
 
-#include "phase.h"
-#include "rng.h"
+#include "engine/phase.h"
+#include "base/rng.h"
 
 static const double gs[] = { -0.9, -1e-7, 0.0, 1e-7, 0.5, 0.99, 0.9999 };
 

@@ -15,9 +15,9 @@
 #include <string.h>
 #include <unistd.h>
 
-#include "pov.h"
-#include "scene.h"
-#include "util.h"
+#include "export/pov/pov.h"
+#include "export/pov/scene.h"
+#include "base/util.h"
 
 /* Lambert with albedo (0.5, 0.4, 0.3) plus a term in delta_phi, so a wrong
  * delta_phi shows. */

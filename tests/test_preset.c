@@ -11,8 +11,8 @@
 #include <string.h>
 #include <unistd.h>
 
-#include "preset.h"
-#include "util.h"
+#include "skin/preset.h"
+#include "base/util.h"
 
 static void test_builtins(void **state)
 {

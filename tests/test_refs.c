@@ -28,9 +28,9 @@
 #include <stdlib.h>
 #include <string.h>
 
-#include "sim.h"
-#include "slab.h"
-#include "util.h"
+#include "engine/sim.h"
+#include "engine/slab.h"
+#include "base/util.h"
 
 #ifndef REFS_PART
 #define REFS_PART 0	/* 0 = all stacks */

@@ -11,8 +11,8 @@
 #include <stdlib.h>
 #include <string.h>
 
-#include "relief.h"
-#include "sites.h"
+#include "geom/relief.h"
+#include "geom/sites.h"
 
 static struct relief_params params(const char *site)
 {

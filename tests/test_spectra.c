@@ -9,9 +9,9 @@
 #include <stdlib.h>
 #include <string.h>
 
-#include "preset.h"
-#include "spectra.h"
-#include "tissue.h"
+#include "skin/preset.h"
+#include "skin/spectra.h"
+#include "skin/tissue.h"
 
 static void close_rel(double got, double want, double rel)
 {

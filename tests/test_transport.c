@@ -16,9 +16,9 @@
 #include <stdlib.h>
 #include <string.h>
 
-#include "sim.h"
-#include "slab.h"
-#include "transport.h"
+#include "engine/sim.h"
+#include "engine/slab.h"
+#include "engine/transport.h"
 
 /* Unpolarized Fresnel reflectance from the trigonometric textbook form (Born
  * & Wolf), independent of optics.c; theta in radians from n1 into n2. */

@@ -1,0 +1,207 @@
+/* skinbake's entry point: the subcommand table, shared option parsing,
+ * error printing and the progress bar. */
+#include "config.h"
+#include "cli/cli.h"
+
+#include <math.h>
+#include <stdarg.h>
+#include <stdlib.h>
+#include <string.h>
+#include <unistd.h>
+
+#include "engine/optics.h"
+#include "base/util.h"
+
+#ifdef SKINBAKE_MPI
+#include <mpi.h>
+#endif
+
+struct cli_parallel cli_par = { 0, 1, NULL };
+
+struct command {
+	const char *name;
+	const char *summary;
+	int (*exec)(int argc, char **argv);
+};
+
+static const struct command commands[] = {
+	{ "simulate", "Monte Carlo transport in a layered slab: totals, BRDF, Rd(r)", cmd_simulate },
+	{ "presets", "list the shipped skin presets", cmd_presets },
+	{ "preset", "preset show NAME: print a preset's layers per wavelength", cmd_preset },
+	{ "bake", "bake a skin preset's BRDF into OpenEXR lookup tables", cmd_bake },
+	{ "eval", "evaluate a baked BRDF at given angles", cmd_eval },
+	{ "texture", "grow pores and furrows as seamless height and normal maps", cmd_texture },
+	{ "export", "export pov|blender: scenes and image sets for renderers", cmd_export },
+};
+
+static void usage(FILE *fp)
+{
+	fprintf(fp, "usage: skinbake COMMAND [options]\n\ncommands:\n");
+	for (size_t i = 0; i < sizeof commands / sizeof commands[0]; i++)
+		fprintf(fp, "  %-10s %s\n", commands[i].name, commands[i].summary);
+	fprintf(fp, "\n  skinbake COMMAND --help   shows every option with its default, unit and range.\n"
+	    "  skinbake --version        prints the version.\n");
+}
+
+static int cli_main(int argc, char **argv)
+{
+	if (argc < 2) {
+		usage(stderr);
+		return CLI_EXIT_USAGE;
+	}
+	if (strcmp(argv[1], "--help") == 0 || strcmp(argv[1], "-h") == 0 || strcmp(argv[1], "help") == 0) {
+		if (argc > 2 && strcmp(argv[1], "help") == 0) {
+			char *hv[] = { argv[2], (char *)"--help", NULL };
+			for (size_t i = 0; i < sizeof commands / sizeof commands[0]; i++)
+				if (strcmp(commands[i].name, argv[2]) == 0)
+					return commands[i].exec(2, hv);
+		}
+		usage(stdout);
+		return CLI_EXIT_OK;
+	}
+	if (strcmp(argv[1], "--version") == 0) {
+		printf("%s\n", PACKAGE_STRING);
+		return CLI_EXIT_OK;
+	}
+	for (size_t i = 0; i < sizeof commands / sizeof commands[0]; i++)
+		if (strcmp(commands[i].name, argv[1]) == 0)
+			return commands[i].exec(argc - 1, argv + 1);
+	fprintf(stderr, "skinbake: unknown command '%s'\n", argv[1]);
+	usage(stderr);
+	return CLI_EXIT_USAGE;
+}
+
+#ifdef SKINBAKE_MPI
+/* Every value belongs to one rank and is zero on the others, so the sum is
+ * exact whatever order MPI adds in. */
+static void mpi_allreduce(double *v, long n)
+{
+	for (long off = 0; off < n; off += 1L << 28) {
+		int k = (int)(n - off < (1L << 28) ? n - off : (1L << 28));
+		MPI_Allreduce(MPI_IN_PLACE, v + off, k, MPI_DOUBLE, MPI_SUM, MPI_COMM_WORLD);
+	}
+}
+
+int main(int argc, char **argv)
+{
+	MPI_Init(&argc, &argv);
+	MPI_Comm_rank(MPI_COMM_WORLD, &cli_par.rank);
+	MPI_Comm_size(MPI_COMM_WORLD, &cli_par.size);
+	cli_par.allreduce = mpi_allreduce;
+	if (cli_par.rank != 0 && freopen("/dev/null", "w", stdout) == NULL)
+		fatalx("cannot silence stdout on rank %d", cli_par.rank);
+	int rc = cli_main(argc, argv);
+	/* A rank that failed on bad input must not leave the others waiting. */
+	int worst = rc;
+	MPI_Allreduce(&rc, &worst, 1, MPI_INT, MPI_MAX, MPI_COMM_WORLD);
+	MPI_Finalize();
+	return worst;
+}
+#else
+int main(int argc, char **argv)
+{
+	return cli_main(argc, argv);
+}
+#endif
+
+static void vmsg(const char *cmd, const char *fmt, va_list ap)
+{
+	fprintf(stderr, "skinbake %s: ", cmd);
+	vfprintf(stderr, fmt, ap);
+	fputc('\n', stderr);
+}
+
+int cli_usage_error(const char *cmd, const char *fmt, ...)
+{
+	va_list ap;
+	va_start(ap, fmt);
+	vmsg(cmd, fmt, ap);
+	va_end(ap);
+	return CLI_EXIT_USAGE;
+}
+
+int cli_fail(const char *cmd, const char *fmt, ...)
+{
+	va_list ap;
+	va_start(ap, fmt);
+	vmsg(cmd, fmt, ap);
+	va_end(ap);
+	return CLI_EXIT_FAIL;
+}
+
+int cli_double(const char *cmd, const char *opt, const char *s, double lo, double hi, double *out)
+{
+	double v;
+	if (util_parse_double(s, &v) != 0 || isnan(v)) {
+		cli_usage_error(cmd, "%s: '%s' is not a number (allowed range [%g, %g])", opt, s, lo, hi);
+		return -1;
+	}
+	if (v < lo || v > hi) {
+		cli_usage_error(cmd, "%s = %g is out of range [%g, %g]", opt, v, lo, hi);
+		return -1;
+	}
+	*out = v;
+	return 0;
+}
+
+int cli_long(const char *cmd, const char *opt, const char *s, long lo, long hi, long *out)
+{
+	long v;
+	if (util_parse_long(s, &v) != 0) {
+		cli_usage_error(cmd, "%s: '%s' is not a whole number (allowed range [%ld, %ld])", opt, s, lo, hi);
+		return -1;
+	}
+	if (v < lo || v > hi) {
+		cli_usage_error(cmd, "%s = %ld is out of range [%ld, %ld]", opt, v, lo, hi);
+		return -1;
+	}
+	*out = v;
+	return 0;
+}
+
+int cli_fresnel(const char *cmd, const char *s, int *model)
+{
+	if (strcmp(s, "exact") == 0)
+		*model = OPTICS_FRESNEL_EXACT;
+	else if (strcmp(s, "schlick") == 0)
+		*model = OPTICS_FRESNEL_SCHLICK;
+	else {
+		cli_usage_error(cmd, "--fresnel = '%s' is not one of exact, schlick", s);
+		return -1;
+	}
+	return 0;
+}
+
+void cli_progress_start(struct cli_progress *p, const char *label)
+{
+	p->label = label;
+	p->t0 = util_now();
+	p->shown = -1;
+	p->tty = isatty(2);
+}
+
+void cli_progress_update(void *user, long done, long total)
+{
+	struct cli_progress *p = user;
+	if (!p->tty || total <= 0)
+		return;
+	int pm = (int)(1000.0 * (double)done / (double)total);
+	if (pm == p->shown)
+		return;
+	p->shown = pm;
+	double el = util_now() - p->t0;
+	double eta = done > 0 ? el * (double)(total - done) / (double)done : 0.0;
+	int bar = pm * 30 / 1000;
+	char b[31];
+	for (int i = 0; i < 30; i++)
+		b[i] = i < bar ? '#' : '.';
+	b[30] = '\0';
+	fprintf(stderr, "\r%s [%s] %5.1f%%  %.1fs elapsed, %.1fs left ", p->label, b, pm / 10.0, el, eta);
+	fflush(stderr);
+}
+
+void cli_progress_end(struct cli_progress *p)
+{
+	if (p->tty && p->shown >= 0)
+		fputc('\n', stderr);
+}

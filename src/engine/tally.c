@@ -1,0 +1,47 @@
+#include "config.h"
+#include "engine/tally.h"
+
+#include <stdlib.h>
+#include <string.h>
+
+#include "base/util.h"
+
+void tally_alloc(struct tally *t, const struct tally_grid *g)
+{
+	memset(t, 0, sizeof *t);
+	t->exit = xcalloc((size_t)g->n_theta * (size_t)g->n_phi, sizeof *t->exit);
+	t->radial = xcalloc((size_t)(g->n_r > 0 ? g->n_r : 1), sizeof *t->radial);
+}
+
+void tally_free(struct tally *t)
+{
+	free(t->exit);
+	free(t->radial);
+	t->exit = t->radial = NULL;
+}
+
+void tally_zero(struct tally *t, const struct tally_grid *g)
+{
+	double *e = t->exit, *r = t->radial;
+	memset(t, 0, sizeof *t);
+	t->exit = e;
+	t->radial = r;
+	memset(e, 0, sizeof *e * (size_t)g->n_theta * (size_t)g->n_phi);
+	memset(r, 0, sizeof *r * (size_t)(g->n_r > 0 ? g->n_r : 1));
+}
+
+void tally_add(struct tally *dst, const struct tally *src, const struct tally_grid *g)
+{
+	dst->rd += src->rd;
+	dst->rd_unscat += src->rd_unscat;
+	dst->tt += src->tt;
+	dst->tt_unscat += src->tt_unscat;
+	dst->lost += src->lost;
+	dst->events += src->events;
+	for (int i = 0; i < SLAB_MAX_LAYERS + 2; i++)
+		dst->a[i] += src->a[i];
+	for (int i = 0; i < g->n_theta * g->n_phi; i++)
+		dst->exit[i] += src->exit[i];
+	for (int i = 0; i < g->n_r; i++)
+		dst->radial[i] += src->radial[i];
+}

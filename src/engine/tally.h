@@ -1,0 +1,35 @@
+/* tally: what the transport kernel scores for one batch of photons.  Plain
+ * sums of photon weight; the driver divides by the photon count and forms
+ * standard errors from the spread between batches. */
+#ifndef SKINBAKE_TALLY_H
+#define SKINBAKE_TALLY_H
+#include <stdint.h>
+#include "engine/slab.h"
+
+/* Resolution of the exit tallies. */
+struct tally_grid {
+	int n_theta;	/* exit bands in theta_out over [0, 90] deg, uniform in angle */
+	int n_phi;	/* bins in delta_phi over [0, 180] deg, uniform in angle */
+	int n_r;	/* radial bins of Rd(r); 0 turns off lateral tracking */
+	double dr;	/* radial bin width [cm] */
+};
+
+struct tally {
+	double rd;		/* weight leaving the top, excluding Rsp */
+	double rd_unscat;	/* part of rd that never scattered */
+	double tt;		/* weight leaving the bottom */
+	double tt_unscat;	/* part of tt that never scattered */
+	double lost;		/* weight ended by a guard (step cap, stuck photon) */
+	double a[SLAB_MAX_LAYERS + 2];	/* absorbed per layer (index as in struct slab) */
+	double events;		/* scattering events (a count, for throughput) */
+	double *exit;		/* [n_theta * n_phi] scattered weight leaving the top */
+	double *radial;		/* [n_r] weight leaving the top by exit radius */
+};
+
+/* Allocate zeroed arrays for grid (caller frees with tally_free). */
+void tally_alloc(struct tally *t, const struct tally_grid *g);
+void tally_free(struct tally *t);
+void tally_zero(struct tally *t, const struct tally_grid *g);
+/* dst += src, element by element. */
+void tally_add(struct tally *dst, const struct tally *src, const struct tally_grid *g);
+#endif

@@ -1,0 +1,597 @@
+/* blender: write the image set for exporters/blender/import_skin.py (layout
+ * and axes in blender.h).  The exact-mode atlas tabulates pi * f_r so that a
+ * Diffuse BSDF of that colour under a sun of irradiance E returns
+ * E cos_l f_r, the BRDF's own radiance (Cycles' diffuse closure is
+ * colour * cos_l / pi; measured in docs/blender.md). */
+#include "config.h"
+
+#include "export/blender/blender.h"
+
+#include <errno.h>
+#include <json-c/json.h>
+#include <math.h>
+#include <stdint.h>
+#include <stdio.h>
+#include <stdlib.h>
+#include <string.h>
+
+#include "io/exrio.h"
+#include "io/pngio.h"
+#include "base/util.h"
+
+void blender_options_default(struct blender_options *o)
+{
+	*o = (struct blender_options){
+		.lut_cos = 64,
+		.lut_phi = 37,
+		.sun_elevation = 45.0 * M_PI / 180.0,
+		.sun_azimuth = -45.0 * M_PI / 180.0,
+		.sun_strength = 3.0,
+		.view_elevation = 60.0 * M_PI / 180.0,
+		.view_azimuth = -90.0 * M_PI / 180.0,
+		.map_size = 16,
+		.textures = NULL,
+		.generator = PACKAGE_NAME " " PACKAGE_VERSION,
+	};
+}
+
+void blender_direction(double elevation, double azimuth, double v[3])
+{
+	v[0] = cos(elevation) * cos(azimuth);
+	v[1] = cos(elevation) * sin(azimuth);
+	v[2] = sin(elevation);
+}
+
+static double clamp(double x, double lo, double hi)
+{
+	return x < lo ? lo : x > hi ? hi : x;
+}
+
+float *blender_lut(const struct blender_model *m, int n_cos, int n_phi)
+{
+	size_t w = (size_t)n_phi * (size_t)n_cos, h = (size_t)n_cos, plane = w * h;
+	float *lut = xmalloc(3 * plane * sizeof *lut);
+	for (int k = 0; k < n_phi; k++) {
+		double dphi = M_PI * k / (n_phi - 1);
+		for (int r = 0; r < n_cos; r++) {
+			/* acos of the clamped cosine keeps theta inside [0, pi/2]. */
+			double ti = acos(clamp(1.0 - (double)r / (n_cos - 1), 0.0, 1.0));
+			for (int j = 0; j < n_cos; j++) {
+				double to = acos(clamp((double)j / (n_cos - 1), 0.0, 1.0)), rgb[3];
+				m->f_rgb(m->ctx, ti, to, dphi, rgb);
+				size_t at = (size_t)r * w + (size_t)k * (size_t)n_cos + (size_t)j;
+				for (int c = 0; c < 3; c++)
+					lut[(size_t)c * plane + at] = (float)(M_PI * rgb[c]);
+			}
+		}
+	}
+	return lut;
+}
+
+/* Bilinear in one tile at continuous column x and row-from-top y. */
+static double tile_bilinear(const float *p, int n_cos, size_t w, int k, double x, double y)
+{
+	int x0 = (int)floor(x), y0 = (int)floor(y);
+	if (x0 > n_cos - 2)
+		x0 = n_cos - 2;
+	if (y0 > n_cos - 2)
+		y0 = n_cos - 2;
+	double tx = x - x0, ty = y - y0;
+	size_t base = (size_t)k * (size_t)n_cos;
+	double a = p[(size_t)y0 * w + base + (size_t)x0], b = p[(size_t)y0 * w + base + (size_t)x0 + 1];
+	double c = p[(size_t)(y0 + 1) * w + base + (size_t)x0], d = p[(size_t)(y0 + 1) * w + base + (size_t)x0 + 1];
+	return (1 - ty) * ((1 - tx) * a + tx * b) + ty * ((1 - tx) * c + tx * d);
+}
+
+void blender_lut_sample(const float *lut, int n_cos, int n_phi, double cos_l, double cos_v, double dphi,
+    double rgb[3])
+{
+	size_t w = (size_t)n_phi * (size_t)n_cos, plane = w * (size_t)n_cos;
+	double x = clamp(cos_v, 0.0, 1.0) * (n_cos - 1);
+	double y = (1.0 - clamp(cos_l, 0.0, 1.0)) * (n_cos - 1);
+	double s = clamp(dphi, 0.0, M_PI) / M_PI * (n_phi - 1);
+	int k = (int)floor(s);
+	if (k > n_phi - 2)
+		k = n_phi - 2;
+	double t = s - k;
+	for (int c = 0; c < 3; c++) {
+		const float *p = lut + (size_t)c * plane;
+		rgb[c] = (1 - t) * tile_bilinear(p, n_cos, w, k, x, y) + t * tile_bilinear(p, n_cos, w, k + 1, x, y);
+	}
+}
+
+/* a(theta) of channel c, linear between nodes, clamped at the ends. */
+static double albedo_at(const struct blender_model *m, int c, double theta)
+{
+	const double *t = m->theta_albedo, *a = m->albedo_rgb + (size_t)c * (size_t)m->n_albedo;
+	int n = m->n_albedo;
+	if (n == 1 || theta <= t[0])
+		return a[0];
+	if (theta >= t[n - 1])
+		return a[n - 1];
+	int i = 0;
+	while (i < n - 2 && theta > t[i + 1])
+		i++;
+	double f = (theta - t[i]) / (t[i + 1] - t[i]);
+	return (1 - f) * a[i] + f * a[i + 1];
+}
+
+void blender_albedo_mean(const struct blender_model *m, double rgb[3])
+{
+	/* Midpoint rule in mu = cos(theta): 2 int_0^1 a(mu) mu dmu. */
+	enum { STEPS = 4096 };
+	for (int c = 0; c < 3; c++) {
+		double s = 0.0;
+		for (int i = 0; i < STEPS; i++) {
+			double mu = (i + 0.5) / STEPS;
+			s += albedo_at(m, c, acos(mu)) * mu;
+		}
+		rgb[c] = 2.0 * s / STEPS;
+	}
+}
+
+/* Detail maps: either read from `skinbake texture` output or flat. */
+struct detail {
+	int w, h;		/* size [px] */
+	uint16_t *height;	/* [h][w] gray */
+	uint16_t *normal;	/* [h][w][3] RGB */
+	int flat;		/* 1 when no textures were given */
+	char *tile_mm;		/* tEXt values as read, or NULL */
+	char *hmin_um, *hmax_um;
+};
+
+static void detail_free(struct detail *d)
+{
+	free(d->height);
+	free(d->normal);
+	free(d->tile_mm);
+	free(d->hmin_um);
+	free(d->hmax_um);
+}
+
+static int detail_read(const char *dir, struct detail *d, char **cause)
+{
+	char *hp = xasprintf("%s/height.png", dir), *np = xasprintf("%s/normal.png", dir);
+	int hw, hh, hc, hb, nw, nh, nc, nb, rc = -1;
+	double v;
+	d->height = pngio_read(hp, &hw, &hh, &hc, &hb, cause);
+	if (d->height == NULL)
+		goto out;
+	if (hc != 1 || hb != 16) {
+		*cause = xasprintf("%s: %d channel(s) at %d bits; expected 16-bit gray", hp, hc, hb);
+		goto out;
+	}
+	d->normal = pngio_read(np, &nw, &nh, &nc, &nb, cause);
+	if (d->normal == NULL)
+		goto out;
+	if (nc != 3 || nb != 16) {
+		*cause = xasprintf("%s: %d channel(s) at %d bits; expected 16-bit RGB", np, nc, nb);
+		goto out;
+	}
+	if (nw != hw || nh != hh) {
+		*cause = xasprintf("%s is %dx%d but %s is %dx%d; they must match", np, nw, nh, hp, hw, hh);
+		goto out;
+	}
+	d->tile_mm = pngio_read_text(hp, "skinbake:tile_mm");
+	if (d->tile_mm == NULL || util_parse_double(d->tile_mm, &v) != 0 || !(v > 0)) {
+		*cause = xasprintf("%s: tEXt skinbake:tile_mm is %s; expected a length > 0 [mm]", hp,
+		    d->tile_mm ? d->tile_mm : "missing");
+		goto out;
+	}
+	d->hmin_um = pngio_read_text(hp, "skinbake:height_min_um");
+	d->hmax_um = pngio_read_text(hp, "skinbake:height_max_um");
+	d->w = hw;
+	d->h = hh;
+	rc = 0;
+out:
+	free(hp);
+	free(np);
+	return rc;
+}
+
+static void detail_flat(int size, struct detail *d)
+{
+	size_t n = (size_t)size * (size_t)size;
+	d->w = d->h = size;
+	d->flat = 1;
+	d->height = xcalloc(n, sizeof *d->height);
+	d->normal = xmalloc(3 * n * sizeof *d->normal);
+	for (size_t i = 0; i < n; i++) {
+		d->normal[3 * i] = d->normal[3 * i + 1] = 32768;	/* 0.5: no tilt */
+		d->normal[3 * i + 2] = 65535;
+	}
+}
+
+static int check_options(const struct blender_options *o, char **cause)
+{
+	if (o->lut_cos < BLENDER_LUT_COS_MIN || o->lut_cos > BLENDER_LUT_COS_MAX) {
+		*cause = xasprintf("lut_cos = %d is out of range [%d, %d]", o->lut_cos, BLENDER_LUT_COS_MIN,
+		    BLENDER_LUT_COS_MAX);
+		return -1;
+	}
+	if (o->lut_phi < BLENDER_LUT_PHI_MIN || o->lut_phi > BLENDER_LUT_PHI_MAX) {
+		*cause = xasprintf("lut_phi = %d is out of range [%d, %d]", o->lut_phi, BLENDER_LUT_PHI_MIN,
+		    BLENDER_LUT_PHI_MAX);
+		return -1;
+	}
+	if ((size_t)o->lut_cos * (size_t)o->lut_phi > 65536) {
+		*cause = xasprintf("lut_cos * lut_phi = %d is wider than 65536 px", o->lut_cos * o->lut_phi);
+		return -1;
+	}
+	if (!(o->sun_elevation > 0 && o->sun_elevation <= M_PI / 2) ||
+	    !(o->view_elevation > 0 && o->view_elevation <= M_PI / 2)) {
+		*cause = xasprintf("sun/view elevation %g/%g deg is out of range (0, 90]", o->sun_elevation * 180 / M_PI,
+		    o->view_elevation * 180 / M_PI);
+		return -1;
+	}
+	if (!(o->sun_strength > 0) || !isfinite(o->sun_strength)) {
+		*cause = xasprintf("sun_strength = %g W/m^2 must be > 0", o->sun_strength);
+		return -1;
+	}
+	if (o->map_size < BLENDER_MAP_MIN || o->map_size > BLENDER_MAP_MAX) {
+		*cause = xasprintf("map_size = %d is out of range [%d, %d]", o->map_size, BLENDER_MAP_MIN,
+		    BLENDER_MAP_MAX);
+		return -1;
+	}
+	return 0;
+}
+
+static int check_model(const struct blender_model *m, char **cause)
+{
+	if (m->n_albedo < 1) {
+		*cause = xasprintf("the model has no albedo nodes");
+		return -1;
+	}
+	if (!(m->ior >= 1.0 && m->ior <= 10.0) || !(m->roughness >= 0.0 && m->roughness <= 1.0)) {
+		*cause = xasprintf("ior %g / roughness %g out of range [1, 10] / [0, 1]", m->ior, m->roughness);
+		return -1;
+	}
+	for (int c = 0; c < 3; c++)
+		if (!(m->sss_radius_cm[c] > 0) || !isfinite(m->sss_radius_cm[c])) {
+			*cause = xasprintf("subsurface radius[%d] = %g cm must be > 0", c, m->sss_radius_cm[c]);
+			return -1;
+		}
+	return 0;
+}
+
+/* Nine significant digits: plenty for the data, readable in the manifest. */
+static json_object *jd(double v)
+{
+	char buf[32];
+	snprintf(buf, sizeof buf, "%.9g", v);
+	return json_object_new_double_s(v, buf);
+}
+
+static json_object *jvec(const double *v, int n)
+{
+	json_object *a = json_object_new_array_ext(n);
+	for (int i = 0; i < n; i++)
+		json_object_array_add(a, jd(v[i]));
+	return a;
+}
+
+static json_object *jfile(const char *path, int w, int h, const char *channels, const char *encoding,
+    const char *colorspace, const char *role)
+{
+	json_object *f = json_object_new_object();
+	json_object_object_add(f, "path", json_object_new_string(path));
+	json_object_object_add(f, "width", json_object_new_int(w));
+	json_object_object_add(f, "height", json_object_new_int(h));
+	json_object_object_add(f, "channels", json_object_new_string(channels));
+	json_object_object_add(f, "encoding", json_object_new_string(encoding));
+	json_object_object_add(f, "blender_colorspace", json_object_new_string(colorspace));
+	json_object_object_add(f, "role", json_object_new_string(role));
+	return f;
+}
+
+static json_object *jnum_or_null(const char *s)
+{
+	double v;
+	if (s == NULL || util_parse_double(s, &v) != 0)
+		return NULL;
+	return jd(v);
+}
+
+/* Everything the exact-mode check needs: the reference plane (+Z normal)
+ * under the sun, seen from the reference camera. */
+struct reference {
+	double sun[3], view[3];		/* unit vectors toward sun and camera */
+	double cos_l, cos_v, dphi;	/* on the +Z plane [-], [-], [rad] */
+	double pi_fr[3];		/* pi f_r straight from the model */
+	double pi_fr_lut[3];		/* what the node tree reads from the atlas */
+	double radiance[3];		/* E cos_l f_r [W/(m^2 sr)] */
+};
+
+static void reference_compute(const struct blender_model *m, const struct blender_options *o, const float *lut,
+    struct reference *r)
+{
+	blender_direction(o->sun_elevation, o->sun_azimuth, r->sun);
+	blender_direction(o->view_elevation, o->view_azimuth, r->view);
+	r->cos_l = r->sun[2];
+	r->cos_v = r->view[2];
+	double d = fabs(remainder(o->sun_azimuth - o->view_azimuth, 2 * M_PI)), f[3];
+	r->dphi = d;
+	m->f_rgb(m->ctx, acos(r->cos_l), acos(r->cos_v), d, f);
+	blender_lut_sample(lut, o->lut_cos, o->lut_phi, r->cos_l, r->cos_v, d, r->pi_fr_lut);
+	for (int c = 0; c < 3; c++) {
+		r->pi_fr[c] = M_PI * f[c];
+		r->radiance[c] = o->sun_strength * r->cos_l * f[c];
+	}
+}
+
+static json_object *manifest_build(const struct blender_model *m, const struct blender_options *o,
+    const struct detail *d, const double albedo[3], const struct reference *r)
+{
+	json_object *j = json_object_new_object(), *x;
+	int lw = o->lut_cos * o->lut_phi, lh = o->lut_cos;
+	double sss_m[3];
+	for (int c = 0; c < 3; c++)
+		sss_m[c] = m->sss_radius_cm[c] * 0.01;
+
+	json_object_object_add(j, "format", json_object_new_string("skinbake-blender-image-set"));
+	json_object_object_add(j, "format_version", json_object_new_int(BLENDER_FORMAT_VERSION));
+	json_object_object_add(j, "generator", json_object_new_string(o->generator));
+	x = json_object_new_object();
+	json_object_object_add(x, "brdf", json_object_new_string(m->source ? m->source : ""));
+	json_object_object_add(x, "preset", m->preset ? json_object_new_string(m->preset) : NULL);
+	json_object_object_add(x, "textures", o->textures ? json_object_new_string(o->textures) : NULL);
+	json_object_object_add(j, "source", x);
+	x = json_object_new_object();
+	json_object_object_add(x, "length", json_object_new_string("m"));
+	json_object_object_add(x, "angle", json_object_new_string("deg"));
+	json_object_object_add(x, "irradiance", json_object_new_string("W/m^2"));
+	json_object_object_add(x, "brdf", json_object_new_string("1/sr"));
+	json_object_object_add(x, "colour", json_object_new_string("linear Rec.709 (sRGB primaries, D65)"));
+	json_object_object_add(j, "units", x);
+
+	/* Material parameters for the general (Principled BSDF) mode. */
+	json_object_object_add(j, "ior", jd(m->ior));
+	json_object_object_add(j, "roughness_alpha", jd(m->roughness));
+	json_object_object_add(j, "roughness", jd(sqrt(m->roughness)));
+	json_object_object_add(j, "sss_radius_m", jvec(sss_m, 3));
+	json_object_object_add(j, "albedo_rgb", jvec(albedo, 3));
+	json_object_object_add(j, "albedo_definition", json_object_new_string(
+	    "bihemispherical (white-sky) diffuse albedo: 2 * integral of the directional-hemispherical "
+	    "albedo a(theta_i) cos(theta_i) d(cos theta_i); the specular reflection is not included"));
+	x = json_object_new_object();
+	json_object_object_add(x, "theta_i_deg", json_object_new_array());
+	for (int i = 0; i < m->n_albedo; i++)
+		json_object_array_add(json_object_object_get(x, "theta_i_deg"),
+		    jd(m->theta_albedo[i] * 180.0 / M_PI));
+	for (int c = 0; c < 3; c++) {
+		static const char *const key[3] = { "R", "G", "B" };
+		json_object_object_add(x, key[c], jvec(m->albedo_rgb + (size_t)c * (size_t)m->n_albedo, m->n_albedo));
+	}
+	json_object_object_add(j, "albedo_curve", x);
+
+	x = json_object_new_object();
+	json_object_object_add(x, "albedo", jfile("albedo.exr", o->map_size, o->map_size, "R,G,B", "float32",
+	    "default (scene linear)", "Principled Base Color (and Subsurface Color in Blender 3.x)"));
+	json_object_object_add(x, "brdf_lut", jfile("brdf_lut.exr", lw, lh, "R,G,B", "float32", "Non-Color",
+	    "exact mode: Diffuse BSDF colour = pi * f_r, layout in brdf_lut"));
+	json_object_object_add(x, "roughness", jfile("roughness.png", o->map_size, o->map_size, "gray",
+	    "16-bit PNG", "Non-Color", "Principled Roughness = sqrt(GGX alpha)"));
+	json_object_object_add(x, "height", jfile("height.png", d->w, d->h, "gray", "16-bit PNG", "Non-Color",
+	    "height, 0 lowest .. 65535 highest (for a Bump node or displacement)"));
+	json_object_object_add(x, "normal", jfile("normal.png", d->w, d->h, "RGB", "16-bit PNG", "Non-Color",
+	    "tangent-space normal, OpenGL (+Y) convention, for a Normal Map node"));
+	json_object_object_add(j, "files", x);
+
+	x = json_object_new_object();
+	json_object_object_add(x, "flat", json_object_new_boolean(d->flat));
+	json_object_object_add(x, "note", json_object_new_string(d->flat ?
+	    "no --textures given: constant height and normal (0.5, 0.5, 1) maps" :
+	    "height.png and normal.png copied from the textures directory"));
+	json_object_object_add(x, "tile_mm", jnum_or_null(d->tile_mm));
+	json_object_object_add(x, "height_min_um", jnum_or_null(d->hmin_um));
+	json_object_object_add(x, "height_max_um", jnum_or_null(d->hmax_um));
+	json_object_object_add(j, "detail", x);
+
+	x = json_object_new_object();
+	json_object_object_add(x, "value", json_object_new_string(
+	    "pi * f_r, the total BRDF (diffuse + surface specular) times pi, linear RGB"));
+	json_object_object_add(x, "cos_nodes", json_object_new_int(o->lut_cos));
+	json_object_object_add(x, "phi_nodes", json_object_new_int(o->lut_phi));
+	json_object_object_add(x, "tiles", json_object_new_string(
+	    "phi_nodes tiles side by side, each cos_nodes x cos_nodes; tile k is delta_phi = "
+	    "k * 180 / (phi_nodes - 1) deg, 0 = view back toward the light, 180 = mirror side"));
+	json_object_object_add(x, "u", json_object_new_string(
+	    "inside a tile, column j is cos_view = j / (cos_nodes - 1); texture u = (k * cos_nodes + j + 0.5) / width"));
+	json_object_object_add(x, "v", json_object_new_string(
+	    "file row r from the top is cos_light = 1 - r / (cos_nodes - 1): the bottom row (Blender v = 0) "
+	    "is cos_light = 0; texture v = (cos_light * (cos_nodes - 1) + 0.5) / cos_nodes"));
+	json_object_object_add(x, "interpolation", json_object_new_string(
+	    "bilinear inside the two neighbouring delta_phi tiles, then linear in delta_phi"));
+	json_object_object_add(j, "brdf_lut", x);
+
+	x = json_object_new_object();
+	json_object_object_add(x, "sun_direction", jvec(r->sun, 3));
+	json_object_object_add(x, "sun_elevation_deg", jd(o->sun_elevation * 180 / M_PI));
+	json_object_object_add(x, "sun_azimuth_deg", jd(o->sun_azimuth * 180 / M_PI));
+	json_object_object_add(x, "sun_strength_w_m2", jd(o->sun_strength));
+	json_object_object_add(x, "convention", json_object_new_string(
+	    "world +Z up; sun_direction points toward the sun; azimuth from +X toward +Y"));
+	json_object_object_add(x, "exact_for", json_object_new_string(
+	    "one sun light (this direction, or the scene's sun at import time), any geometry and any "
+	    "camera: the node tree computes cos_view, cos_light and delta_phi per shading point. World "
+	    "light and other lamps are shaded as if they came from this sun."));
+	json_object *ref = json_object_new_object();
+	json_object_object_add(ref, "geometry", json_object_new_string(
+	    "plane with normal +Z, orthographic camera looking along -view_direction, black world"));
+	json_object_object_add(ref, "view_direction", jvec(r->view, 3));
+	json_object_object_add(ref, "view_elevation_deg", jd(o->view_elevation * 180 / M_PI));
+	json_object_object_add(ref, "view_azimuth_deg", jd(o->view_azimuth * 180 / M_PI));
+	json_object_object_add(ref, "cos_light", jd(r->cos_l));
+	json_object_object_add(ref, "cos_view", jd(r->cos_v));
+	json_object_object_add(ref, "delta_phi_deg", jd(r->dphi * 180 / M_PI));
+	json_object_object_add(ref, "pi_fr_rgb", jvec(r->pi_fr, 3));
+	json_object_object_add(ref, "pi_fr_lut_rgb", jvec(r->pi_fr_lut, 3));
+	json_object_object_add(ref, "radiance_rgb", jvec(r->radiance, 3));
+	json_object_object_add(x, "reference", ref);
+	json_object_object_add(j, "exact", x);
+	return j;
+}
+
+static int write_manifest(const char *path, json_object *j, char **cause)
+{
+	struct outfile of;
+	if (outfile_open(&of, path, cause) != 0)
+		return -1;
+	const char *s = json_object_to_json_string_ext(j, JSON_C_TO_STRING_PRETTY | JSON_C_TO_STRING_NOSLASHESCAPE);
+	if (fputs(s, of.fp) == EOF || fputc('\n', of.fp) == EOF) {
+		*cause = xasprintf("%s: %s", path, strerror(errno));
+		outfile_abort(&of);
+		return -1;
+	}
+	return outfile_commit(&of, cause);
+}
+
+static int write_rgb_exr(const char *path, int w, int h, const float *rgb, int nattr,
+    const struct exr_attr_kv *attrs, char **cause)
+{
+	static const char *const names[3] = { "R", "G", "B" };
+	size_t plane = (size_t)w * (size_t)h;
+	const float *planes[3] = { rgb, rgb + plane, rgb + 2 * plane };
+	return exrio_write(path, w, h, 3, names, planes, nattr, attrs, cause);
+}
+
+static uint16_t quantise16(double x)
+{
+	return (uint16_t)lround(clamp(x, 0.0, 1.0) * 65535.0);
+}
+
+/* Everything blender_write puts on disk, computed and validated up front. */
+struct blender_set {
+	struct blender_options o;	/* copy; o.textures and o.generator are borrowed */
+	struct detail d;		/* height and normal maps */
+	float *lut;			/* pi f_r atlas, 3 planes */
+	float *albedo;			/* map_size^2 x 3 planes */
+	uint16_t *roughness;		/* map_size^2 */
+	json_object *manifest;
+};
+
+void blender_set_free(struct blender_set *s)
+{
+	if (s == NULL)
+		return;
+	detail_free(&s->d);
+	free(s->lut);
+	free(s->albedo);
+	free(s->roughness);
+	if (s->manifest)
+		json_object_put(s->manifest);
+	free(s);
+}
+
+struct blender_set *blender_prepare(const struct blender_model *m, const struct blender_options *o, char **cause)
+{
+	if (check_options(o, cause) != 0 || check_model(m, cause) != 0)
+		return NULL;
+	struct blender_set *s = xcalloc(1, sizeof *s);
+	s->o = *o;
+	if (o->textures != NULL) {
+		if (detail_read(o->textures, &s->d, cause) != 0) {
+			blender_set_free(s);
+			return NULL;
+		}
+	} else
+		detail_flat(o->map_size, &s->d);
+
+	double albedo[3];
+	struct reference ref;
+	blender_albedo_mean(m, albedo);
+	s->lut = blender_lut(m, o->lut_cos, o->lut_phi);
+	reference_compute(m, o, s->lut, &ref);
+	for (int c = 0; c < 3; c++)
+		if (!isfinite(albedo[c]) || !isfinite(ref.pi_fr[c])) {
+			*cause = xasprintf("the BRDF gives a non-finite value (albedo %g, pi f_r %g)", albedo[c],
+			    ref.pi_fr[c]);
+			blender_set_free(s);
+			return NULL;
+		}
+	size_t mp = (size_t)o->map_size * (size_t)o->map_size;
+	s->albedo = xmalloc(3 * mp * sizeof *s->albedo);
+	s->roughness = xmalloc(mp * sizeof *s->roughness);
+	for (size_t i = 0; i < mp; i++) {
+		for (int c = 0; c < 3; c++)
+			s->albedo[(size_t)c * mp + i] = (float)albedo[c];
+		s->roughness[i] = quantise16(sqrt(m->roughness));
+	}
+	s->manifest = manifest_build(m, o, &s->d, albedo, &ref);
+	return s;
+}
+
+int blender_write(const struct blender_set *s, const char *dir, char **cause)
+{
+	const struct blender_options *o = &s->o;
+	const struct detail *d = &s->d;
+	char *path = NULL, *np_s = xasprintf("%d", o->lut_phi), *nc_s = xasprintf("%d", o->lut_cos);
+	int rc = -1;
+
+	if (util_mkdirs(dir, cause) != 0)
+		goto out;
+	struct exr_attr_kv aattr[] = {
+		{ "skinbake:quantity", "bihemispherical diffuse albedo, linear Rec.709" },
+		{ "skinbake:generator", o->generator },
+	};
+	path = xasprintf("%s/albedo.exr", dir);
+	if (write_rgb_exr(path, o->map_size, o->map_size, s->albedo, 2, aattr, cause) != 0)
+		goto out;
+	free(path);
+	struct exr_attr_kv lattr[] = {
+		{ "skinbake:quantity", "pi * f_r (total BRDF), linear Rec.709" },
+		{ "skinbake:layout", "tiles k = delta_phi k*180/(phi_nodes-1) deg side by side; in a tile column j = "
+		    "cos_view j/(cos_nodes-1), row r from the top = cos_light 1 - r/(cos_nodes-1)" },
+		{ "skinbake:phi_nodes", np_s },
+		{ "skinbake:cos_nodes", nc_s },
+		{ "skinbake:generator", o->generator },
+	};
+	path = xasprintf("%s/brdf_lut.exr", dir);
+	if (write_rgb_exr(path, o->lut_cos * o->lut_phi, o->lut_cos, s->lut, 5, lattr, cause) != 0)
+		goto out;
+	free(path);
+	struct png_text_kv rtext[] = {
+		{ "skinbake:quantity", "Blender roughness = sqrt(GGX alpha)" },
+	};
+	path = xasprintf("%s/roughness.png", dir);
+	if (pngio_write(path, o->map_size, o->map_size, 1, 16, s->roughness, 0, 1, rtext, cause) != 0)
+		goto out;
+	free(path);
+	struct png_text_kv htext[3];
+	int nh = 0;
+	if (d->tile_mm)
+		htext[nh++] = (struct png_text_kv){ "skinbake:tile_mm", d->tile_mm };
+	if (d->hmin_um)
+		htext[nh++] = (struct png_text_kv){ "skinbake:height_min_um", d->hmin_um };
+	if (d->hmax_um)
+		htext[nh++] = (struct png_text_kv){ "skinbake:height_max_um", d->hmax_um };
+	path = xasprintf("%s/height.png", dir);
+	if (pngio_write(path, d->w, d->h, 1, 16, d->height, 0, nh, htext, cause) != 0)
+		goto out;
+	free(path);
+	path = xasprintf("%s/normal.png", dir);
+	if (pngio_write(path, d->w, d->h, 3, 16, d->normal, 0, d->tile_mm ? 1 : 0, htext, cause) != 0)
+		goto out;
+	free(path);
+	/* The manifest goes last: its presence marks a complete image set. */
+	path = xasprintf("%s/manifest.json", dir);
+	if (write_manifest(path, s->manifest, cause) != 0)
+		goto out;
+	rc = 0;
+out:
+	free(path);
+	free(np_s);
+	free(nc_s);
+	return rc;
+}
+
+int blender_export(const struct blender_model *m, const struct blender_options *o, const char *dir,
+    char **cause)
+{
+	struct blender_set *s = blender_prepare(m, o, cause);
+	if (s == NULL)
+		return -1;
+	int rc = blender_write(s, dir, cause);
+	blender_set_free(s);
+	return rc;
+}

@@ -1,0 +1,120 @@
+/* preset_builtin: the shipped presets.  Each is INI text in the preset file
+ * format; comments give each value's source.  `skinbake preset cat NAME`
+ * prints one as a starting point for own presets. */
+#include "config.h"
+#include "skin/preset_builtin.h"
+
+/* Li & Ng's three-layer model.  The paper's Tables 1-2 (mu_a, mu_s, g, n at
+ * 470, 550 and 656 nm; Table 2 prints 656 nm as "56") were not available to
+ * this project, so (docs/presets.md, "paper"):
+ * - 550 nm: the project's reference skin stack (../shared/refs, AD_skin3:
+ *   epidermis albedo 370/420, optical thickness 4.2; dermis albedo 370/377,
+ *   optical thickness 94.25; g 0.8, n 1.4; sebum n 1.5).
+ * - 470 and 656 nm: the 550 nm values carried to those wavelengths with this
+ *   program's chromophore model: epidermal mu_a as melanin (Jacques 1998,
+ *   fraction 0.1003 fitted to 50/cm at 550) plus baseline; dermal mu_a as blood
+ *   (S = 0.75, fraction 0.02683 fitted to 7/cm at 550) plus baseline; mu_s as
+ *   370 (wl/550)^-b with Salomatina fits b = 1.322 (epidermis), 1.482 (dermis). */
+#define PAPER_INI \
+	"[skin]\n" \
+	"model = tables\n" \
+	"wavelengths = 470, 550, 656   ; Li & Ng Table 2 prints 656 nm as \"56\"\n" \
+	"[sebum]\n" \
+	"thickness = 0.001   ; 10 um, reference stack (../shared/refs AD_skin3)\n" \
+	"n = 1.5             ; Li & Ng\n" \
+	"[epidermis]\n" \
+	"thickness = 0.01    ; 100 um, reference stack\n" \
+	"n = 1.4\n" \
+	"g = 0.8\n" \
+	"[dermis]\n" \
+	"thickness = 0.25    ; 2.5 mm, reference stack; index-matched below\n" \
+	"n = 1.4\n" \
+	"g = 0.8\n" \
+	"[surface]\n" \
+	"roughness_skin = 0.35   ; Beckmann m of Donner & Jensen 2006, taken as GGX alpha\n" \
+	"roughness_sebum = 0.25  ; assumed: the film smooths the micro-relief\n" \
+	"[override.470]\n" \
+	"epidermis.mua = 84.6\n" \
+	"epidermis.mus = 456\n" \
+	"dermis.mua = 5.10\n" \
+	"dermis.mus = 467\n" \
+	"[override.550]\n" \
+	"epidermis.mua = 50\n" \
+	"epidermis.mus = 370\n" \
+	"dermis.mua = 7\n" \
+	"dermis.mus = 370\n" \
+	"[override.656]\n" \
+	"epidermis.mua = 27.8\n" \
+	"epidermis.mus = 293\n" \
+	"dermis.mua = 0.439\n" \
+	"dermis.mus = 285\n"
+
+/* Physiological presets (chromophore model).  Melanin, eumelanin share and
+ * blood per Fitzpatrick type start from ../shared/skin_data/presets_skin_types.tsv
+ * and are calibrated (scripts/calibrate-presets.sh) so the simulated colour
+ * lies in the measured ranges (docs/presets.md).  Oily: a 5 um sebum film;
+ * dry: no film, rougher surface. */
+#define PHYS_INI(MEL, EU, BLOOD) \
+	"[skin]\n" \
+	"model = chromophores\n" \
+	"wavelengths = 400:700:20\n" \
+	"[sebum]\n" \
+	"thickness = 0.0005  ; 5 um oily film (skin-optics.md A2.8: about 1-10 um)\n" \
+	"n = 1.5             ; Li & Ng; squalene about 1.49\n" \
+	"[epidermis]\n" \
+	"thickness = 0.006   ; 60 um, the thickness Jacques 2013 uses with melanin fractions\n" \
+	"n = ding2006\n" \
+	"g = vangemert1989\n" \
+	"melanin = " MEL "\n" \
+	"eumelanin = " EU "\n" \
+	"musp500 = 69.0      ; Mie + Rayleigh fit to Salomatina 2006 epidermis\n" \
+	"musp_power = 0.58\n" \
+	"musp_rayleigh = 0.37\n" \
+	"[dermis]\n" \
+	"thickness = 0.2     ; 2 mm (skin-optics.md A2.8: 1-4 mm)\n" \
+	"n = ding2006\n" \
+	"g = vangemert1989\n" \
+	"blood = " BLOOD "\n" \
+	"so2 = 0.75          ; Donner & Jensen 2006, BioSpec\n" \
+	"musp500 = 45.6      ; Mie + Rayleigh fit to Salomatina 2006 dermis\n" \
+	"musp_power = 0.52\n" \
+	"musp_rayleigh = 0.46\n" \
+	"[subcutis]\n" \
+	"thickness = inf     ; fat below the dermis (Meglinski & Matcher 2002 n, g, blood)\n" \
+	"n = 1.44\n" \
+	"g = 0.75\n" \
+	"blood = 0.05\n" \
+	"so2 = 0.75\n" \
+	"musp500 = 35.0      ; fit to Salomatina 2006 hypodermis\n" \
+	"musp_power = 1.136\n" \
+	"[surface]\n" \
+	"roughness_skin = 0.35   ; Beckmann m of Donner & Jensen 2006, taken as GGX alpha\n" \
+	"roughness_sebum = 0.25  ; assumed: the film smooths the micro-relief\n"
+
+#define DRY_INI(BASE) \
+	"[skin]\n" \
+	"base = " BASE "\n" \
+	"[sebum]\n" \
+	"thickness = 0       ; dry: no surface lipid film\n" \
+	"[surface]\n" \
+	"roughness_skin = 0.4    ; dry: a little rougher than the D&J 0.35 (assumed)\n"
+
+const struct builtin_preset builtin_presets[] = {
+	{ "paper", "Li & Ng three-layer skin at 470/550/656 nm, sebum n = 1.5 (see docs/presets.md)", PAPER_INI },
+	{ "paper-dry", "the paper preset without sebum",
+	  "[skin]\nbase = paper\n[sebum]\nthickness = 0   ; no sebum film\n" },
+	{ "very-fair-oily", "Fitzpatrick I, very light (ITA > 55), 5 um sebum film", PHYS_INI("0.0015", "0.5", "0.02") },
+	{ "very-fair-dry", "Fitzpatrick I, very light (ITA > 55), no sebum", DRY_INI("very-fair-oily") },
+	{ "fair-oily", "Fitzpatrick II, light (ITA 41..55), 5 um sebum film", PHYS_INI("0.011", "0.6", "0.02") },
+	{ "fair-dry", "Fitzpatrick II, light (ITA 41..55), no sebum", DRY_INI("fair-oily") },
+	{ "medium-oily", "Fitzpatrick III, intermediate (ITA 28..41), 5 um sebum film", PHYS_INI("0.025", "0.7", "0.02") },
+	{ "medium-dry", "Fitzpatrick III, intermediate (ITA 28..41), no sebum", DRY_INI("medium-oily") },
+	{ "olive-oily", "Fitzpatrick IV, tan (ITA 10..28), 5 um sebum film", PHYS_INI("0.045", "0.8", "0.02") },
+	{ "olive-dry", "Fitzpatrick IV, tan (ITA 10..28), no sebum", DRY_INI("olive-oily") },
+	{ "brown-oily", "Fitzpatrick V, brown (ITA -30..10), 5 um sebum film", PHYS_INI("0.10", "0.9", "0.02") },
+	{ "brown-dry", "Fitzpatrick V, brown (ITA -30..10), no sebum", DRY_INI("brown-oily") },
+	{ "dark-oily", "Fitzpatrick VI, dark (ITA < -30), 5 um sebum film", PHYS_INI("0.16", "1.0", "0.02") },
+	{ "dark-dry", "Fitzpatrick VI, dark (ITA < -30), no sebum", DRY_INI("dark-oily") },
+};
+
+const int builtin_preset_count = (int)(sizeof builtin_presets / sizeof builtin_presets[0]);
