@@ -16,15 +16,17 @@
  * decimal like every number on the command line. */
 static int check_wavelengths(struct opt_ctx *x, const struct opt *o, const char *v)
 {
-	char *s = xstrdup(v), *save = NULL;
+	char *s = xstrdup(v), *p = s;
 	int rc = 0;
 	double d;
-	for (char *t = strtok_r(s, ",", &save); t && rc == 0; t = strtok_r(NULL, ",", &save)) {
-		char *save2 = NULL;
-		int k = 0;
-		for (char *u = strtok_r(t, ": \t", &save2); u && rc == 0; u = strtok_r(NULL, ": \t", &save2), k++)
-			rc = k < 2 ? opt_double(x, "--wavelengths", u, 380, 780, 0, "nm", &d)
-				   : opt_double(x, "--wavelengths: STEP", u, 0, 400, OPT_LO_OPEN, "nm", &d);
+	for (int j = 0; rc == 0 && p != NULL; ) {	/* j: 0 START (or a single value), 1 STOP, 2 STEP */
+		char *end = p + strcspn(p, ",:");
+		char sep = *end;
+		*end = '\0';
+		rc = j < 2 ? opt_double(x, "--wavelengths", p, 380, 780, 0, "nm", &d)
+			   : opt_double(x, "--wavelengths: STEP", p, 0, 400, OPT_LO_OPEN, "nm", &d);
+		j = sep == ':' ? j + 1 : 0;
+		p = sep ? end + 1 : NULL;
 	}
 	free(s);
 	*(const char **)o->dest = v;

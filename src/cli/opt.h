@@ -159,7 +159,12 @@ int opt_double(const struct opt_ctx *x, const char *label, const char *s, double
 int opt_long(const struct opt_ctx *x, const char *label, const char *s, double lo, double hi,
     unsigned flags, const char *unit, long *out);
 int opt_path_in(const struct opt_ctx *x, const char *label, const char *path, unsigned flags);
+/* As opt_path_in; a short HINT (what was expected) ends the message. */
+int opt_path_in_hint(const struct opt_ctx *x, const char *label, const char *path, unsigned flags,
+    const char *hint);
 int opt_path_out(const struct opt_ctx *x, const char *label, const char *path);
+/* The range as messages and --help show it, e.g. "[0, 90) deg", "(0, inf) cm". */
+void opt_range_text(char *b, size_t n, double lo, double hi, unsigned flags, const char *unit);
 /* Parse "KEY=VALUE,KEY=VALUE" into the struct at BASE by KEYS (ends with
  * { NULL }): unknown, repeated, missing required keys and bad values are
  * reported with LABEL; absent keys get their .def. */
