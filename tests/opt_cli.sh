@@ -62,7 +62,7 @@ rules() {
 	bad "$cmd: $num nan" "$num = 'nan' is not a" "$@" "$num" nan
 	bad "$cmd: $num trailing junk" "$num = '${valid}x' is not a" "$@" "$num" "${valid}x"
 	bad "$cmd: $num leading blank" "$num = ' $valid' is not a" "$@" "$num" " $valid"
-	bad "$cmd: $num empty" "$num = '' is not a" "$@" "$num" ""
+	bad "$cmd: $num empty" "$num = ''" "$@" "$num" ""
 	bad "$cmd: $num out of range" "$num = $badr is out of range $range" "$@" "$num" "$badr"
 	bad "$cmd: $num=out of range" "$num = $badr is out of range $range" "$@" "$num=$badr"
 	bad "$cmd: $num without a value" "$num needs a value" "$@" "$num"
@@ -156,7 +156,7 @@ bad "bake --theta-nodes 34.5" "--theta-nodes = 34.5 is not a whole number in [1,
 bad "bake --theta-nodes 0" "--theta-nodes = 0 is out of range [1, 90]" bake --preset paper --theta-nodes 0 --out "$tmpd/new"
 bad "bake --resolution hex" "--resolution: P = '0x10' is not a whole decimal number in [1, 360]" bake --preset paper --resolution 9x0x10 --out "$tmpd/new"
 bad "bake --resolution 1e400" "--resolution: T = 1e400 is out of range [1, 360]" bake --preset paper --resolution 1e400x4 --out "$tmpd/new"
-bad "bake --spectral hex" "--spectral: B = '0x1f4' is not a whole decimal number in [400, 780] nm" bake --preset paper --spectral 400:0x1f4:10 --out "$tmpd/new"
+bad "bake --spectral hex" "--spectral = '0x1f4' is not a whole decimal number in [380, 780] nm" bake --preset paper --spectral 400:0x1f4:10 --out "$tmpd/new"
 bad "bake --spectral and --wavelengths" "--wavelengths and --spectral exclude each other" bake --preset paper --spectral 400:500:10 --wavelengths 550 --out "$tmpd/new"
 bad "bake --preset and --preset-file" "--preset and --preset-file exclude each other" bake --preset paper --preset-file "$tmpd/file" --out "$tmpd/new"
 bad "bake without a preset" "give one of --preset, --preset-file" bake --out "$tmpd/new"
@@ -167,7 +167,7 @@ bad "texture --size 0x40" "--size = '0x40' is not a whole decimal number in [16,
 bad "texture --seed hex" "--seed = '0x7' is not a whole decimal number" texture --seed 0x7 --out "$tmpd/new"
 bad "texture --orientation inf" "--orientation = 'inf' is not a decimal number in [-180, 180] deg" texture --orientation inf --out "$tmpd/new"
 bad "eval without --phi" "--phi is required" eval --bake "$tmpd/bake" --theta-in 1 --theta-out 1
-bad "preset show --wavelengths hex step" "--wavelengths: STEP = '0x10' is not a decimal number in (0, 400] nm" preset show paper --wavelengths 470:656:0x10
+bad "preset show --wavelengths hex step" "--wavelengths: STEP = '0x10' is not a decimal number in (0, inf) nm" preset show paper --wavelengths 470:656:0x10
 bad "preset show --ini and --wavelengths" "--wavelengths and --ini exclude each other" preset show paper --ini --wavelengths 550
 bad "preset cat without a name" "missing argument" preset cat
 bad "preset cat, two names" "unexpected argument 'b'" preset cat paper b

@@ -225,7 +225,7 @@ static void test_parse_errors(void **state)
 		{ { "--s", "a", "--e", "four" }, "--e = 'four' is not one of one, two, three" },
 		{ { "--s", "a", "--list", "1,,2" }, "empty element" },
 		{ { "--s", "a", "--list", "1,2," }, "empty element" },
-		{ { "--s", "a", "--list", "10,10.0" }, "--list: 10.0 is listed twice" },
+		{ { "--s", "a", "--list", "10,10.0" }, "--list: 10 is listed twice" },
 		{ { "--s", "a", "--list", "1,2,3,4" }, "more than 3 values" },
 		{ { "--s", "a", "--list", "0x1" }, "--list = '0x1' is not a decimal number in [0, 90) deg" },
 		{ { "--s", "a", "--list", "90" }, "--list = 90 is out of range [0, 90) deg" },
@@ -365,6 +365,42 @@ static void test_keys(void **state)
 	}
 }
 
+static void test_list_steps(void **state)
+{
+	(void)state;
+	static struct opt_list w;
+	const struct opt o[] = {
+		{ "wl", OPT_LIST, &w, "LIST", .lo = 380, .hi = 780, .unit = "nm", .max = 8,
+		  .flags = OPT_WHOLE | OPT_UNIQUE | OPT_STEPS, .help = "wavelengths" },
+		OPT_END
+	};
+	const struct opt_cmd c = { "w", "", NULL, o, NULL, 0, 0 };
+	struct opt_ctx x;
+	char *ok[] = { (char *)"w", (char *)"--wl", (char *)"400:430:10,500,600:600:5" };
+	assert_int_equal(opt_parse(&x, &c, 3, ok), 0);
+	assert_int_equal(w.n, 6);
+	assert_true(w.v[0] == 400 && w.v[3] == 430 && w.v[4] == 500 && w.v[5] == 600);
+	static const struct {
+		const char *v, *want;
+	} bad[] = {
+		{ "500:400:10", "--wl: 500:400:10 has STOP < START" },
+		{ "400:500", "--wl: '400:500' is not START:STOP:STEP" },
+		{ "400:500:10:1", "is not START:STOP:STEP" },
+		{ "400:500:0", "--wl: STEP = 0 is out of range [1, 1e15] nm" },
+		{ "400:0x1f4:10", "--wl = '0x1f4' is not a whole decimal number in [380, 780] nm" },
+		{ "400:800:10", "--wl = 800 is out of range [380, 780] nm" },
+		{ "400:420:10,410", "--wl: 410 is listed twice" },
+		{ "400:500:10", "--wl = '400:500:10' has more than 8 values" },
+	};
+	for (size_t k = 0; k < sizeof bad / sizeof bad[0]; k++) {
+		char *argv[] = { (char *)"w", (char *)"--wl", (char *)bad[k].v };
+		n_msg = 0;
+		assert_int_equal(opt_parse(&x, &c, 3, argv), -1);
+		assert_int_equal(n_msg, 1);
+		msg_has(bad[k].want);
+	}
+}
+
 static void test_paths(void **state)
 {
 	(void)state;
@@ -415,6 +451,7 @@ int main(void)
 		cmocka_unit_test(test_parse_help),
 		cmocka_unit_test(test_help_text),
 		cmocka_unit_test(test_keys),
+		cmocka_unit_test(test_list_steps),
 		cmocka_unit_test(test_paths),
 	};
 	return cmocka_run_group_tests(tests, NULL, NULL);

@@ -16,31 +16,6 @@
 #include "skin/tissue.h"
 #include "base/util.h"
 
-/* --spectral A:B:STEP [nm] into the wavelength list. */
-static int parse_spectral(struct opt_ctx *x, const struct opt *o, const char *v)
-{
-	struct opt_list *wl = o->dest;
-	long a, b, st;
-	char *c = xstrdup(v), *p1 = strchr(c, ':'), *p2 = p1 ? strchr(p1 + 1, ':') : NULL;
-	int rc = -1;
-	if (!p1 || !p2)
-		opt_error(x, "--spectral = '%s' is not A:B:STEP (nm)", v);
-	else {
-		*p1 = *p2 = '\0';
-		if (opt_long(x, "--spectral: A", c, 380, 780, 0, "nm", &a) == 0 &&
-		    opt_long(x, "--spectral: B", p1 + 1, (double)a, 780, 0, "nm", &b) == 0 &&
-		    opt_long(x, "--spectral: STEP", p2 + 1, 1, 1e6, 0, "nm", &st) == 0)
-			rc = 0;
-	}
-	free(c);
-	for (long w = a; rc == 0 && w <= b; w += st) {
-		if (wl->n == BAKE_MAX_WL)
-			return opt_error(x, "--spectral = '%s' gives more than %d wavelengths", v, BAKE_MAX_WL), -1;
-		wl->v[wl->n++] = (double)w;
-	}
-	return rc;
-}
-
 /* --resolution TxP. */
 static int parse_resolution(struct opt_ctx *x, const struct opt *o, const char *v)
 {
@@ -77,10 +52,10 @@ int cmd_bake(int argc, char **argv)
 		{ "out", OPT_PATH_OUT, &out, "DIR", .flags = OPT_REQUIRED,
 		  .help = "output directory (created; files replaced atomically)" },
 		{ "wavelengths", OPT_LIST, &wl, "LIST", .lo = 380, .hi = 780, .unit = "nm", .max = BAKE_MAX_WL,
-		  .flags = OPT_WHOLE | OPT_UNIQUE, .excl = "spectral", .def_note = "the preset's, e.g. 470,550,656 for 'paper'",
-		  .help = "wavelengths" },
-		{ "spectral", OPT_CUSTOM, &wl, "A:B:STEP", .fn = parse_spectral, .excl = "wavelengths",
-		  .help = "wavelengths A, A+STEP, ... up to B, whole numbers in [380, 780] nm" },
+		  .flags = OPT_WHOLE | OPT_UNIQUE | OPT_STEPS, .excl = "spectral",
+		  .def_note = "the preset's, e.g. 470,550,656 for 'paper'", .help = "wavelengths, whole numbers" },
+		{ "spectral", OPT_LIST, &wl, "A:B:STEP", .lo = 380, .hi = 780, .unit = "nm", .max = BAKE_MAX_WL,
+		  .flags = OPT_WHOLE | OPT_UNIQUE | OPT_STEPS, .excl = "wavelengths", .help = "as --wavelengths A:B:STEP" },
 		{ "theta-in", OPT_LIST, &th, "LIST", .lo = 0, .hi = 90, .unit = "deg", .max = BAKE_MAX_TI,
 		  .flags = OPT_HI_OPEN | OPT_UNIQUE | OPT_SORT, .excl = "theta-nodes", .help = "incidence angles" },
 		{ "theta-nodes", OPT_INT, &nodes, "N", "10", .lo = 1, .hi = BAKE_MAX_TI, .excl = "theta-in",

@@ -12,35 +12,14 @@
 #include "skin/preset.h"
 #include "base/util.h"
 
-/* --wavelengths: preset_parse_wavelengths reads it; its numbers must be
- * decimal like every number on the command line. */
-static int check_wavelengths(struct opt_ctx *x, const struct opt *o, const char *v)
-{
-	char *s = xstrdup(v), *p = s;
-	int rc = 0;
-	double d;
-	for (int j = 0; rc == 0 && p != NULL; ) {	/* j: 0 START (or a single value), 1 STOP, 2 STEP */
-		char *end = p + strcspn(p, ",:");
-		char sep = *end;
-		*end = '\0';
-		rc = j < 2 ? opt_double(x, "--wavelengths", p, 380, 780, 0, "nm", &d)
-			   : opt_double(x, "--wavelengths: STEP", p, 0, 400, OPT_LO_OPEN, "nm", &d);
-		j = sep == ':' ? j + 1 : 0;
-		p = sep ? end + 1 : NULL;
-	}
-	free(s);
-	*(const char **)o->dest = v;
-	return rc;
-}
-
 static int show(int argc, char **argv)
 {
-	const char *file = NULL, *wls = NULL;
+	const char *file = NULL;
+	static struct opt_list wlist;	/* checked here, read again by preset_parse_wavelengths */
 	int ini = 0;
 	const struct opt opts[] = {
-		{ "wavelengths", OPT_CUSTOM, &wls, "LIST", .fn = check_wavelengths, .excl = "ini",
-		  .def_note = "the preset's", .help = "wavelengths [nm] in [380, 780]: comma list and "
-		  "START:STOP:STEP ranges, ascending" },
+		{ "wavelengths", OPT_LIST, &wlist, "LIST", .lo = 380, .hi = 780, .unit = "nm", .max = SKIN_MAX_WL,
+		  .flags = OPT_STEPS, .excl = "ini", .def_note = "the preset's", .help = "wavelengths, ascending" },
 		{ "preset-file", OPT_PATH_IN, &file, "FILE", .flags = OPT_FILE,
 		  .help = "read the preset from FILE instead of a built-in one" },
 		{ "ini", OPT_FLAG, &ini, .excl = "wavelengths",
@@ -57,7 +36,7 @@ static int show(int argc, char **argv)
 	struct opt_ctx x;
 	if (opt_parse(&x, &cmd, argc, argv) != 0)
 		return x.exit;
-	const char *name = x.n_args ? x.args[0] : NULL, *CMD = cmd.name;
+	const char *name = x.n_args ? x.args[0] : NULL, *CMD = cmd.name, *wls = opt_text(&x, "wavelengths");
 	if ((name == NULL) == (file == NULL))
 		return opt_error(&x, "give either a preset NAME or --preset-file FILE (see skinbake presets)");
 	char *cause = NULL;

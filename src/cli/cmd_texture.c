@@ -358,7 +358,7 @@ int cmd_texture(int argc, char **argv)
 		"parameters after --quiet override the site; the defaults shown are site 'face'.", opts,
 		"Finer furrow level k (k = 0 primary) has cell furrow-cell * level-scale^k,\n"
 		"depth furrow-depth * level-gain^k, dome ridge-height * level-gain^k and\n"
-		"width furrow-width * level-scale^(k/2) (at most half its cell).\n"
+		"width furrow-width * level-scale^(k/2) (at most half its cell).\n\n"
 		"Heights are relative to the undisturbed surface; 0 in height.png is the\n"
 		"lowest point of the map and 65535 the highest (skinbake:height_min_um and\n"
 		"skinbake:height_max_um).  POV-Ray: bump_size = (max - min) * size / tile.\n"

@@ -4,6 +4,7 @@
 #include "cli/opt.h"
 
 #include <assert.h>
+#include <math.h>
 #include <stdarg.h>
 #include <stdlib.h>
 #include <string.h>
@@ -61,39 +62,80 @@ static int cmp_double(const void *a, const void *b)
 	return (p > q) - (p < q);
 }
 
-static int parse_list(const struct opt_ctx *x, const char *label, const struct opt *o, const char *v,
+/* One number of list O (LABEL names it in messages). */
+static int list_number(const struct opt_ctx *x, const char *label, const struct opt *o, const char *p, double *d)
+{
+	long w;
+	if (!(o->flags & OPT_WHOLE))
+		return opt_double(x, label, p, o->lo, o->hi, o->flags, o->unit, d);
+	if (opt_long(x, label, p, o->lo, o->hi, o->flags, o->unit, &w) != 0)
+		return -1;
+	*d = (double)w;
+	return 0;
+}
+
+/* Append D to L unless it breaks OPT_UNIQUE or the length. */
+static int list_add(const struct opt_ctx *x, const char *label, const struct opt *o, const char *v, double d,
     struct opt_list *l)
 {
 	int max = o->max > 0 && o->max < OPT_LIST_MAX ? o->max : OPT_LIST_MAX;
+	for (int i = 0; (o->flags & OPT_UNIQUE) && i < l->n; i++)
+		if (l->v[i] == d)
+			return opt_error(x, "%s: %.15g is listed twice", label, d), -1;
+	if (l->n == max)
+		return opt_error(x, "%s = '%s' has more than %d values", label, v, max), -1;
+	l->v[l->n++] = d;
+	return 0;
+}
+
+/* START:STOP:STEP of an OPT_STEPS list: START, START + STEP, ... <= STOP. */
+static int list_steps(const struct opt_ctx *x, const char *label, const struct opt *o, const char *v, char *p,
+    struct opt_list *l)
+{
+	char *c1 = strchr(p, ':'), *c2 = strchr(c1 + 1, ':'), sl[96];
+	double a, b, st;
+	long w;
+	if (c2 == NULL || strchr(c2 + 1, ':') != NULL)
+		return opt_error(x, "%s: '%s' is not START:STOP:STEP", label, p), -1;
+	*c1 = *c2 = '\0';
+	snprintf(sl, sizeof sl, "%s: STEP", label);
+	if (list_number(x, label, o, p, &a) || list_number(x, label, o, c1 + 1, &b))
+		return -1;
+	if (o->flags & OPT_WHOLE) {
+		if (opt_long(x, sl, c2 + 1, 1, 1e15, 0, o->unit, &w) != 0)
+			return -1;
+		st = (double)w;
+	} else if (opt_double(x, sl, c2 + 1, 0, INFINITY, OPT_LO_OPEN | OPT_HI_OPEN, o->unit, &st) != 0)
+		return -1;
+	if (b < a)
+		return opt_error(x, "%s: %s:%s:%s has STOP < START", label, p, c1 + 1, c2 + 1), -1;
+	long cnt = (long)floor((b - a) / st + 1e-9) + 1;	/* as preset_parse_wavelengths */
+	for (long i = 0; i < cnt; i++)
+		if (list_add(x, label, o, v, a + st * (double)i, l) != 0)
+			return -1;
+	return 0;
+}
+
+static int parse_list(const struct opt_ctx *x, const char *label, const struct opt *o, const char *v,
+    struct opt_list *l)
+{
 	char *s = xstrdup(v), *p = s;
 	int rc = -1;
 	l->n = 0;
 	for (;;) {
 		char *comma = strchr(p, ',');
+		double d;
 		if (comma != NULL)
 			*comma = '\0';
 		if (*p == '\0') {
 			opt_error(x, "%s = '%s' has an empty element (a comma list: 30,45,60)", label, v);
 			goto out;
 		}
-		if (l->n == max) {
-			opt_error(x, "%s = '%s' has more than %d values", label, v, max);
-			goto out;
-		}
-		double d;
-		long w;
-		if (o->flags & OPT_WHOLE) {
-			if (opt_long(x, label, p, o->lo, o->hi, o->flags, o->unit, &w) != 0)
+		if ((o->flags & OPT_STEPS) && strchr(p, ':') != NULL) {
+			if (list_steps(x, label, o, v, p, l) != 0)
 				goto out;
-			d = (double)w;
-		} else if (opt_double(x, label, p, o->lo, o->hi, o->flags, o->unit, &d) != 0)
+		} else if (list_number(x, label, o, p, &d) != 0 || list_add(x, label, o, v, d, l) != 0)
 			goto out;
-		for (int i = 0; (o->flags & OPT_UNIQUE) && i < l->n; i++)
-			if (l->v[i] == d) {
-				opt_error(x, "%s: %s is listed twice", label, p);
-				goto out;
-			}
-		l->v[l->n++] = d;
 		if (comma == NULL)
 			break;
 		p = comma + 1;

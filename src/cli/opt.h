@@ -74,6 +74,7 @@ enum opt_type {
 #define OPT_SORT 0x080u	/* OPT_LIST: sorted ascending after parsing */
 #define OPT_DIR 0x100u	/* OPT_PATH_IN: must be a directory */
 #define OPT_FILE 0x200u	/* OPT_PATH_IN: must not be a directory */
+#define OPT_STEPS 0x400u	/* OPT_LIST: an element may be START:STOP:STEP */
 
 #define OPT_MAX 96	/* options per command */
 #define OPT_MAX_ARGS 4	/* positional arguments per command */

@@ -4,9 +4,11 @@
 #include "cli/opt.h"
 
 #include <stdio.h>
+#include <stdlib.h>
 #include <string.h>
 
 #include "cli/cli.h"
+#include "base/util.h"
 
 #define HELP_COL 25	/* column of the option texts */
 #define HELP_WIDTH 79
@@ -19,7 +21,7 @@
 static void wrap(FILE *fp, const char *text, int at, int col)
 {
 	const char *p = text;
-	if (at >= col) {
+	if (at > col) {
 		fputc('\n', fp);
 		at = 0;
 	}
@@ -126,7 +128,8 @@ static void describe(FILE *fp, const struct opt *o)
 	cat(t, sizeof t, o->help);
 	if (o->type == OPT_DOUBLE || o->type == OPT_LONG || o->type == OPT_INT || o->type == OPT_LIST) {
 		opt_range_text(r, sizeof r, o->lo, o->hi, o->flags, o->unit);
-		cat(t, sizeof t, o->type == OPT_LIST ? ", comma-separated, each in " : " in ");
+		cat(t, sizeof t, o->type != OPT_LIST ? " in " : o->flags & OPT_STEPS ? ", comma-separated, "
+		    "START:STOP:STEP for a range, each in " : ", comma-separated, each in ");
 		cat_nb(t, sizeof t, r);
 		if (o->type == OPT_LIST && o->max > 0) {
 			snprintf(r, sizeof r, ", at most %d", o->max);
@@ -152,22 +155,54 @@ static void describe(FILE *fp, const struct opt *o)
 	const char *parts[] = { req, rep, d };
 	cat_parts(t, sizeof t, parts, 3);
 	int at = fprintf(fp, "%-*s", HELP_COL - 1, head);
+	if (at >= HELP_COL) {	/* a long head: the text goes below it */
+		fputc('\n', fp);
+		at = 0;
+	}
 	wrap(fp, t, at, HELP_COL);
 	if (o->keys)
 		describe_keys(fp, o->keys);
 }
 
+/* Paragraphs (separated by an empty line) refilled to HELP_WIDTH, except
+ * those with indented lines, which keep their layout. */
+static void paragraphs(FILE *fp, const char *text)
+{
+	char *s = xstrdup(text), *p = s;
+	while (p != NULL) {
+		char *end = strstr(p, "\n\n");
+		if (end != NULL)
+			*end = '\0';
+		if (*p == ' ' || strstr(p, "\n ") != NULL)
+			fprintf(fp, "%s\n", p);
+		else {
+			for (char *q = p; *q; q++)
+				*q = *q == '\n' ? ' ' : *q;
+			wrap(fp, p, 0, 0);
+		}
+		if (end != NULL)
+			fputc('\n', fp);
+		p = end ? end + 2 : NULL;
+	}
+	free(s);
+}
+
 void opt_help(const struct opt_cmd *c, FILE *fp)
 {
-	fprintf(fp, "usage: skinbake %s %s\n", c->name, c->usage);
-	if (c->about)
-		fprintf(fp, "\n%s\n", c->about);
+	int at = fprintf(fp, "usage: skinbake %s%s", c->name, *c->usage ? " " : "");
+	wrap(fp, c->usage, at, at);
+	if (c->about) {
+		fputc('\n', fp);
+		paragraphs(fp, c->about);
+	}
 	fputc('\n', fp);
 	for (int i = 0; c->opts[i].name; i++)
 		describe(fp, &c->opts[i]);
 	fprintf(fp, "%-*s this text\n", HELP_COL - 1, "  --help");
-	if (c->notes)
-		fprintf(fp, "\n%s\n", c->notes);
+	if (c->notes) {
+		fputc('\n', fp);
+		paragraphs(fp, c->notes);
+	}
 }
 
 /* ---- actions ------------------------------------------------------------- */
