@@ -30,8 +30,8 @@
  *         { "json", OPT_FLAG, &json, .help = "one JSON object" },
  *         OPT_END
  *     };
- *     const struct opt_cmd cmd = { "eval", "--bake DIR --theta-in DEG [--json]",
- *         "Print the baked BRDF ...", opts };
+ *     const struct opt_cmd cmd = { .name = "eval", .usage = "--bake DIR --theta-in DEG [--json]",
+ *         .about = "Print the baked BRDF ...", .opts = opts };
  *     struct opt_ctx x;
  *     if (opt_parse(&x, &cmd, argc, argv) != 0)
  *         return x.exit;
@@ -42,8 +42,13 @@
  * that tie options together beyond .excl (A needs B, a step that must
  * divide 90) follow opt_parse and report with opt_error().  Compound values
  * (--layer d=..,mua=.., --light type=..,position=X:Y:Z) are OPT_CUSTOM with a
- * callback; with a struct opt_key table, opt_keys() parses them by the same
- * rules and --help documents every key. */
+ * callback (OPT_REPEAT if it may be given again, e.g. one --light each);
+ * with a struct opt_key table, opt_keys() parses them by the same rules and
+ * --help documents every key.  An OPT_ENUM key writes an int: give
+ * opt_keys a staging struct when the field is of an enum type.
+ *
+ * Implemented in opt.c (the table and the command line), opt_value.c
+ * (numbers, paths, range texts) and opt_help.c (--help, opt_dispatch). */
 #ifndef SKINBAKE_OPT_H
 #define SKINBAKE_OPT_H
 #include <stddef.h>
