@@ -12,6 +12,7 @@
 #include <omp.h>
 #endif
 
+#include "engine/ad_err.h"
 #include "engine/ad_eval.h"
 #include "engine/ad_order.h"
 #include "base/util.h"
@@ -178,104 +179,6 @@ static void series_free(struct ad_series *sr)
 	}
 }
 
-/* Orders kept for the values; the last two (if the series was cut) give the
- * truncation estimate. */
-static int kept_orders(const struct ad_series *sr)
-{
-	return sr->lv.complete || sr->lv.M <= 2 ? sr->lv.M : sr->lv.M - 2;
-}
-
-/* The Fourier tail beyond the computed orders relative to the last two:
- * geometric extrapolation, sum rho^k = 1 / (1 - rho), with rho the decay
- * of the order sizes over the last two pairs (pairs, as odd orders vanish
- * at normal incidence). */
-static double tail_factor(const struct ad_series *sr)
-{
-	const struct ad_level *lv = &sr->lv;
-	int M = lv->M;
-	if (lv->complete || M < 5)
-		return 1.0;
-	const double *s = lv->order_size;
-	double a = s[M - 1] + s[M - 2], b = s[M - 3] + s[M - 4];
-	double rho = b > 0.0 ? a / b : 1.0;
-	return rho < 0.999 ? 1.0 / (1.0 - rho) : 1000.0;
-}
-
-/* The tables of the main solve with their errors into r's beams. */
-static void assemble_tables(const struct ad_series *hi, const struct ad_series *lo, struct ad_result *r)
-{
-	const int E = hi->lv.E, nt = r->n_to, np = r->n_phi, nb = nt * np;
-	double *fr = xcalloc((size_t)E * nb, sizeof(double)), *last = xcalloc((size_t)E * nb, sizeof(double));
-	double *az = xcalloc((size_t)E * nt, sizeof(double));
-	double *fr_lo = xcalloc((size_t)E * nb, sizeof(double)), *az_lo = xcalloc((size_t)E * nt, sizeof(double));
-	int mk = kept_orders(hi);
-	double tf = tail_factor(hi);
-	ad_series_table(hi, nt, np, mk, fr, az, mk < hi->lv.M ? last : NULL);
-	if (lo)
-		ad_series_table(lo, nt, np, 0, fr_lo, az_lo, NULL);
-	double wsum = 0.0, e2 = 0.0;
-	for (int k = 0; k < E; k++) {
-		struct ad_beam *b = &r->beam[k];
-		double num = 0.0, den = 0.0;
-		for (int it = 0; it < nt; it++) {
-			double w = cos(it * 0.5 * M_PI / nt) - cos((it + 1) * 0.5 * M_PI / nt);
-			b->fr_az[it] = az[(size_t)k * nt + it];
-			b->fr_az_err[it] = lo ? fabs(b->fr_az[it] - az_lo[(size_t)k * nt + it]) : 0.0;
-			for (int ip = 0; ip < np; ip++) {
-				size_t j = (size_t)k * nb + it * np + ip;
-				double v = fr[j] + last[j];
-				double err = tf * fabs(last[j]) + (lo ? fabs(v - fr_lo[j]) : 0.0);
-				b->fr[it * np + ip] = v;
-				b->fr_err[it * np + ip] = err;
-				double rel = v > 0.0 ? err / v : (err > 0.0 ? 1.0 : 0.0);
-				num += w * rel * rel;
-				den += w;
-			}
-		}
-		b->rms_rel_err = sqrt(num / den);
-		e2 += b->rms_rel_err * b->rms_rel_err;
-		wsum += 1.0;
-	}
-	r->rms_rel_err = sqrt(e2 / wsum);
-	free(fr);
-	free(last);
-	free(az);
-	free(fr_lo);
-	free(az_lo);
-}
-
-/* Totals of the main solve with errors from the second. */
-static void assemble_totals(const struct ad_series *hi, const struct ad_series *lo, struct ad_result *r)
-{
-	const struct ad_level *h = &hi->lv, *l = lo ? &lo->lv : NULL;
-	const int E = h->E, K = hi->md.K;
-	for (int e = 0; e < E; e++) {
-		struct ad_beam *b = &r->beam[e];
-		b->rsp = h->rsp[e];
-		b->rd.v = h->rd[e] + h->rd_d[e];
-		b->rd_unscat = h->rd_d[e];
-		b->tt.v = h->tt[e] + h->tt_d[e];
-		b->tt_unscat = h->tt_d[e];
-		double drop = h->t_drop;
-		b->rd.err = drop + (l ? fabs(b->rd.v - l->rd[e] - l->rd_d[e]) : 0.0);
-		b->tt.err = drop + (l ? fabs(b->tt.v - l->tt[e] - l->tt_d[e]) : 0.0);
-		double sum = b->rsp + b->rd.v + b->tt.v;
-		for (int k = 0; k < K; k++) {
-			struct ad_value *a = &b->a[hi->md.slab_layer[k]];
-			a->v = h->a[(size_t)k * E + e];
-			a->err = drop + (l ? fabs(a->v - l->a[(size_t)k * E + e]) : 0.0);
-			sum += a->v;
-		}
-		b->balance = sum - 1.0;
-	}
-	r->n_nodes = h->N;
-	r->n_orders = kept_orders(hi);
-	r->series_complete = h->complete;
-	r->doublings = h->doublings + (l ? l->doublings : 0);
-	r->delta_m_f = h->f_max;
-	r->norm_max = h->norm_max;
-}
-
 static void result_alloc(struct ad_result *r, const double *theta_i, int n_beams, const struct ad_opts *o)
 {
 	memset(r, 0, sizeof *r);
@@ -292,19 +195,6 @@ static void result_alloc(struct ad_result *r, const double *theta_i, int n_beams
 		b->fr_az = xcalloc((size_t)o->n_to, sizeof(double));
 		b->fr_az_err = xcalloc((size_t)o->n_to, sizeof(double));
 	}
-}
-
-/* Whether the estimates meet tol: the table, and Rd and Tt. */
-static int meets(const struct ad_result *r, double tol)
-{
-	if (r->rms_rel_err > tol)
-		return 0;
-	for (int k = 0; k < r->n_beams; k++) {
-		const struct ad_beam *b = &r->beam[k];
-		if (b->rd.err > tol * b->rd.v + 1e-9 || b->tt.err > tol * b->tt.v + 1e-9)
-			return 0;
-	}
-	return 1;
 }
 
 int ad_solve(const struct slab *s, enum optics_fresnel model, const double *theta_i, int n_beams,
@@ -335,28 +225,33 @@ int ad_solve(const struct slab *s, enum optics_fresnel model, const double *thet
 	 * than they give; the orders run in parallel instead. */
 	openblas_set_num_threads(1);
 	int nq = o->n_quad > 0 ? o->n_quad : 16, automatic = o->n_quad == 0;
-	struct ad_series *hi = NULL, *lo = NULL;
-	if ((o->error_estimate || automatic) && level_run(&md, se, n_beams, o, nq / 2 > 4 ? nq / 2 : 4, threads,
-	    &lo, cause))
+	int est = o->error_estimate || automatic;
+	struct ad_series *hi = NULL, *lo = NULL, *lo2 = NULL;
+	if (est && (level_run(&md, se, n_beams, o, nq / 2, threads, &lo, cause) ||
+	    (nq / 4 >= 4 && level_run(&md, se, n_beams, o, nq / 4, threads, &lo2, cause))))
 		goto fail;
 	for (;;) {
 		if (level_run(&md, se, n_beams, o, nq, threads, &hi, cause))
 			goto fail;
-		assemble_totals(hi, lo, r);
-		assemble_tables(hi, lo, r);
+		ad_err_assemble(hi, lo, lo2, r);
 		r->n_quad = nq;
-		if (!automatic || meets(r, o->tol))
+		r->doublings += hi->lv.doublings;
+		if (!automatic || ad_err_meets(r, o->tol))
 			break;
 		if (2 * nq > o->n_quad_max) {
 			*cause = xasprintf("adding-doubling cannot meet the tolerance %g: estimated table error %.3g "
 			    "at %d nodes per unit cosine (n_quad_max %d)", o->tol, r->rms_rel_err, nq, o->n_quad_max);
 			goto fail;
 		}
-		series_free(lo);
+		series_free(lo2);
+		lo2 = lo;
 		lo = hi;
 		hi = NULL;
 		nq *= 2;
 	}
+	for (struct ad_series *x = lo; x; x = x == lo ? lo2 : NULL)
+		r->doublings += x->lv.doublings;
+	series_free(lo2);
 	r->series = hi;
 	r->series_lo = lo;
 	r->seconds = util_now() - t0;
@@ -364,6 +259,7 @@ int ad_solve(const struct slab *s, enum optics_fresnel model, const double *thet
 fail:
 	series_free(hi);
 	series_free(lo);
+	series_free(lo2);
 	ad_result_free(r);
 	return -1;
 }
@@ -377,10 +273,20 @@ double ad_brdf(const struct ad_result *r, int k, double theta_o, double dphi, do
 	const struct ad_series *hi = r->series;
 	double f = ad_series_point(hi, k, theta_o, dphi, 0);
 	if (err) {
-		double kept = ad_series_point(hi, k, theta_o, dphi, kept_orders(hi));
-		*err = tail_factor(hi) * fabs(f - kept);
-		if (r->series_lo)
-			*err += fabs(f - ad_series_point(r->series_lo, k, theta_o, dphi, 0));
+		double kept = ad_series_point(hi, k, theta_o, dphi, ad_err_kept_orders(hi));
+		*err = ad_err_tail_factor(hi) * fabs(f - kept);
+		if (r->series_lo) {
+			/* The difference of two interpolants oscillates with the node
+			 * spacing and can vanish at a point where neither is exact:
+			 * take its largest size within a quarter spacing around. */
+			double d = 0.0, h = 0.25 * M_PI / r->n_quad;
+			for (int j = -2; j <= 2; j++) {
+				double t = fmin(0.5 * M_PI, fmax(0.0, theta_o + j * h));
+				d = fmax(d, fabs(ad_series_point(hi, k, t, dphi, 0) -
+				    ad_series_point(r->series_lo, k, t, dphi, 0)));
+			}
+			*err += r->conv_factor * d;
+		}
 	}
 	return f;
 }

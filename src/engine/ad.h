@@ -17,10 +17,11 @@
  * azimuthal means, and the BRDF at any point (ad_brdf).  Unscattered light
  * is not in the BRDF (it leaves only along the mirror direction).
  *
- * Every value comes with an error estimate: the difference from a second
- * solve at half the quadrature nodes (so it bounds the error of the coarser
- * solve and overstates the reported one's), plus the size of the last
- * Fourier orders kept where the series was cut.  rms_rel_err is the table's
+ * Every value comes with an error estimate (ad_err.h): the difference from
+ * a second solve at half the quadrature nodes (which bounds the error where
+ * doubling the nodes at least halves it, and is scaled up from a third
+ * solve at a quarter where it does not), plus the size of the Fourier
+ * orders beyond those kept where the series was cut.  rms_rel_err is the table's
  * solid-angle-weighted RMS relative error, defined as the Monte Carlo
  * bake's.  Asked for a tolerance, the solver doubles its nodes until the
  * estimate meets it, and fails (-1 and *cause) where it cannot.
@@ -85,6 +86,7 @@ struct ad_result {
 	long doublings;			/* doubling steps, all orders and layers */
 	double delta_m_f;		/* largest delta-M forward fraction moved to the unscattered beam */
 	double norm_max;		/* largest correction of the phase function's discrete normalization */
+	double conv_factor;		/* factor on |X_N - X_N/2| in the errors, >= 1 (ad_err.h) */
 	double seconds;			/* wall time [s] */
 	struct ad_series *series, *series_lo;	/* for ad_brdf */
 };

@@ -94,23 +94,27 @@ static void ws_free(struct ws *w)
  * put back where the peak is: on the diagonal of h(mu, mu) for a forward
  * peak (forward scattering, the same in every order, like a delta-M
  * remainder; a beam keeps it in its unscattered part), on the diagonal of
- * h(mu, -mu) for a backward one (g < 0: exact reversal, (-1)^m in order m;
- * a beam's backward column is scaled). */
+ * h(mu, -mu) for a backward one (g < 0: exact reversal, (-1)^m in order m,
+ * with the delta-M fraction there too; a beam's backward column is scaled
+ * to carry it, the beam has no collimated reflection). */
 static void normalize(struct ctx *c, struct medium *m, const double *Hpp, const double *Hpm)
 {
 	const int n = m->n, E = c->lv->E;
+	/* For g < 0 the retro-reflected fraction f is part of the sum (exactly). */
+	double fb = m->hg.g < 0.0 ? m->hg.f : 0.0;
 	for (int i = 0; i < n; i++) {
-		double s = 0.0;
+		double s = fb;
 		for (int j = 0; j < n; j++)
-			s += m->w[j] * (Hpp[j + (size_t)n * i] + Hpm[j + (size_t)n * i]);
+			s += (1.0 - fb) * m->w[j] * (Hpp[j + (size_t)n * i] + Hpm[j + (size_t)n * i]);
 		m->corr[i] = (1.0 - s) / m->w[i];
 		c->lv->norm_max = fmax(c->lv->norm_max, fabs(1.0 - s));
+		m->corr[i] += fb / m->w[i];
 	}
 	for (int e = 0; e < E; e++) {
 		double sp = 0.0, sm = 0.0;
 		for (int j = 0; j < n; j++) {
-			sp += m->w[j] * Hpp[j + (size_t)n * (n + e)];
-			sm += m->w[j] * Hpm[j + (size_t)n * (n + e)];
+			sp += (1.0 - fb) * m->w[j] * Hpp[j + (size_t)n * (n + e)];
+			sm += (1.0 - fb) * m->w[j] * Hpm[j + (size_t)n * (n + e)];
 		}
 		int present = m->x[n + e] > 0.0;
 		m->bscale[e] = 1.0;
@@ -134,6 +138,12 @@ static int layer_order(struct ctx *c, int k, int mo, struct ws *w, char **cause)
 		for (int i = 0; i < n; i++)
 			w->Hpp[i + (size_t)n * i] += m->corr[i];
 	else {
+		/* p = (1 - f) p* + f (retro-reflection); the beam columns carry f by bscale. */
+		double keep = 1.0 - m->hg.f;
+		for (size_t j = 0; j < (size_t)n * (n + E); j++) {
+			w->Hpp[j] *= keep;
+			w->Hpm[j] *= keep;
+		}
 		for (int i = 0; i < n; i++)
 			w->Hpm[i + (size_t)n * i] += (mo & 1 ? -1.0 : 1.0) * m->corr[i];
 		for (int e = 0; e < E; e++)
@@ -227,11 +237,11 @@ static void setup(struct ctx *c, const double *se)
 		}
 		int lmax = (int)(c->o->dm_terms * m->n);
 		ad_hg_init(&m->hg, md->g[k], lmax < 2 ? 2 : lmax);
-		double f = m->hg.f, om = md->omega[k];
+		double f = md->g[k] > 0.0 ? m->hg.f : 0.0, om = md->omega[k];	/* retro-reflection stays scattering */
 		m->tau = md->tau[k] * (1.0 - om * f);
 		m->omega = om * (1.0 - f) / (1.0 - om * f);
 		m->dtau_max = c->o->dtau_frac * mu_min;
-		lv->f_max = fmax(lv->f_max, f);
+		lv->f_max = fmax(lv->f_max, m->hg.f);
 		if (m->hg.L > c->max_m)
 			c->max_m = m->hg.L;
 	}

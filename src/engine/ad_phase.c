@@ -21,18 +21,17 @@ void ad_hg_init(struct ad_hg *h, double g, int l_max)
 	if (L < 2)
 		L = 2;
 	h->f = 0.0;
-	if (g < 0.0 && L > AD_HG_L_CAP)
-		L = AD_HG_L_CAP;
-	if (g > 0.0 && L > l_max) {
-		L = l_max & ~1;		/* even: f = g^L > 0 for g < 0 too */
+	if (L > l_max) {
+		L = l_max & ~1;		/* even: f = g^L = |g|^L > 0 */
 		h->f = pow(g, L);
 	}
 	h->L = L;
 	h->cl = xcalloc((size_t)L, sizeof(double));
-	double gl = 1.0;
+	double gl = 1.0, sg = g < 0.0 ? -1.0 : 1.0, fl = h->f;
 	for (int l = 0; l < L; l++) {
-		h->cl[l] = 0.5 * (2 * l + 1) * (gl - h->f) / (1.0 - h->f);
+		h->cl[l] = 0.5 * (2 * l + 1) * (gl - fl) / (1.0 - h->f);
 		gl *= g;
+		fl *= sg;	/* f for a forward peak, f (-1)^l for a backward one */
 	}
 }
 

@@ -9,25 +9,23 @@
  * terms it is cut at L terms by delta-M (Wiscombe, J. Atmos. Sci. 34, 1977):
  * the forward fraction f = g^L is moved into the unscattered beam, with
  * chi*_l = (g^l - f) / (1 - f), omega* = omega (1 - f) / (1 - omega f),
- * tau* = tau (1 - omega f).  A backward peak (g < 0) cannot be moved into
- * the unscattered beam: there the series is kept whole (up to AD_HG_L_CAP
- * terms) and the solver restores the discrete normalization on the
- * backward diagonal instead (ad_order.c).  h_m integrates to 1 over x in
- * [-1, 1] at m = 0. */
+ * tau* = tau (1 - omega f).  A backward peak (g < 0) is cut the same way,
+ * chi*_l = (g^l - f (-1)^l) / (1 - f) with f = |g|^L: the fraction f is
+ * exact retro-reflection (mu -> -mu, azimuth + pi), which is scattering, so
+ * omega and tau stay, and the solver puts it on the diagonal of h(mu, -mu)
+ * with the sign (-1)^m (ad_order.c).  h_m of the remainder integrates to 1
+ * over x in * [-1, 1] at m = 0. */
 #ifndef SKINBAKE_AD_PHASE_H
 #define SKINBAKE_AD_PHASE_H
 
-/* Most Legendre terms for g < 0 (|g|^L < 1e-15 needs 3438 at g = -0.99). */
-#define AD_HG_L_CAP 4096
-
 struct ad_hg {
 	double g;	/* anisotropy [-] */
-	double f;	/* delta-M forward fraction [-], 0 when the series is complete */
+	double f;	/* delta-M fraction [-] (forward for g > 0, backward for g < 0), 0 if the series is complete */
 	int L;		/* Legendre terms kept, l = 0 .. L-1 */
 	double *cl;	/* [L] (2l + 1)/2 chi*_l */
 };
 
-/* Moments for anisotropy g with at most l_max terms (even, >= 2) if g > 0. */
+/* Moments for anisotropy g with at most l_max terms (even, >= 2). */
 void ad_hg_init(struct ad_hg *h, double g, int l_max);
 void ad_hg_free(struct ad_hg *h);
 
