@@ -226,6 +226,7 @@ int ad_solve(const struct slab *s, enum optics_fresnel model, const double *thet
 	openblas_set_num_threads(1);
 	int nq = o->n_quad > 0 ? o->n_quad : 16, automatic = o->n_quad == 0;
 	int est = o->error_estimate || automatic;
+	double e_prev = 0.0;
 	struct ad_series *hi = NULL, *lo = NULL, *lo2 = NULL;
 	if (est && (level_run(&md, se, n_beams, o, nq / 2, threads, &lo, cause) ||
 	    (nq / 4 >= 4 && level_run(&md, se, n_beams, o, nq / 4, threads, &lo2, cause))))
@@ -238,11 +239,21 @@ int ad_solve(const struct slab *s, enum optics_fresnel model, const double *thet
 		r->doublings += hi->lv.doublings;
 		if (!automatic || ad_err_meets(r, o->tol))
 			break;
-		if (2 * nq > o->n_quad_max) {
+		/* Refuse now where the estimate falls slower than 4x per doubling
+		 * (algebraic convergence, as with unresolved peaks) and, falling
+		 * so on, would not reach tol within n_quad_max.  Faster falls may
+		 * be exponential convergence, which speeds up: go on. */
+		double e = r->rms_rel_err, q = e_prev > 0.0 ? fmin(e / e_prev, 0.9) : 0.0;
+		int reach = 2 * nq;
+		for (double x = e * q; q >= 0.25 && x > o->tol && reach <= o->n_quad_max; x *= q)
+			reach *= 2;
+		if (reach > o->n_quad_max) {
 			*cause = xasprintf("adding-doubling cannot meet the tolerance %g: estimated table error %.3g "
-			    "at %d nodes per unit cosine (n_quad_max %d)", o->tol, r->rms_rel_err, nq, o->n_quad_max);
+			    "at %d nodes per unit cosine, falling by %.2f per doubling (n_quad_max %d)", o->tol, e, nq,
+			    e_prev > 0.0 ? e / e_prev : NAN, o->n_quad_max);
 			goto fail;
 		}
+		e_prev = e;
 		series_free(lo2);
 		lo2 = lo;
 		lo = hi;
@@ -289,6 +300,13 @@ double ad_brdf(const struct ad_result *r, int k, double theta_o, double dphi, do
 		}
 	}
 	return f;
+}
+
+int ad_brdf_fourier(const struct ad_result *r, int k, double theta_o, double *coef, int max)
+{
+	if (!r->series || k < 0 || k >= r->n_beams || max < 1)
+		return 0;
+	return ad_series_fourier(r->series, k, theta_o, coef, max);
 }
 
 void ad_result_free(struct ad_result *r)

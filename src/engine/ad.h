@@ -26,6 +26,9 @@
  * bake's.  Asked for a tolerance, the solver doubles its nodes until the
  * estimate meets it, and fails (-1 and *cause) where it cannot.
  *
+ * The solver sets OpenBLAS to one thread (process-wide: its matrices are
+ * small) and runs Fourier orders on `threads` OpenMP threads instead.
+ *
  * Method and sources: ad_quad.h (angles), ad_phase.h (phase function,
  * delta-M), ad_layer.h (starting layer, doubling), ad_stack.h (boundaries,
  * adding, fluxes), ad_order.h (Fourier orders), ad_eval.h (the BRDF between
@@ -103,6 +106,11 @@ int ad_solve(const struct slab *s, enum optics_fresnel model, const double *thet
 /* Diffuse BRDF [1/sr] of angle k at exit theta_o in [0, pi/2] and dphi
  * [rad]; its error estimate into *err when err != NULL. */
 double ad_brdf(const struct ad_result *r, int k, double theta_o, double dphi, double *err);
+
+/* The Fourier series of the diffuse BRDF of angle k at exit theta_o:
+ * f(dphi) = sum_m coef[m] cos(m dphi), m < the return value (at most max;
+ * dphi = 0 back toward the light). */
+int ad_brdf_fourier(const struct ad_result *r, int k, double theta_o, double *coef, int max);
 
 void ad_result_free(struct ad_result *r);
 #endif

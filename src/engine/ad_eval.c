@@ -58,6 +58,23 @@ double ad_series_point(const struct ad_series *sr, int e, double theta_o, double
 	return f;
 }
 
+int ad_series_fourier(const struct ad_series *sr, int e, double theta_o, double *coef, int max)
+{
+	const struct ad_level *lv = &sr->lv;
+	int M = max < lv->M ? max : lv->M, na = lv->na;
+	double *wt = xcalloc((size_t)na + 1, sizeof(double));
+	int on = exit_weights(sr, sr->md.n_above * sin(theta_o), wt);
+	for (int m = 0; m < M; m++) {
+		const double *Fm = lv->F + ((size_t)m * lv->E + e) * na;
+		double v = 0.0;
+		for (int i = 0; on && i < na; i++)
+			v += wt[i] * Fm[i];
+		coef[m] = m & 1 ? -v : v;
+	}
+	free(wt);
+	return M;
+}
+
 /* B[it * na + i]: the theta_o bin mean of F_m is sum_i B F_m(i). */
 static void theta_means(const struct ad_series *sr, int n_to, double *B)
 {

@@ -30,6 +30,10 @@ struct ad_series {
  * m_max <= 0 or larger than the series). */
 double ad_series_point(const struct ad_series *sr, int e, double theta_o, double dphi, int m_max);
 
+/* The coefficients of cos(m dphi) of f at exit theta_o, m < min(max, M);
+ * returns their number. */
+int ad_series_fourier(const struct ad_series *sr, int e, double theta_o, double *coef, int max);
+
 /* Bin means over n_to bins in theta_o [0, pi/2] and n_phi in dphi [0, pi]:
  * fr[e * n_to * n_phi + it * n_phi + ip] and the azimuthal means
  * fr_az[e * n_to + it], from orders m < m_max (all if m_max <= 0).  With
