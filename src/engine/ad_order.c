@@ -196,7 +196,7 @@ static int solve_order(struct ctx *c, int mo, struct ws *w, char **cause)
 	if (mo > 0)
 		return 0;
 	struct ad_flux fx = { .rsp = lv->rsp, .rd = lv->rd, .rd_d = lv->rd_d, .tt = lv->tt, .tt_d = lv->tt_d,
-		.a = lv->a, .net_err = lv->net_err };
+		.a = lv->a };
 	return ad_stack_flux(N, E, K, c->bnd, w->R, w->T, w->U, c->sqW, &fx, w->swork, cause);
 }
 
@@ -258,7 +258,7 @@ static void setup(struct ctx *c, const double *se)
 	lv->t_air = xcalloc((size_t)lv->na + 1, sizeof(double));
 	for (int i = 0; i < lv->na; i++)
 		lv->t_air[i] = c->bnd[0].t[i];
-	double **fl[] = { &lv->rsp, &lv->rd, &lv->rd_d, &lv->tt, &lv->tt_d, &lv->net_err };
+	double **fl[] = { &lv->rsp, &lv->rd, &lv->rd_d, &lv->tt, &lv->tt_d };
 	for (size_t j = 0; j < sizeof fl / sizeof fl[0]; j++)
 		*fl[j] = xcalloc((size_t)E, sizeof(double));
 	lv->a = xcalloc((size_t)K * E, sizeof(double));
@@ -376,7 +376,6 @@ void ad_level_free(struct ad_level *lv)
 	free(lv->rd_d);
 	free(lv->tt);
 	free(lv->tt_d);
-	free(lv->net_err);
 	free(lv->a);
 	memset(lv, 0, sizeof *lv);
 }

@@ -50,7 +50,7 @@ struct ad_level {
 	double *t_air;		/* [na] transmittance of the top boundary at the exit nodes */
 	double *order_size;	/* [M] largest |F_m| / largest F_0 */
 	/* Order-0 fluxes per beam, fractions of the incident power. */
-	double *rsp, *rd, *rd_d, *tt, *tt_d, *net_err;	/* [E] each */
+	double *rsp, *rd, *rd_d, *tt, *tt_d;	/* [E] each */
 	double *a;		/* [K * E] absorbed in turbid layer k */
 	/* Diagnostics. */
 	long doublings;		/* doubling steps over all orders and layers */

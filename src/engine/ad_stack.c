@@ -254,19 +254,6 @@ int ad_stack_flux(int N, int E, int K, const struct ad_bnd *bnd, const struct ad
 		fx->rd_d[e] = u0[(size_t)N * E + e] - fx->rsp[e];
 		fx->tt_d[e] = bot[(size_t)N * E + e];
 		fx->tt[e] = field_flux(N, sqW, bot, bot + (size_t)N * E, e) - fx->tt_d[e];
-		/* Boundaries are lossless: net flux through the top of boundary k
-		 * equals that through its bottom. */
-		fx->net_err[e] = 0.0;
-		for (int j = 0; j < ne; j += 2) {
-			double *d0 = dn + j * fs, *u0j = up + j * fs, *d1 = dn + (j + 1) * fs;
-			double top = field_flux(N, sqW, d0, d0 + (size_t)N * E, e) - field_flux(N, sqW, u0j, u0j + (size_t)N * E, e);
-			double below = field_flux(N, sqW, d1, d1 + (size_t)N * E, e);
-			if (j + 1 < ne) {
-				double *u1 = up + (j + 1) * fs;
-				below -= field_flux(N, sqW, u1, u1 + (size_t)N * E, e);
-			}
-			fx->net_err[e] += fabs(top - below);
-		}
 	}
 	for (int k = 0; k < K; k++) {
 		int j = 2 * k + 1;

@@ -40,7 +40,6 @@ struct ad_flux {
 	double *tt;		/* [E] diffuse transmittance (scattered) */
 	double *tt_d;		/* [E] collimated transmittance (unscattered) */
 	double *a;		/* [K * E] absorbed in turbid layer k, beam e at a[k * E + e] */
-	double *net_err;	/* [E] |flux into each boundary - flux out|, summed: a consistency check */
 };
 
 /* Reflectance r and transmittance t at s of the boundary with index list
