@@ -113,11 +113,8 @@ static char *manifest_text(const struct bake_spec *s, const struct bake_result *
 	json_object_object_add(sp, "ior", json_object_new_double(m->ior));
 	json_object_object_add(sp, "fresnel", json_object_new_string(s->opts.fresnel == OPTICS_FRESNEL_SCHLICK ? "schlick" : "exact"));
 	json_object *stacks = json_object_new_array();
-	for (int w = 0; w < s->n_wl; w++) {
-		struct specular_stack st;
-		bake_specular_stack(&s->slab[w], s->opts.fresnel, &st);
-		json_object_array_add(stacks, jarr(st.n_list, st.n));
-	}
+	for (int w = 0; w < s->n_wl; w++)
+		json_object_array_add(stacks, jarr(r->stack[w].n_list, r->stack[w].n));
 	json_object_object_add(sp, "stack_n", stacks);
 	json_object_object_add(o, "specular", sp);
 
@@ -150,12 +147,11 @@ static char *manifest_text(const struct bake_spec *s, const struct bake_result *
 	json_object_object_add(rad, "theta_i_deg", json_object_new_double(s->theta_i[0] * 180.0 / M_PI));
 	json_object_object_add(rad, "units", json_object_new_string("Rd(r) [1/cm^2]; radius [cm]"));
 	json_object *prof = json_object_new_array(), *prof_e = json_object_new_array();
-	double *rad_w = xmalloc(sizeof(double) * (size_t)s->n_wl);
+	const double *rad_w = r->mean_radius_cm;
 	for (int w = 0; w < s->n_wl; w++) {
-		const struct bake_job *jb = &r->job[w * nti];
+		const struct brdf_entry *jb = &r->table.entry[w * nti];
 		json_object_array_add(prof, jarr(jb->rd_r, s->n_r));
 		json_object_array_add(prof_e, jarr(jb->rd_r_err, s->n_r));
-		rad_w[w] = bake_mean_radius(jb->rd_r, s->n_r, s->dr);
 	}
 	json_object_object_add(rad, "rd_r", prof);
 	json_object_object_add(rad, "rd_r_err", prof_e);
@@ -174,7 +170,6 @@ static char *manifest_text(const struct bake_spec *s, const struct bake_result *
 	json_object_object_add(rad, "definition", json_object_new_string(
 	    "mean lateral distance between entry and exit of the diffusely reflected light (first moment of Rd(r) r dr), "
 	    "from the profile's bins (light beyond the last bin is not counted)"));
-	free(rad_w);
 	json_object_object_add(o, "radial", rad);
 
 	json_object *st = json_object_new_object();
@@ -189,26 +184,26 @@ static char *manifest_text(const struct bake_spec *s, const struct bake_result *
 	json_object_object_add(o, "settings", st);
 
 	json_object *res = json_object_new_object();
-	json_object_object_add(res, "photons", json_object_new_int64(r->photons));
-	json_object_object_add(res, "seconds", json_object_new_double(r->seconds));
-	json_object_object_add(res, "rms_rel_err", json_object_new_double(r->rms_rel_err));
-	json_object_object_add(res, "target_met", json_object_new_boolean(r->target_met));
+	json_object_object_add(res, "photons", json_object_new_int64(r->table.photons));
+	json_object_object_add(res, "seconds", json_object_new_double(r->table.seconds));
+	json_object_object_add(res, "rms_rel_err", json_object_new_double(r->table.rms_rel_err));
+	json_object_object_add(res, "target_met", json_object_new_boolean(r->table.target_met));
 	json_object_object_add(o, "result", res);
 
 	json_object *jobs = json_object_new_array();
-	for (int j = 0; j < r->n_jobs; j++) {
-		const struct bake_job *b = &r->job[j];
+	for (int j = 0; j < r->table.n_wl * r->table.n_ti; j++) {
+		const struct brdf_entry *b = &r->table.entry[j];
 		json_object *jo = json_object_new_object();
 		json_object_object_add(jo, "wavelength_nm", json_object_new_double(b->wl_nm));
 		json_object_object_add(jo, "theta_i_deg", json_object_new_double(b->theta_i * 180.0 / M_PI));
 		json_object_object_add(jo, "photons", json_object_new_int64(b->photons));
 		json_object_object_add(jo, "Rsp", json_object_new_double(b->rsp));
-		json_object_object_add(jo, "albedo", json_object_new_double(b->albedo));
-		json_object_object_add(jo, "albedo_err", json_object_new_double(b->albedo_err));
-		json_object_object_add(jo, "Rd_unscattered", json_object_new_double(b->rd_unscat));
-		json_object_object_add(jo, "Tt", json_object_new_double(b->tt));
-		json_object_object_add(jo, "A", json_object_new_double(b->a_total));
-		json_object_object_add(jo, "lost", json_object_new_double(b->lost));
+		json_object_object_add(jo, "albedo", json_object_new_double(b->albedo.v));
+		json_object_object_add(jo, "albedo_err", json_object_new_double(b->albedo.err));
+		json_object_object_add(jo, "Rd_unscattered", json_object_new_double(b->rd_unscat.v));
+		json_object_object_add(jo, "Tt", json_object_new_double(b->tt.v));
+		json_object_object_add(jo, "A", json_object_new_double(b->a_total.v));
+		json_object_object_add(jo, "lost", json_object_new_double(b->lost.v));
 		json_object_object_add(jo, "rms_rel_err", json_object_new_double(b->rms_rel_err));
 		json_object_array_add(jobs, jo);
 	}
@@ -244,7 +239,7 @@ int bake_write(const char *dir, const struct bake_spec *s, const struct bake_res
 		planes[2 * w] = xmalloc(npx * sizeof(float));
 		planes[2 * w + 1] = xmalloc(npx * sizeof(float));
 		for (int ti = 0; ti < nti; ti++) {
-			const struct bake_job *jb = &r->job[w * nti + ti];
+			const struct brdf_entry *jb = &r->table.entry[w * nti + ti];
 			for (int k = 0; k < nto * np; k++) {
 				planes[2 * w][(size_t)ti * nto * np + k] = (float)jb->fr[k];
 				planes[2 * w + 1][(size_t)ti * nto * np + k] = (float)jb->fr_err[k];
@@ -291,7 +286,7 @@ int bake_write(const char *dir, const struct bake_spec *s, const struct bake_res
 			an[w] = xasprintf("albedo.%.0fnm", s->wl_nm[w]);
 			ap[w] = xmalloc(sizeof(float) * (size_t)nti);
 			for (int ti = 0; ti < nti; ti++)
-				ap[w][ti] = (float)r->job[w * nti + ti].albedo;
+				ap[w][ti] = (float)r->table.entry[w * nti + ti].albedo.v;
 		}
 		uint16_t *px = xmalloc(sizeof(uint16_t) * 3 * (size_t)nti);
 		for (int c = 0; c < 3; c++) {

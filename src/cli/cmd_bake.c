@@ -145,7 +145,14 @@ int cmd_bake(int argc, char **argv)
 	s.progress = cli_progress_update;
 	s.progress_user = &pr;
 	struct bake_result r;
-	bake_run(&s, &r);
+	if (bake_run(&s, &r, &cause) != 0) {
+		cli_progress_end(&pr);
+		int rc = cli_usage_error(CMD, "%s", cause);
+		free(cause);
+		free(m);
+		preset_free(p);
+		return rc;
+	}
 	cli_progress_end(&pr);
 
 	char *cmdline = xstrdup("skinbake");
@@ -173,8 +180,8 @@ int cmd_bake(int argc, char **argv)
 	} else if (!quiet) {
 		printf("skinbake bake: %s -> %s\n  %d wavelengths x %d incidence angles, table %d x %d\n"
 		    "  photons %ld, %.2f s, RMS relative error %.4f (target %g: %s)\n",
-		    meta.preset, out, s.n_wl, s.n_ti, s.n_to, s.n_phi, r.photons, r.seconds, r.rms_rel_err,
-		    s.target_error, s.target_error <= 0 ? "none" : r.target_met ? "met" : "NOT met, photon budget spent");
+		    meta.preset, out, s.n_wl, s.n_ti, s.n_to, s.n_phi, r.table.photons, r.table.seconds, r.table.rms_rel_err,
+		    s.target_error, s.target_error <= 0 ? "none" : r.table.target_met ? "met" : "NOT met, photon budget spent");
 	}
 	free(cmdline);
 	free(m);

@@ -1,7 +1,18 @@
+/* specular: the analytic GGX surface reflection of the clear top stack
+ * (see specular.h). */
 #include "config.h"
 #include "engine/specular.h"
 
 #include <math.h>
+
+void specular_stack_of_slab(const struct slab *s, enum optics_fresnel model, struct specular_stack *out)
+{
+	out->model = model;
+	out->n = 0;
+	int last = s->first_turbid <= s->n_layers ? s->first_turbid : s->n_layers + 1;
+	for (int i = 0; i <= last && out->n < SPECULAR_MAX_IFACES; i++)
+		out->n_list[out->n++] = s->layer[i].n;
+}
 
 double specular_stack_reflectance(const struct specular_stack *s, double cos_i)
 {

@@ -6,6 +6,7 @@
 #ifndef SKINBAKE_SPECULAR_H
 #define SKINBAKE_SPECULAR_H
 #include "engine/optics.h"
+#include "engine/slab.h"
 
 #define SPECULAR_MAX_IFACES 18
 
@@ -15,6 +16,10 @@ struct specular_stack {
 	double n_list[SPECULAR_MAX_IFACES];	/* [-], n_list[0] = ambient above */
 	enum optics_fresnel model;
 };
+
+/* The clear stack of slab s (prepared): the indices from the ambient above
+ * down to the first turbid layer (or the ambient below when all is clear). */
+void specular_stack_of_slab(const struct slab *s, enum optics_fresnel model, struct specular_stack *out);
 
 /* Reflectance of the clear stack at incidence cosine cos_i (adding of
  * lossless interfaces, the same formula the transport launch uses). */
