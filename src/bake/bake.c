@@ -9,6 +9,7 @@
 #include "base/check.h"
 #include "base/util.h"
 #include "engine/mc.h"
+#include "skin/colour.h"
 
 /* The method for a spec.  Monte Carlo is the only one today; a later
  * `--solver ad|mc|auto` chooses here (and asks Monte Carlo for the parts,
@@ -64,4 +65,25 @@ void bake_result_free(struct bake_result *r)
 	free(r->stack);
 	free(r->mean_radius_cm);
 	memset(r, 0, sizeof *r);
+}
+
+int bake_spec_layers(struct bake_spec *s, const struct skin_params *p, const char *label, char **cause)
+{
+	for (int w = 0; w < s->n_wl; w++) {
+		char *why = NULL;
+		if (tissue_slab(p, s->wl_nm[w], &s->slab[w], &why) != 0) {
+			*cause = xasprintf("%s at %.0f nm: %s", label, s->wl_nm[w], why);
+			free(why);
+			return -1;
+		}
+	}
+	return 0;
+}
+
+const char *bake_rgb_weights(const struct bake_spec *s, double *rgb_from_wl)
+{
+	colour_rgb_weights(s->n_wl, s->wl_nm, rgb_from_wl);
+	int three = s->n_wl == 3 && s->wl_nm[0] == 470 && s->wl_nm[1] == 550 && s->wl_nm[2] == 656;
+	return three ? "the paper's three wavelengths map directly: 656 nm -> R, 550 nm -> G, 470 nm -> B"
+		     : "CIE 1931 2-degree colour matching under D65, reflectance normalised to the perfect white";
 }

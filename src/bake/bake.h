@@ -12,6 +12,7 @@
 #include "engine/solver.h"
 #include "engine/specular.h"
 #include "engine/transport.h"
+#include "skin/tissue.h"
 
 #define BAKE_MAX_WL 128
 #define BAKE_MAX_TI 90
@@ -54,4 +55,13 @@ struct bake_result {
  * the spec.  Caller frees r with bake_result_free. */
 int bake_run(const struct bake_spec *s, struct bake_result *r, char **cause);
 void bake_result_free(struct bake_result *r);
+
+/* Inputs from a skin preset.  bake_spec_layers fills s->slab[] at the
+ * wavelengths s->wl_nm[0 .. n_wl) from p (checked and prepared); -1 and
+ * *cause "LABEL at WL nm: problem" on the first that fails.
+ * bake_rgb_weights puts the spectral -> linear sRGB weights of those
+ * wavelengths into rgb_from_wl[3 * n_wl] (colour_rgb_weights) and returns
+ * the sentence that says how they map, for the manifest. */
+int bake_spec_layers(struct bake_spec *s, const struct skin_params *p, const char *label, char **cause);
+const char *bake_rgb_weights(const struct bake_spec *s, double *rgb_from_wl);
 #endif
