@@ -15,15 +15,10 @@
 #include "bake/bake.h"
 #include "bake/manifest.h"
 #include "base/check.h"
+#include "base/srgb.h"
 #include "base/util.h"
 #include "io/exrio.h"
 #include "io/pngio.h"
-
-static double srgb_encode(double v)
-{
-	v = v < 0.0 ? 0.0 : (v > 1.0 ? 1.0 : v);
-	return v <= 0.0031308 ? 12.92 * v : 1.055 * pow(v, 1.0 / 2.4) - 0.055;
-}
 
 /* ---- writer ---- */
 

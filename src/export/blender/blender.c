@@ -17,6 +17,7 @@
 
 #include "io/exrio.h"
 #include "io/pngio.h"
+#include "geom/texdir.h"
 #include "base/util.h"
 
 void blender_options_default(struct blender_options *o)
@@ -130,63 +131,38 @@ void blender_albedo_mean(const struct blender_model *m, double rgb[3])
 	}
 }
 
-/* Detail maps: either read from `skinbake texture` output or flat. */
+/* Detail maps: from a texture directory (borrowed) or flat (owned). */
 struct detail {
 	int w, h;		/* size [px] */
-	uint16_t *height;	/* [h][w] gray */
-	uint16_t *normal;	/* [h][w][3] RGB */
+	const uint16_t *height;	/* [h][w] gray */
+	const uint16_t *normal;	/* [h][w][3] RGB */
 	int flat;		/* 1 when no textures were given */
-	char *tile_mm;		/* tEXt values as read, or NULL */
-	char *hmin_um, *hmax_um;
+	const char *tile_mm;	/* tEXt values as read, or NULL */
+	const char *hmin_um, *hmax_um;
+	struct texdir *tex;	/* the texture directory read, or NULL */
+	uint16_t *own_height, *own_normal;	/* flat maps */
 };
 
 static void detail_free(struct detail *d)
 {
-	free(d->height);
-	free(d->normal);
-	free(d->tile_mm);
-	free(d->hmin_um);
-	free(d->hmax_um);
+	texdir_free(d->tex);
+	free(d->own_height);
+	free(d->own_normal);
 }
 
 static int detail_read(const char *dir, struct detail *d, char **cause)
 {
-	char *hp = xasprintf("%s/height.png", dir), *np = xasprintf("%s/normal.png", dir);
-	int hw, hh, hc, hb, nw, nh, nc, nb, rc = -1;
-	double v;
-	d->height = pngio_read(hp, &hw, &hh, &hc, &hb, cause);
-	if (d->height == NULL)
-		goto out;
-	if (hc != 1 || hb != 16) {
-		*cause = xasprintf("%s: %d channel(s) at %d bits; expected 16-bit gray", hp, hc, hb);
-		goto out;
-	}
-	d->normal = pngio_read(np, &nw, &nh, &nc, &nb, cause);
-	if (d->normal == NULL)
-		goto out;
-	if (nc != 3 || nb != 16) {
-		*cause = xasprintf("%s: %d channel(s) at %d bits; expected 16-bit RGB", np, nc, nb);
-		goto out;
-	}
-	if (nw != hw || nh != hh) {
-		*cause = xasprintf("%s is %dx%d but %s is %dx%d; they must match", np, nw, nh, hp, hw, hh);
-		goto out;
-	}
-	d->tile_mm = pngio_read_text(hp, "skinbake:tile_mm");
-	if (d->tile_mm == NULL || util_parse_double(d->tile_mm, &v) != 0 || !(v > 0)) {
-		*cause = xasprintf("%s: tEXt skinbake:tile_mm is %s; expected a length > 0 [mm]", hp,
-		    d->tile_mm ? d->tile_mm : "missing");
-		goto out;
-	}
-	d->hmin_um = pngio_read_text(hp, "skinbake:height_min_um");
-	d->hmax_um = pngio_read_text(hp, "skinbake:height_max_um");
-	d->w = hw;
-	d->h = hh;
-	rc = 0;
-out:
-	free(hp);
-	free(np);
-	return rc;
+	d->tex = texdir_load(dir, 1, cause);
+	if (d->tex == NULL)
+		return -1;
+	d->w = d->tex->w;
+	d->h = d->tex->h;
+	d->height = d->tex->height;
+	d->normal = d->tex->normal;
+	d->tile_mm = d->tex->tile_mm_text;
+	d->hmin_um = d->tex->h_min_text;
+	d->hmax_um = d->tex->h_max_text;
+	return 0;
 }
 
 static void detail_flat(int size, struct detail *d)
@@ -194,12 +170,14 @@ static void detail_flat(int size, struct detail *d)
 	size_t n = (size_t)size * (size_t)size;
 	d->w = d->h = size;
 	d->flat = 1;
-	d->height = xcalloc(n, sizeof *d->height);
-	d->normal = xmalloc(3 * n * sizeof *d->normal);
+	d->own_height = xcalloc(n, sizeof *d->own_height);
+	d->own_normal = xmalloc(3 * n * sizeof *d->own_normal);
 	for (size_t i = 0; i < n; i++) {
-		d->normal[3 * i] = d->normal[3 * i + 1] = 32768;	/* 0.5: no tilt */
-		d->normal[3 * i + 2] = 65535;
+		d->own_normal[3 * i] = d->own_normal[3 * i + 1] = 32768;	/* 0.5: no tilt */
+		d->own_normal[3 * i + 2] = 65535;
 	}
+	d->height = d->own_height;
+	d->normal = d->own_normal;
 }
 
 static int check_options(const struct blender_options *o, char **cause)
