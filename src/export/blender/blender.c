@@ -31,7 +31,6 @@ void blender_options_default(struct blender_options *o)
 		.view_elevation = 60.0 * M_PI / 180.0,
 		.view_azimuth = -90.0 * M_PI / 180.0,
 		.map_size = 16,
-		.textures = NULL,
 		.generator = PACKAGE_NAME " " PACKAGE_VERSION,
 	};
 }
@@ -48,7 +47,7 @@ static double clamp(double x, double lo, double hi)
 	return x < lo ? lo : x > hi ? hi : x;
 }
 
-float *blender_lut(const struct blender_model *m, int n_cos, int n_phi)
+float *blender_lut(const struct brdf_source *m, int n_cos, int n_phi)
 {
 	size_t w = (size_t)n_phi * (size_t)n_cos, h = (size_t)n_cos, plane = w * h;
 	float *lut = xmalloc(3 * plane * sizeof *lut);
@@ -102,7 +101,7 @@ void blender_lut_sample(const float *lut, int n_cos, int n_phi, double cos_l, do
 }
 
 /* a(theta) of channel c, linear between nodes, clamped at the ends. */
-static double albedo_at(const struct blender_model *m, int c, double theta)
+static double albedo_at(const struct brdf_source *m, int c, double theta)
 {
 	const double *t = m->theta_albedo, *a = m->albedo_rgb + (size_t)c * (size_t)m->n_albedo;
 	int n = m->n_albedo;
@@ -117,7 +116,7 @@ static double albedo_at(const struct blender_model *m, int c, double theta)
 	return (1 - f) * a[i] + f * a[i + 1];
 }
 
-void blender_albedo_mean(const struct blender_model *m, double rgb[3])
+void blender_albedo_mean(const struct brdf_source *m, double rgb[3])
 {
 	/* Midpoint rule in mu = cos(theta): 2 int_0^1 a(mu) mu dmu. */
 	enum { STEPS = 4096 };
@@ -131,7 +130,7 @@ void blender_albedo_mean(const struct blender_model *m, double rgb[3])
 	}
 }
 
-/* Detail maps: from a texture directory (borrowed) or flat (owned). */
+/* Detail maps: the source's (borrowed) or flat (owned). */
 struct detail {
 	int w, h;		/* size [px] */
 	const uint16_t *height;	/* [h][w] gray */
@@ -139,30 +138,24 @@ struct detail {
 	int flat;		/* 1 when no textures were given */
 	const char *tile_mm;	/* tEXt values as read, or NULL */
 	const char *hmin_um, *hmax_um;
-	struct texdir *tex;	/* the texture directory read, or NULL */
 	uint16_t *own_height, *own_normal;	/* flat maps */
 };
 
 static void detail_free(struct detail *d)
 {
-	texdir_free(d->tex);
 	free(d->own_height);
 	free(d->own_normal);
 }
 
-static int detail_read(const char *dir, struct detail *d, char **cause)
+static void detail_use(const struct texdir *t, struct detail *d)
 {
-	d->tex = texdir_load(dir, 1, cause);
-	if (d->tex == NULL)
-		return -1;
-	d->w = d->tex->w;
-	d->h = d->tex->h;
-	d->height = d->tex->height;
-	d->normal = d->tex->normal;
-	d->tile_mm = d->tex->tile_mm_text;
-	d->hmin_um = d->tex->h_min_text;
-	d->hmax_um = d->tex->h_max_text;
-	return 0;
+	d->w = t->w;
+	d->h = t->h;
+	d->height = t->height;
+	d->normal = t->normal;
+	d->tile_mm = t->tile_mm_text;
+	d->hmin_um = t->h_min_text;
+	d->hmax_um = t->h_max_text;
 }
 
 static void detail_flat(int size, struct detail *d)
@@ -214,7 +207,7 @@ static int check_options(const struct blender_options *o, char **cause)
 	return 0;
 }
 
-static int check_model(const struct blender_model *m, char **cause)
+static int check_model(const struct brdf_source *m, char **cause)
 {
 	if (m->n_albedo < 1) {
 		*cause = xasprintf("the model has no albedo nodes");
@@ -224,12 +217,21 @@ static int check_model(const struct blender_model *m, char **cause)
 		*cause = xasprintf("ior %g / roughness %g out of range [1, 10] / [0, 1]", m->ior, m->roughness);
 		return -1;
 	}
+	if (m->detail != NULL && m->detail->normal == NULL) {
+		*cause = xasprintf("%s: the detail maps were read without normal.png", m->detail->dir);
+		return -1;
+	}
 	for (int c = 0; c < 3; c++)
 		if (!(m->sss_radius_cm[c] > 0) || !isfinite(m->sss_radius_cm[c])) {
 			*cause = xasprintf("subsurface radius[%d] = %g cm must be > 0", c, m->sss_radius_cm[c]);
 			return -1;
 		}
 	return 0;
+}
+
+int blender_check(const struct brdf_source *m, const struct blender_options *o, char **cause)
+{
+	return check_options(o, cause) != 0 || check_model(m, cause) != 0 ? -1 : 0;
 }
 
 /* Nine significant digits: plenty for the data, readable in the manifest. */
@@ -280,7 +282,7 @@ struct reference {
 	double radiance[3];		/* E cos_l f_r [W/(m^2 sr)] */
 };
 
-static void reference_compute(const struct blender_model *m, const struct blender_options *o, const float *lut,
+static void reference_compute(const struct brdf_source *m, const struct blender_options *o, const float *lut,
     struct reference *r)
 {
 	blender_direction(o->sun_elevation, o->sun_azimuth, r->sun);
@@ -297,7 +299,7 @@ static void reference_compute(const struct blender_model *m, const struct blende
 	}
 }
 
-static json_object *manifest_build(const struct blender_model *m, const struct blender_options *o,
+static json_object *manifest_build(const struct brdf_source *m, const struct blender_options *o,
     const struct detail *d, const double albedo[3], const struct reference *r)
 {
 	json_object *j = json_object_new_object(), *x;
@@ -312,7 +314,7 @@ static json_object *manifest_build(const struct blender_model *m, const struct b
 	x = json_object_new_object();
 	json_object_object_add(x, "brdf", json_object_new_string(m->source ? m->source : ""));
 	json_object_object_add(x, "preset", m->preset ? json_object_new_string(m->preset) : NULL);
-	json_object_object_add(x, "textures", o->textures ? json_object_new_string(o->textures) : NULL);
+	json_object_object_add(x, "textures", m->detail ? json_object_new_string(m->detail->dir) : NULL);
 	json_object_object_add(j, "source", x);
 	x = json_object_new_object();
 	json_object_object_add(x, "length", json_object_new_string("m"));
@@ -440,7 +442,7 @@ static uint16_t quantise16(double x)
 
 /* Everything blender_write puts on disk, computed and validated up front. */
 struct blender_set {
-	struct blender_options o;	/* copy; o.textures and o.generator are borrowed */
+	struct blender_options o;	/* copy; o.generator is borrowed */
 	struct detail d;		/* height and normal maps */
 	float *lut;			/* pi f_r atlas, 3 planes */
 	float *albedo;			/* map_size^2 x 3 planes */
@@ -461,18 +463,15 @@ void blender_set_free(struct blender_set *s)
 	free(s);
 }
 
-struct blender_set *blender_prepare(const struct blender_model *m, const struct blender_options *o, char **cause)
+struct blender_set *blender_prepare(const struct brdf_source *m, const struct blender_options *o, char **cause)
 {
-	if (check_options(o, cause) != 0 || check_model(m, cause) != 0)
+	if (blender_check(m, o, cause) != 0)
 		return NULL;
 	struct blender_set *s = xcalloc(1, sizeof *s);
 	s->o = *o;
-	if (o->textures != NULL) {
-		if (detail_read(o->textures, &s->d, cause) != 0) {
-			blender_set_free(s);
-			return NULL;
-		}
-	} else
+	if (m->detail != NULL)
+		detail_use(m->detail, &s->d);
+	else
 		detail_flat(o->map_size, &s->d);
 
 	double albedo[3];
@@ -563,7 +562,7 @@ out:
 	return rc;
 }
 
-int blender_export(const struct blender_model *m, const struct blender_options *o, const char *dir,
+int blender_export(const struct brdf_source *m, const struct blender_options *o, const char *dir,
     char **cause)
 {
 	struct blender_set *s = blender_prepare(m, o, cause);
