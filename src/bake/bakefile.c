@@ -392,7 +392,8 @@ void bake_eval_rgb(const struct bake *b, double theta_i, double theta_o, double 
 {
 	size_t npx = (size_t)b->n_ti * b->n_to * b->n_phi;
 	double ph = fold_phi(dphi);
-	double sp[BAKE_MAX_WL];	/* bake_load guarantees n_wl <= BAKE_MAX_WL */
+	double sp[BAKE_MAX_WL];
+	CHECK(b->n_wl <= BAKE_MAX_WL);	/* bake_load guarantees it */
 	bake_eval_specular(b, theta_i, theta_o, ph, sp);
 	for (int c = 0; c < 3; c++) {
 		rgb[c] = interp(b, b->fr_rgb + c * npx, theta_i, theta_o, ph);

@@ -35,11 +35,13 @@ void batchstat_add(struct batchstat *b, const double *q)
 
 double batchstat_mean(const struct batchstat *b, int k)
 {
+	CHECK(b->batches >= 1 && k >= 0 && k < b->n_q);
 	return b->s1[k] / (double)b->batches;
 }
 
 double batchstat_err(const struct batchstat *b, int k)
 {
+	CHECK(b->batches >= 2 && k >= 0 && k < b->n_q);
 	double B = (double)b->batches, m = b->s1[k] / B;
 	double var = (b->s2[k] - B * m * m) / (B - 1.0);
 	return var > 0.0 ? sqrt(var / B) : 0.0;
@@ -47,6 +49,7 @@ double batchstat_err(const struct batchstat *b, int k)
 
 struct estimate batchstat_weighted(const double *x, size_t stride, const long *n, int nb, long total)
 {
+	CHECK(nb >= 1 && total >= 1);
 	double sum = 0.0;
 	for (int b = 0; b < nb; b++)
 		sum += x[(size_t)b * stride];

@@ -104,6 +104,8 @@ static void *mc_begin(const struct solver_problem *p, const void *settings, char
 	if (m->job_cap < st->min_batches)
 		m->job_cap = st->min_batches;
 	for (int j = 0; j < m->nj; j++) {
+		CHECK(p->slab[j / p->n_ti].n_layers >= 1);
+		CHECK(p->theta_i[j % p->n_ti] >= 0.0 && p->theta_i[j % p->n_ti] < 0.5 * M_PI);
 		batchstat_init(&m->acc[j], m->nq);
 		transport_launch(&p->slab[j / p->n_ti], p->theta_i[j % p->n_ti], p->fresnel, &m->ln[j]);
 		m->want[j] = p->target_error > 0.0 ? st->min_batches : m->job_cap;

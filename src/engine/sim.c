@@ -10,6 +10,7 @@
 #include <omp.h>
 #endif
 
+#include "base/check.h"
 #include "base/util.h"
 
 void sim_config_default(struct sim_config *c)
@@ -26,6 +27,7 @@ void sim_config_default(struct sim_config *c)
 void sim_run(const struct sim_config *c, struct sim_result *res,
     void (*progress)(void *user, long done, long total), void *user)
 {
+	CHECK(c->photons >= 1 && c->batches >= 1 && c->theta_in >= 0.0 && c->theta_in < 0.5 * M_PI);
 	const struct tally_grid *g = &c->grid;
 	int nb = c->batches;
 	if ((long)nb > c->photons)

@@ -7,10 +7,12 @@
 #include <stdlib.h>
 #include <string.h>
 
+#include "base/check.h"
 #include "base/util.h"
 
 void tally_alloc(struct tally *t, const struct tally_grid *g)
 {
+	CHECK(g->n_theta >= 1 && g->n_phi >= 1 && g->n_r >= 0);
 	memset(t, 0, sizeof *t);
 	t->exit = xcalloc((size_t)g->n_theta * (size_t)g->n_phi, sizeof *t->exit);
 	t->radial = xcalloc((size_t)(g->n_r > 0 ? g->n_r : 1), sizeof *t->radial);

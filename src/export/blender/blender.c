@@ -18,6 +18,7 @@
 #include "io/exrio.h"
 #include "io/pngio.h"
 #include "geom/texdir.h"
+#include "base/check.h"
 #include "base/util.h"
 
 void blender_options_default(struct blender_options *o)
@@ -49,6 +50,7 @@ static double clamp(double x, double lo, double hi)
 
 float *blender_lut(const struct brdf_source *m, int n_cos, int n_phi)
 {
+	CHECK(n_cos >= 2 && n_phi >= 2);
 	size_t w = (size_t)n_phi * (size_t)n_cos, h = (size_t)n_cos, plane = w * h;
 	float *lut = xmalloc(3 * plane * sizeof *lut);
 	for (int k = 0; k < n_phi; k++) {
