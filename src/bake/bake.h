@@ -4,7 +4,14 @@
  * (engine/solver.h; Monte Carlo, engine/mc.h, is the method today) and adds
  * what the bake directory needs besides the table: the clear top stack for
  * the analytic specular and the mean exit radius per wavelength.  No files
- * are written here (bake/bakefile.h writes them). */
+ * are written here (bake/bakefile.h writes them).
+ *
+ * Seams for what is to come: the method is chosen in one place
+ * (bake_solver in bake.c) and named in bake_result.solver, for a
+ * `--solver` option and the manifest's record of it; a solver runs in
+ * steps whose state can be saved between them (engine/solver.h), for
+ * checkpoints; a family of bakes (one preset varied over parameters) is a
+ * loop of bake_spec_layers and bake_run over the members. */
 #ifndef SKINBAKE_BAKE_H
 #define SKINBAKE_BAKE_H
 #include <stdint.h>
