@@ -54,13 +54,6 @@ static void batch_values(const struct mc_state *m, const struct tally *t, double
 		q[Q_NSCAL + ne + i] = t->radial[i] * inv;
 }
 
-/* Plain solid angle of exit band it's bins (both sides of the incidence plane). */
-static double bin_omega(const struct tally_grid *g, int it)
-{
-	double dth = 0.5 * M_PI / g->n_theta;
-	return (cos(it * dth) - cos((it + 1) * dth)) * 2.0 * M_PI / g->n_phi;
-}
-
 /* Solid-angle-weighted RMS relative error of one job's exit bins. */
 static double job_rms(const struct tally_grid *g, const struct batchstat *a)
 {
@@ -68,7 +61,7 @@ static double job_rms(const struct tally_grid *g, const struct batchstat *a)
 	for (int it = 0; it < g->n_theta; it++)
 		for (int ip = 0; ip < g->n_phi; ip++) {
 			int k = Q_NSCAL + it * g->n_phi + ip;
-			double m = batchstat_mean(a, k), e = batchstat_err(a, k), w = bin_omega(g, it);
+			double m = batchstat_mean(a, k), e = batchstat_err(a, k), w = tally_bin_omega(g, it);
 			double rel = m > 0.0 ? e / m : 1.0;	/* an empty bin counts as 100% */
 			num += w * rel * rel;
 			den += w;
@@ -234,8 +227,8 @@ static struct estimate est(const struct batchstat *a, int k)
 	return (struct estimate){ batchstat_mean(a, k), batchstat_err(a, k) };
 }
 
-/* One job's entry from its sums; adds its bins to the table's RMS sums. */
-static void fill_entry(const struct mc_state *m, int j, struct brdf_entry *o, double *num, double *den)
+/* One job's entry from its sums. */
+static void fill_entry(const struct mc_state *m, int j, struct brdf_entry *o)
 {
 	const struct tally_grid *g = &m->p.grid;
 	const struct batchstat *a = &m->acc[j];
@@ -253,14 +246,11 @@ static void fill_entry(const struct mc_state *m, int j, struct brdf_entry *o, do
 	o->lost = est(a, Q_LOST);
 	double dth = 0.5 * M_PI / g->n_theta;
 	for (int it = 0; it < g->n_theta; it++) {
-		double co = tally_cos_omega(it * dth, (it + 1) * dth, M_PI / g->n_phi), w = bin_omega(g, it);
+		double co = tally_cos_omega(it * dth, (it + 1) * dth, M_PI / g->n_phi);
 		for (int ip = 0; ip < g->n_phi; ip++) {
 			int e = it * g->n_phi + ip;
 			o->fr[e] = batchstat_mean(a, Q_NSCAL + e) / co;
 			o->fr_err[e] = batchstat_err(a, Q_NSCAL + e) / co;
-			double rel = o->fr[e] > 0.0 ? o->fr_err[e] / o->fr[e] : 1.0;
-			*num += w * rel * rel;
-			*den += w;
 		}
 	}
 	o->rms_rel_err = job_rms(g, a);
@@ -275,13 +265,12 @@ static void mc_finish(void *state, struct brdf_table *out)
 {
 	struct mc_state *m = state;
 	brdf_table_init(out, &m->p);
-	double num = 0.0, den = 0.0;
 	for (int j = 0; j < m->nj; j++) {
-		fill_entry(m, j, &out->entry[j], &num, &den);
+		fill_entry(m, j, &out->entry[j]);
 		out->photons += out->entry[j].photons;
 		batchstat_free(&m->acc[j]);
 	}
-	out->rms_rel_err = sqrt(num / den);
+	out->rms_rel_err = brdf_table_rms(out);
 	out->target_met = m->p.target_error <= 0.0 || out->rms_rel_err <= m->p.target_error;
 	free(m->acc);
 	free(m->events);

@@ -3,6 +3,7 @@
 #include "config.h"
 #include "engine/solver.h"
 
+#include <math.h>
 #include <stdlib.h>
 #include <string.h>
 
@@ -44,6 +45,25 @@ void brdf_table_init(struct brdf_table *t, const struct solver_problem *p)
 			e->rd_r_err = xcalloc((size_t)p->grid.n_r, sizeof(double));
 		}
 	}
+}
+
+double brdf_table_rms(const struct brdf_table *t)
+{
+	const struct tally_grid *g = &t->grid;
+	double num = 0.0, den = 0.0;
+	for (int j = 0; j < t->n_wl * t->n_ti; j++) {
+		const struct brdf_entry *o = &t->entry[j];
+		for (int it = 0; it < g->n_theta; it++) {
+			double w = tally_bin_omega(g, it);
+			for (int ip = 0; ip < g->n_phi; ip++) {
+				int e = it * g->n_phi + ip;
+				double rel = o->fr[e] > 0.0 ? o->fr_err[e] / o->fr[e] : 1.0;
+				num += w * rel * rel;
+				den += w;
+			}
+		}
+	}
+	return sqrt(num / den);
 }
 
 void brdf_table_free(struct brdf_table *t)

@@ -13,7 +13,8 @@
  * deterministic method: one slab), so a later checkpoint can save the state
  * between steps.  Monte Carlo is engine/mc.h.  A method that cannot give
  * some part of the table (e.g. adding-doubling has no Rd(r)) says so in
- * `provides`; the driver then asks another method for that part. */
+ * `provides` and leaves that part at 0; the driver then asks another
+ * method for it. */
 #ifndef SKINBAKE_SOLVER_H
 #define SKINBAKE_SOLVER_H
 #include "engine/batchstat.h"
@@ -98,6 +99,11 @@ struct solver_ops {
  * steps.  -1 and *cause when begin refuses the problem. */
 int solver_solve(const struct solver_ops *ops, const void *settings, const struct solver_problem *p,
     const struct solver_run *run, struct brdf_table *out, char **cause);
+
+/* The solid-angle-weighted RMS relative error of every entry's fr (an
+ * empty bin counts as 100%): the accuracy of a table as target_error
+ * means it, the same for every method [-]. */
+double brdf_table_rms(const struct brdf_table *t);
 
 /* An empty table for p (entries labelled, arrays zeroed), for a method's finish. */
 void brdf_table_init(struct brdf_table *t, const struct solver_problem *p);

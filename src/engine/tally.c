@@ -57,6 +57,12 @@ double tally_cos_omega(double t0, double t1, double dphi)
 	return 0.5 * (s1 * s1 - s0 * s0) * 2.0 * dphi;
 }
 
+double tally_bin_omega(const struct tally_grid *g, int it)
+{
+	double dth = 0.5 * M_PI / g->n_theta;
+	return (cos(it * dth) - cos((it + 1) * dth)) * 2.0 * M_PI / g->n_phi;
+}
+
 double tally_annulus_area(double dr, int i)
 {
 	return M_PI * dr * dr * (2 * i + 1);
