@@ -1,7 +1,8 @@
 /* The bake driver and the bake directory: round trip through the files is
  * exact, tables agree with independent `simulate` runs within error, the
  * target error is met, energy is conserved, threads do not change bits,
- * reciprocity holds within error. */
+ * reciprocity holds within error; a second method drops into the solver
+ * interface. */
 #include <stdarg.h>
 #include <stddef.h>
 #include <stdint.h>
@@ -16,6 +17,7 @@
 #include "bake/bake.h"
 #include "bake/bakefile.h"
 #include "engine/sim.h"
+#include "engine/solver.h"
 #include "base/util.h"
 
 /* The engine issue's skin stack at 550 nm. */
@@ -278,6 +280,71 @@ static void test_reciprocity(void **state)
 	bake_result_free(&r);
 }
 
+/* A second method through the solver interface: a Lambertian table with a
+ * 1 % error, one step per wavelength, that refuses radial bins.  The
+ * driver's loop, the labels and the accuracy criterion work for it. */
+struct lambert_state {
+	struct solver_problem p;
+	int steps;
+};
+
+static void *lambert_begin(const struct solver_problem *p, const void *settings, char **cause)
+{
+	(void)settings;
+	if (p->grid.n_r > 0) {
+		*cause = xasprintf("no Rd(r)");
+		return NULL;
+	}
+	struct lambert_state *st = xcalloc(1, sizeof *st);
+	st->p = *p;
+	return st;
+}
+
+static int lambert_step(void *state, const struct solver_run *run)
+{
+	(void)run;
+	struct lambert_state *st = state;
+	return ++st->steps < st->p.n_wl;
+}
+
+static void lambert_finish(void *state, struct brdf_table *out)
+{
+	struct lambert_state *st = state;
+	brdf_table_init(out, &st->p);
+	for (int j = 0; j < out->n_wl * out->n_ti; j++)
+		for (int k = 0; k < out->grid.n_theta * out->grid.n_phi; k++) {
+			out->entry[j].fr[k] = 0.5 / M_PI;
+			out->entry[j].fr_err[k] = 0.01 * 0.5 / M_PI;
+		}
+	out->rms_rel_err = brdf_table_rms(out);
+	assert_int_equal(st->steps, st->p.n_wl);
+	free(st);
+}
+
+static void test_solver_seam(void **state)
+{
+	(void)state;
+	static const struct solver_ops lambert = { "lambert", SOLVER_BRDF, lambert_begin, lambert_step, lambert_finish };
+	static struct bake_spec s;
+	base_spec(&s);
+	struct solver_problem p = { .n_wl = s.n_wl, .wl_nm = s.wl_nm, .slab = s.slab, .n_ti = s.n_ti,
+		.theta_i = s.theta_i, .grid = { .n_theta = 6, .n_phi = 4, .n_r = 0, .dr = 0.01 } };
+	struct solver_run run = { .n_ranks = 1 };
+	struct brdf_table t;
+	char *cause = NULL;
+	assert_int_equal(solver_solve(&lambert, NULL, &p, &run, &t, &cause), 0);
+	assert_int_equal(t.n_wl * t.n_ti, 6);
+	assert_float_equal(t.entry[4].wl_nm, 600, 0);
+	assert_float_equal(t.entry[4].theta_i, s.theta_i[1], 0);
+	assert_null(t.entry[0].rd_r);
+	assert_float_equal(t.rms_rel_err, 0.01, 1e-12);
+	brdf_table_free(&t);
+	p.grid.n_r = 5;
+	assert_int_equal(solver_solve(&lambert, NULL, &p, &run, &t, &cause), -1);
+	assert_string_equal(cause, "no Rd(r)");
+	free(cause);
+}
+
 int main(void)
 {
 	const struct CMUnitTest tests[] = {
@@ -287,6 +354,7 @@ int main(void)
 		cmocka_unit_test(test_nee_unbiased),
 		cmocka_unit_test(test_target_error_met),
 		cmocka_unit_test(test_reciprocity),
+		cmocka_unit_test(test_solver_seam),
 	};
 	return cmocka_run_group_tests_name("bake", tests, NULL, NULL);
 }
