@@ -6,6 +6,7 @@
 #include "config.h"
 
 #include "export/blender/blender.h"
+#include "export/blender/blender_fit.h"
 
 #include <errno.h>
 #include <json-c/json.h>
@@ -518,6 +519,7 @@ struct blender_set *blender_prepare(const struct blender_model *m, const struct 
 		s->roughness[i] = quantise16(sqrt(m->roughness));
 	}
 	s->manifest = manifest_build(m, o, &s->d, albedo, &ref);
+	blender_fit_manifest(s->manifest, m, o, s->lut, s->d.normal, s->d.w, s->d.h);
 	return s;
 }
 
