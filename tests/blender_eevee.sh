@@ -14,7 +14,7 @@ if [ -z "$BLENDER" ]; then
 fi
 B() { timeout 600 "$BLENDER" -b --factory-startup -noaudio --python-exit-code 1 "$@"; }
 bake="$tmpd/bake"
-if ! "$SKINBAKE" bake --preset paper --out "$bake" --theta-in 6 --resolution 9x9 --batch-photons 1000 \
+if ! "$SKINBAKE" bake --preset paper --out "$bake" --theta-nodes 6 --resolution 9x9 --batch-photons 1000 \
 	--max-photons 3e5 --target-error 0 --threads 1 --quiet >"$tmpd/bake.log" 2>&1; then
 	fail "skinbake bake failed: $(tail -2 "$tmpd/bake.log")"
 	tap_done

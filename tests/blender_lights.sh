@@ -18,7 +18,7 @@ BF() { B --factory-startup "$@"; }
 val() { sed -n "s/^$1 //p" "$2" | tail -1; }
 
 bake="$tmpd/bake"
-if ! "$SKINBAKE" bake --preset paper --out "$bake" --theta-in 6 --resolution 9x9 --batch-photons 1000 \
+if ! "$SKINBAKE" bake --preset paper --out "$bake" --theta-nodes 6 --resolution 9x9 --batch-photons 1000 \
 	--max-photons 3e5 --target-error 0 --threads 1 --quiet >"$tmpd/bake.log" 2>&1; then
 	fail "skinbake bake failed: $(tail -2 "$tmpd/bake.log")"
 	tap_done
