@@ -649,8 +649,9 @@ def generate_uvs(ob):
 
 
 def measure_uv_size(ob, unit_scale=1.0):
-    """Metres per UV unit: sqrt(world surface area / UV area) over the faces of OB's render UV
-    map, or None when the UV area is zero."""
+    """(metres per UV unit, 10th and 90th percentile over the surface) of OB's render UV map:
+    sqrt(world surface area / UV area) over all faces, and per face weighted by area; None when
+    the UV area is zero."""
     me = ob.data
     uvl = next((u for u in me.uv_layers if u.active_render), me.uv_layers.active)
     if uvl is None:
@@ -659,18 +660,32 @@ def measure_uv_size(ob, unit_scale=1.0):
     co = [mw @ v.co for v in me.vertices]
     uv = uvl.data
     a3 = a2 = 0.0
+    faces = []
     for p in me.polygons:
         idx = list(p.loop_indices)
         v0 = co[me.loops[idx[0]].vertex_index]
         u0 = uv[idx[0]].uv
+        f3 = f2 = 0.0
         for k in range(1, len(idx) - 1):          # fan triangles
             v1, v2 = co[me.loops[idx[k]].vertex_index], co[me.loops[idx[k + 1]].vertex_index]
-            a3 += (v1 - v0).cross(v2 - v0).length / 2
+            f3 += (v1 - v0).cross(v2 - v0).length / 2
             u1, u2 = uv[idx[k]].uv, uv[idx[k + 1]].uv
-            a2 += abs((u1.x - u0.x) * (u2.y - u0.y) - (u2.x - u0.x) * (u1.y - u0.y)) / 2
-    if a2 <= 0:
+            f2 += abs((u1.x - u0.x) * (u2.y - u0.y) - (u2.x - u0.x) * (u1.y - u0.y)) / 2
+        a3 += f3
+        a2 += f2
+        if f2 > 0 and f3 > 0:
+            faces.append((math.sqrt(f3 / f2), f3))
+    if a2 <= 0 or not faces:
         return None
-    return math.sqrt(a3 / a2) * unit_scale
+    faces.sort()
+    total, acc, q = sum(f[1] for f in faces), 0.0, {}
+    for d, w in faces:
+        acc += w
+        for p in (0.1, 0.9):
+            if p not in q and acc >= p * total:
+                q[p] = d
+    k = unit_scale
+    return math.sqrt(a3 / a2) * k, q[0.1] * k, q[0.9] * k
 
 
 def prepare_objects(obs, m, mode, no_detail, uv_size=None, gen_uvs=False, unit_scale=1.0):
@@ -691,12 +706,17 @@ def prepare_objects(obs, m, mode, no_detail, uv_size=None, gen_uvs=False, unit_s
             ob[UV_SIZE_PROP] = float(uv_size)
             say(f"'{ob.name}': UV size {uv_size:.4g} m per UV unit (--uv-size)")
             continue
-        s = measure_uv_size(ob, unit_scale)
-        if s is None:
+        r = measure_uv_size(ob, unit_scale)
+        if r is None:
             raise SkinbakeError(f"object '{ob.name}': its UV map has zero area; fix the UVs or give --uv-size")
+        s, lo, hi = r
         ob[UV_SIZE_PROP] = s
         say(f"'{ob.name}': UV size {s:.4g} m per UV unit (measured: sqrt(surface area / UV area)); "
             f"detail tile {float(m['detail']['tile_mm']):g} mm")
+        if hi > 1.25 * lo:
+            say(f"note: the UV density of '{ob.name}' varies: {lo:.3g} to {hi:.3g} m per UV unit over 80% of "
+                "its surface, so the detail maps are at their true size only where it is "
+                f"{s:.3g}; give --uv-size for the part that matters (e.g. the face)")
 
 
 def assign(obs, mat):
