@@ -57,6 +57,11 @@ else
 	fail "2 suns + point lamp vs skinbake eval per pixel: '$*' $(grep -i error "$tmpd/lit.log" | head -2)"
 fi
 
+# The add-on's operator (File > Import > skinbake image set) on the selected mesh does the same.
+B "$tmpd/lights.blend" --python "$scn" -- addon "$imp" "$tmpd/set/manifest.json" Head >"$tmpd/addon.log" 2>&1
+check "add-on: File > Import on the selected mesh, exact mode, 3 view layers ($(val SKINBAKE_ADDON "$tmpd/addon.log"))" \
+	test "$(val SKINBAKE_ADDON "$tmpd/addon.log")" = "FINISHED skinbake_exact 3"
+
 # 2. The importer keeps everything else in the file.
 BF --python "$scn" -- make-keep "$tmpd/keep.blend" "$tmpd/keep.json" >"$tmpd/mk2.log" 2>&1
 B "$tmpd/keep.blend" --python "$imp" -- "$tmpd/set" --objects Head --mode exact --save "$tmpd/kept.blend" \

@@ -12,12 +12,15 @@
 #       renders the imported file (direct light only, point-sampled pixels) with normal and
 #       position passes and compares each pixel with sum over lamps of E cos_l f_r, f_r from
 #       BRDF_HELPER (bake_eval_rgb, as `skinbake eval`); prints SKINBAKE_LIGHTS n mean p95 max
+#   blender -b FILE.blend --python blender_scene.py -- addon IMPORTER SET/manifest.json MESH
+#       the add-on's File > Import operator (registered from IMPORTER) on the selected MESH in exact
+#       mode; prints SKINBAKE_ADDON result material view-layers
 #   blender -b --factory-startup --python blender_scene.py -- mean A.exr
 #       prints SKINBAKE_MEAN r g b, the mean of the whole image
 #   blender -b --factory-startup --python blender_scene.py -- blocks A.exr B.exr K THR
 #       mean (over blocks and RGB) and largest relative difference of A from B over K x K pixel
-#       blocks that lie, with their neighbouring pixels, where B is brighter than THR times its
-#       maximum; prints SKINBAKE_BLOCKS n mean max
+#       blocks that lie, with the pixels within 2 px of them, where B is brighter than THR times
+#       its maximum; prints SKINBAKE_BLOCKS n mean max
 import json
 import math
 import os
@@ -268,10 +271,11 @@ def blocks(a, b, k, thr):
     for by in range(0, h - k + 1, k):
         for bx in range(0, w - k + 1, k):
             idx = [(by + dy) * w + bx + dx for dy in range(k) for dx in range(k)]
-            ring = [(y * w + x) for y in range(max(by - 1, 0), min(by + k + 1, h))
-                    for x in range(max(bx - 1, 0), min(bx + k + 1, w))]
+            ring = [(y * w + x) for y in range(max(by - 2, 0), min(by + k + 2, h))
+                    for x in range(max(bx - 2, 0), min(bx + k + 2, w))]
             if min(lum[i] for i in ring) <= thr * top:
-                continue               # background, or next to it (silhouette pixels)
+                continue               # background, or within 2 px of it: the pixel filters
+                                       # (1.5 px wide) mix the silhouette in differently
             sa = [sum(pa[i][c] for i in idx) for c in range(3)]
             sb = [sum(pb[i][c] for i in idx) for c in range(3)]
             errs.append([abs(sa[c] / sb[c] - 1.0) for c in range(3)])
@@ -290,6 +294,17 @@ elif cmd == "check-keep":
     check_keep(args[1])
 elif cmd == "measure-lights":
     measure_lights(os.path.abspath(args[1]), os.path.abspath(args[2]), args[3], int(args[4]), int(args[5]))
+elif cmd == "addon":
+    sys.path.insert(0, os.path.dirname(os.path.abspath(args[1])))
+    sys.dont_write_bytecode = True
+    import import_skin
+    import_skin.register()
+    for o in bpy.context.view_layer.objects:
+        o.select_set(o.name == args[3])
+    r = bpy.ops.import_scene.skinbake(filepath=os.path.abspath(args[2]), mode="EXACT")
+    sc = bpy.context.scene
+    print("SKINBAKE_ADDON", ",".join(sorted(r)), bpy.data.objects[args[3]].active_material.name.replace(" ", "_"),
+          len([v for v in sc.view_layers if v.name.startswith("skinbake:")]))
 elif cmd == "mean":
     w, h, px = read(args[1])
     print("SKINBAKE_MEAN " + " ".join(f"{sum(p[c] for p in px) / len(px):.6f}" for c in range(3)))

@@ -394,7 +394,8 @@ static void mix_f(void *ctx, double ti, double to, double dphi, double rgb[3])
 	double h[3] = { sl + sv * cos(dphi), sv * sin(dphi), cl + cv }, hn = sqrt(h[0] * h[0] + h[1] * h[1] + h[2] * h[2]);
 	double hz = h[2] / hn, hl = (sl * h[0] + cl * h[2]) / hn;
 	double as = 5.0 / 8.0 * pow(hz, 4) / (hl * (cl > cv ? cl : cv));
-	double d = 1 - 0.5 * x * x * x * x * x, sp = specular_ggx(&st, m->roughness, ti, to, dphi);
+	double fl = pow(x, 5), fv = pow(1 - cv, 5), rr = BLENDER_FIT_SSS_ROUGHNESS * (1 + cl * cv + sl * sv * cos(dphi));
+	double d = 1 - 0.5 * fl + rr * (fl + fv + fl * fv * (rr - 1)), sp = specular_ggx(&st, m->roughness, ti, to, dphi);
 	for (int c = 0; c < 3; c++)
 		rgb[c] = (mix_s[c] * d + mix_g[c] * as) / M_PI + sp;
 }

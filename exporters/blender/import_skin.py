@@ -455,7 +455,8 @@ def _general_fit(tr, m, nrm, area, geo, unit_scale, no_specular, calibrate, area
         tr.link(col_s, sock(sss.inputs, "Subsurface Color"))
     sock(sss.inputs, "Subsurface Weight", "Subsurface").default_value = 1.0
     sss.inputs["Subsurface Radius"].default_value = [x / unit_scale for x in m["sss_radius_m"]]
-    sss.inputs["Roughness"].default_value = 0.0               # no retro-reflection term
+    # Its retro-reflection term is in the fit; roughness 0 would give NaN pixels in EEVEE.
+    sss.inputs["Roughness"].default_value = float(f.get("subsurface_roughness", 0.0))
     sock(sss.inputs, "Specular", "Specular IOR Level").default_value = 0.0
     gl = tr.node("ShaderNodeBsdfGlossy", (-400, 1100), "forward lobe g(v) f_AS", distribution="ASHIKHMIN_SHIRLEY")
     tr.link(col_g, gl.inputs["Color"])

@@ -27,11 +27,15 @@ static double clamp01(double x)
 	return x < 0 ? 0 : x > 1 ? 1 : x;
 }
 
-/* The Principled subsurface exit's light falloff (Disney's 1 - F_L / 2). */
-static double disney_light(double cos_l)
+/* pi f / base of Cycles 3.x's Principled BSDF with random-walk subsurface:
+ * the exit's Disney light falloff 1 - F_L / 2 plus the diffuse
+ * retro-reflection term of roughness r, RR (F_L + F_V + F_L F_V (RR - 1)),
+ * RR = r (1 + l.v), F = (1 - cos)^5. */
+static double sss_basis(double cl, double cv, double dphi)
 {
-	double x = 1.0 - cos_l;
-	return 1.0 - 0.5 * x * x * x * x * x;
+	double fl = pow(1.0 - cl, 5), fv = pow(1.0 - cv, 5);
+	double rr = BLENDER_FIT_SSS_ROUGHNESS * (1.0 + cl * cv + sqrt((1 - cl * cl) * (1 - cv * cv)) * cos(dphi));
+	return 1.0 - 0.5 * fl + rr * (fl + fv + fl * fv * (rr - 1.0));
 }
 
 /* pi f of Cycles' Ashikhmin-Shirley glossy lobe (isotropic, exponent e). */
@@ -54,19 +58,20 @@ static double spec_pi_f(const struct specular_stack *st, double alpha, double cl
 }
 
 /* Weights at view cosine cv: weighted non-negative least squares of
- * s D(l) + g AS(l, v) against pi f - spec, relative error, weight cl cv. */
+ * s SSS(l, v) + g AS(l, v) against pi f - spec, relative error, weight cl cv. */
 static void fit_node(const double *pf, const double *spec, const double *as, double cmin, double cv,
     double s[3], double g[3])
 {
 	for (int c = 0; c < 3; c++) {
 		double xx = 0, xy = 0, yy = 0, xr = 0, yr = 0;
 		for (int i = 0; i < FIT_N_COSL; i++) {
-			double cl = cmin + (1.0 - cmin) * i / (FIT_N_COSL - 1), x = disney_light(cl);
+			double cl = cmin + (1.0 - cmin) * i / (FIT_N_COSL - 1);
 			for (int k = 0; k < FIT_N_PHI; k++) {
 				size_t at = (size_t)i * FIT_N_PHI + (size_t)k;
 				double t = pf[3 * at + (size_t)c];
 				if (!(t > 0))
 					continue;
+				double x = sss_basis(cl, cv, M_PI * k / (FIT_N_PHI - 1));
 				double w = cl * cv / (t * t), y = as[at], r = t - spec[at];
 				xx += w * x * x;
 				xy += w * x * y;
@@ -100,7 +105,7 @@ void blender_fit_eval(const struct blender_fit *fit, double cos_l, double cos_v,
 	int j = (int)floor(x);
 	if (j > fit->n_view - 2)
 		j = fit->n_view - 2;
-	double t = x - j, d = disney_light(cl), a = as_pi_f(fit->glossy_exponent, cl, cv, dphi);
+	double t = x - j, d = sss_basis(cl, cv, dphi), a = as_pi_f(fit->glossy_exponent, cl, cv, dphi);
 	double sp = fit->specular ? spec_pi_f(&st, fit->spec_alpha, cl, cv, dphi) : 0.0;
 	for (int c = 0; c < 3; c++) {
 		double s = (1 - t) * fit->sss_rgb[j][c] + t * fit->sss_rgb[j + 1][c];
@@ -271,10 +276,13 @@ static json_object *fit_json(const struct blender_fit *f)
 	json_object *x = json_object_new_object(), *a, *b, *c;
 	json_object_object_add(x, "model", json_object_new_string("skinbake-cycles3-mix-1"));
 	json_object_object_add(x, "description", json_object_new_string(
-	    "pi f = s(v) (1 - (1 - cos_l)^5 / 2) [Principled BSDF: subsurface 1 random walk, roughness 0, "
-	    "specular 0, Base = Subsurface Color = s(v)] + g(v) pi f_AS [Glossy BSDF, Ashikhmin-Shirley, "
-	    "glossy_roughness] + pi f_GGX [Principled BSDF: black base, specular_ior, roughness "
-	    "sqrt(specular_alpha)]; s(v), g(v) RGB at cos_view_nodes (cos_view = N.I), linear between them"));
+	    "pi f = s(v) (1 - F_L / 2 + RR (F_L + F_V + F_L F_V (RR - 1))) with F = (1 - cos)^5, RR = "
+	    "subsurface_roughness (1 + l.v) [Principled BSDF: subsurface 1 random walk, roughness "
+	    "subsurface_roughness, specular 0, Base = Subsurface Color = s(v)] + g(v) pi f_AS [Glossy BSDF, "
+	    "Ashikhmin-Shirley, glossy_roughness] + pi f_GGX [Principled BSDF: black base, specular_ior, "
+	    "roughness sqrt(specular_alpha)]; s(v), g(v) RGB at cos_view_nodes (cos_view = N.I), linear "
+	    "between them"));
+	json_object_object_add(x, "subsurface_roughness", jd(BLENDER_FIT_SSS_ROUGHNESS));
 	a = json_object_new_array_ext(f->n_view);
 	b = json_object_new_array_ext(f->n_view);
 	c = json_object_new_array_ext(f->n_view);

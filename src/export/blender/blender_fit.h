@@ -4,9 +4,12 @@
  * exporters/blender/import_skin.py builds from it, each term checked
  * against Cycles renders (exporters/blender/README.md, "General mode"):
  *
- *   pi f(l, v, dphi) = s(v) (1 - (1 - cos_l)^5 / 2)            Principled BSDF,
- *                          subsurface 1 (random walk), roughness 0, specular 0:
- *                          a Lambert exit with the Disney light falloff
+ *   pi f(l, v, dphi) = s(v) (1 - F_L / 2 + RR (F_L + F_V + F_L F_V (RR - 1)))
+ *                          Principled BSDF, subsurface 1 (random walk), specular 0,
+ *                          roughness r = 0.02: a Lambert exit with the Disney light
+ *                          falloff, plus its retro-reflection term, F = (1 - cos)^5,
+ *                          RR = r (1 + l.v); r > 0 because EEVEE renders NaN pixels
+ *                          with roughness 0
  *                    + g(v) pi f_AS(e; l, v)                     Glossy BSDF,
  *                          Ashikhmin-Shirley, exponent e: a broad forward lobe
  *                    + pi f_GGX(alpha, n; l, v)                  Principled BSDF,
@@ -27,6 +30,7 @@
 
 #include "export/blender/blender.h"
 
+#define BLENDER_FIT_SSS_ROUGHNESS 0.02	/* Roughness of the subsurface closure [-] */
 #define BLENDER_FIT_VIEW_NODES 32	/* cos_view nodes j / 31 (a ColorRamp holds up to 32) */
 
 struct blender_fit {
