@@ -1,6 +1,6 @@
 #!/bin/sh
 # The Blender importer on a user's own .blend, with the real Blender (Cycles CPU): exact mode with
-# two suns and a point lamp on a mesh against `skinbake eval` per pixel; the file keeps its other
+# two suns, a point lamp and a spot lamp on a mesh against `skinbake eval` per pixel; the file keeps its other
 # objects, lamps, materials and world; general mode (the fitted mixture) against the exact
 # render on a sphere; bad input (missing object, mesh without UVs) exits 2.  About 1 minute.
 . "$top_srcdir/tests/tap.sh"
@@ -41,26 +41,26 @@ for a in "10 20 30" "45 70 170" "75 5 90"; do
 done
 check "tests/blender_brdf prints what skinbake eval prints ($same of 3 directions)" test $same -eq 3
 
-# 1. Exact mode, two suns and a point lamp, perspective camera, on the user's own file.
+# 1. Exact mode, two suns, a point lamp and a spot lamp, perspective camera, on the user's own file.
 BF --python "$scn" -- make-lights "$tmpd/lights.blend" >"$tmpd/mk.log" 2>&1
 check "user's .blend written" test -f "$tmpd/lights.blend"
 B "$tmpd/lights.blend" --python "$imp" -- "$tmpd/set" --objects Head --mode exact --save "$tmpd/lit.blend" \
 	>"$tmpd/imp.log" 2>&1
 rc=$?
 n=$(grep -c "exact mode: view layer 'skinbake: " "$tmpd/imp.log")
-check "exact mode on the user's file: one view layer per lamp (rc $rc, $n layers)" test $rc -eq 0 -a "$n" -eq 3
+check "exact mode on the user's file: one view layer per lamp (rc $rc, $n layers)" test $rc -eq 0 -a "$n" -eq 4
 B "$tmpd/lit.blend" --python "$scn" -- measure-lights "$brdf" "$bake" "$tmpd/lit" 64 16 >"$tmpd/lit.log" 2>&1
 set -- $(val SKINBAKE_LIGHTS "$tmpd/lit.log")
 if [ $# -eq 4 ] && awk -v n="$1" -v m="$2" 'BEGIN { exit !(n >= 1000 && m < 0.01) }'; then
-	ok "2 suns + point lamp vs skinbake eval per pixel: $1 pixels, mean $2, 95th percentile $3, max $4"
+	ok "2 suns + point + spot lamp vs skinbake eval per pixel: $1 pixels, mean $2, 95th percentile $3, max $4"
 else
-	fail "2 suns + point lamp vs skinbake eval per pixel: '$*' $(grep -i error "$tmpd/lit.log" | head -2)"
+	fail "2 suns + point + spot lamp vs skinbake eval per pixel: '$*' $(grep -i error "$tmpd/lit.log" | head -2)"
 fi
 
 # The add-on's operator (File > Import > skinbake image set) on the selected mesh does the same.
 B "$tmpd/lights.blend" --python "$scn" -- addon "$imp" "$tmpd/set/manifest.json" Head >"$tmpd/addon.log" 2>&1
-check "add-on: File > Import on the selected mesh, exact mode, 3 view layers ($(val SKINBAKE_ADDON "$tmpd/addon.log"))" \
-	test "$(val SKINBAKE_ADDON "$tmpd/addon.log")" = "FINISHED skinbake_exact 3"
+check "add-on: File > Import on the selected mesh, exact mode, 4 view layers ($(val SKINBAKE_ADDON "$tmpd/addon.log"))" \
+	test "$(val SKINBAKE_ADDON "$tmpd/addon.log")" = "FINISHED skinbake_exact 4"
 
 # 2. The importer keeps everything else in the file.
 BF --python "$scn" -- make-keep "$tmpd/keep.blend" "$tmpd/keep.json" >"$tmpd/mk2.log" 2>&1

@@ -1,7 +1,7 @@
 # Test helper, run inside Blender (pure Python, no numpy):
 #   blender -b --factory-startup --python blender_scene.py -- make-lights OUT.blend
 #       a user's file: an ellipsoid mesh "Head" (UVs, its own material), a perspective camera,
-#       two suns and a point lamp, black world
+#       two suns, a point lamp and a spot lamp whose cone holds the head, black world
 #   blender -b --factory-startup --python blender_scene.py -- make-keep OUT.blend SNAPSHOT.json
 #       a richer user's file (meshes with materials, an empty in a collection, area lamp, hidden
 #       lamp, world colour, a fake-user material, a scene property) and a snapshot of it
@@ -92,6 +92,9 @@ def make_lights(out):
     add_lamp("Key", "SUN", 3.0, direction(40, -60))
     add_lamp("Rim", "SUN", 2.0, direction(25, 110))
     add_lamp("Fill", "POINT", 4.0, Vector((-0.35, -0.3, 0.05)))
+    top = add_lamp("Top", "SPOT", 3.0, Vector((0.05, -0.2, 0.45)))
+    top.data.spot_size, top.data.spot_blend = math.radians(100), 0.0    # the head is well inside
+    top.rotation_euler = (-top.location).to_track_quat("-Z", "Y").to_euler()
     bpy.ops.wm.save_as_mainfile(filepath=os.path.abspath(out))
 
 
@@ -181,8 +184,10 @@ def lamp_light(o, p):
     d = o.matrix_world.translation - p
     r2 = d.length_squared
     e = o.data.energy / (4.0 * math.pi * r2)       # Cycles: radiant intensity P / 4 pi (measured)
-    if o.data.type == "SPOT":
-        raise SystemExit("spot lamps are not modelled by this test helper")
+    if o.data.type == "SPOT":                      # inside the cone (blend 0) a spot is a point lamp
+        axis = o.matrix_world.to_quaternion() @ Vector((0.0, 0.0, -1.0))
+        if o.data.spot_blend != 0 or math.acos(max(-1.0, min(1.0, axis.dot(-d.normalized())))) > o.data.spot_size / 2:
+            raise SystemExit("blender_scene.py: only points inside a hard-edged spot cone are modelled")
     return d.normalized(), e
 
 
