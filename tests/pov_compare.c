@@ -32,7 +32,7 @@
 
 #include "bake/bakefile.h"
 #include "io/pngio.h"
-#include "export/pov/pov.h"
+#include "export/pov/littable.h"
 #include "export/pov/scene.h"
 #include "base/util.h"
 
@@ -205,7 +205,7 @@ static int cmd_expect(int argc, char **argv)
 			if (!strcmp(s->lights[k].name, only_name))
 				only = k;
 	struct bake *b = NULL;
-	struct pov_brdf f = { .f_rgb = pov_brdf_analytic };
+	struct pov_brdf f = { .f_rgb = littable_brdf_analytic };
 	if (!analytic) {
 		b = bake_load(bake_dir, &cause);
 		if (b == NULL)

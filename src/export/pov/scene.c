@@ -116,7 +116,7 @@ static char *resolve(const struct scene *s, const char *v)
 	return xasprintf("%.*s/%s", (int)(slash - s->path), s->path, v);
 }
 
-static int valid_name(const char *n)
+int scene_valid_name(const char *n)
 {
 	size_t len = strlen(n);
 	if (len == 0 || len >= SCENE_NAME_MAX)
@@ -246,7 +246,7 @@ static int key_skin(struct parse *p, struct scene_skin *sk, const char *k, const
 		free(sk->preset);
 		sk->preset = xstrdup(v);
 	} else if (!strcmp(k, "site")) {
-		if (!valid_name(v))
+		if (!scene_valid_name(v))
 			return fail(p, "site = '%s' is not a site name (skinbake texture --list-sites) or none", v);
 		free(sk->site);
 		sk->site = strcmp(v, "none") ? xstrdup(v) : NULL;
@@ -293,7 +293,7 @@ static int key_object(struct parse *p, int idx, const char *k, const char *v)
 		else
 			return fail(p, "material = '%s' is not skin, lambert, phong or plain", v);
 	} else if (!strcmp(k, "skin")) {
-		if (!valid_name(v))
+		if (!scene_valid_name(v))
 			return fail(p, "skin = '%s' is not a name", v);
 		snprintf(p->obj_skin[idx], SCENE_NAME_MAX, "%s", v);
 	} else if (!strcmp(k, "color")) {
@@ -378,7 +378,7 @@ static int handler(void *user, const char *section, const char *k, const char *v
 			if (!strcmp(s->lights[i].name, name))
 				break;
 		if (i == s->n_lights) {
-			if (!valid_name(name))
+			if (!scene_valid_name(name))
 				return fail(p, "[%s]: '%s' is not a name (letters, digits, _; at most %d)", section,
 				    name, SCENE_NAME_MAX - 1);
 			if (s->n_lights == SCENE_MAX_LIGHTS)
@@ -393,7 +393,7 @@ static int handler(void *user, const char *section, const char *k, const char *v
 	if (split_section(section, "skin", name)) {
 		int i = scene_find_skin(s, name);
 		if (i < 0) {
-			if (!valid_name(name))
+			if (!scene_valid_name(name))
 				return fail(p, "[%s]: '%s' is not a name (letters, digits, _; at most %d)", section,
 				    name, SCENE_NAME_MAX - 1);
 			if (s->n_skins == SCENE_MAX_SKINS)
@@ -410,7 +410,7 @@ static int handler(void *user, const char *section, const char *k, const char *v
 			if (!strcmp(s->objects[i].name, name))
 				break;
 		if (i == s->n_objects) {
-			if (!valid_name(name))
+			if (!scene_valid_name(name))
 				return fail(p, "[%s]: '%s' is not a name (letters, digits, _; at most %d)", section,
 				    name, SCENE_NAME_MAX - 1);
 			if (s->n_objects == SCENE_MAX_OBJECTS)
@@ -589,3 +589,4 @@ void scene_object_bounds(const struct scene_object *o, double lo[3], double hi[3
 		lo[i] = ci - r, hi[i] = ci + r;
 	}
 }
+

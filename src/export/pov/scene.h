@@ -88,6 +88,8 @@ int scene_find_skin(const struct scene *s, const char *name);
 void scene_light_dir(const struct scene_light *l, const double p[3], double out[3]);
 /* Axis-aligned world bounds of object o (conservative for hand/head). */
 void scene_object_bounds(const struct scene_object *o, double lo[3], double hi[3]);
+/* Whether n is a section name: 1 to 31 of [A-Za-z0-9_]. */
+int scene_valid_name(const char *n);
 /* Names of enum values, as written in scene files. */
 const char *scene_shape_name(enum scene_shape sh);
 const char *scene_strategy_name(enum scene_strategy st);
