@@ -279,7 +279,7 @@ static void test_scene(void **state)
 	assert_true(s->lights[0].type == SCENE_LIGHT_PARALLEL && s->lights[1].type == SCENE_LIGHT_POINT);
 	assert_string_equal(s->lights[1].name, "fill");
 	assert_int_equal(s->objects[0].skin, 0);
-	assert_int_equal(strategy_resolve(s), SCENE_LIGHTS_MIXTURE);
+	assert_int_equal(strategy_resolve(s, NULL, NULL), SCENE_LIGHTS_MIXTURE);
 	double d[3], o[3] = { 0, 0, 0 };
 	scene_light_dir(&s->lights[0], o, d);
 	assert_float_equal(d[0], 1 / sqrt(3), 1e-12);

@@ -47,13 +47,18 @@ static void help(FILE *fp)
 	    "  --name BASE            base name of the output files (default: the scene file\n"
 	    "                         name without .scene; 'skin' without a scene)\n"
 	    "  --lights auto|key|mixture|passes|separable\n"
-	    "                         light strategy (default: the scene's, else auto = key for\n"
-	    "                         1 light, mixture for 2, passes for more)\n"
+	    "                         light strategy (default: the scene's, else auto: key for\n"
+	    "                         1 light; for 2 the mixture table if its estimated error\n"
+	    "                         is below 0.5 %%, else passes; passes for more)\n"
 	    "  --nodes N              key-table nodes in theta_i and theta_o [2, 255] (default 65)\n"
 	    "  --gamma-nodes N        light-view angle nodes where it varies [1, 256] (default 17)\n"
 	    "  --mix-nodes N          two-light mixture nodes per axis [2, 255] (default 25)\n"
 	    "  --data-dir DIR         where skinbake_shapes.inc is (default: $SKINBAKE_DATADIR,\n"
 	    "                         then %s, then ../exporters/pov next to the scene)\n"
+	    "  --size WxH             image size [px], each in [16, 8192] (default: the scene's;\n"
+	    "                         320x240 without one)\n"
+	    "  --unit-mm MM           without --scene: one scene unit in mm, [0.001, 1e6]\n"
+	    "                         (sets the bump map's size; default 10)\n"
 	    "  --bump-filter auto|off box-filter the height map so its texels are at most half\n"
 	    "                         an image pixel on the nearest skin object (default auto)\n"
 	    "  --analytic             use an analytic skin-like BRDF instead of a bake (tests)\n"
@@ -87,7 +92,7 @@ static int run(struct povexport_options *po)
 int cmd_export_pov(int argc, char **argv)
 {
 	enum { O_SCENE = 1, O_LIGHT, O_CAMERA, O_BAKE, O_TEXTURES, O_OUT, O_NAME, O_LIGHTS, O_NODES, O_GNODES, O_MNODES,
-		O_DATA, O_ANALYTIC, O_PLAN, O_FILTER, O_HELP };
+		O_DATA, O_ANALYTIC, O_PLAN, O_FILTER, O_SIZE, O_UNIT, O_HELP };
 	static const struct option opts[] = {
 		{ "scene", required_argument, NULL, O_SCENE }, { "light", required_argument, NULL, O_LIGHT },
 		{ "camera", required_argument, NULL, O_CAMERA }, { "bake", required_argument, NULL, O_BAKE },
@@ -96,7 +101,8 @@ int cmd_export_pov(int argc, char **argv)
 		{ "nodes", required_argument, NULL, O_NODES }, { "gamma-nodes", required_argument, NULL, O_GNODES },
 		{ "mix-nodes", required_argument, NULL, O_MNODES }, { "data-dir", required_argument, NULL, O_DATA },
 		{ "analytic", no_argument, NULL, O_ANALYTIC }, { "plan", no_argument, NULL, O_PLAN },
-		{ "bump-filter", required_argument, NULL, O_FILTER },
+		{ "bump-filter", required_argument, NULL, O_FILTER }, { "size", required_argument, NULL, O_SIZE },
+		{ "unit-mm", required_argument, NULL, O_UNIT },
 		{ "help", no_argument, NULL, O_HELP }, { NULL, 0, NULL, 0 } };
 	struct scene cl = { 0 }; /* lights and camera from the command line */
 	struct povexport_options po = { .cmdline = &cl, .bump_filter = 1 };
@@ -162,6 +168,18 @@ int cmd_export_pov(int argc, char **argv)
 			if (strcmp(optarg, "auto") && strcmp(optarg, "off"))
 				return cli_usage_error(CMD, "--bump-filter = '%s' is not auto or off", optarg);
 			po.bump_filter = !strcmp(optarg, "auto");
+			break;
+		case O_SIZE: {
+			int w, h, end = 0;
+			if (sscanf(optarg, "%dx%d%n", &w, &h, &end) != 2 || optarg[end] != '\0' || w < 16 || w > 8192 || h < 16
+			    || h > 8192)
+				return cli_usage_error(CMD, "--size = '%s' is not WxH with W and H in [16, 8192] pixels", optarg);
+			po.width = w, po.height = h;
+			break;
+		}
+		case O_UNIT:
+			if (cli_double(CMD, "--unit-mm", optarg, 1e-3, 1e6, &po.unit_mm) != 0)
+				return CLI_EXIT_USAGE;
 			break;
 		case O_HELP:
 		case 'h':

@@ -5,6 +5,7 @@
 #include "geom/mesh.h"
 
 #include <assimp/cimport.h>
+#include <assimp/material.h>
 #include <assimp/postprocess.h>
 #include <assimp/scene.h>
 #include <errno.h>
@@ -25,6 +26,8 @@
 
 struct flat {
 	struct mesh *m;
+	const struct aiScene *sc;
+	const char *path;
 	const char *name;
 	int cap_v, cap_t;
 	int missing_uv;		/* a selected mesh has no UVs */
@@ -65,6 +68,42 @@ static void any_tangent(const double n[3], double t[3])
 	normalize(t);
 }
 
+/* The diffuse colour and texture and the specular of material mat. */
+static void read_material(struct flat *f, const struct aiMaterial *mat)
+{
+	struct mesh *m = f->m;
+	struct aiColor4D c;
+	struct aiString p;
+	float shin;
+	if (aiGetMaterialColor(mat, AI_MATKEY_COLOR_DIFFUSE, &c) == AI_SUCCESS)
+		m->diffuse_rgb[0] = c.r, m->diffuse_rgb[1] = c.g, m->diffuse_rgb[2] = c.b;
+	if (aiGetMaterialColor(mat, AI_MATKEY_COLOR_SPECULAR, &c) == AI_SUCCESS)
+		m->specular = (c.r + c.g + c.b) / 3;
+	unsigned int one = 1;
+	if (aiGetMaterialFloatArray(mat, AI_MATKEY_SHININESS, &shin, &one) == AI_SUCCESS)
+		m->shininess = shin;
+	if (aiGetMaterialTexture(mat, aiTextureType_DIFFUSE, 0, &p, NULL, NULL, NULL, NULL, NULL, NULL) != AI_SUCCESS)
+		return;
+	/* Embedded ("*N" or a name the file carries inside, as in .zae). */
+	for (unsigned i = 0; i < f->sc->mNumTextures; i++) {
+		const struct aiTexture *t = f->sc->mTextures[i];
+		int idx = p.data[0] == '*' ? atoi(p.data + 1) : -1;
+		if ((idx == (int)i || !strcmp(t->mFilename.data, p.data)) && t->mHeight == 0) {
+			m->texture_size = t->mWidth;
+			m->texture = xmalloc(m->texture_size);
+			memcpy(m->texture, t->pcData, m->texture_size);
+			snprintf(m->texture_type, sizeof m->texture_type, "%.7s", t->achFormatHint);
+			return;
+		}
+	}
+	if (p.data[0] == '*')
+		return;
+	const char *slash = strrchr(f->path, '/'), *dot = strrchr(p.data, '.');
+	m->texture_file = p.data[0] == '/' || slash == NULL ? xstrdup(p.data)
+						   : xasprintf("%.*s/%s", (int)(slash - f->path), f->path, p.data);
+	snprintf(m->texture_type, sizeof m->texture_type, "%.7s", dot ? dot + 1 : "");
+}
+
 /* Append mesh am under node transform t (normals through the inverse
  * transpose: the cofactor matrix, normalised). */
 static void append(struct flat *f, const struct aiMesh *am, const struct aiMatrix4x4 *t)
@@ -75,7 +114,8 @@ static void append(struct flat *f, const struct aiMesh *am, const struct aiMatri
 		nt += am->mFaces[i].mNumIndices == 3;
 	if (nt == 0)
 		return;
-	f->matched++;
+	if (f->matched++ == 0)
+		read_material(f, f->sc->mMaterials[am->mMaterialIndex]);
 	if (am->mTextureCoords[0] == NULL)
 		f->missing_uv = 1;
 	if (m->n_vertices + nv > f->cap_v) {
@@ -175,7 +215,7 @@ static char *format_error(const char *path)
 {
 	const char *dot = strrchr(path, '.'), *slash = strrchr(path, '/');
 	if (dot != NULL && (slash == NULL || dot > slash) && !aiIsExtensionSupported(dot)) {
-		struct aiString ext;
+		struct aiString ext = { 0 };	/* appended to: start empty */
 		aiGetExtensionList(&ext);
 		return xasprintf("%s: unknown model format '%s' (libassimp reads %s)", path, dot, ext.data);
 	}
@@ -196,7 +236,8 @@ struct mesh *mesh_load(const char *path, const char *name, char **cause)
 		return NULL;
 	}
 	struct mesh *m = xcalloc(1, sizeof *m);
-	struct flat f = { .m = m, .name = name };
+	struct flat f = { .m = m, .sc = sc, .path = path, .name = name };
+	m->diffuse_rgb[0] = m->diffuse_rgb[1] = m->diffuse_rgb[2] = 0.8;
 	struct aiMatrix4x4 id;
 	aiIdentityMatrix4(&id);
 	walk(&f, sc, sc->mRootNode, &id, 0);
@@ -233,6 +274,8 @@ void mesh_free(struct mesh *m)
 	free(m->uv);
 	free(m->tangent);
 	free(m->triangle);
+	free(m->texture_file);
+	free(m->texture);
 	free(m);
 }
 

@@ -5,6 +5,7 @@
  * file's: right-handed, model units (often metres), usually +y up. */
 #ifndef SKINBAKE_MESH_H
 #define SKINBAKE_MESH_H
+#include <stddef.h>
 
 struct mesh {
 	char *source;		/* what was read: "FILE" or "FILE: NAME" */
@@ -16,6 +17,14 @@ struct mesh {
 	double (*tangent)[4];	/* [n_vertices] unit tangent along +u and the handedness w = +-1 (bitangent
 				 * along +v = w n x t); NULL without UVs */
 	int (*triangle)[3];	/* [n_triangles] vertex indices, counter-clockwise seen from the normal side */
+	/* The material of the first mesh read, for parts that are not skin. */
+	double diffuse_rgb[3];	/* diffuse colour [-] (0.8 grey when the file has none) */
+	double specular;	/* specular strength (mean of the specular colour) [-] */
+	double shininess;	/* Phong exponent [-] */
+	char *texture_file;	/* diffuse texture file (resolved against the model), or NULL */
+	unsigned char *texture;	/* or its bytes when embedded in the model (e.g. a .zae), else NULL */
+	size_t texture_size;	/* [bytes] */
+	char texture_type[8];	/* file type of the texture: png, jpg, ... */
 };
 
 /* Read the meshes of PATH whose mesh or node name is NAME (every mesh when

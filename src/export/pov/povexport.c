@@ -14,6 +14,8 @@
 #include "base/util.h"
 #include "export/pov/bumpmap.h"
 #include "export/pov/povfiles.h"
+#include "export/pov/povscene.h"
+#include "geom/mesh.h"
 #include "export/pov/strategy.h"
 
 static void msg(struct povexport_result *r, const char *fmt, ...) __attribute__((format(printf, 2, 3)));
@@ -105,12 +107,12 @@ static void print_plan(FILE *fp, const struct scene *s)
 {
 	int curved = 0, n_ang = 0;
 	double ang[SCENE_MAX_OBJECTS * SCENE_MAX_LIGHTS];
-	fprintf(fp, "scene %s: lights strategy %s\n", s->path, scene_strategy_name(strategy_resolve(s)));
+	fprintf(fp, "scene %s: lights strategy %s\n", s->path, scene_strategy_name(strategy_resolve(s, NULL, NULL)));
 	for (int i = 0; i < s->n_objects; i++) {
 		const struct scene_object *o = &s->objects[i];
 		if (o->material == SCENE_MAT_PLAIN)
 			continue;
-		if (o->shape == SCENE_SPHERE || o->shape == SCENE_HAND || o->shape == SCENE_HEAD) {
+		if (o->shape == SCENE_SPHERE || o->shape == SCENE_HAND || o->shape == SCENE_HEAD || o->shape == SCENE_MESH) {
 			curved = 1;
 			continue;
 		}
@@ -158,6 +160,16 @@ static double pixel_footprint(const struct scene *s, int k)
 		double lo[3], hi[3], d2 = 0, r;
 		if (o->skin != k || o->material != SCENE_MAT_SKIN)
 			continue;
+		if (o->shape == SCENE_MESH) {
+			/* The nearest vertex in view. */
+			for (int v = 0; v < o->mesh->n_vertices; v++)
+				if (strategy_in_view(s, o->mesh->position[v], 0)) {
+					double q[3] = { o->mesh->position[v][0] - c->location[0],
+						o->mesh->position[v][1] - c->location[1], o->mesh->position[v][2] - c->location[2] };
+					dmin = fmin(dmin, sqrt(q[0] * q[0] + q[1] * q[1] + q[2] * q[2]));
+				}
+			continue;
+		}
 		scene_object_bounds(o, lo, hi);
 		for (int j = 0; j < 3; j++) {
 			double m = 0.5 * (lo[j] + hi[j]) - c->location[j];
@@ -214,10 +226,18 @@ static struct scene *make_scene(const struct povexport_options *o, char **cause)
 		*s = *o->cmdline;
 		s->path = xstrdup("the command line");
 		s->width = 320, s->height = 240, s->unit_mm = 10;
+		if (o->unit_mm > 0)
+			s->unit_mm = o->unit_mm;
 		s->n_skins = 1;
 		snprintf(s->skins[0].name, sizeof s->skins[0].name, "skin");
 		s->skins[0].preset = xstrdup("(from the bake)");
 		s->skins[0].bumps = 1;
+	}
+	if (o->width > 0)
+		s->width = o->width, s->height = o->height;
+	if (o->scene_path != NULL && o->unit_mm > 0) {
+		*cause = xstrdup("--unit-mm is for --light/--camera: a scene file sets unit_mm in [scene]");
+		goto bad;
 	}
 	if (o->lights != NULL) {
 		int i;
@@ -229,7 +249,7 @@ static struct scene *make_scene(const struct povexport_options *o, char **cause)
 		}
 		s->lights_strategy = (enum scene_strategy)i;
 	}
-	if (strategy_resolve(s) == SCENE_LIGHTS_MIXTURE && s->n_lights != 2) {
+	if (s->lights_strategy == SCENE_LIGHTS_MIXTURE && s->n_lights != 2) {
 		*cause = xasprintf("lights = mixture needs exactly 2 lights, %s has %d", s->path, s->n_lights);
 		goto bad;
 	}
@@ -321,6 +341,14 @@ static int load_bumps(const struct povexport_options *o, const struct scene *s, 
 		tdir = sk->textures;
 	if (tdir == NULL || !sk->bumps)
 		return 0;
+	for (int i = 0; i < s->n_objects; i++) {
+		const struct scene_object *ob = &s->objects[i];
+		if (ob->shape == SCENE_MESH && ob->material == SCENE_MAT_SKIN && ob->skin == k && ob->mesh->uv == NULL)
+			return *cause = xasprintf("[object %s]: the mesh (%s) has no UV coordinates, so the bump map of skin "
+						  "'%s' cannot follow it: give the model UVs, or set bumps = off in [skin %s]",
+				   ob->name, ob->mesh->source, sk->name, sk->name),
+			       -1;
+	}
 	if (bumpmap_load(tdir, h, cause) != 0)
 		return -1;
 	in->heights[k] = xasprintf("%s_%s_height.png", base, sk->name);
@@ -339,7 +367,7 @@ static int load_bumps(const struct povexport_options *o, const struct scene *s, 
 }
 
 /* The height maps and the shape macros next to the written scene. */
-static int write_extras(const struct scene *s, const char *out, const struct inputs *in, char **cause)
+static int write_extras(const struct scene *s, const char *out, const char *base, const struct inputs *in, char **cause)
 {
 	for (int k = 0; k < s->n_skins; k++)
 		if (in->heights[k]) {
@@ -350,6 +378,19 @@ static int write_extras(const struct scene *s, const char *out, const struct inp
 			if (e != 0)
 				return -1;
 		}
+	for (int i = 0; i < s->n_objects; i++) {
+		const struct scene_object *ob = &s->objects[i];
+		char *name = ob->material == SCENE_MAT_MODEL ? povscene_model_texture(ob, base) : NULL;
+		if (name == NULL)
+			continue;
+		char *dst = xasprintf("%s/%s", out, name);
+		int e = ob->mesh->texture ? povfiles_write_bytes(dst, ob->mesh->texture, ob->mesh->texture_size, cause)
+					  : povfiles_copy(ob->mesh->texture_file, dst, cause);
+		free(dst);
+		free(name);
+		if (e != 0)
+			return -1;
+	}
 	if (in->shapes) {
 		char *dst = xasprintf("%s/skinbake_shapes.inc", out);
 		int e = povfiles_copy(in->shapes, dst, cause);
@@ -374,11 +415,16 @@ static void report(const struct povexport_options *o, const struct scene *s, con
 	if (rep->strategy == SCENE_LIGHTS_KEY && s->n_lights > 1)
 		msg(r, "warning: lights = key with %d lights: the table is exact only for light '%s'", s->n_lights,
 		    s->lights[0].name);
-	if (rep->strategy == SCENE_LIGHTS_MIXTURE && rep->mix_gamma_spread > 0.05 * M_PI / 180)
+	if (rep->mix_error >= 0)
+		msg(r, "lights auto: the one-pass mixture table would be %.2f %% off for these lights and camera "
+		       "(estimated; the limit is %.1f %%), so %s",
+		    100 * rep->mix_error, 100 * STRATEGY_MIX_MAX,
+		    rep->strategy == SCENE_LIGHTS_MIXTURE ? "mixture" : "passes (exact: one table per light)");
+	else if (rep->strategy == SCENE_LIGHTS_MIXTURE && rep->mix_gamma_spread > 0.05 * M_PI / 180)
 		msg(r, "note: the mixture table takes each light-view angle at the objects' centre; it varies by %.1f deg "
 		       "over them (use --lights passes to be exact)",
 		    rep->mix_gamma_spread * 180 / M_PI);
-	if (rep->strategy == SCENE_LIGHTS_SEPARABLE || rep->strategy == SCENE_LIGHTS_PASSES)
+	if (rep->strategy == SCENE_LIGHTS_SEPARABLE || (rep->strategy == SCENE_LIGHTS_PASSES && !rep->layered))
 		msg(r, "separable fit%s: mean error %.1f %%, rms error %.1f %% of pi*f*cos(theta_i) for angles up to 80 deg",
 		    rep->strategy == SCENE_LIGHTS_PASSES ? " (used without animation)" : "", 100 * rep->sep_mean,
 		    100 * rep->sep_rms);
@@ -395,7 +441,7 @@ static int write_all(const struct povexport_options *o, const struct scene *s, c
 	struct pov_options po = { .base = base, .n_theta = o->n_theta, .n_gamma = o->n_gamma, .n_mix = o->n_mix,
 		.write_scene = o->scene_path != NULL, .shapes_inc = in->shapes ? "skinbake_shapes.inc" : NULL };
 	double t0 = util_now();
-	if (povfiles_write(s, in->ps, &po, o->out, &rep, cause) != 0 || write_extras(s, o->out, in, cause) != 0) {
+	if (povfiles_write(s, in->ps, &po, o->out, &rep, cause) != 0 || write_extras(s, o->out, base, in, cause) != 0) {
 		povfiles_report_free(&rep);
 		return -2;
 	}

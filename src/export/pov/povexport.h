@@ -26,6 +26,8 @@ struct povexport_options {
 	int analytic;			/* the analytic BRDF instead of bakes */
 	int plan;			/* print the plan to `plan_out`, write nothing */
 	int bump_filter;		/* box-filter height maps to the pixel footprint */
+	int width, height;		/* image size [px], 0 = the scene's (320x240 without one) */
+	double unit_mm;			/* one scene unit [mm], 0 = the scene's (10 without one) */
 	FILE *plan_out;
 };
 

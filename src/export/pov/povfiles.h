@@ -5,6 +5,8 @@
  * BASE_combine.pov/.ini (POV-Ray's own sum of the .hdr passes). */
 #ifndef SKINBAKE_POVFILES_H
 #define SKINBAKE_POVFILES_H
+#include <stddef.h>
+
 #include "export/pov/littable.h"
 #include "export/pov/scene.h"
 
@@ -34,8 +36,11 @@ struct pov_report {
 	double mix_gamma_spread;	/* mixture: gamma variation not in the table [rad] */
 	double sep_rms;			/* separable: worst rms fit error over skins [-] */
 	double sep_mean;		/* separable: worst mean fit error over skins [-] */
+	int layered;			/* passes summed in one run as per-light layers */
+	double mix_error;		/* auto with two lights: the mixture's estimated error [-], else -1 */
+	int n_bump_triangles;		/* mesh triangles with their own bump map */
 	int n_files;
-	char *files[8];			/* written file names (caller frees via povfiles_report_free) */
+	char *files[8 + SCENE_MAX_OBJECTS];	/* written file names (caller frees via povfiles_report_free) */
 };
 void povfiles_report_free(struct pov_report *r);
 
@@ -46,6 +51,7 @@ void povfiles_report_free(struct pov_report *r);
 int povfiles_write(const struct scene *s, const struct pov_skin *skins, const struct pov_options *o,
     const char *outdir, struct pov_report *r, char **cause);
 
-/* Copy a file (through a temporary name). */
+/* Copy a file, or write bytes to one (through a temporary name). */
 int povfiles_copy(const char *src, const char *dst, char **cause);
+int povfiles_write_bytes(const char *dst, const unsigned char *data, size_t size, char **cause);
 #endif

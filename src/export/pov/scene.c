@@ -14,8 +14,9 @@
 #include <string.h>
 #include <strings.h>
 
-#include "io/inifile.h"
 #include "base/util.h"
+#include "geom/mesh.h"
+#include "io/inifile.h"
 
 struct parse {
 	struct scene *s;
@@ -30,7 +31,8 @@ struct parse {
 	int cam_line;
 };
 
-enum { OBJ_CENTER = 1, OBJ_RADIUS = 2, OBJ_SIZE = 4, OBJ_NORMAL = 8, OBJ_SHAPE = 16, OBJ_COLOR = 32 };
+enum { OBJ_CENTER = 1, OBJ_RADIUS = 2, OBJ_SIZE = 4, OBJ_NORMAL = 8, OBJ_SHAPE = 16, OBJ_COLOR = 32, OBJ_FILE = 64,
+	OBJ_MESH = 128 };
 enum { CAM_ANGLE = 1, CAM_WIDTH = 2, CAM_TYPE = 4 };
 
 static int fail(struct parse *p, const char *fmt, ...) __attribute__((format(printf, 2, 3)));
@@ -127,7 +129,7 @@ int scene_valid_name(const char *n)
 	return 1;
 }
 
-static const char *shape_names[] = { "sphere", "box", "plane", "patch", "hand", "head" };
+static const char *shape_names[] = { "sphere", "box", "plane", "patch", "hand", "head", "mesh" };
 static const char *strategy_names[] = { "auto", "key", "mixture", "passes", "separable" };
 
 const char *scene_shape_name(enum scene_shape sh)
@@ -278,7 +280,7 @@ static int key_object(struct parse *p, int idx, const char *k, const char *v)
 			if (!strcmp(v, shape_names[i]))
 				break;
 		if (i == sizeof shape_names / sizeof shape_names[0])
-			return fail(p, "shape = '%s' is not one of sphere, box, plane, patch, hand, head", v);
+			return fail(p, "shape = '%s' is not one of sphere, box, plane, patch, hand, head, mesh", v);
 		o->shape = (enum scene_shape)i;
 		p->obj_has[idx] |= OBJ_SHAPE;
 	} else if (!strcmp(k, "material")) {
@@ -290,8 +292,10 @@ static int key_object(struct parse *p, int idx, const char *k, const char *v)
 			o->material = SCENE_MAT_PHONG;
 		else if (!strcmp(v, "plain"))
 			o->material = SCENE_MAT_PLAIN;
+		else if (!strcmp(v, "model"))
+			o->material = SCENE_MAT_MODEL;
 		else
-			return fail(p, "material = '%s' is not skin, lambert, phong or plain", v);
+			return fail(p, "material = '%s' is not skin, lambert, phong, plain or model", v);
 	} else if (!strcmp(k, "skin")) {
 		if (!scene_valid_name(v))
 			return fail(p, "skin = '%s' is not a name", v);
@@ -338,9 +342,17 @@ static int key_object(struct parse *p, int idx, const char *k, const char *v)
 	} else if (!strcmp(k, "translate")) {
 		if (vec(p, k, v, o->translate) != 0)
 			return 0;
+	} else if (!strcmp(k, "file")) {
+		free(o->file);
+		o->file = resolve(p->s, v);
+		p->obj_has[idx] |= OBJ_FILE;
+	} else if (!strcmp(k, "mesh")) {
+		free(o->mesh_name);
+		o->mesh_name = xstrdup(v);
+		p->obj_has[idx] |= OBJ_MESH;
 	} else
 		return fail(p, "[object %s]: unknown key '%s' (keys shape, material, skin, color, center, radius, "
-		    "size, normal, offset, scale, rotate, translate)", o->name, k);
+		    "size, normal, offset, scale, rotate, translate, file, mesh)", o->name, k);
 	return 1;
 }
 
@@ -432,6 +444,34 @@ static double dist3(const double a[3], const double b[3])
 	return sqrt((a[0] - b[0]) * (a[0] - b[0]) + (a[1] - b[1]) * (a[1] - b[1]) + (a[2] - b[2]) * (a[2] - b[2]));
 }
 
+/* Read a mesh object's model and place it in POV-Ray's world: the file is
+ * right-handed, POV-Ray left-handed, so z is mirrored (a model facing +z
+ * faces the default POV-Ray camera at -z), then scale, rotate, translate. */
+static int load_mesh(struct parse *p, struct scene_object *o)
+{
+	char *cause = NULL;
+	o->mesh = mesh_load(o->file, o->mesh_name, &cause);
+	if (o->mesh == NULL) {
+		fail(p, "[object %s]: %s", o->name, cause);
+		free(cause);
+		return -1;
+	}
+	struct mesh *m = o->mesh;
+	for (int v = 0; v < m->n_vertices; v++) {
+		double q[3] = { m->position[v][0], m->position[v][1], -m->position[v][2] };
+		double n[3] = { m->normal[v][0], m->normal[v][1], -m->normal[v][2] };
+		scene_object_point(o, q, m->position[v]);
+		scene_object_dir(o, n, m->normal[v]);
+		if (m->tangent) {
+			double t[3] = { m->tangent[v][0], m->tangent[v][1], -m->tangent[v][2] };
+			scene_object_dir(o, t, m->tangent[v]);
+			m->tangent[v][3] = -m->tangent[v][3];	/* the mirror flips the frame */
+		}
+	}
+	mesh_bounds(m, o->mesh_lo, o->mesh_hi);
+	return 0;
+}
+
 /* Checks that need the whole file; errors point at the section's first line. */
 static int validate(struct parse *p)
 {
@@ -469,7 +509,16 @@ static int validate(struct parse *p)
 			return fail(p, "[object %s]: a sphere needs radius", o->name), -1;
 		if (o->shape == SCENE_PLANE && !(p->obj_has[i] & OBJ_NORMAL))
 			return fail(p, "[object %s]: a plane needs normal", o->name), -1;
-		if (o->material == SCENE_MAT_PLAIN) {
+		if (o->shape == SCENE_MESH && !(p->obj_has[i] & OBJ_FILE))
+			return fail(p, "[object %s]: a mesh needs file = PATH (a model libassimp reads)", o->name), -1;
+		if (o->shape != SCENE_MESH && (p->obj_has[i] & (OBJ_FILE | OBJ_MESH)))
+			return fail(p, "[object %s]: file and mesh are only for shape = mesh", o->name), -1;
+		if (o->shape == SCENE_MESH && load_mesh(p, o) != 0)
+			return -1;
+		if (o->material == SCENE_MAT_MODEL && o->shape != SCENE_MESH)
+			return fail(p, "[object %s]: material = model (the model file's own) is only for shape = mesh", o->name),
+			       -1;
+		if (o->material == SCENE_MAT_PLAIN || o->material == SCENE_MAT_MODEL) {
 			if (p->obj_skin[i][0])
 				return fail(p, "[object %s]: skin is only for skin, lambert and phong materials",
 				    o->name), -1;
@@ -537,6 +586,11 @@ void scene_free(struct scene *s)
 		free(s->skins[i].bake);
 		free(s->skins[i].textures);
 	}
+	for (int i = 0; i < s->n_objects; i++) {
+		free(s->objects[i].file);
+		free(s->objects[i].mesh_name);
+		mesh_free(s->objects[i].mesh);
+	}
 	free(s->title);
 	free(s->path);
 	free(s);
@@ -574,6 +628,10 @@ void scene_object_bounds(const struct scene_object *o, double lo[3], double hi[3
 		for (int i = 0; i < 3; i++)
 			lo[i] = -1e3, hi[i] = 1e3;
 		return;
+	case SCENE_MESH:
+		memcpy(lo, o->mesh_lo, sizeof o->mesh_lo);
+		memcpy(hi, o->mesh_hi, sizeof o->mesh_hi);
+		return;
 	case SCENE_HAND:
 	case SCENE_HEAD:
 	default:
@@ -590,3 +648,20 @@ void scene_object_bounds(const struct scene_object *o, double lo[3], double hi[3
 	}
 }
 
+
+void scene_object_dir(const struct scene_object *o, const double d[3], double out[3])
+{
+	/* POV-Ray's rotate: about x, then y, then z (left-handed). */
+	double a = o->rotate[0], b = o->rotate[1], c = o->rotate[2], t[3], u[3];
+	t[0] = d[0], t[1] = d[1] * cos(a) - d[2] * sin(a), t[2] = d[1] * sin(a) + d[2] * cos(a);
+	u[0] = t[0] * cos(b) + t[2] * sin(b), u[1] = t[1], u[2] = -t[0] * sin(b) + t[2] * cos(b);
+	out[0] = u[0] * cos(c) - u[1] * sin(c), out[1] = u[0] * sin(c) + u[1] * cos(c), out[2] = u[2];
+}
+
+void scene_object_point(const struct scene_object *o, const double p[3], double out[3])
+{
+	double q[3] = { p[0] * o->scale, p[1] * o->scale, p[2] * o->scale };
+	scene_object_dir(o, q, out);
+	for (int i = 0; i < 3; i++)
+		out[i] += o->translate[i];
+}
