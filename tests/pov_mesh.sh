@@ -56,7 +56,7 @@ scene() {
 }
 
 B="$tmpd/bake"
-if "$SKINBAKE" bake --preset paper --out "$B" --theta-in 4 --resolution 9x9 --estimator bins \
+if "$SKINBAKE" bake --preset paper --out "$B" --theta-nodes 4 --resolution 9x9 --estimator bins \
 	--max-photons 1e6 --batch-photons 4000 --target-error 0 --quiet >"$tmpd/bake.log" 2>&1; then
 	ok "small bake of preset paper"
 else

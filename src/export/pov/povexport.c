@@ -136,12 +136,12 @@ static void print_plan(FILE *fp, const struct scene *s)
 		fprintf(fp, "curved skin objects: theta_in over [0, 90] deg (the table nodes are uniform in angle)\n");
 	fprintf(fp, "wavelengths: the visible range (the tables are linear sRGB from the spectral bake)\n");
 	for (int k = 0; k < s->n_skins; k++) {
-		fprintf(fp, "skin %s: skinbake bake --preset %s --theta-in ", s->skins[k].name, s->skins[k].preset);
+		fprintf(fp, "skin %s: skinbake bake --preset %s ", s->skins[k].name, s->skins[k].preset);
 		if (curved || n_ang == 0)
-			fprintf(fp, "10");
+			fprintf(fp, "--theta-nodes 10");
 		else
 			for (int i = 0; i < n_ang; i++)
-				fprintf(fp, "%.2f,", ang[i]);
+				fprintf(fp, "%s%.2f", i ? "," : "--theta-in ", ang[i]);
 		fprintf(fp, " --out %s\n", s->skins[k].bake ? s->skins[k].bake : "DIR");
 	}
 	if (!curved && n_ang > 0)
