@@ -7,7 +7,7 @@
  * alone), the copies nested a hair's breadth inside each other; copy k is
  * averaged with a clear texture so that each copy shows with weight 1/N
  * through the ones outside it, and each light's colour is multiplied by N.
- * The sum equals the sum of the separate renders (0.06 % mean on the
+ * The sum equals the sum of the separate renders (0.09 % mean on the
  * two-lights test scene; on the MakeHuman head 0.13 % away from edges, about
  * 1 % over all skin pixels: shadow edges and silhouettes move by the
  * inset).  Only the innermost copy casts shadows.  Where a
