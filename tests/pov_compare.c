@@ -35,6 +35,7 @@
 #include "bake/bakefile.h"
 #include "io/pngio.h"
 #include "export/pov/littable.h"
+#include "export/pov/placement.h"
 #include "export/pov/scene.h"
 #include "base/util.h"
 
@@ -140,7 +141,7 @@ static void shade(const struct scene *s, const struct pov_brdf *f, int only, con
 			continue;
 		const struct scene_light *l = &s->lights[k];
 		double L[3], ts, lim = INFINITY;
-		scene_light_dir(l, p, L);
+		placement_light_dir(l, p, L);
 		double ci = dot(n, L);
 		if (ci <= 0)
 			continue;

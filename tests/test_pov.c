@@ -20,6 +20,7 @@
 #include "export/pov/povfiles.h"
 #include "export/pov/separable.h"
 #include "export/pov/strategy.h"
+#include "export/pov/placement.h"
 #include "export/pov/scene.h"
 #include "base/util.h"
 
@@ -281,7 +282,7 @@ static void test_scene(void **state)
 	assert_int_equal(s->objects[0].skin, 0);
 	assert_int_equal(strategy_resolve(s, NULL, NULL), SCENE_LIGHTS_MIXTURE);
 	double d[3], o[3] = { 0, 0, 0 };
-	scene_light_dir(&s->lights[0], o, d);
+	placement_light_dir(&s->lights[0], o, d);
 	assert_float_equal(d[0], 1 / sqrt(3), 1e-12);
 
 	/* The include: guard, version, restore; the scene file. */

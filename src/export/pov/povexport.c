@@ -14,6 +14,7 @@
 #include "base/util.h"
 #include "export/pov/bumpmap.h"
 #include "export/pov/povfiles.h"
+#include "export/pov/placement.h"
 #include "export/pov/povscene.h"
 #include "geom/mesh.h"
 #include "export/pov/strategy.h"
@@ -123,7 +124,7 @@ static void print_plan(FILE *fp, const struct scene *s)
 				memcpy(n, o->normal, sizeof n);
 			else
 				rotated_face_normal(o, n);
-			scene_light_dir(&s->lights[l], p, d);
+			placement_light_dir(&s->lights[l], p, d);
 			double ct = n[0] * d[0] + n[1] * d[1] + n[2] * d[2];
 			double a = acos(fmax(-1, fmin(1, ct))) * 180 / M_PI;
 			fprintf(fp, "object %s, light %s: theta_in %.2f deg%s\n", o->name, s->lights[l].name, a,
@@ -170,7 +171,7 @@ static double pixel_footprint(const struct scene *s, int k)
 				}
 			continue;
 		}
-		scene_object_bounds(o, lo, hi);
+		placement_bounds(o, lo, hi);
 		for (int j = 0; j < 3; j++) {
 			double m = 0.5 * (lo[j] + hi[j]) - c->location[j];
 			d2 += m * m;

@@ -90,14 +90,6 @@ struct scene *scene_load(const char *path, char **cause);
 void scene_free(struct scene *s);
 /* The skin index named NAME, or -1. */
 int scene_find_skin(const struct scene *s, const char *name);
-/* Unit direction from a point toward the light (parallel: constant). */
-void scene_light_dir(const struct scene_light *l, const double p[3], double out[3]);
-/* Axis-aligned world bounds of object o (conservative for hand/head). */
-void scene_object_bounds(const struct scene_object *o, double lo[3], double hi[3]);
-/* Object o's scale, rotate and translate applied to point p (as POV-Ray
- * applies them), and its rotation alone to direction d. */
-void scene_object_point(const struct scene_object *o, const double p[3], double out[3]);
-void scene_object_dir(const struct scene_object *o, const double d[3], double out[3]);
 /* Whether n is a section name: 1 to 31 of [A-Za-z0-9_]. */
 int scene_valid_name(const char *n);
 /* Names of enum values, as written in scene files. */

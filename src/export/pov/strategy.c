@@ -10,6 +10,7 @@
 
 #include "geom/mesh.h"
 
+#include "export/pov/placement.h"
 #include "export/pov/vec3.h"
 
 /* One surface point: the exact two-light radiance and the mixture table's. */
@@ -122,8 +123,8 @@ static int object_points(const struct scene *s, const struct scene_object *o, in
 			memcpy(p[k], q, sizeof q);
 			memcpy(n[k], d, sizeof d);
 		} else {
-			scene_object_point(o, q, p[k]);
-			scene_object_dir(o, d, n[k]);
+			placement_point(o, q, p[k]);
+			placement_dir(o, d, n[k]);
 		}
 		k++;
 	}
@@ -179,7 +180,7 @@ void strategy_light(const struct scene_light *sl, struct pov_light *l)
 	memcpy(l->pos, sl->position, sizeof l->pos);
 	memcpy(l->rgb, sl->color, sizeof l->rgb);
 	double o[3] = { 0, 0, 0 };
-	scene_light_dir(sl, o, l->dir);
+	placement_light_dir(sl, o, l->dir);
 }
 
 void strategy_view(const struct scene_camera *c, struct pov_view *v)
@@ -231,7 +232,7 @@ int strategy_skin_bounds(const struct scene *s, int k, double lo[3], double hi[3
 			if (!seen)
 				continue;
 		} else
-			scene_object_bounds(o, a, b);
+			placement_bounds(o, a, b);
 		for (int j = 0; j < 3; j++) {
 			lo[j] = any ? fmin(lo[j], a[j]) : a[j];
 			hi[j] = any ? fmax(hi[j], b[j]) : b[j];
