@@ -20,6 +20,15 @@ struct specular_stack {
  * lossless interfaces, the same formula the transport launch uses). */
 double specular_stack_reflectance(const struct specular_stack *s, double cos_i);
 
+/* Schlick's approximation of the Fresnel reflectance at incidence cosine
+ * cos_i for relative index n. */
+double specular_schlick(double cos_i, double n);
+/* The GGX normal distribution D at the half-vector cosine cos_h, alpha2 =
+ * alpha^2 [1/sr]. */
+double specular_ggx_d(double cos_h, double alpha2);
+/* Smith's masking for GGX at cosine cos_v > 0, alpha2 = alpha^2. */
+double specular_smith_g1(double cos_v, double alpha2);
+
 /* GGX BRDF [1/sr] for incidence theta_i, exit theta_o [rad, 0..pi/2] and
  * delta_phi [rad] (0 = back toward the light, pi = mirror side); alpha > 0. */
 double specular_ggx(const struct specular_stack *s, double alpha, double theta_i, double theta_o, double dphi);

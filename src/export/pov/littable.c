@@ -10,6 +10,7 @@
 #include <stdlib.h>
 #include <string.h>
 
+#include "engine/specular.h"
 #include "export/pov/sdl.h"
 #include "export/pov/vec3.h"
 
@@ -29,18 +30,6 @@ void littable_view_dir(const struct pov_view *v, const double p[3], double out[3
 		vec3_unit_toward(p, v->pos, out);
 }
 
-static double schlick(double c, double n)
-{
-	double r0 = (n - 1) / (n + 1);
-	r0 *= r0;
-	return r0 + (1 - r0) * pow(1 - c, 5);
-}
-
-static double smith_g1(double c, double a2)
-{
-	return 2 * c / (c + sqrt(a2 + (1 - a2) * c * c));
-}
-
 void littable_brdf_analytic(void *ctx, double theta_i, double theta_o, double dphi, double rgb[3])
 {
 	static const double rho[3] = { 0.62, 0.42, 0.33 };
@@ -49,11 +38,11 @@ void littable_brdf_analytic(void *ctx, double theta_i, double theta_o, double dp
 	double ci = cos(theta_i), co = cos(theta_o);
 	double wi[3] = { sin(theta_i), 0, ci }, wo[3] = { sin(theta_o) * cos(dphi), sin(theta_o) * sin(dphi), co };
 	double h[3] = { wi[0] + wo[0], wi[1] + wo[1], wi[2] + wo[2] }, hn = sqrt(vec3_dot(h, h));
-	double t = (1 - schlick(ci, n)) * (1 - schlick(co, n)) / M_PI, spec = 0;
+	double t = (1 - specular_schlick(ci, n)) * (1 - specular_schlick(co, n)) / M_PI, spec = 0;
 	if (hn > 1e-12 && ci > 1e-6 && co > 1e-6) {
-		double ch = h[2] / hn, cd = vec3_dot(wi, h) / hn, q = ch * ch * (a2 - 1) + 1;
-		double d = a2 / (M_PI * q * q);
-		spec = schlick(cd, n) * d * smith_g1(ci, a2) * smith_g1(co, a2) / (4 * ci * co);
+		double ch = h[2] / hn, cd = vec3_dot(wi, h) / hn;
+		spec = specular_schlick(cd, n) * specular_ggx_d(ch, a2) * specular_smith_g1(ci, a2)
+		    * specular_smith_g1(co, a2) / (4 * ci * co);
 	}
 	for (int c = 0; c < 3; c++)
 		rgb[c] = rho[c] * t + spec;
