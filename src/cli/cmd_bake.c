@@ -11,10 +11,10 @@
 #include "bake/bakefile.h"
 #include "cli/cli.h"
 #include "cli/opt.h"
-#include "skin/colour.h"
 #include "skin/preset.h"
-#include "skin/tissue.h"
 #include "base/util.h"
+
+static const char *CMD = "bake";
 
 /* --resolution TxP. */
 static int parse_resolution(struct opt_ctx *x, const struct opt *o, const char *v)
@@ -33,6 +33,96 @@ static int parse_resolution(struct opt_ctx *x, const struct opt *o, const char *
 	free(c);
 	if (rc == 0)
 		s->n_to = (int)a, s->n_phi = (int)b;
+	return rc;
+}
+
+/* "skinbake ARGS...", for the manifest.  Caller frees. */
+static char *command_line(int argc, char **argv)
+{
+	char *cmdline = xstrdup("skinbake");
+	for (int i = 0; i < argc; i++) {
+		char *t = xasprintf("%s %s", cmdline, argv[i]);
+		free(cmdline);
+		cmdline = t;
+	}
+	return cmdline;
+}
+
+/* After the options: the preset's layer stacks, the bake, the directory. */
+static int run(struct bake_spec *s, const char *preset, const char *pfile, const char *out, int have_wl, int quiet,
+    int argc, char **argv)
+{
+	const char *label = preset ? preset : pfile;
+	char *cause = NULL;
+	struct skin_params *p = preset ? preset_load_builtin(preset, &cause) : preset_load_file(pfile, &cause);
+	if (p == NULL) {
+		int rc = cli_usage_error(CMD, "%s", cause);
+		free(cause);
+		return rc;
+	}
+	if (!have_wl) {
+		if (p->n_wl > BAKE_MAX_WL) {
+			int rc = cli_usage_error(CMD, "preset %s lists %d wavelengths; a bake takes at most %d "
+			    "(choose with --wavelengths or --spectral)", label, p->n_wl, BAKE_MAX_WL);
+			preset_free(p);
+			return rc;
+		}
+		s->n_wl = preset_default_wavelengths(p, s->wl_nm, BAKE_MAX_WL);
+	}
+	if ((long)s->n_wl * s->n_ti * s->min_batches * s->batch_photons > s->max_photons) {
+		preset_free(p);
+		return cli_usage_error(CMD, "--max-photons = %ld is below the first round of the bake "
+		    "(%d wavelengths x %d angles x %d batches x %ld photons)", s->max_photons, s->n_wl, s->n_ti,
+		    s->min_batches, s->batch_photons);
+	}
+	if (bake_spec_layers(s, p, label, &cause) != 0) {
+		int rc = cli_usage_error(CMD, "%s", cause);
+		free(cause);
+		preset_free(p);
+		return rc;
+	}
+	double *m = xmalloc(sizeof(double) * 3 * (size_t)s->n_wl);
+	char *cmdline = command_line(argc, argv);
+	struct bake_meta meta = {
+		.preset = label,
+		.ior = preset_surface_ior(p),
+		.roughness = preset_surface_roughness(p),
+		.rgb_from_wl = m,
+		.rgb_note = bake_rgb_weights(s, m),
+		.command = cmdline,
+	};
+	s->rank = cli_par.rank;
+	s->n_ranks = cli_par.size;
+	s->allreduce = cli_par.allreduce;
+	struct cli_progress pr;
+	cli_progress_start(&pr, "bake");
+	if (cli_par.rank != 0)
+		pr.tty = 0;
+	s->progress = cli_progress_update;
+	s->progress_user = &pr;
+	struct bake_result r;
+	int ok = bake_run(s, &r, &cause) == 0, rc = CLI_EXIT_OK;
+	cli_progress_end(&pr);
+	if (!ok) {
+		rc = cli_usage_error(CMD, "%s", cause);
+		free(cause);
+	} else if (cli_par.rank != 0) {
+		/* Every rank holds the whole result; rank 0 writes it. */
+	} else if (bake_write(out, s, &r, &meta, &cause) != 0) {
+		rc = cli_fail(CMD, "%s", cause);
+		free(cause);
+	} else if (!quiet) {
+		printf("skinbake bake: %s -> %s\n  %d wavelengths x %d incidence angles, table %d x %d\n"
+		    "  photons %ld, %.2f s, RMS relative error %.4f (target %g: %s)\n",
+		    meta.preset, out, s->n_wl, s->n_ti, s->n_to, s->n_phi, r.table.photons, r.table.seconds,
+		    r.table.rms_rel_err, s->target_error, s->target_error <= 0 ? "none"
+		    : r.table.target_met ? "met" : "NOT met, photon budget spent");
+	}
+	if (ok)
+		bake_result_free(&r);
+	free(cmdline);
+	free(m);
+	preset_free(p);
 	return rc;
 }
 
@@ -101,84 +191,5 @@ int cmd_bake(int argc, char **argv)
 	s.min_batches = 8;
 	s.n_ranks = 1;
 	int have_wl = wl.n > 0;
-	const char *CMD = cmd.name;
-
-	char *cause = NULL;
-	struct skin_params *p = preset ? preset_load_builtin(preset, &cause) : preset_load_file(pfile, &cause);
-	if (p == NULL) {
-		int rc = cli_usage_error(CMD, "%s", cause);
-		free(cause);
-		return rc;
-	}
-	if (!have_wl) {
-		if (p->n_wl > BAKE_MAX_WL) {
-			int rc = cli_usage_error(CMD, "preset %s lists %d wavelengths; a bake takes at most %d "
-			    "(choose with --wavelengths or --spectral)", preset ? preset : pfile, p->n_wl, BAKE_MAX_WL);
-			preset_free(p);
-			return rc;
-		}
-		s.n_wl = preset_default_wavelengths(p, s.wl_nm, BAKE_MAX_WL);
-	}
-	if ((long)s.n_wl * s.n_ti * s.min_batches * s.batch_photons > s.max_photons) {
-		preset_free(p);
-		return cli_usage_error(CMD, "--max-photons = %ld is below the first round of the bake "
-		    "(%d wavelengths x %d angles x %d batches x %ld photons)", s.max_photons, s.n_wl, s.n_ti,
-		    s.min_batches, s.batch_photons);
-	}
-	for (int w = 0; w < s.n_wl; w++) {
-		if (tissue_slab(p, s.wl_nm[w], &s.slab[w], &cause) != 0) {
-			int rc = cli_usage_error(CMD, "%s at %.0f nm: %s", preset ? preset : pfile, s.wl_nm[w], cause);
-			free(cause);
-			preset_free(p);
-			return rc;
-		}
-	}
-	double *m = xmalloc(sizeof(double) * 3 * (size_t)s.n_wl);
-	colour_rgb_weights(s.n_wl, s.wl_nm, m);
-	s.rank = cli_par.rank;
-	s.n_ranks = cli_par.size;
-	s.allreduce = cli_par.allreduce;
-	struct cli_progress pr;
-	cli_progress_start(&pr, "bake");
-	if (cli_par.rank != 0)
-		pr.tty = 0;
-	s.progress = cli_progress_update;
-	s.progress_user = &pr;
-	struct bake_result r;
-	bake_run(&s, &r);
-	cli_progress_end(&pr);
-
-	char *cmdline = xstrdup("skinbake");
-	for (int i = 0; i < argc; i++) {
-		char *t = xasprintf("%s %s", cmdline, argv[i]);
-		free(cmdline);
-		cmdline = t;
-	}
-	int three = s.n_wl == 3 && s.wl_nm[0] == 470 && s.wl_nm[1] == 550 && s.wl_nm[2] == 656;
-	struct bake_meta meta = {
-		.preset = preset ? preset : pfile,
-		.ior = preset_surface_ior(p),
-		.roughness = preset_surface_roughness(p),
-		.rgb_from_wl = m,
-		.rgb_note = three ? "the paper's three wavelengths map directly: 656 nm -> R, 550 nm -> G, 470 nm -> B"
-				  : "CIE 1931 2-degree colour matching under D65, reflectance normalised to the perfect white",
-		.command = cmdline,
-	};
-	int rc = CLI_EXIT_OK;
-	if (cli_par.rank != 0) {
-		/* Every rank holds the whole result; rank 0 writes it. */
-	} else if (bake_write(out, &s, &r, &meta, &cause) != 0) {
-		rc = cli_fail(CMD, "%s", cause);
-		free(cause);
-	} else if (!quiet) {
-		printf("skinbake bake: %s -> %s\n  %d wavelengths x %d incidence angles, table %d x %d\n"
-		    "  photons %ld, %.2f s, RMS relative error %.4f (target %g: %s)\n",
-		    meta.preset, out, s.n_wl, s.n_ti, s.n_to, s.n_phi, r.photons, r.seconds, r.rms_rel_err,
-		    s.target_error, s.target_error <= 0 ? "none" : r.target_met ? "met" : "NOT met, photon budget spent");
-	}
-	free(cmdline);
-	free(m);
-	bake_result_free(&r);
-	preset_free(p);
-	return rc;
+	return run(&s, preset, pfile, out, have_wl, quiet, argc, argv);
 }

@@ -6,28 +6,48 @@
 #include <stdlib.h>
 #include <string.h>
 
-#include "bake/bakefile.h"
 #include "export/blender/blender.h"
+#include "export/source.h"
 #include "cli/cli.h"
 #include "cli/opt.h"
 #include "base/util.h"
 
-static void bake_f(void *ctx, double ti, double to, double dphi, double rgb[3])
+static const char *CMD = "export blender";
+
+/* After the options: the bake (and textures) as a BRDF source, the image set. */
+static int run(const char *bake_dir, const char *tex_dir, const char *out, const struct blender_options *o)
 {
-	bake_eval_rgb(ctx, ti, to, dphi, rgb);
+	char *cause = NULL;
+	struct brdf_source *src = brdf_source_open(bake_dir, &cause);
+	if (src == NULL) {
+		int rc = cli_usage_error(CMD, "--bake: %s", cause);
+		free(cause);
+		return rc;
+	}
+	struct blender_set *s = NULL;
+	int rc = CLI_EXIT_OK;
+	if (blender_check(src, o, &cause) != 0 || (tex_dir && brdf_source_add_textures(src, tex_dir, &cause) != 0) ||
+	    (s = blender_prepare(src, o, &cause)) == NULL)
+		rc = cli_usage_error(CMD, "%s", cause);
+	else if (blender_write(s, out, &cause) != 0)
+		rc = cli_fail(CMD, "%s", cause);
+	free(cause);
+	blender_set_free(s);
+	brdf_source_free(src);
+	return rc;
 }
 
 int cmd_export_blender(int argc, char **argv)
 {
 	struct blender_options o;
-	const char *bake_dir, *out;
+	const char *bake_dir, *out, *tex_dir = NULL;
 	double se, sa, ve, va;
 	blender_options_default(&o);
 	const struct opt opts[] = {
 		{ "bake", OPT_PATH_IN, &bake_dir, "DIR", .flags = OPT_REQUIRED | OPT_DIR,
 		  .help = "bake directory written by `skinbake bake`" },
 		{ "out", OPT_PATH_OUT, &out, "DIR", .flags = OPT_REQUIRED, .help = "output directory, created if needed" },
-		{ "textures", OPT_PATH_IN, &o.textures, "DIR", .flags = OPT_DIR, .def_note = "flat maps, noted in the manifest",
+		{ "textures", OPT_PATH_IN, &tex_dir, "DIR", .flags = OPT_DIR, .def_note = "flat maps, noted in the manifest",
 		  .help = "`skinbake texture` output (height.png, normal.png)" },
 		{ "sun-elevation", OPT_DOUBLE, &se, "DEG", "45", .lo = 0, .hi = 90, .flags = OPT_LO_OPEN, .unit = "deg",
 		  .help = "default sun for the exact mode, above the horizon," },
@@ -61,40 +81,5 @@ int cmd_export_blender(int argc, char **argv)
 	o.sun_azimuth = sa * M_PI / 180.0;
 	o.view_elevation = ve * M_PI / 180.0;
 	o.view_azimuth = va * M_PI / 180.0;
-	const char *CMD = cmd.name;
-
-	char *cause = NULL;
-	struct bake *b = bake_load(bake_dir, &cause);
-	if (b == NULL) {
-		int rc = cli_usage_error(CMD, "--bake: %s", cause);
-		free(cause);
-		return rc;
-	}
-	struct blender_model m = {
-		.f_rgb = bake_f,
-		.ctx = b,
-		.n_albedo = b->n_ti,
-		.theta_albedo = b->theta_i,
-		.albedo_rgb = b->albedo_rgb,
-		.ior = b->ior,
-		.roughness = b->roughness,
-		.sss_radius_cm = { b->sss_radius_rgb_cm[0], b->sss_radius_rgb_cm[1], b->sss_radius_rgb_cm[2] },
-		.source = b->dir,
-		.preset = b->preset,
-	};
-	struct blender_set *s = blender_prepare(&m, &o, &cause);
-	if (s == NULL) {
-		int rc = cli_usage_error(CMD, "%s", cause);
-		free(cause);
-		bake_free(b);
-		return rc;
-	}
-	int rc = CLI_EXIT_OK;
-	if (blender_write(s, out, &cause) != 0) {
-		rc = cli_fail(CMD, "%s", cause);
-		free(cause);
-	}
-	blender_set_free(s);
-	bake_free(b);
-	return rc;
+	return run(bake_dir, tex_dir, out, &o);
 }

@@ -1,7 +1,18 @@
+/* specular: the analytic GGX surface reflection of the clear top stack
+ * (see specular.h). */
 #include "config.h"
 #include "engine/specular.h"
 
 #include <math.h>
+
+void specular_stack_of_slab(const struct slab *s, enum optics_fresnel model, struct specular_stack *out)
+{
+	out->model = model;
+	out->n = 0;
+	int last = s->first_turbid <= s->n_layers ? s->first_turbid : s->n_layers + 1;
+	for (int i = 0; i <= last && out->n < SPECULAR_MAX_IFACES; i++)
+		out->n_list[out->n++] = s->layer[i].n;
+}
 
 double specular_stack_reflectance(const struct specular_stack *s, double cos_i)
 {
@@ -28,9 +39,9 @@ double specular_smith_g1(double cos_v, double alpha2)
 }
 
 /* Smith's masking for GGX in its tangent form: the same function as
- * specular_smith_g1, but its last bits differ for some angles and every
- * bake so far was made with this one; unify in a commit that may change
- * outputs. */
+ * specular_smith_g1, but half of its values differ in the last bit, and
+ * these are the ones every bake's eval and exports were made with.  One
+ * form should replace the other in a commit that may change outputs. */
 static double g1(double alpha, double cos_v)
 {
 	if (cos_v <= 0.0)
