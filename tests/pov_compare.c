@@ -32,7 +32,7 @@
 #include <stdlib.h>
 #include <string.h>
 
-#include "bake/bakefile.h"
+#include "export/source.h"
 #include "io/pngio.h"
 #include "export/pov/littable.h"
 #include "export/pov/placement.h"
@@ -171,11 +171,6 @@ static void shade(const struct scene *s, const struct pov_brdf *f, int only, con
 	}
 }
 
-static void bake_fn(void *ctx, double ti, double to, double dphi, double rgb[3])
-{
-	bake_eval_rgb(ctx, ti, to, dphi, rgb);
-}
-
 static int cmd_expect(int argc, char **argv)
 {
 	const char *scene_path = NULL, *bake_dir = NULL, *render = NULL, *only_name = NULL;
@@ -207,13 +202,13 @@ static int cmd_expect(int argc, char **argv)
 		for (int k = 0; k < s->n_lights; k++)
 			if (!strcmp(s->lights[k].name, only_name))
 				only = k;
-	struct bake *b = NULL;
+	struct brdf_source *b = NULL;
 	struct pov_brdf f = { .f_rgb = littable_brdf_analytic };
 	if (!analytic) {
-		b = bake_load(bake_dir, &cause);
+		b = brdf_source_open(bake_dir, &cause);
 		if (b == NULL)
 			return fprintf(stderr, "pov_compare: %s\n", cause), 2;
-		f = (struct pov_brdf){ .f_rgb = bake_fn, .ctx = b };
+		f = (struct pov_brdf){ .f_rgb = b->f_rgb, .ctx = b->ctx };
 	}
 	int w, h;
 	float *img = load(render, &w, &h);
@@ -292,7 +287,7 @@ static int cmd_expect(int argc, char **argv)
 	    mre, sum_ref > 0 ? sum_abs / sum_ref : INFINITY, n_px, n_shadow, shadow_bad, n_clip, vmax);
 	free(px);
 	free(img);
-	bake_free(b);
+	brdf_source_free(b);
 	scene_free(s);
 	return mre <= tol && shadow_bad == 0 && n_px > 100 ? 0 : 1;
 }

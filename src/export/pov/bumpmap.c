@@ -9,45 +9,34 @@
 #include <stdlib.h>
 
 #include "base/util.h"
+#include "geom/texdir.h"
 #include "io/pngio.h"
 
 int bumpmap_load(const char *dir, struct bumpmap *h, char **cause)
 {
-	int w, hh, ch, bits;
 	char *err = NULL;
-	h->src = xasprintf("%s/height.png", dir);
-	h->filter = 1;
-	uint16_t *px = pngio_read(h->src, &w, &hh, &ch, &bits, &err);
-	if (px == NULL) {
+	struct texdir *t = texdir_load(dir, 0, &err);
+	*h = (struct bumpmap){ .filter = 1 };
+	if (t == NULL) {
 		*cause = xasprintf("--textures %s: %s", dir, err);
 		free(err);
 		return -1;
 	}
-	h->px = px;
-	if (ch != 1 || bits != 16 || w != hh)
-		return *cause = xasprintf("%s: expected a square 16-bit grayscale PNG, got %dx%d, %d channel(s), %d bit",
-			   h->src, w, hh, ch, bits),
-		       -1;
-	static const char *keys[] = { "skinbake:tile_mm", "skinbake:height_min_um", "skinbake:height_max_um" };
-	double v[3];
-	for (int i = 0; i < 3; i++) {
-		char *t = pngio_read_text(h->src, keys[i]);
-		int bad = t == NULL || util_parse_double(t, &v[i]) != 0 || !isfinite(v[i]);
-		if (bad) {
-			*cause = xasprintf("%s: tEXt key %s is %s", h->src, keys[i], t ? "not a number" : "missing");
-			free(t);
-			return -1;
-		}
-		free(t);
+	h->src = xasprintf("%s/height.png", dir);
+	if (t->w != t->h || !t->have_range || !isfinite(t->tile_mm) || t->h_max_um < t->h_min_um) {
+		*cause = xasprintf("%s: the POV-Ray bump map needs a square tile with its height range, got %dx%d, "
+				   "tile_mm = %g, heights [%g, %g] um",
+		    h->src, t->w, t->h, t->tile_mm, t->h_min_um, t->h_max_um);
+		texdir_free(t);
+		return -1;
 	}
-	if (v[0] <= 0 || v[2] < v[1])
-		return *cause = xasprintf("%s: tile_mm = %g must be > 0 and height_max_um = %g >= height_min_um = %g",
-			   h->src, v[0], v[2], v[1]),
-		       -1;
-	h->size_px = w;
-	h->tile_mm = v[0];
-	h->h_min_um = v[1];
-	h->h_range_um = v[2] - v[1];
+	h->size_px = t->w;
+	h->tile_mm = t->tile_mm;
+	h->h_min_um = t->h_min_um;
+	h->h_range_um = t->h_max_um - t->h_min_um;
+	h->px = t->height;	/* taken over */
+	t->height = NULL;
+	texdir_free(t);
 	return 0;
 }
 

@@ -19,8 +19,9 @@ struct bumpmap {
 	int filter;		/* box-filter factor applied (1 = none) */
 };
 
-/* Read DIR/height.png; -1 and *cause (naming the file) when it is missing,
- * not a square 16-bit grayscale PNG, or lacks its skinbake tEXt keys. */
+/* The height map of texture directory DIR (read by geom/texdir); -1 and
+ * *cause (naming the file) when it is missing, not a square 16-bit
+ * grayscale tile, or lacks its physical range. */
 int bumpmap_load(const char *dir, struct bumpmap *h, char **cause);
 void bumpmap_free(struct bumpmap *h);
 /* Box-filter the map by factor f (a divisor of size_px) and re-encode it

@@ -10,8 +10,8 @@
 #include <string.h>
 #include <unistd.h>
 
-#include "bake/bakefile.h"
 #include "base/util.h"
+#include "export/source.h"
 #include "export/pov/bumpmap.h"
 #include "export/pov/povfiles.h"
 #include "export/pov/placement.h"
@@ -271,14 +271,9 @@ bad:
 	return NULL;
 }
 
-static void bake_fn(void *ctx, double ti, double to, double dphi, double rgb[3])
-{
-	bake_eval_rgb(ctx, ti, to, dphi, rgb);
-}
-
 /* Everything read for the skins before writing. */
 struct inputs {
-	struct bake *bk[SCENE_MAX_SKINS];
+	struct brdf_source *src[SCENE_MAX_SKINS];
 	struct bumpmap hm[SCENE_MAX_SKINS];
 	struct pov_skin ps[SCENE_MAX_SKINS];
 	char *heights[SCENE_MAX_SKINS];
@@ -288,7 +283,7 @@ struct inputs {
 static void inputs_free(struct inputs *in)
 {
 	for (int k = 0; k < SCENE_MAX_SKINS; k++) {
-		bake_free(in->bk[k]);
+		brdf_source_free(in->src[k]);
 		bumpmap_free(&in->hm[k]);
 		free(in->heights[k]);
 	}
@@ -313,7 +308,7 @@ static int load_brdf(const struct povexport_options *o, struct scene *s, int k, 
 		return *cause = xasprintf("skin '%s': no bake (give --bake DIR or bake = DIR in [skin %s])", sk->name,
 			   sk->name),
 		       -1;
-	struct bake *b = in->bk[k] = bake_load(dir, &err);
+	struct brdf_source *b = in->src[k] = brdf_source_open(dir, &err);
 	if (b == NULL) {
 		*cause = xasprintf("skin '%s': bake %s: %s", sk->name, dir, err);
 		free(err);
@@ -325,10 +320,10 @@ static int load_brdf(const struct povexport_options *o, struct scene *s, int k, 
 		free(sk->preset);
 		sk->preset = xstrdup(b->preset);
 	}
-	ps->brdf = (struct pov_brdf){ bake_fn, b, b->n_ti, b->n_to, b->theta_i, b->theta_o };
+	ps->brdf = (struct pov_brdf){ b->f_rgb, b->ctx, b->n_ti, b->n_to, b->theta_i, b->theta_o };
 	ps->ior = b->ior;
 	for (int ch = 0; ch < 3; ch++)
-		ps->albedo_rgb[ch] = b->albedo_rgb[ch * b->n_ti];
+		ps->albedo_rgb[ch] = b->albedo_rgb[ch * b->n_albedo];
 	return 0;
 }
 
