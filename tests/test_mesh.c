@@ -202,6 +202,61 @@ static void test_bump_matrix(void **state)
 	mesh_free(m);
 }
 
+/* Smooth subdivision: on the flat square the new vertices are the edge
+ * midpoints; on an octahedron with radial normals the PN edge point of the
+ * edge (1,0,0)-(0,1,0) is (0.625, 0.625, 0), toward the sphere. */
+static void test_subdivide(void **state)
+{
+	(void)state;
+	char *cause;
+	struct mesh *m = load("square.obj", NULL, &cause);
+	assert_non_null(m);
+	int nv = m->n_vertices;
+	mesh_subdivide(m);
+	assert_int_equal(m->n_triangles, 8);
+	assert_int_equal(m->n_vertices, nv + 5);	/* 4 sides and the diagonal */
+	assert_float_equal(mesh_area(m), 1, 1e-12);
+	assert_float_equal(mesh_uv_area(m), 1, 1e-12);
+	for (int v = 0; v < m->n_vertices; v++) {
+		assert_float_equal(m->position[v][2], 0, 1e-12);
+		assert_float_equal(m->uv[v][0], m->position[v][0], 1e-12);
+		assert_float_equal(m->uv[v][1], m->position[v][1], 1e-12);
+	}
+	mesh_free(m);
+
+	static const double p[6][3] = { { 1, 0, 0 }, { 0, 1, 0 }, { -1, 0, 0 }, { 0, -1, 0 }, { 0, 0, 1 }, { 0, 0, -1 } };
+	static const int f[8][3] = { { 0, 1, 4 }, { 1, 2, 4 }, { 2, 3, 4 }, { 3, 0, 4 }, { 1, 0, 5 }, { 2, 1, 5 }, { 3, 2, 5 },
+		{ 0, 3, 5 } };
+	struct mesh o = { .n_vertices = 6, .n_triangles = 8 };
+	o.position = xmalloc(sizeof *o.position * 6);
+	o.normal = xmalloc(sizeof *o.normal * 6);
+	o.triangle = xmalloc(sizeof *o.triangle * 8);
+	memcpy(o.position, p, sizeof p);
+	memcpy(o.normal, p, sizeof p);
+	memcpy(o.triangle, f, sizeof f);
+	double a0 = mesh_area(&o);
+	mesh_subdivide(&o);
+	assert_int_equal(o.n_triangles, 32);
+	assert_int_equal(o.n_vertices, 6 + 12);
+	int found = 0;
+	for (int v = 6; v < o.n_vertices; v++) {
+		double r = sqrt(o.position[v][0] * o.position[v][0] + o.position[v][1] * o.position[v][1]
+		    + o.position[v][2] * o.position[v][2]);
+		assert_float_equal(r, 0.625 * sqrt(2), 1e-12);	/* every edge alike */
+		found |= fabs(o.position[v][0] - 0.625) < 1e-12 && fabs(o.position[v][1] - 0.625) < 1e-12;
+		/* Normals stay unit and point outward. */
+		assert_float_equal(o.normal[v][0] * o.normal[v][0] + o.normal[v][1] * o.normal[v][1]
+		    + o.normal[v][2] * o.normal[v][2], 1, 1e-12);
+		assert_true(o.normal[v][0] * o.position[v][0] + o.normal[v][1] * o.position[v][1]
+		    + o.normal[v][2] * o.position[v][2] > 0);
+	}
+	assert_true(found);
+	assert_true(mesh_area(&o) > a0);	/* toward the sphere */
+	free(o.position);
+	free(o.normal);
+	free(o.triangle);
+}
+
 static void test_visible(void **state)
 {
 	(void)state;
@@ -236,6 +291,7 @@ int main(void)
 		cmocka_unit_test(test_names),
 		cmocka_unit_test(test_human),
 		cmocka_unit_test(test_bump_matrix),
+		cmocka_unit_test(test_subdivide),
 		cmocka_unit_test(test_visible),
 	};
 	return cmocka_run_group_tests(tests, NULL, NULL);

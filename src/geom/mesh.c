@@ -315,3 +315,88 @@ double mesh_uv_area(const struct mesh *m)
 	}
 	return a;
 }
+
+/* The new vertex on edge (a, b): PN-triangle edge midpoint
+ * (pa + pb) / 2 - (wab na + wba nb) / 8 with wab = (pb - pa) . na. */
+static void edge_vertex(struct mesh *m, int a, int b, int v)
+{
+	const double *pa = m->position[a], *pb = m->position[b], *na = m->normal[a], *nb = m->normal[b];
+	double d[3] = { pb[0] - pa[0], pb[1] - pa[1], pb[2] - pa[2] };
+	double wab = d[0] * na[0] + d[1] * na[1] + d[2] * na[2], wba = -(d[0] * nb[0] + d[1] * nb[1] + d[2] * nb[2]);
+	for (int i = 0; i < 3; i++) {
+		m->position[v][i] = 0.5 * (pa[i] + pb[i]) - (wab * na[i] + wba * nb[i]) / 8;
+		m->normal[v][i] = na[i] + nb[i];
+	}
+	if (normalize(m->normal[v]) == 0)
+		memcpy(m->normal[v], na, sizeof m->normal[v]);
+	if (m->uv == NULL)
+		return;
+	double t[3];
+	for (int i = 0; i < 2; i++)
+		m->uv[v][i] = 0.5 * (m->uv[a][i] + m->uv[b][i]);
+	for (int i = 0; i < 3; i++)
+		t[i] = m->tangent[a][i] + m->tangent[b][i];
+	double dn = t[0] * m->normal[v][0] + t[1] * m->normal[v][1] + t[2] * m->normal[v][2];
+	for (int i = 0; i < 3; i++)
+		t[i] -= dn * m->normal[v][i];
+	if (!(normalize(t) > 1e-12))
+		any_tangent(m->normal[v], t);
+	memcpy(m->tangent[v], t, sizeof t);
+	m->tangent[v][3] = m->tangent[a][3];
+}
+
+struct edge_key {
+	int a, b, v;	/* a < b; v the new vertex */
+};
+
+static int edge_cmp(const void *x, const void *y)
+{
+	const struct edge_key *p = x, *q = y;
+	return p->a != q->a ? (p->a > q->a) - (p->a < q->a) : (p->b > q->b) - (p->b < q->b);
+}
+
+void mesh_subdivide(struct mesh *m)
+{
+	int nt = m->n_triangles, nv = m->n_vertices;
+	struct edge_key *e = xmalloc(sizeof *e * 3 * (size_t)nt);
+	for (int t = 0; t < nt; t++)
+		for (int j = 0; j < 3; j++) {
+			int a = m->triangle[t][j], b = m->triangle[t][(j + 1) % 3];
+			e[3 * t + j] = (struct edge_key){ a < b ? a : b, a < b ? b : a, -1 };
+		}
+	qsort(e, 3 * (size_t)nt, sizeof *e, edge_cmp);
+	int ne = 0;
+	for (int i = 0; i < 3 * nt; i++)
+		if (ne == 0 || edge_cmp(&e[ne - 1], &e[i]) != 0)
+			e[ne++] = e[i];
+	size_t cap = (size_t)(nv + ne);
+	m->position = xreallocarray(m->position, cap, sizeof *m->position);
+	m->normal = xreallocarray(m->normal, cap, sizeof *m->normal);
+	if (m->uv != NULL) {
+		m->uv = xreallocarray(m->uv, cap, sizeof *m->uv);
+		m->tangent = xreallocarray(m->tangent, cap, sizeof *m->tangent);
+	}
+	for (int i = 0; i < ne; i++) {
+		e[i].v = nv + i;
+		edge_vertex(m, e[i].a, e[i].b, e[i].v);
+	}
+	int (*tri)[3] = xmalloc(sizeof *tri * 4 * (size_t)nt);
+	for (int t = 0; t < nt; t++) {
+		int c[3], mid[3];
+		for (int j = 0; j < 3; j++) {
+			int a = m->triangle[t][j], b = m->triangle[t][(j + 1) % 3];
+			struct edge_key k = { a < b ? a : b, a < b ? b : a, -1 };
+			mid[j] = ((struct edge_key *)bsearch(&k, e, (size_t)ne, sizeof *e, edge_cmp))->v;
+			c[j] = a;
+		}
+		/* Corners keep the winding: (c0, m01, m20), (m01, c1, m12), ... */
+		int q[4][3] = { { c[0], mid[0], mid[2] }, { mid[0], c[1], mid[1] }, { mid[2], mid[1], c[2] },
+			{ mid[0], mid[1], mid[2] } };
+		memcpy(tri[4 * t], q, sizeof q);
+	}
+	free(m->triangle);
+	m->triangle = tri;
+	m->n_triangles = 4 * nt;
+	m->n_vertices = nv + ne;
+	free(e);
+}

@@ -34,6 +34,17 @@ struct mesh {
 struct mesh *mesh_load(const char *path, const char *name, char **cause);
 void mesh_free(struct mesh *m);
 
+/* One level of smooth subdivision: every triangle into four, the new
+ * vertex of an edge on the cubic curve that the edge's end normals define
+ * (the edge of a PN triangle: Vlachos, Peters, Boyd & Mitchell, "Curved PN
+ * triangles", I3D 2001), its normal, UV and tangent the ends' means.  The
+ * geometry moves toward the smooth surface the normals describe, which
+ * shrinks what coarse meshes show: faceted silhouettes and shadow
+ * terminators that follow triangle edges.  Vertices split at UV seams get
+ * the same new positions on both sides (they depend on positions and
+ * normals only). */
+void mesh_subdivide(struct mesh *m);
+
 /* Axis-aligned bounds [model units]. */
 void mesh_bounds(const struct mesh *m, double lo[3], double hi[3]);
 /* Surface area [model units^2]; with uv, the area in UV space [-]. */

@@ -92,3 +92,14 @@ void placement_mesh(struct scene_object *o)
 	}
 	mesh_bounds(m, o->mesh_lo, o->mesh_hi);
 }
+
+int placement_load_mesh(struct scene_object *o, char **cause)
+{
+	o->mesh = mesh_load(o->file, o->mesh_name, cause);
+	if (o->mesh == NULL)
+		return -1;
+	for (int i = 0; i < o->subdivide; i++)
+		mesh_subdivide(o->mesh);
+	placement_mesh(o);
+	return 0;
+}

@@ -17,4 +17,7 @@ void placement_dir(const struct scene_object *o, const double d[3], double out[3
  * frames flipped with it, then the object's scale, rotate, translate; sets
  * the object's bounds. */
 void placement_mesh(struct scene_object *o);
+/* Read a mesh object's model (file and mesh name), subdivide it as asked
+ * and place it; -1 and *cause when the model cannot be read. */
+int placement_load_mesh(struct scene_object *o, char **cause);
 #endif

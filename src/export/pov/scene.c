@@ -351,9 +351,17 @@ static int key_object(struct parse *p, int idx, const char *k, const char *v)
 		free(o->mesh_name);
 		o->mesh_name = xstrdup(v);
 		p->obj_has[idx] |= OBJ_MESH;
+	} else if (!strcmp(k, "subdivide")) {
+		double x;
+		if (num(p, k, v, 0, 3, &x) != 0)
+			return 0;
+		if (x != floor(x))
+			return fail(p, "subdivide = %s is not a whole number of levels", v);
+		o->subdivide = (int)x;
+		p->obj_has[idx] |= OBJ_MESH;
 	} else
 		return fail(p, "[object %s]: unknown key '%s' (keys shape, material, skin, color, center, radius, "
-		    "size, normal, offset, scale, rotate, translate, file, mesh)", o->name, k);
+		    "size, normal, offset, scale, rotate, translate, file, mesh, subdivide)", o->name, k);
 	return 1;
 }
 
@@ -449,14 +457,11 @@ static double dist3(const double a[3], const double b[3])
 static int load_mesh(struct parse *p, struct scene_object *o)
 {
 	char *cause = NULL;
-	o->mesh = mesh_load(o->file, o->mesh_name, &cause);
-	if (o->mesh == NULL) {
-		fail(p, "[object %s]: %s", o->name, cause);
-		free(cause);
-		return -1;
-	}
-	placement_mesh(o);
-	return 0;
+	if (placement_load_mesh(o, &cause) == 0)
+		return 0;
+	fail(p, "[object %s]: %s", o->name, cause);
+	free(cause);
+	return -1;
 }
 
 /* Checks that need the whole file; errors point at the section's first line. */
@@ -499,7 +504,7 @@ static int validate(struct parse *p)
 		if (o->shape == SCENE_MESH && !(p->obj_has[i] & OBJ_FILE))
 			return fail(p, "[object %s]: a mesh needs file = PATH (a model libassimp reads)", o->name), -1;
 		if (o->shape != SCENE_MESH && (p->obj_has[i] & (OBJ_FILE | OBJ_MESH)))
-			return fail(p, "[object %s]: file and mesh are only for shape = mesh", o->name), -1;
+			return fail(p, "[object %s]: file, mesh and subdivide are only for shape = mesh", o->name), -1;
 		if (o->shape == SCENE_MESH && load_mesh(p, o) != 0)
 			return -1;
 		if (o->material == SCENE_MAT_MODEL && o->shape != SCENE_MESH)
@@ -590,8 +595,3 @@ int scene_find_skin(const struct scene *s, const char *name)
 			return i;
 	return -1;
 }
-
-
-
-
-

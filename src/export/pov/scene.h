@@ -63,6 +63,7 @@ struct scene_object {
 	double translate[3];	/* [units] */
 	char *file;		/* mesh: model file (resolved against the scene file) */
 	char *mesh_name;	/* mesh: the mesh or node of the file, NULL = all of them */
+	int subdivide;		/* mesh: levels of smooth subdivision (mesh_subdivide), 0 to 3 */
 	struct mesh *mesh;	/* mesh: loaded and placed: POV-Ray world coordinates [units] */
 	double mesh_lo[3], mesh_hi[3];	/* mesh: world bounds [units] */
 };
