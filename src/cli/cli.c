@@ -106,6 +106,10 @@ int main(int argc, char **argv)
 
 static void vmsg(const char *cmd, const char *fmt, va_list ap)
 {
+	/* Under MPI every rank parses the same input and meets the same error:
+	 * rank 0 speaks for all (main's MPI_Allreduce gives the exit status). */
+	if (cli_par.rank != 0)
+		return;
 	fprintf(stderr, "skinbake %s: ", cmd);
 	vfprintf(stderr, fmt, ap);
 	fputc('\n', stderr);
