@@ -426,15 +426,16 @@ struct bake *bake_load(const char *dir, char **cause)
 	}
 	o = json_object_from_file(mpath);
 	json_object *v;
-	if (o == NULL || !json_object_object_get_ex(o, "format", &v) || strcmp(json_object_get_string(v), "skinbake-bake") != 0) {
+	if (o == NULL || !json_object_object_get_ex(o, "format", &v) || !json_object_is_type(v, json_type_string) ||
+	    strcmp(json_object_get_string(v), "skinbake-bake") != 0) {
 		*cause = xasprintf("%s: not a skinbake bake manifest (corrupt JSON or wrong format)", mpath);
 		goto fail;
 	}
-	if ((int)jnum(o, "format_version", 0) != BAKE_FORMAT_VERSION) {
+	if (jnum(o, "format_version", 0) != BAKE_FORMAT_VERSION) {	/* a double: (int)1e999 is undefined */
 		*cause = xasprintf("%s: format_version %g is not %d", mpath, jnum(o, "format_version", 0), BAKE_FORMAT_VERSION);
 		goto fail;
 	}
-	if (json_object_object_get_ex(o, "preset", &v))
+	if (json_object_object_get_ex(o, "preset", &v) && json_object_is_type(v, json_type_string))
 		b->preset = xstrdup(json_object_get_string(v));
 	double *tmp;
 	int n;
@@ -482,7 +483,8 @@ struct bake *bake_load(const char *dir, char **cause)
 	b->stack = xcalloc((size_t)b->n_wl, sizeof *b->stack);
 	json_object *fr;
 	enum optics_fresnel model = OPTICS_FRESNEL_EXACT;
-	if (json_object_object_get_ex(sp, "fresnel", &fr) && strcmp(json_object_get_string(fr), "schlick") == 0)
+	if (json_object_object_get_ex(sp, "fresnel", &fr) && json_object_is_type(fr, json_type_string) &&
+	    strcmp(json_object_get_string(fr), "schlick") == 0)
 		model = OPTICS_FRESNEL_SCHLICK;
 	if (!json_object_object_get_ex(sp, "stack_n", &v) || (int)json_object_array_length(v) != b->n_wl) {
 		*cause = xasprintf("%s: missing specular.stack_n", mpath);
@@ -502,18 +504,23 @@ struct bake *bake_load(const char *dir, char **cause)
 	}
 	b->sss_radius_cm = xcalloc((size_t)b->n_wl, sizeof(double));
 	if (json_object_object_get_ex(o, "radial", &rad)) {
+		/* Optional: a missing array leaves the radii 0 (each message is dropped). */
 		if (jnum_array(rad, "mean_radius_cm", &tmp, &n, cause, mpath) == 0) {
 			for (int w = 0; w < b->n_wl && w < n; w++)
 				b->sss_radius_cm[w] = tmp[w];
 			free(tmp);
+		} else {
+			free(*cause);
+			*cause = NULL;
 		}
 		if (jnum_array(rad, "mean_radius_rgb_cm", &tmp, &n, cause, mpath) == 0) {
 			for (int c = 0; c < 3 && c < n; c++)
 				b->sss_radius_rgb_cm[c] = tmp[c];
 			free(tmp);
+		} else {
+			free(*cause);
+			*cause = NULL;
 		}
-		free(*cause);
-		*cause = NULL;
 	}
 
 	/* Tables. */

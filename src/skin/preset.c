@@ -328,6 +328,13 @@ static int set_key(struct ctx *c, int ki, const char *v)
 			set_err(c, "%s.%s: longer than %g characters", k->section, k->name, k->hi);
 			return -1;
 		}
+		/* preset_to_ini writes the text back: a comment character in it
+		 * would cut the value when that text is read again. */
+		if (strpbrk(v, ";#") != NULL) {
+			set_err(c, "%s.%s = %s: ';' and '#' start comments in preset files; leave them out",
+			    k->section, k->name, v);
+			return -1;
+		}
 		if (strcmp(k->name, "name") == 0 && !valid_name(v)) {
 			set_err(c, "%s.%s = %s: use letters, digits, '.', '_' and '-' only", k->section, k->name, v);
 			return -1;
@@ -546,6 +553,20 @@ static void apply_defaults(struct skin_params *p)
 	free(c.ov_seen);
 }
 
+/* A name or description made from a file name must obey the rules of one
+ * given in the file (preset_to_ini writes it out): at most max characters,
+ * no comment characters, and for a name only [A-Za-z0-9._-]. */
+static void fit_text(char *s, size_t max, int name)
+{
+	if (strlen(s) > max)
+		s[max] = '\0';
+	for (char *q = s; *q; q++) {
+		char one[2] = { *q, '\0' };
+		if (*q == ';' || *q == '#' || (name && !valid_name(one)))
+			*q = '_';
+	}
+}
+
 static const char *base_name(const char *path)
 {
 	const char *s = strrchr(path, '/');
@@ -577,12 +598,22 @@ static struct skin_params *load_text(const char *text, const char *origin, int b
 			size_t len = strlen(n);
 			if (len > 4 && strcmp(n + len - 4, ".ini") == 0)
 				n[len - 4] = '\0';
+			fit_text(n, 64, 1);
+			if (*n == '\0') {
+				free(n);
+				n = xstrdup("preset");
+			}
 			p->name = n;
 		}
 	}
 	if (!c.desc_set) {
 		free(p->description);
-		p->description = builtin >= 0 ? xstrdup(preset_summary(builtin)) : xasprintf("preset file %s", origin);
+		if (builtin >= 0)
+			p->description = xstrdup(preset_summary(builtin));
+		else {
+			p->description = xasprintf("preset file %s", origin);
+			fit_text(p->description, 160, 0);
+		}
 	}
 	free(p->origin);
 	p->origin = xstrdup(builtin >= 0 ? "built-in" : origin);
