@@ -16,9 +16,9 @@ run presets
 run preset show paper
 run preset show fair-oily
 run preset keys
-run bake --preset paper --out bake --theta-in 4 --resolution 9x6 --target-error 0 --max-photons 400000 --batch-photons 1000 --quiet
+run bake --preset paper --out bake --theta-nodes 4 --resolution 9x6 --target-error 0 --max-photons 400000 --batch-photons 1000 --quiet
 run bake --preset fair-oily --out bake2 --wavelengths 450,550,650 --theta-in 30.0,60.0 --resolution 6x4 --target-error 0.2 --batch-photons 500 --quiet
-run bake --preset paper --out bakeb --estimator bins --theta-in 2 --resolution 6x4 --target-error 0 --max-photons 100000 --batch-photons 1000 --fresnel schlick --quiet
+run bake --preset paper --out bakeb --estimator bins --theta-nodes 2 --resolution 6x4 --target-error 0 --max-photons 100000 --batch-photons 1000 --fresnel schlick --quiet
 run eval --bake bake --theta-in 20 --theta-out 35 --phi 40
 run eval --bake bake --theta-in 20 --theta-out 35 --phi 40 --json
 run texture --site face --size 128 --out tex --quiet

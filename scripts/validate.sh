@@ -276,7 +276,7 @@ for p in $presets; do
 	paper | paper-dry)
 		# 8 nodes: 0, 11.25, ..., 78.75 deg = CUReT's in-plane incidences;
 		# the same bakes serve the renders of section 5.
-		set -- --theta-in 8 ;;
+		set -- --theta-nodes 8 ;;
 	*)
 		# CUReT is RGB camera data: bake at the paper's 470/550/656 nm,
 		# which map directly to B/G/R (docs/presets.md, "Colour and RGB").
@@ -706,7 +706,7 @@ and averaged over R, G, B.
 
 **Simulation.** Each preset is baked at these incidence angles (\`skinbake bake --preset P
 --theta-in 11.25,33.75,78.75 --batch-photons $BAKE_BATCH --target-error $BAKE_TARGET\`; \`paper\`
-and \`paper-dry\` with \`--theta-in 8\`, the nodes 0, 11.25, ..., 78.75°, which include them and
+and \`paper-dry\` with \`--theta-nodes 8\`, the nodes 0, 11.25, ..., 78.75°, which include them and
 serve the renders of section 5) and evaluated with
 \`skinbake eval --json\` at CUReT's view angles: Δφ = 0 for the back side (toward the light),
 180° for the mirror side. The value compared is the total (table diffuse + analytic GGX

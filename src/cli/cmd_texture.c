@@ -5,13 +5,13 @@
  * manifest.json.  Everything is validated before any file is written. */
 #include "config.h"
 
-#include <getopt.h>
 #include <json-c/json.h>
 #include <math.h>
 #include <stdlib.h>
 #include <string.h>
 
 #include "cli/cli.h"
+#include "cli/opt.h"
 #include "io/exrio.h"
 #include "io/pngio.h"
 #include "geom/relief.h"
@@ -20,66 +20,10 @@
 
 static const char *CMD = "texture";
 
-#define OPT_SITE 1
-#define OPT_PRESET 2
-#define OPT_OUT 3
-#define OPT_QUIET 4
-#define OPT_LIST 5
-#define OPT_DUMP 6
-#define OPT_HELP 'h'
-#define OPT_PARAM 1000
-
 static const char *NORMAL_CONVENTION = "OpenGL +Y";
 static const char *NORMAL_CONVENTION_LONG =
     "tangent space, OpenGL +Y: +X right, +Y up (toward row 0), +Z out of the skin; "
     "PNG value = (n + 1) / 2 * 65535";
-
-static void help(FILE *fp)
-{
-	struct texture_config def;
-	char *cause = NULL;
-	sites_load("face", &def, &cause);
-	fprintf(fp,
-	    "usage: skinbake texture [--site NAME | --preset-file FILE] [options] --out DIR\n"
-	    "\n"
-	    "Grow the micro-relief of skin (pores and a net of triangular furrows) as\n"
-	    "seamless, tileable maps: DIR/height.png (16-bit, physical range in its tEXt\n"
-	    "chunks), pores_height.png, furrows_height.png, normal.png (16-bit RGB) and\n"
-	    "normal.exr (float) in tangent space with the OpenGL +Y convention,\n"
-	    "height.exr (float, um), preview.png (8-bit) and manifest.json.\n"
-	    "\n"
-	    "  --site NAME            start from a body site (default face); see --list-sites\n"
-	    "  --preset-file FILE     start from the [texture] section of an INI file\n"
-	    "                         (keys as below with '_' for '-'; 'site = NAME' first\n"
-	    "                         resets to that site); applied after --site\n"
-	    "  --out DIR              output directory (created if missing)\n"
-	    "  --list-sites           list the sites and exit\n"
-	    "  --dump-config          print the resolved [texture] section and exit\n"
-	    "  --quiet                no summary on stderr\n"
-	    "  --help                 this text\n"
-	    "\n"
-	    "Parameters (override the site; default shown for site 'face'):\n");
-	int n;
-	const struct texture_param *p = sites_params(&n);
-	for (int i = 0; i < n; i++) {
-		char opt[64], range[96];
-		const char *unit = strcmp(p[i].unit, "1") == 0 ? "" : p[i].unit;
-		snprintf(opt, sizeof opt, "--%s %s", p[i].key, p[i].type == SITES_REAL ? "X" : "N");
-		snprintf(range, sizeof range, "[%.16g, %.16g]%s%s", p[i].lo, p[i].hi, *unit ? " " : "",
-		    unit);
-		fprintf(fp, "  %-24s %s %s (default %.10g)\n", opt, p[i].help, range,
-		    sites_get(&def, &p[i]));
-	}
-	fprintf(fp,
-	    "\n"
-	    "Finer furrow level k (k = 0 primary) has cell furrow-cell * level-scale^k,\n"
-	    "depth furrow-depth * level-gain^k, dome ridge-height * level-gain^k and\n"
-	    "width furrow-width * level-scale^(k/2) (at most half its cell).\n"
-	    "Heights are relative to the undisturbed surface; 0 in height.png is the\n"
-	    "lowest point of the map and 65535 the highest (skinbake:height_min_um and\n"
-	    "skinbake:height_max_um).  POV-Ray: bump_size = (max - min) * size / tile.\n"
-	    "Sources and details: docs/texture.md.\n");
-}
 
 static void list_sites(void)
 {
@@ -375,85 +319,62 @@ static void warn_resolution(const struct texture_config *cfg, const struct relie
 		    cfg->relief.pore_radius * 1e4, 1.5 * pitch * 1e4);
 }
 
-struct override {
-	const struct texture_param *p;
-	const char *value;
-};
-
 int cmd_texture(int argc, char **argv)
 {
 	int np;
 	const struct texture_param *params = sites_params(&np);
-	struct option *opts = xcalloc((size_t)np + 8, sizeof *opts);
-	int k = 0;
-	opts[k++] = (struct option){ "site", required_argument, NULL, OPT_SITE };
-	opts[k++] = (struct option){ "preset-file", required_argument, NULL, OPT_PRESET };
-	opts[k++] = (struct option){ "out", required_argument, NULL, OPT_OUT };
-	opts[k++] = (struct option){ "quiet", no_argument, NULL, OPT_QUIET };
-	opts[k++] = (struct option){ "list-sites", no_argument, NULL, OPT_LIST };
-	opts[k++] = (struct option){ "dump-config", no_argument, NULL, OPT_DUMP };
-	opts[k++] = (struct option){ "help", no_argument, NULL, OPT_HELP };
-	for (int i = 0; i < np; i++)
-		opts[k++] = (struct option){ params[i].key, required_argument, NULL, OPT_PARAM + i };
-
-	const char *site = NULL, *preset = NULL, *out = NULL;
-	int quiet = 0, dump = 0, rc = CLI_EXIT_USAGE, c;
-	struct override *ov = xcalloc((size_t)argc + 1, sizeof *ov);
-	int nov = 0;
+	const char *site = "face", *preset = NULL, *out = NULL;
+	int quiet = 0, dump = 0, list = 0, rc = CLI_EXIT_USAGE;
+	struct opt opts[OPT_MAX] = {
+		{ "site", OPT_STRING, &site, "NAME", "face", .help = "start from a body site (see --list-sites)" },
+		{ "preset-file", OPT_PATH_IN, &preset, "FILE", .flags = OPT_FILE, .help = "start from the [texture] "
+		  "section of an INI file (keys as below with '_' for '-'; 'site = NAME' first resets to that site); "
+		  "applied after --site" },
+		{ "out", OPT_PATH_OUT, &out, "DIR", .help = "output directory (created if missing), required unless "
+		  "--list-sites or --dump-config" },
+		{ "list-sites", OPT_FLAG, &list, .help = "list the sites and exit" },
+		{ "dump-config", OPT_FLAG, &dump, .help = "print the resolved [texture] section and exit" },
+		{ "quiet", OPT_FLAG, &quiet, .help = "no summary on stderr" },
+	};
+	/* One option per texture parameter, from the table in geom/sites.c. */
+	enum { N_FIXED = 6 };
+	char defs[OPT_MAX][32];
+	struct texture_config cfg;
 	char *cause = NULL;
+	sites_load("face", &cfg, &cause);
+	for (int i = 0; i < np && N_FIXED + i < OPT_MAX - 1; i++) {
+		const struct texture_param *p = &params[i];
+		snprintf(defs[i], sizeof defs[i], "%.10g", sites_get(&cfg, p));
+		opts[N_FIXED + i] = (struct opt){ p->key, p->type == SITES_REAL ? OPT_DOUBLE : OPT_LONG, NULL,
+			p->type == SITES_REAL ? "X" : "N", .def_note = defs[i], .lo = p->lo, .hi = p->hi,
+			.unit = strcmp(p->unit, "1") ? p->unit : NULL, .help = p->help };
+	}
+	const struct opt_cmd cmd = { "texture", "[--site NAME | --preset-file FILE] [options] --out DIR",
+		"Grow the micro-relief of skin (pores and a net of triangular furrows) as\n"
+		"seamless, tileable maps: DIR/height.png (16-bit, physical range in its tEXt\n"
+		"chunks), pores_height.png, furrows_height.png, normal.png (16-bit RGB) and\n"
+		"normal.exr (float) in tangent space with the OpenGL +Y convention,\n"
+		"height.exr (float, um), preview.png (8-bit) and manifest.json.  The\n"
+		"parameters after --quiet override the site; the defaults shown are site 'face'.", opts,
+		"Finer furrow level k (k = 0 primary) has cell furrow-cell * level-scale^k,\n"
+		"depth furrow-depth * level-gain^k, dome ridge-height * level-gain^k and\n"
+		"width furrow-width * level-scale^(k/2) (at most half its cell).\n\n"
+		"Heights are relative to the undisturbed surface; 0 in height.png is the\n"
+		"lowest point of the map and 65535 the highest (skinbake:height_min_um and\n"
+		"skinbake:height_max_um).  POV-Ray: bump_size = (max - min) * size / tile.\n"
+		"Sources and details: docs/texture.md.", 0, 0 };
+	struct opt_ctx x;
 	struct relief *r = NULL;
 	float *pores = NULL, *furrows = NULL, *h = NULL, *nx = NULL, *ny = NULL, *nz = NULL;
-
-	optind = 1;
-	opterr = 0;
-	while ((c = getopt_long(argc, argv, "h", opts, NULL)) != -1) {
-		switch (c) {
-		case OPT_SITE:
-			site = optarg;
-			break;
-		case OPT_PRESET:
-			preset = optarg;
-			break;
-		case OPT_OUT:
-			out = optarg;
-			break;
-		case OPT_QUIET:
-			quiet = 1;
-			break;
-		case OPT_LIST:
-			list_sites();
-			rc = CLI_EXIT_OK;
-			goto done;
-		case OPT_DUMP:
-			dump = 1;
-			break;
-		case OPT_HELP:
-			help(stdout);
-			rc = CLI_EXIT_OK;
-			goto done;
-		case '?':
-			if (optopt == 0)
-				cli_usage_error(CMD, "unknown option '%s' (see skinbake texture --help)",
-				    argv[optind - 1]);
-			else if ((optopt >= OPT_SITE && optopt <= OPT_DUMP) || optopt >= OPT_PARAM)
-				cli_usage_error(CMD, "option '%s' needs a value", argv[optind - 1]);
-			else
-				cli_usage_error(CMD, "unknown option '-%c' (see skinbake texture --help)", optopt);
-			goto done;
-		default:
-			if (c >= OPT_PARAM && c < OPT_PARAM + np)
-				ov[nov++] = (struct override){ &params[c - OPT_PARAM], optarg };
-			break;
-		}
-	}
-	if (optind < argc) {
-		cli_usage_error(CMD, "unexpected argument '%s'", argv[optind]);
-		goto done;
+	if (opt_parse(&x, &cmd, argc, argv) != 0)
+		return x.exit;
+	if (list) {
+		list_sites();
+		return CLI_EXIT_OK;
 	}
 
 	/* Site, then preset file, then the options in command-line order. */
-	struct texture_config cfg;
-	if (sites_load(site ? site : "face", &cfg, &cause) != 0) {
+	if (sites_load(site, &cfg, &cause) != 0) {
 		cli_usage_error(CMD, "--site: %s", cause);
 		goto done;
 	}
@@ -461,10 +382,10 @@ int cmd_texture(int argc, char **argv)
 		cli_usage_error(CMD, "--preset-file: %s", cause);
 		goto done;
 	}
-	for (int i = 0; i < nov; i++) {
+	for (int i = 0; i < np; i++) {
 		char label[64];
-		snprintf(label, sizeof label, "--%s", ov[i].p->key);
-		if (sites_set(&cfg, ov[i].p, label, ov[i].value, &cause) != 0) {
+		snprintf(label, sizeof label, "--%s", params[i].key);
+		if (opt_given(&x, params[i].key) && sites_set(&cfg, &params[i], label, opt_text(&x, params[i].key), &cause) != 0) {
 			cli_usage_error(CMD, "%s", cause);
 			goto done;
 		}
@@ -478,7 +399,7 @@ int cmd_texture(int argc, char **argv)
 		rc = CLI_EXIT_OK;
 		goto done;
 	}
-	if (out == NULL || *out == '\0') {
+	if (out == NULL) {
 		cli_usage_error(CMD, "--out DIR is required");
 		goto done;
 	}
@@ -555,8 +476,6 @@ int cmd_texture(int argc, char **argv)
 	rc = CLI_EXIT_OK;
 done:
 	free(cause);
-	free(opts);
-	free(ov);
 	relief_free(r);
 	free(pores);
 	free(furrows);
