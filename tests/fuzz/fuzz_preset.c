@@ -1,6 +1,8 @@
 /* Fuzz target: the preset INI reader (src/skin/preset.c).  A preset that
  * loads must also survive its own round trip: preset_to_ini's text loads
- * back and prints the same. */
+ * back and prints the same.  A first line "#origin:NAME" (a comment to the
+ * reader) makes NAME the file name, from which a preset without name and
+ * description takes both. */
 #include "config.h"
 #include "fuzz.h"
 
@@ -11,9 +13,14 @@
 
 int LLVMFuzzerTestOneInput(const uint8_t *data, size_t size)
 {
-	char *text = fuzz_text(data, size), *cause = NULL;
-	struct skin_params *p = preset_load_string(text, "fuzz.ini", &cause);
+	char *text = fuzz_text(data, size), *cause = NULL, *origin = NULL;
+	if (strncmp(text, "#origin:", 8) == 0) {
+		size_t n = strcspn(text + 8, "\n");
+		origin = fuzz_text((const uint8_t *)text + 8, n);
+	}
+	struct skin_params *p = preset_load_string(text, origin ? origin : "fuzz.ini", &cause);
 	free(text);
+	free(origin);
 	if (p == NULL) {
 		if (cause == NULL || *cause == '\0')
 			fuzz_fail("preset refused without a message");
