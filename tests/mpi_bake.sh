@@ -5,11 +5,6 @@
 MPI="$top_builddir/skinbake-mpi"
 args="--preset paper --theta-in 0,40 --resolution 6x4 --target-error 0.2 --batch-photons 500 --seed 7 --quiet"
 check "single-process bake" "$SKINBAKE" bake $args --out "$tmpd/one" --threads 2
-# Open MPI's own allocations are never freed (and partly sit in plug-ins it
-# unloads, beyond suppression by name): under a sanitizer build the ranks run
-# without LeakSanitizer; the same code is leak-checked by the other tests.
-ASAN_OPTIONS="${ASAN_OPTIONS:+$ASAN_OPTIONS:}detect_leaks=0"
-export ASAN_OPTIONS
 if command -v mpirun >/dev/null 2>&1; then
 	check "mpirun -np 2 bake" mpirun --allow-run-as-root -np 2 "$MPI" bake $args --out "$tmpd/two" --threads 1
 	for f in brdf.exr brdf_rgb.exr albedo.exr; do
