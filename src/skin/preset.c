@@ -555,16 +555,22 @@ static void apply_defaults(struct skin_params *p)
 
 /* A name or description made from a file name must obey the rules of one
  * given in the file (preset_to_ini writes it out): at most max characters,
- * no comment characters, and for a name only [A-Za-z0-9._-]. */
+ * no comment or control characters, no white space at the ends (the reader
+ * strips it), and for a name only [A-Za-z0-9._-]. */
 static void fit_text(char *s, size_t max, int name)
 {
 	if (strlen(s) > max)
 		s[max] = '\0';
 	for (char *q = s; *q; q++) {
 		char one[2] = { *q, '\0' };
-		if (*q == ';' || *q == '#' || (name && !valid_name(one)))
+		if (*q == ';' || *q == '#' || (unsigned char)*q < 0x20 || *q == 0x7f || (name && !valid_name(one)))
 			*q = '_';
 	}
+	size_t n = strlen(s), lead = strspn(s, " ");
+	while (n > lead && s[n - 1] == ' ')
+		n--;
+	memmove(s, s + lead, n - lead);
+	s[n - lead] = '\0';
 }
 
 static const char *base_name(const char *path)
