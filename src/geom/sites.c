@@ -317,8 +317,12 @@ struct ini_state {
 static int on_ini(void *user, const char *section, const char *name, const char *value)
 {
 	struct ini_state *st = user;
-	if (strcmp(section, "texture") != 0)
-		return 1;
+	if (strcmp(section, "texture") != 0) {
+		/* Keys before any section (headers are checked by on_section). */
+		if (st->error == NULL)
+			st->error = xasprintf("key '%s' outside the [texture] section", name);
+		return 0;
+	}
 	char *cause = NULL;
 	if (strcmp(name, "site") == 0) {
 		if (st->pass == 0 && sites_load(value, st->cfg, &cause) != 0)
@@ -343,6 +347,17 @@ bad:
 	return 0;
 }
 
+/* The only section of a texture file is [texture]. */
+static int on_section(void *user, const char *section)
+{
+	struct ini_state *st = user;
+	if (strcmp(section, "texture") == 0)
+		return 1;
+	if (st->error == NULL)
+		st->error = xasprintf("unknown section [%s] (a texture file has one section, [texture])", section);
+	return 0;
+}
+
 int sites_read_ini(const char *path, struct texture_config *cfg, char **cause)
 {
 	struct ini_state st = { cfg, path, 0, NULL };
@@ -351,7 +366,16 @@ int sites_read_ini(const char *path, struct texture_config *cfg, char **cause)
 		return -1;
 	for (st.pass = 0; st.pass < 2; st.pass++) {
 		struct inifile in;
-		int rc = inifile_parse(&in, path, text, on_ini, &st);
+		int rc = inifile_parse(&in, path, text, on_ini, on_section, &st);
+		if (in.error || (in.refused && st.error)) {
+			*cause = in.error ? in.error : xasprintf("%s:%d: %s", path, in.refused, st.error);
+			if (in.error)
+				free(st.error);
+			else
+				free(st.error), free(in.error);
+			free(text);
+			return -1;
+		}
 		if (in.too_long) {
 			*cause = xasprintf("%s:%d: line %d is longer than %d characters", path, in.too_long, in.too_long, in.max_line);
 			free(st.error);

@@ -385,6 +385,30 @@ static int find_layer(const char *s, size_t len)
 	return -1;
 }
 
+/* A section header, checked before its keys (an empty section is checked too). */
+int preset_section_check(struct preset_ctx *c, const char *section)
+{
+	if (strncmp(section, "override.", 9) == 0) {
+		double wl;
+		if (parse_number(section + 9, &wl) != 0) {
+			preset_ctx_err(c, "[%s]: '%s' is not a wavelength in nm (e.g. [override.550])", section, section + 9);
+			return -1;
+		}
+		if (!(wl >= SPECTRA_WL_MIN && wl <= SPECTRA_WL_MAX)) {
+			preset_ctx_err(c, "[%s]: wavelength %g nm is out of range [%g, %g] nm", section, wl, SPECTRA_WL_MIN,
+			    SPECTRA_WL_MAX);
+			return -1;
+		}
+		return 0;
+	}
+	if (preset_key_find(section, "") == -2) {
+		preset_ctx_err(c, "unknown section [%s] (sections: skin, sebum, epidermis, dermis, subcutis, surface, "
+		    "override.WL)", section);
+		return -1;
+	}
+	return 0;
+}
+
 /* [override.WL] LAYER.PROP = value */
 int preset_override_set(struct preset_ctx *c, const char *section, const char *name, const char *v)
 {

@@ -448,6 +448,27 @@ static int handler(void *user, const char *section, const char *k, const char *v
 	    "[object NAME])", section);
 }
 
+/* Every section header, also of a section without keys. */
+static int on_section(void *user, const char *section)
+{
+	struct parse *p = user;
+	static const char *const kinds[] = { "light", "skin", "object" };
+	char name[64];
+	if (p->err != NULL)
+		return 0;
+	if (!strcmp(section, "scene") || !strcmp(section, "camera"))
+		return 1;
+	for (size_t i = 0; i < sizeof kinds / sizeof kinds[0]; i++)
+		if (split_section(section, kinds[i], name)) {
+			if (!scene_valid_name(name))
+				return fail(p, "[%s]: '%s' is not a name (letters, digits, _; at most %d)", section, name,
+				    SCENE_NAME_MAX - 1);
+			return 1;
+		}
+	return fail(p, "unknown section [%s] (sections [scene], [camera], [light NAME], [skin NAME], "
+	    "[object NAME])", section);
+}
+
 static double dist3(const double a[3], const double b[3])
 {
 	return sqrt((a[0] - b[0]) * (a[0] - b[0]) + (a[1] - b[1]) * (a[1] - b[1]) + (a[2] - b[2]) * (a[2] - b[2]));
@@ -548,8 +569,13 @@ struct scene *scene_load(const char *path, char **cause)
 		scene_free(s);
 		return NULL;
 	}
-	int rc = inifile_parse(&p.in, path, text, handler, &p);
+	int rc = inifile_parse(&p.in, path, text, handler, on_section, &p);
 	free(text);
+	if (p.in.error && p.err == NULL) {
+		p.err = p.in.error;
+		p.in.error = NULL;
+	}
+	free(p.in.error);
 	if (p.in.too_long && p.err == NULL)
 		p.err = xasprintf("%s:%d: line %d is longer than %d characters", path, p.in.too_long, p.in.too_long, p.in.max_line);
 	if (rc != 0 && p.err == NULL) {
