@@ -11,6 +11,7 @@
 
 #include "base/check.h"
 #include "base/util.h"
+#include "engine/ad_solver.h"
 
 /* ---- writer ---- */
 
@@ -62,7 +63,7 @@ static void add_axes(json_object *o, const struct bake_spec *s)
 	free(e);
 }
 
-static json_object *table_info(const struct bake_spec *s)
+static json_object *table_info(const struct bake_spec *s, const struct bake_result *r)
 {
 	json_object *t = json_object_new_object();
 	add(t, "file", jstr("brdf.exr"));
@@ -72,7 +73,8 @@ static json_object *table_info(const struct bake_spec *s)
 	add(t, "column", jstr("delta_phi bin index"));
 	add(t, "value", jstr("diffuse (subsurface) BRDF [1/sr]: mean over the (theta_o, delta_phi) bin at the theta_i node; "
 	    "delta_phi = 0 back toward the light, 180 the mirror side"));
-	add(t, "channels", jstr("fr.<WL>nm and fr_err.<WL>nm (standard error)"));
+	add(t, "channels", jstr(strcmp(r->solver, "mc") == 0 ? "fr.<WL>nm and fr_err.<WL>nm (standard error)"
+	    : "fr.<WL>nm and fr_err.<WL>nm (its error estimate: see solver.error)"));
 	return t;
 }
 
@@ -146,6 +148,11 @@ static json_object *radial_info(const struct bake_spec *s, const struct bake_res
 	add(rad, "rd_r", prof);
 	add(rad, "rd_r_err", prof_e);
 	add(rad, "mean_radius_cm", jarr(r->mean_radius_cm, s->n_wl));
+	add(rad, "mean_radius_err_cm", jarr(r->mean_radius_err_cm, s->n_wl));
+	add(rad, "method", jstr(r->radial_photons > 0 ? "Monte Carlo at theta_i_deg, exit bins by escapes, apart from the "
+	    "table (its method gives no Rd(r))" : "Monte Carlo, the table's jobs at theta_i_deg"));
+	add(rad, "photons", json_object_new_int64(r->radial_photons > 0 ? r->radial_photons : r->table.entry[0].photons));
+	add(rad, "seconds", json_object_new_double(r->radial_seconds));
 	/* Per RGB channel: the wavelengths' radii weighted by |rgb_from_wl|. */
 	double rr[3];
 	for (int c = 0; c < 3; c++) {
@@ -164,11 +171,50 @@ static json_object *radial_info(const struct bake_spec *s, const struct bake_res
 	return rad;
 }
 
-static json_object *settings_info(const struct bake_spec *s)
+/* Which method made the table, how, and what its errors mean. */
+static json_object *solver_info(const struct bake_spec *s, const struct bake_result *r)
+{
+	static const char *requested[] = { "mc", "ad", "auto" };
+	json_object *so = json_object_new_object();
+	add(so, "name", jstr(r->solver));
+	add(so, "requested", jstr(requested[s->method]));
+	add(so, "rms_rel_err", json_object_new_double(r->table.rms_rel_err));
+	add(so, "error", jstr("fr_err, albedo_err and rms_rel_err of entries made by mc: standard errors (batch means); "
+	    "by ad: the adding-doubling error estimates (|X_N - X_N/2| from a solve at half the quadrature nodes, scaled up "
+	    "where convergence is slow, plus the Fourier series' tail: bounds, not standard errors; src/engine/ad.h); "
+	    "rms_rel_err: solid-angle-weighted RMS relative error of the table"));
+	if (r->ad_tol > 0.0) {
+		struct ad_solver_settings d;
+		ad_solver_settings_default(&d);
+		json_object *ad = json_object_new_object();
+		add(ad, "method", jstr("adding-doubling, Fourier series in delta_phi (src/engine/ad.h)"));
+		add(ad, "tol", json_object_new_double(r->ad_tol));
+		add(ad, "n_quad", s->ad_quad > 0 ? json_object_new_int(s->ad_quad) : jstr("auto"));
+		add(ad, "n_quad_max", json_object_new_int(d.ad.n_quad_max));
+		add(ad, "dtau_frac", json_object_new_double(d.ad.dtau_frac));
+		add(ad, "dm_terms", json_object_new_double(d.ad.dm_terms));
+		add(ad, "max_orders", json_object_new_int(d.ad.max_orders));
+		add(so, "ad", ad);
+	}
+	json_object *fb = json_object_new_array();
+	for (int w = 0; r->fallback_cause && w < s->n_wl; w++)
+		if (r->fallback_cause[w]) {
+			json_object *f = json_object_new_object();
+			add(f, "wavelength_nm", json_object_new_double(s->wl_nm[w]));
+			add(f, "cause", jstr(r->fallback_cause[w]));
+			json_object_array_add(fb, f);
+		}
+	add(so, "fallback_to_mc", fb);
+	return so;
+}
+
+static json_object *settings_info(const struct bake_spec *s, const struct bake_result *r)
 {
 	json_object *st = json_object_new_object();
 	add(st, "seed", json_object_new_int64((int64_t)s->seed));
-	add(st, "batch_photons", json_object_new_int64(s->batch_photons));
+	const struct brdf_entry *e = &r->table.entry[0];
+	long bp = s->batch_photons > 0 || e->batches == 0 ? s->batch_photons : e->photons / e->batches;
+	add(st, "batch_photons", json_object_new_int64(bp));
 	add(st, "min_batches", json_object_new_int(s->min_batches));
 	add(st, "target_error", json_object_new_double(s->target_error));
 	add(st, "max_photons", json_object_new_int64(s->max_photons));
@@ -182,6 +228,7 @@ static json_object *result_info(const struct bake_result *r)
 {
 	json_object *res = json_object_new_object();
 	add(res, "photons", json_object_new_int64(r->table.photons));
+	add(res, "pilot_photons", json_object_new_int64(r->table.pilot_photons));
 	add(res, "seconds", json_object_new_double(r->table.seconds));
 	add(res, "rms_rel_err", json_object_new_double(r->table.rms_rel_err));
 	add(res, "target_met", json_object_new_boolean(r->table.target_met));
@@ -196,7 +243,12 @@ static json_object *entries_info(const struct bake_result *r)
 		json_object *jo = json_object_new_object();
 		add(jo, "wavelength_nm", json_object_new_double(b->wl_nm));
 		add(jo, "theta_i_deg", json_object_new_double(b->theta_i * 180.0 / M_PI));
+		add(jo, "solver", jstr(b->method ? b->method : ""));
 		add(jo, "photons", json_object_new_int64(b->photons));
+		if (b->n_quad > 0) {
+			add(jo, "n_quad", json_object_new_int(b->n_quad));
+			add(jo, "fourier_orders", json_object_new_int(b->n_orders));
+		}
 		add(jo, "Rsp", json_object_new_double(b->rsp));
 		add(jo, "albedo", json_object_new_double(b->albedo.v));
 		add(jo, "albedo_err", json_object_new_double(b->albedo.err));
@@ -221,12 +273,13 @@ char *bake_manifest_text(const struct bake_spec *s, const struct bake_result *r,
 	if (m->command)
 		add(o, "command", jstr(m->command));
 	add_axes(o, s);
-	add(o, "table", table_info(s));
+	add(o, "table", table_info(s, r));
+	add(o, "solver", solver_info(s, r));
 	add(o, "rgb", rgb_info(s, m));
 	add(o, "specular", specular_info(s, r, m));
 	add(o, "layers", layers_info(s));
 	add(o, "radial", radial_info(s, r, m));
-	add(o, "settings", settings_info(s));
+	add(o, "settings", settings_info(s, r));
 	add(o, "result", result_info(r));
 	add(o, "jobs", entries_info(r));
 	char *text = xstrdup(json_object_to_json_string_ext(o, JSON_C_TO_STRING_PRETTY | JSON_C_TO_STRING_NOSLASHESCAPE));

@@ -178,3 +178,14 @@ void cli_progress_end(struct cli_progress *p)
 	if (p->tty && p->shown >= 0)
 		fputc('\n', stderr);
 }
+
+char *cli_command_line(int argc, char **argv)
+{
+	char *line = xstrdup("skinbake");
+	for (int i = 0; i < argc; i++) {
+		char *t = xasprintf("%s %s", line, argv[i]);
+		free(line);
+		line = t;
+	}
+	return line;
+}

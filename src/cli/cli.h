@@ -29,6 +29,9 @@ void cli_progress_start(struct cli_progress *p, const char *label);
 void cli_progress_update(void *user, long done, long total);
 void cli_progress_end(struct cli_progress *p);
 
+/* "skinbake ARGV[0] ARGV[1] ...", for a manifest.  Caller frees. */
+char *cli_command_line(int argc, char **argv);
+
 /* Option values by the rules of opt.h (decimal only, message with the
  * range); -1 after reporting.  For commands not yet described by an opt
  * table (cmd_export_pov.c); new code uses opt.h. */
@@ -54,4 +57,5 @@ int cmd_texture(int argc, char **argv);
 int cmd_export(int argc, char **argv);
 int cmd_export_pov(int argc, char **argv);
 int cmd_export_blender(int argc, char **argv);
+int cmd_verify(int argc, char **argv);
 #endif
