@@ -1,5 +1,5 @@
 /* ad_solver: adding-doubling tables through the solver interface, a few
- * wavelengths per step (see ad_solver.h). */
+ * wavelengths per step, and one stack as sim_run gives it (see ad_solver.h). */
 #include "config.h"
 #include "engine/ad_solver.h"
 
@@ -165,3 +165,45 @@ const struct solver_ops ad_solver = {
 	.step = ad_step,
 	.finish = ad_finish,
 };
+
+/* Beam 0 of a as a sim_result on grid g (no Rd(r)). */
+static void sim_of_ad(const struct ad_result *a, int n_layers, const struct tally_grid *g, struct sim_result *out)
+{
+	const struct ad_beam *b = &a->beam[0];
+	int ne = g->n_theta * g->n_phi;
+	memset(out, 0, sizeof *out);
+	out->seconds = a->seconds;
+	out->rsp = b->rsp;
+	out->rd = (struct estimate){ b->rd.v, b->rd.err };
+	out->rd_unscat = (struct estimate){ b->rd_unscat, 0.0 };
+	out->tt = (struct estimate){ b->tt.v, b->tt.err };
+	out->tt_unscat = (struct estimate){ b->tt_unscat, 0.0 };
+	for (int i = 0; i < SLAB_MAX_LAYERS + 2; i++)
+		out->a[i] = (struct estimate){ b->a[i].v, b->a[i].err };
+	out->n_layers = n_layers;
+	out->grid = *g;
+	out->grid.n_r = 0;
+	out->fr = xmalloc(sizeof(double) * (size_t)ne);
+	out->fr_err = xmalloc(sizeof(double) * (size_t)ne);
+	out->fr_az = xmalloc(sizeof(double) * (size_t)g->n_theta);
+	out->fr_az_err = xmalloc(sizeof(double) * (size_t)g->n_theta);
+	memcpy(out->fr, b->fr, sizeof(double) * (size_t)ne);
+	memcpy(out->fr_err, b->fr_err, sizeof(double) * (size_t)ne);
+	memcpy(out->fr_az, b->fr_az, sizeof(double) * (size_t)g->n_theta);
+	memcpy(out->fr_az_err, b->fr_az_err, sizeof(double) * (size_t)g->n_theta);
+	out->balance = b->balance;
+}
+
+int ad_sim_run(const struct sim_config *c, double tol, struct sim_result *r, struct ad_sim_info *info, char **cause)
+{
+	struct ad_opts o;
+	struct ad_result a;
+	ad_opts_default(&o);
+	o.tol = tol, o.n_to = c->grid.n_theta, o.n_phi = c->grid.n_phi, o.threads = c->threads;
+	if (ad_solve(&c->slab, c->opts.fresnel, &c->theta_in, 1, &o, &a, cause) != 0)
+		return -1;
+	*info = (struct ad_sim_info){ tol, a.n_quad, a.n_orders, a.rms_rel_err };
+	sim_of_ad(&a, c->slab.n_layers, &c->grid, r);
+	ad_result_free(&a);
+	return 0;
+}

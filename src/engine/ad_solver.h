@@ -20,6 +20,7 @@
 #ifndef SKINBAKE_AD_SOLVER_H
 #define SKINBAKE_AD_SOLVER_H
 #include "engine/ad.h"
+#include "engine/sim.h"
 #include "engine/solver.h"
 
 struct ad_solver_settings {
@@ -36,4 +37,16 @@ double ad_solver_tol(const struct ad_solver_settings *s, const struct solver_pro
 
 /* The method: settings are a struct ad_solver_settings.  Gives SOLVER_BRDF. */
 extern const struct solver_ops ad_solver;
+/* One stack at one angle, as sim_run gives it by Monte Carlo (`skinbake
+ * simulate --solver ad`): the solve of c's slab at c->theta_in, Fresnel
+ * model and exit grid (no Rd(r)) to tolerance tol, with c->threads over the
+ * Fourier orders, as a sim_result (errors: the error estimates; no photons)
+ * and what else it tells.  0, or -1 and *cause where the solver refuses. */
+struct ad_sim_info {
+	double tol;		/* tolerance asked [-] */
+	int n_quad;		/* quadrature nodes per unit cosine used */
+	int n_orders;		/* Fourier orders kept */
+	double rms_rel_err;	/* estimated RMS relative error of the BRDF bins [-] */
+};
+int ad_sim_run(const struct sim_config *c, double tol, struct sim_result *r, struct ad_sim_info *info, char **cause);
 #endif
