@@ -245,6 +245,7 @@ static json_object *entries_info(const struct bake_result *r)
 		add(jo, "theta_i_deg", json_object_new_double(b->theta_i * 180.0 / M_PI));
 		add(jo, "solver", jstr(b->method ? b->method : ""));
 		add(jo, "photons", json_object_new_int64(b->photons));
+		add(jo, "batches", json_object_new_int64(b->batches));
 		if (b->n_quad > 0) {
 			add(jo, "n_quad", json_object_new_int(b->n_quad));
 			add(jo, "fourier_orders", json_object_new_int(b->n_orders));
@@ -441,4 +442,107 @@ out:
 		json_object_put(o);
 	free(mpath);
 	return rc;
+}
+
+/* ---- provenance (for verify) ---- */
+
+static int read_stack(json_object *lw, struct slab *s, int w, const char *mpath, char **cause)
+{
+	json_object *ls;
+	slab_init(s, jnum(lw, "n_above", 1.0), jnum(lw, "n_below", 1.0));
+	if (!json_object_object_get_ex(lw, "layers", &ls) || !json_object_is_type(ls, json_type_array)) {
+		*cause = xasprintf("%s: layers[%d] has no layer list", mpath, w);
+		return -1;
+	}
+	for (size_t i = 0; i < json_object_array_length(ls); i++) {
+		json_object *lo = json_object_array_get_idx(ls, i), *d;
+		struct layer l = { INFINITY, jnum(lo, "n", 1.0), jnum(lo, "mua_per_cm", 0.0), jnum(lo, "mus_per_cm", 0.0),
+			jnum(lo, "g", 0.0) };
+		if (json_object_object_get_ex(lo, "d_cm", &d) && !json_object_is_type(d, json_type_string))
+			l.d = json_object_get_double(d);
+		char *why = NULL;
+		if (slab_add(s, &l, &why) != 0) {
+			*cause = xasprintf("%s: layers[%d]: %s", mpath, w, why);
+			free(why);
+			return -1;
+		}
+	}
+	char *why = NULL;
+	if (slab_check(s, &why) != 0) {
+		*cause = xasprintf("%s: layers[%d]: %s", mpath, w, why);
+		free(why);
+		return -1;
+	}
+	slab_prepare(s);
+	return 0;
+}
+
+/* Per entry: its method and batches (manifests from before the solver
+ * choice are Monte Carlo with batches = photons / settings.batch_photons). */
+static void read_entries(json_object *o, struct bake_provenance *p)
+{
+	json_object *jobs, *st, *v;
+	long bp = 0;
+	if (json_object_object_get_ex(o, "settings", &st))
+		bp = (long)jnum(st, "batch_photons", 0.0);
+	if (!json_object_object_get_ex(o, "jobs", &jobs))
+		return;
+	for (int j = 0; j < p->n_wl * p->n_ti && j < (int)json_object_array_length(jobs); j++) {
+		json_object *jo = json_object_array_get_idx(jobs, (size_t)j);
+		int mc = !json_object_object_get_ex(jo, "solver", &v) || strcmp(json_object_get_string(v), "mc") == 0;
+		long photons = (long)jnum(jo, "photons", 0.0);
+		p->entry_mc[j] = mc;
+		p->entry_batches[j] = !mc ? 0 : json_object_object_get_ex(jo, "batches", &v) ? json_object_get_int64(v)
+				    : bp > 0 ? photons / bp : 0;
+	}
+}
+
+int bake_provenance_read(const char *dir, struct bake_provenance *p, char **cause)
+{
+	memset(p, 0, sizeof *p);
+	struct bake *b = xcalloc(1, sizeof *b);
+	char *mpath = xasprintf("%s/manifest.json", dir);
+	json_object *o = NULL, *v, *so, *sp, *layers;
+	int rc = -1;
+	if (bake_manifest_read(dir, b, cause) != 0 || (o = json_object_from_file(mpath)) == NULL)
+		goto out;
+	p->n_wl = b->n_wl;
+	p->n_ti = b->n_ti;
+	snprintf(p->solver, sizeof p->solver, "mc");
+	if (json_object_object_get_ex(o, "solver", &so) && json_object_object_get_ex(so, "name", &v))
+		snprintf(p->solver, sizeof p->solver, "%s", json_object_get_string(v));
+	p->fresnel = OPTICS_FRESNEL_EXACT;
+	if (json_object_object_get_ex(o, "specular", &sp) && json_object_object_get_ex(sp, "fresnel", &v) &&
+	    strcmp(json_object_get_string(v), "schlick") == 0)
+		p->fresnel = OPTICS_FRESNEL_SCHLICK;
+	if (json_object_object_get_ex(o, "settings", &v))
+		p->seed = (uint64_t)jnum(v, "seed", 1.0);
+	if (!json_object_object_get_ex(o, "layers", &layers) || (int)json_object_array_length(layers) != p->n_wl) {
+		*cause = xasprintf("%s: layers do not match the wavelengths", mpath);
+		goto out;
+	}
+	p->slab = xcalloc((size_t)p->n_wl, sizeof *p->slab);
+	p->entry_mc = xcalloc((size_t)(p->n_wl * p->n_ti), sizeof *p->entry_mc);
+	p->entry_batches = xcalloc((size_t)(p->n_wl * p->n_ti), sizeof *p->entry_batches);
+	for (int w = 0; w < p->n_wl; w++)
+		if (read_stack(json_object_array_get_idx(layers, (size_t)w), &p->slab[w], w, mpath, cause) != 0)
+			goto out;
+	read_entries(o, p);
+	rc = 0;
+out:
+	if (o)
+		json_object_put(o);
+	bake_free(b);
+	free(mpath);
+	if (rc != 0)
+		bake_provenance_free(p);
+	return rc;
+}
+
+void bake_provenance_free(struct bake_provenance *p)
+{
+	free(p->slab);
+	free(p->entry_mc);
+	free(p->entry_batches);
+	memset(p, 0, sizeof *p);
 }

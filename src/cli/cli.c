@@ -24,6 +24,7 @@ static const struct opt_sub commands[] = {
 	{ "preset", "preset show NAME: print a preset's layers per wavelength", cmd_preset },
 	{ "bake", "bake a skin preset's BRDF into OpenEXR lookup tables", cmd_bake },
 	{ "eval", "evaluate a baked BRDF at given angles", cmd_eval },
+	{ "verify", "check a bake's table against an independent Monte Carlo run", cmd_verify },
 	{ "texture", "grow pores and furrows as seamless height and normal maps", cmd_texture },
 	{ "export", "export pov|blender: scenes and image sets for renderers", cmd_export },
 	{ NULL, NULL, NULL },
