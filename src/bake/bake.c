@@ -268,7 +268,8 @@ void bake_spec_axes(struct bake_spec *s, const double *wl_nm, int n_wl, const do
 {
 	CHECK(n_wl >= 0 && n_wl <= BAKE_MAX_WL && n_theta >= 0 && n_theta <= BAKE_MAX_TI && nodes <= BAKE_MAX_TI);
 	s->n_wl = n_wl;
-	memcpy(s->wl_nm, wl_nm, sizeof(double) * (size_t)n_wl);
+	if (n_wl > 0)
+		memcpy(s->wl_nm, wl_nm, sizeof(double) * (size_t)n_wl);
 	s->n_ti = n_theta > 0 ? n_theta : nodes;
 	for (int k = 0; k < s->n_ti; k++)
 		s->theta_i[k] = n_theta > 0 ? theta_deg[k] * M_PI / 180.0 : 0.5 * M_PI * k / s->n_ti;
