@@ -56,16 +56,16 @@ run bake --preset paper --out bakead --theta-nodes 3 --resolution 9x6 --r-bins 5
 run eval --bake bakead --theta-in 20 --theta-out 35 --phi 40 --json
 run simulate --solver ad --layer d=0.01,n=1.4,mua=2,mus=100,g=0.8 --layer d=inf,n=1.4,mua=1,mus=50,g=0.9 --theta-in 30 --r-bins 0 --json
 # A manifest without the keys added by issue 13 (solver record, per-job
-# method and resolution, radial error and method, pilot photons) and
-# without the --solver mc added above.
+# method, batches and resolution, radial error, method and target, pilot
+# photons) and without the --solver mc added above.
 norm_manifest() {
 	python3 -c 'import collections, json, sys
 m = json.load(open(sys.argv[1]), object_pairs_hook=collections.OrderedDict)
 m.pop("solver", None)
 if "command" in m: m["command"] = m["command"].replace(" --solver mc", "")
 for j in m.get("jobs", []):
-    for k in ("solver", "n_quad", "fourier_orders"): j.pop(k, None)
-for k in ("mean_radius_err_cm", "method", "photons", "seconds"): m.get("radial", {}).pop(k, None)
+    for k in ("solver", "batches", "n_quad", "fourier_orders"): j.pop(k, None)
+for k in ("mean_radius_err_cm", "method", "photons", "seconds", "target_rel_err"): m.get("radial", {}).pop(k, None)
 m.get("result", {}).pop("pilot_photons", None)
 print(json.dumps(m, indent=1))' "$1"
 }

@@ -10,7 +10,7 @@
 B="$SKINBAKE"
 out="$tmpd/ad"
 check "bake --solver ad (paper, 3 angles, 9 x 6)" "$B" bake --preset paper --solver ad --theta-in 0,30,60 \
-	--resolution 9x6 --radial-photons 4000 --r-bins 50 --out "$out" --quiet
+	--resolution 9x6 --radial-error 0.1 --r-bins 50 --out "$out" --quiet
 for f in brdf.exr brdf_rgb.exr albedo.exr albedo.png manifest.json; do
 	check "bake --solver ad wrote $f" [ -s "$out/$f" ]
 done
@@ -20,8 +20,8 @@ s=m['solver']; r=m['result']; rad=m['radial']
 assert s['name']=='ad' and s['requested']=='ad' and s['ad']['tol']==0.001 and s['fallback_to_mc']==[]
 assert r['rms_rel_err']==s['rms_rel_err'] and 0<r['rms_rel_err']<=0.001 and r['target_met'] and r['photons']==0
 assert all(j['solver']=='ad' and j['n_quad']>=16 and j['fourier_orders']>=1 for j in m['jobs'])
-assert rad['photons']==3*4000 and len(rad['mean_radius_err_cm'])==3
-assert all(0<e<0.1*x for x,e in zip(rad['mean_radius_cm'],rad['mean_radius_err_cm']))"
+assert rad['photons']>=3*2000 and rad['target_rel_err']==0.1 and len(rad['mean_radius_err_cm'])==3
+assert all(0<e<0.12*x for x,e in zip(rad['mean_radius_cm'],rad['mean_radius_err_cm']))"
 check "eval reads the ad bake" sh -c "'$B' eval --bake '$out' --theta-in 20 --theta-out 35 --phi 40 --json | python3 -c '
 import json,sys; d=json.load(sys.stdin); assert len(d[\"diffuse\"])==3 and all(x>0 for x in d[\"diffuse\"])'"
 check "export blender reads the ad bake" "$B" export blender --bake "$out" --out "$tmpd/blend" --lut-cos 8 --lut-phi 3
@@ -30,7 +30,7 @@ check "export pov reads the ad bake" "$B" export pov --bake "$out" --scene "$top
 
 # A stack adding-doubling cannot resolve to its tolerance: g = 0.99 at 550 nm.
 printf '[skin]\nbase = paper\nname = peaked\n[override.550]\nepidermis.mua = 50\nepidermis.mus = 370\nepidermis.g = 0.99\ndermis.mua = 7\ndermis.mus = 370\ndermis.g = 0.99\n' >"$tmpd/g99.ini"
-small="--preset-file $tmpd/g99.ini --theta-in 30 --resolution 6x4 --r-bins 20 --radial-photons 2000"
+small="--preset-file $tmpd/g99.ini --theta-in 30 --resolution 6x4 --r-bins 20 --radial-error 0.2"
 # shellcheck disable=SC2086
 "$B" bake $small --solver ad --out "$tmpd/g99ad" >"$tmpd/o" 2>"$tmpd/e"
 rc=$?

@@ -103,21 +103,19 @@ static int fallback_mc(const struct bake_spec *s, const struct solver_problem *p
 	return 0;
 }
 
-/* Rd(r) at theta_i[0] by Monte Carlo for the wavelengths whose method gave none. */
-static int radial_mc(const struct bake_spec *s, const struct solver_problem *p, const struct solver_run *run,
-    struct bake_result *r, char **cause)
+/* Rd(r) at theta_i[0] by Monte Carlo with `photons` per wavelength, for
+ * the n wavelengths w[] (random streams stream0 + i); into r's entries. */
+static int radial_run(const struct bake_spec *s, const struct solver_problem *p, const struct solver_run *run,
+    const int *w, int n, long photons, uint32_t stream0, struct bake_result *r, char **cause)
 {
-	int w[BAKE_MAX_WL], n = pick(s, &r->table, no_radial, w);
-	if (n == 0 || s->n_r <= 0)
-		return 0;
 	enum { BATCHES = 16 };
-	long per = s->radial_photons > 0 ? s->radial_photons : BAKE_RADIAL_PHOTONS;
 	struct mc_settings mc;
 	mc_from_spec(s, &mc);
 	mc.nee = 0;
-	mc.batch_photons = (per + BATCHES - 1) / BATCHES;
+	mc.batch_photons = (photons + BATCHES - 1) / BATCHES;
 	mc.min_batches = BATCHES;
 	mc.max_photons = (long)n * BATCHES * mc.batch_photons;
+	mc.stream0 = stream0;
 	struct solver_problem q = *p;
 	q.n_ti = 1;
 	q.grid.n_theta = q.grid.n_phi = 1;
@@ -130,9 +128,34 @@ static int radial_mc(const struct bake_spec *s, const struct solver_problem *p, 
 		memcpy(e->rd_r, t.entry[i].rd_r, sizeof(double) * (size_t)s->n_r);
 		memcpy(e->rd_r_err, t.entry[i].rd_r_err, sizeof(double) * (size_t)s->n_r);
 	}
-	r->radial_photons = t.photons;
-	r->radial_seconds = t.seconds;
+	r->radial_photons += t.photons;
+	r->radial_seconds += t.seconds;
 	brdf_table_free(&t);
+	return 0;
+}
+
+/* Rd(r) for the wavelengths whose method gave none: a pilot, then the
+ * wavelengths whose mean radius is not yet within radial_error (bake.h). */
+static int radial_mc(const struct bake_spec *s, const struct solver_problem *p, const struct solver_run *run,
+    struct bake_result *r, char **cause)
+{
+	int w[BAKE_MAX_WL], n = pick(s, &r->table, no_radial, w);
+	if (n == 0 || s->n_r <= 0)
+		return 0;
+	double target = s->radial_error > 0.0 ? s->radial_error : BAKE_RADIAL_ERROR;
+	long cap = s->radial_photons > 0 ? s->radial_photons : BAKE_RADIAL_PHOTONS;
+	long pilot = cap < BAKE_RADIAL_PILOT ? cap : BAKE_RADIAL_PILOT;
+	if (radial_run(s, p, run, w, n, pilot, 0, r, cause) != 0)
+		return -1;
+	for (int i = 0; i < n; i++) {
+		const struct brdf_entry *e = &r->table.entry[w[i] * s->n_ti];
+		double m = tally_mean_radius(e->rd_r, s->n_r, s->dr);
+		double rel = m > 0.0 ? tally_mean_radius_err(e->rd_r, e->rd_r_err, s->n_r, s->dr) / m : 0.0;
+		double want = (double)pilot * (rel / target) * (rel / target) * 1.2;
+		if (rel > target && pilot < cap &&
+		    radial_run(s, p, run, &w[i], 1, want < (double)cap ? (long)ceil(want) : cap, (uint32_t)(n + i), r, cause))
+			return -1;
+	}
 	return 0;
 }
 

@@ -13,9 +13,13 @@
  * adding-doubling alone a wavelength it refuses fails the bake with its
  * cause.  Adding-doubling has no radial profile: Rd(r) (and the mean exit
  * radius behind a renderer's subsurface radius) then comes from a separate
- * Monte Carlo run per wavelength at theta_i[0] with radial_photons photons,
- * exit bins by escapes on a 1 x 1 grid, whose standard errors the result
- * carries.
+ * Monte Carlo run per wavelength at theta_i[0] (exit bins by escapes on a
+ * 1 x 1 grid): a pilot of BAKE_RADIAL_PILOT photons per wavelength gives
+ * each mean radius with its standard error e_p; where e_p is above
+ * radial_error (relative), that wavelength runs again with BAKE_RADIAL_PILOT
+ * (e_p / radial_error)^2 x 1.2 photons (other random streams; at most
+ * radial_photons) and those replace the pilot's.  The result carries the
+ * standard errors reached.
  *
  * A solver runs in steps whose state can be saved between them
  * (engine/solver.h), for checkpoints; a family of bakes (one preset varied
@@ -31,7 +35,9 @@
 
 #define BAKE_MAX_WL 128
 #define BAKE_MAX_TI 90
-#define BAKE_RADIAL_PHOTONS 20000	/* default radial_photons */
+#define BAKE_RADIAL_PILOT 2000		/* photons per wavelength of the Rd(r) pilot */
+#define BAKE_RADIAL_ERROR 0.02		/* default radial_error */
+#define BAKE_RADIAL_PHOTONS 1000000	/* default radial_photons */
 
 /* The method of a bake (0 = Monte Carlo, as before there was a choice). */
 enum bake_method { BAKE_SOLVER_MC = 0, BAKE_SOLVER_AD, BAKE_SOLVER_AUTO };
@@ -50,8 +56,10 @@ struct bake_spec {
 	double ad_tol;				/* adding-doubling tolerance (table RMS relative error);
 					 * 0 = 1e-3; the target error when that is smaller */
 	int ad_quad;				/* its quadrature nodes per unit cosine; 0 = automatic */
-	long radial_photons;			/* Monte Carlo photons per wavelength for Rd(r) of an
-					 * adding-doubling table; 0 = BAKE_RADIAL_PHOTONS */
+	double radial_error;			/* relative standard error of the mean exit radius that
+					 * the Rd(r) run of an adding-doubling table aims at;
+					 * 0 = BAKE_RADIAL_ERROR */
+	long radial_photons;			/* its photons per wavelength at most; 0 = BAKE_RADIAL_PHOTONS */
 	/* Monte Carlo. */
 	uint64_t seed;
 	long batch_photons;			/* photons per batch; 0 = sized from the target (mc.h) */

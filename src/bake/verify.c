@@ -273,7 +273,8 @@ void verify_table(FILE *fp, const char *dir, const struct verify_result *r)
 	}
 	fprintf(fp, "\n  mean z^2 %.3f, max |z| %.2f, beyond 3 sigma %.1f%% (dof -1: the bake's error is exact)\n",
 	    r->mean_z2, r->max_abs_z, 100.0 * r->frac_3sigma);
-	fprintf(fp, "  verdict (z as normal quantiles through Student's t): mean %.3f (limit %.3f), max %.2f (limit %.2f): %s\n",
+	fprintf(fp, "  verdict (z as normal quantiles through Student's t): mean %.3f (limit %.3f), "
+	    "max %.2f (limit %.2f): %s\n",
 	    r->mean_zn2, r->mean_z2_limit, r->max_abs_zn, r->max_z_limit,
 	    r->consistent ? "consistent" : "NOT consistent");
 }

@@ -151,7 +151,7 @@ void cli_progress_start(struct cli_progress *p, const char *label)
 	p->label = label;
 	p->t0 = util_now();
 	p->shown = -1;
-	p->tty = isatty(2);
+	p->tty = isatty(2) && cli_par.rank == 0;	/* under MPI rank 0 shows it */
 }
 
 void cli_progress_update(void *user, long done, long total)

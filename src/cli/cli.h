@@ -17,7 +17,7 @@ int cli_vusage_error(const char *cmd, const char *fmt, va_list ap) __attribute__
 /* Print "skinbake CMD: message" to stderr; returns CLI_EXIT_FAIL. */
 int cli_fail(const char *cmd, const char *fmt, ...) __attribute__((format(printf, 2, 3)));
 
-/* Progress bar on stderr, shown only when stderr is a terminal. */
+/* Progress bar on stderr, shown only when stderr is a terminal (and on MPI rank 0). */
 struct cli_progress {
 	const char *label;
 	double t0;	/* start [s] */

@@ -3,7 +3,6 @@
 #include "config.h"
 
 #include <limits.h>
-#include <math.h>
 #include <stdlib.h>
 #include <string.h>
 
@@ -56,7 +55,6 @@ static int run(struct bake_spec *s, const char *preset, const char *pfile, const
 	s->rank = cli_par.rank, s->n_ranks = cli_par.size, s->allreduce = cli_par.allreduce;
 	struct cli_progress pr;
 	cli_progress_start(&pr, "bake");
-	pr.tty &= cli_par.rank == 0;
 	s->progress = cli_progress_update, s->progress_user = &pr;
 	struct bake_result r;
 	int ok = bake_run(s, &r, &cause) == 0, rc = CLI_EXIT_OK;
@@ -111,8 +109,10 @@ int cmd_bake(int argc, char **argv)
 		  .help = "ad: estimated RMS relative error of the table to reach (or --target-error when smaller)" },
 		{ "ad-quad", OPT_INT, &s.ad_quad, "N", .lo = 4, .hi = 1024, .help = "ad: quadrature nodes per unit cosine",
 		  .def_note = "the fewest from 16 up, doubling, that meet --ad-tol" },
-		{ "radial-photons", OPT_LONG, &s.radial_photons, "N", "2e4", .lo = 100, .hi = 1e10,
-		  .help = "ad: Monte Carlo photons per wavelength for Rd(r) and the subsurface radius" },
+		{ "radial-error", OPT_DOUBLE, &s.radial_error, "E", "0.02", .lo = 1e-4, .hi = 1, .help = "ad: relative error of "
+		  "each mean exit radius (Rd(r) by Monte Carlo: 2000 photons per wavelength, more as E asks, up to "
+		  "--radial-photons)" },
+		{ "radial-photons", OPT_LONG, &s.radial_photons, "N", "1e6", .lo = 100, .hi = 1e10, .help = "ad: Rd(r) photons cap" },
 		{ "target-error", OPT_DOUBLE, &s.target_error, "E", "0.02", .lo = 0, .hi = 1, .help = "mc: add photons until the "
 		  "solid-angle-weighted RMS relative error of the table is below E (at least 0.001; 0 = spend --max-photons);"
 		  " without --batch-photons a pilot of 8 x 250 photons per (wavelength, angle) measures the error E_p, then "

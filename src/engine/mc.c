@@ -154,7 +154,7 @@ static void run_units(struct mc_state *m, const struct solver_run *run, long nu,
 			int j = uj[u];
 			tally_zero(&t, g);
 			transport_run(&p->slab[j / p->n_ti], &m->ln[j], &m->opts, g, m->st.nee ? &ne : NULL, m->st.seed,
-			    (uint32_t)j, (uint64_t)m->offset + (uint64_t)ub[u] * (uint64_t)bp, (uint64_t)bp, &t);
+			    m->st.stream0 + (uint32_t)j, (uint64_t)m->offset + (uint64_t)ub[u] * (uint64_t)bp, (uint64_t)bp, &t);
 			batch_values(m, &t, vals + (size_t)u * (size_t)(nq + 1));
 			vals[(size_t)u * (size_t)(nq + 1) + nq] = t.events;
 			if (run->progress) {

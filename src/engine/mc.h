@@ -39,6 +39,7 @@ struct mc_settings {
 	double roulette_w;	/* weight below which roulette plays [-] (transport_opts) */
 	double roulette_chance;	/* survival probability in roulette [-] */
 	long max_steps;		/* interactions per photon before the guard ends it */
+	uint32_t stream0;	/* random stream of job 0 (job j uses stream0 + j) */
 };
 
 #define MC_BATCH_PHOTONS 4000
