@@ -50,8 +50,7 @@ static int no_radial(const struct brdf_entry *e)
 	return e->method != NULL && strcmp(e->method, "mc") != 0;
 }
 
-/* Solve p restricted to the n wavelengths w[] with ops; the entries (all
- * angles) replace those of r->table, costs add up. */
+/* Solve p restricted to the n wavelengths w[] (all angles) with ops into t. */
 static int solve_part(const struct solver_ops *ops, const void *settings, const struct solver_problem *p,
     const struct solver_run *run, const int *w, int n, struct brdf_table *t, char **cause)
 {

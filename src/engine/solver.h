@@ -14,7 +14,9 @@
  * between steps.  Monte Carlo is engine/mc.h.  A method that cannot give
  * some part of the table (e.g. adding-doubling has no Rd(r)) says so in
  * `provides` and leaves that part at 0; the driver then asks another
- * method for it. */
+ * method for it.  A method whose settings let it refuse entries it cannot
+ * solve to its accuracy leaves them empty with `refused` set, for the
+ * driver to ask another method (engine/ad_solver.h). */
 #ifndef SKINBAKE_SOLVER_H
 #define SKINBAKE_SOLVER_H
 #include "engine/batchstat.h"
