@@ -104,7 +104,7 @@ static void test_errors(void **state)
 	expect_error("[skin]\nmodel = chromophores\n[dermis]\ncolour = 3\n", "t.ini:4: unknown key 'colour' in [dermis]",
 	    "blood");
 	expect_error("[epidermis]\nmelanin = 0.9\n", "t.ini:2: epidermis.melanin = 0.9: out of range [0, 0.5]", NULL);
-	expect_error("[dermis]\nblood = lots\n", "t.ini:2: dermis.blood = lots: not a number", "[0, 0.2]");
+	expect_error("[dermis]\nblood = lots\n", "t.ini:2: dermis.blood = lots: not a decimal number", "[0, 0.2]");
 	expect_error("[derm]\nblood = 0.1\n", "t.ini:2: unknown section [derm]", NULL);
 	expect_error("blood = 0.1\n", "t.ini:1: key 'blood' outside any section", NULL);
 	expect_error("[dermis]\nblood = 0.1\nblood = 0.2\n", "t.ini:3: dermis.blood is given twice", NULL);
