@@ -154,7 +154,7 @@ texdir() {
 png() { python3 pngtool.py "tx/$1" "t/$1" "$2"; }
 jset() { python3 -c "import json,sys; m=json.load(open('tx/manifest.json')); exec(sys.argv[1]); json.dump(m, open('t/manifest.json','w'))" "$1"; }
 texdir "8-bit height.png" "t/height.png: 1 channel\(s\) at 8 bits; expected 16-bit gray" png height.png bits=8
-texdir "height.png too small" "t/height.png: 8x8 pixels; expected each side in \[16, 16384\]" png height.png size=8
+texdir "height.png of 1 pixel" "t/height.png: 1x1 pixels; expected each side in \[2, 16384\]" png height.png size=1
 texdir "normal.png of another size" "t/normal.png is 32x32 but t/height.png is 16x16" png normal.png size=32
 texdir "tile_mm inf" "t/height.png: tEXt skinbake:tile_mm is inf; expected a length in \[0.5, 500\] mm" \
 	png height.png skinbake:tile_mm=inf

@@ -405,9 +405,10 @@ static int read_height(const char *hp, struct texdir *t, char **cause)
 		*cause = xasprintf("%s: %d channel(s) at %d bits; expected 16-bit gray", hp, hc, hb);
 		return -1;
 	}
+	/* Maps made elsewhere may be small or not square; the largest is that of `texture --size`. */
 	const struct texture_param *sp = sites_param_find("size");
-	if (t->w < sp->lo || t->h < sp->lo || t->w > sp->hi || t->h > sp->hi) {
-		*cause = xasprintf("%s: %dx%d pixels; expected each side in [%g, %g]", hp, t->w, t->h, sp->lo, sp->hi);
+	if (t->w < 2 || t->h < 2 || t->w > sp->hi || t->h > sp->hi) {
+		*cause = xasprintf("%s: %dx%d pixels; expected each side in [2, %g]", hp, t->w, t->h, sp->hi);
 		return -1;
 	}
 	return 0;

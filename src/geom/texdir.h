@@ -66,9 +66,9 @@ struct texdir {
 	char *tile_mm_text, *h_min_text, *h_max_text;
 };
 
-/* Read DIR/height.png (16-bit gray, each side in the range of the texture
- * parameter size, tEXt skinbake:tile_mm in that of tile-mm, the height
- * range both absent or finite with min <= max) and, with with_normal,
+/* Read DIR/height.png (16-bit gray, each side in [2, 16384] px, tEXt
+ * skinbake:tile_mm in the range of the texture parameter tile-mm, the
+ * height range both absent or finite with min <= max) and, with with_normal,
  * DIR/normal.png (16-bit RGB of the same size); DIR/manifest.json, when
  * there is one, must be a skinbake texture whose size_px, tile_mm and
  * height range agree with height.png.  NULL and *cause (caller frees)
