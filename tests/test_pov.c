@@ -318,7 +318,7 @@ static void test_scene(void **state)
 		const char *text, *want;
 	} bad[] = {
 		{ "[camera]\ntype = orthographic\ncolour = 1 1 1\n", ":3: [camera]: unknown key 'colour'" },
-		{ "[lamp x]\nposition = 1 1 1\n", ":2: unknown section [lamp x]" },
+		{ "[lamp x]\nposition = 1 1 1\n", ":1: unknown section [lamp x]" },
 		{ "[scene]\nwidth = 3\n", ":2: width = 3 is out of range [16, 8192]" },
 		{ "[light k]\nposition = 1 1\n", ":2: position = '1 1' is not three numbers" },
 		{ "[light k]\nposition = 1 1 1\n", "no [camera] section" },

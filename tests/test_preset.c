@@ -104,8 +104,8 @@ static void test_errors(void **state)
 	expect_error("[skin]\nmodel = chromophores\n[dermis]\ncolour = 3\n", "t.ini:4: unknown key 'colour' in [dermis]",
 	    "blood");
 	expect_error("[epidermis]\nmelanin = 0.9\n", "t.ini:2: epidermis.melanin = 0.9: out of range [0, 0.5]", NULL);
-	expect_error("[dermis]\nblood = lots\n", "t.ini:2: dermis.blood = lots: not a number", "[0, 0.2]");
-	expect_error("[derm]\nblood = 0.1\n", "t.ini:2: unknown section [derm]", NULL);
+	expect_error("[dermis]\nblood = lots\n", "t.ini:2: dermis.blood = lots: not a decimal number", "[0, 0.2]");
+	expect_error("[derm]\nblood = 0.1\n", "t.ini:1: unknown section [derm]", NULL);
 	expect_error("blood = 0.1\n", "t.ini:1: key 'blood' outside any section", NULL);
 	expect_error("[dermis]\nblood = 0.1\nblood = 0.2\n", "t.ini:3: dermis.blood is given twice", NULL);
 	expect_error("[dermis]\nthis line has no equals sign\n", "t.ini:2: syntax error", NULL);
@@ -115,7 +115,7 @@ static void test_errors(void **state)
 	expect_error("[skin]\nwavelengths = 400, 390\n", "t.ini:2: skin.wavelengths = 400, 390:", "ascending");
 	expect_error("[skin]\nwavelengths = 300:700:10\n", "300 nm is out of range [380, 780]", NULL);
 	expect_error("[skin]\nmodel = magic\n", "skin.model = magic: not one of chromophores, tables", NULL);
-	expect_error("[override.900]\nepidermis.mua = 3\n", "t.ini:2: [override.900]", "out of range [380, 780]");
+	expect_error("[override.900]\nepidermis.mua = 3\n", "t.ini:1: [override.900]", "out of range [380, 780]");
 	expect_error("[override.550]\nepidermis.mua = -3\n", "t.ini:2: override.550: epidermis.mua = -3: out of range [0, 100000]",
 	    NULL);
 	expect_error("[override.550]\nskin.mua = 3\n", "t.ini:2: unknown key 'skin.mua' in [override.550]", NULL);

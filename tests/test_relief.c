@@ -321,7 +321,7 @@ static void test_bad_params(void **state)
 	assert_string_equal(cause, "--size = 3 is out of range [16, 16384] px");
 	free(cause);
 	assert_int_equal(sites_set(&c, sites_param_find("pore_depth"), "pore_depth", "x1", &cause), -1);
-	assert_non_null(strstr(cause, "not a number"));
+	assert_non_null(strstr(cause, "not a decimal number"));
 	free(cause);
 	assert_int_equal(sites_set(&c, sites_param_find("levels"), "--levels", "1.5", &cause), -1);
 	free(cause);

@@ -92,33 +92,78 @@ def read_manifest(directory):
     if ver not in FORMAT_VERSIONS:
         raise ImageSetError(f"{path}: format_version {ver!r} is not supported by import_skin.py "
                             f"{__version__} (supported: {', '.join(map(str, FORMAT_VERSIONS))})")
-    _need(m, "ior", float, path)
-    _need(m, "roughness", float, path)
-    for key in ("sss_radius_m", "albedo_rgb"):
+    _number(m, "ior", 1.0, 3.0, path)
+    _number(m, "roughness", 0.0, 1.0, path)
+    for key, hi in (("sss_radius_m", 1.0), ("albedo_rgb", 1.0)):
         v = _need(m, key, list, path)
-        if len(v) != 3 or not all(isinstance(x, (int, float)) and x >= 0 for x in v):
-            raise ImageSetError(f"{path}: \"{key}\" must be 3 numbers >= 0, got {v!r}")
+        if len(v) != 3 or not all(_is_number(x) and 0 <= x <= hi for x in v):
+            raise ImageSetError(f"{path}: \"{key}\" is {v!r}, expected 3 numbers in [0, {hi:g}]")
     files = _need(m, "files", dict, path)
     for role in FILES:
         e = _need(files, role, dict, f"{path}: files")
         _need(e, "path", str, f"{path}: files.{role}")
-        _need(e, "width", int, f"{path}: files.{role}")
-        _need(e, "height", int, f"{path}: files.{role}")
+        for key in ("width", "height"):
+            _number(e, key, 1, 65536, f"{path}: files.{role}", int)
         p = os.path.join(directory, e["path"])
+        if os.path.dirname(os.path.normpath(e["path"])) != "" or os.path.isabs(e["path"]):
+            raise ImageSetError(f"{path}: files.{role}: \"path\" is {e['path']!r}, expected a file name in the set")
         if not os.path.isfile(p) or os.path.getsize(p) == 0:
             raise ImageSetError(f"{p}: missing or empty (listed in manifest.json as {role})")
-        (check_exr if p.lower().endswith(".exr") else check_png)(p, e["width"], e["height"])
+        if p.lower().endswith(".exr"):
+            check_exr(p, e["width"], e["height"], _CHANNELS.get(e.get("channels")), f"files.{role}.channels")
+        else:
+            check_png(p, e["width"], e["height"], _PNG_TYPES.get(e.get("channels")), f"files.{role}.channels")
     lut = _need(m, "brdf_lut", dict, path)
     nc, nphi = _need(lut, "cos_nodes", int, f"{path}: brdf_lut"), _need(lut, "phi_nodes", int, f"{path}: brdf_lut")
     if nc < 2 or nphi < 2 or files["brdf_lut"]["width"] != nc * nphi or files["brdf_lut"]["height"] != nc:
         raise ImageSetError(f"{path}: brdf_lut {nc} x {nphi} nodes does not match files.brdf_lut size")
     ex = _need(m, "exact", dict, path)
     s = _need(ex, "sun_direction", list, f"{path}: exact")
-    if len(s) != 3 or s[2] <= 0:
-        raise ImageSetError(f"{path}: exact.sun_direction must be 3 numbers with z > 0, got {s!r}")
-    _need(_need(m, "detail", dict, path), "flat", bool, f"{path}: detail")
+    if len(s) != 3 or not all(_is_number(x) for x in s) or s[2] <= 0:
+        raise ImageSetError(f"{path}: exact.sun_direction is {s!r}, expected 3 numbers with z > 0")
+    if "sun_strength_w_m2" in ex:
+        _number(ex, "sun_strength_w_m2", 0.0, 1e6, f"{path}: exact")
+    d = _need(m, "detail", dict, path)
+    if not _need(d, "flat", bool, f"{path}: detail"):
+        _number(d, "tile_mm", 0.5, 500.0, f"{path}: detail")
+        if "mean_normal_z" in d:
+            _number(d, "mean_normal_z", 1e-3, 1.0, f"{path}: detail")
+    if "general_fit" in m:
+        _check_fit(_need(m, "general_fit", dict, path), f"{path}: general_fit")
     m["_dir"] = directory
     return m
+
+
+def _is_number(x):
+    return isinstance(x, (int, float)) and not isinstance(x, bool) and math.isfinite(x)
+
+
+def _number(d, key, lo, hi, where, kind=float):
+    """d[key]: a finite number (an integer for kind int) in [lo, hi]."""
+    v = _need(d, key, kind, where)
+    if not _is_number(v) or not lo <= v <= hi:
+        raise ImageSetError(f"{where}: \"{key}\" is {v!r}, expected a number in [{lo:g}, {hi:g}]")
+    return v
+
+
+def _check_fit(f, where):
+    """The fitted mixture of the general mode: nodes ascending in [0, 1], an RGB triple of numbers
+    >= 0 per node for both colours, roughnesses in [0, 1], an index in [1, 3]."""
+    nodes = _need(f, "cos_view_nodes", list, where)
+    if len(nodes) < 2 or not all(_is_number(x) and 0 <= x <= 1 for x in nodes) or \
+            any(b <= a for a, b in zip(nodes, nodes[1:])):
+        raise ImageSetError(f"{where}: \"cos_view_nodes\" is {nodes!r}, expected at least 2 ascending numbers "
+                            "in [0, 1]")
+    for key in ("subsurface_rgb", "glossy_rgb"):
+        v = _need(f, key, list, where)
+        if len(v) != len(nodes) or not all(isinstance(c, list) and len(c) == 3 and
+                                           all(_is_number(x) and x >= 0 for x in c) for c in v):
+            raise ImageSetError(f"{where}: \"{key}\" is not {len(nodes)} RGB triples of numbers >= 0 "
+                                "(one per cos_view_nodes)")
+    for key in ("subsurface_roughness", "glossy_roughness", "specular_alpha"):
+        if key in f or key != "subsurface_roughness":
+            _number(f, key, 0.0, 1.0, where)
+    _number(f, "specular_ior", 1.0, 3.0, where)
 
 
 # Blender's readers can hang on a truncated EXR (measured with 3.4.1: a 300-byte albedo.exr made
@@ -134,8 +179,25 @@ def _read_bytes(path):
         raise ImageSetError(f"{path}: {e.strerror}") from None
 
 
-def check_exr(path, width, height):
-    """Structure of a single-part scanline EXR: header, size, and every chunk inside the file."""
+# What files.ROLE.channels promises: EXR channel names (all float32), PNG colour type and 16 bits.
+_CHANNELS = {"R,G,B": ("B", "G", "R"), "R,G,B,A": ("A", "B", "G", "R"), "Y": ("Y",)}
+_PNG_TYPES = {"gray": 0, "RGB": 2, "RGBA": 6}
+
+
+def _exr_channels(raw):
+    """(name, pixel type) of an EXR chlist attribute."""
+    import struct
+    out, pos = [], 0
+    while pos < len(raw) and raw[pos] != 0:
+        end = raw.index(b"\0", pos)
+        out.append((raw[pos:end].decode("latin-1"), struct.unpack_from("<i", raw, end + 1)[0]))
+        pos = end + 1 + 16
+    return out
+
+
+def check_exr(path, width, height, channels=(), key="channels"):
+    """Structure of a single-part scanline EXR: header, size, channels (float32 with the names the
+    manifest's channels promise, when given), and every chunk inside the file."""
     import struct
     b = _read_bytes(path)
     bad = lambda why: ImageSetError(f"{path}: corrupt OpenEXR file ({why})")   # noqa: E731
@@ -157,10 +219,16 @@ def check_exr(path, width, height):
         pos += 1
         x0, y0, x1, y1 = struct.unpack("<4i", attrs["dataWindow"])
         comp = attrs["compression"][0]
+        chans = _exr_channels(attrs["channels"])
     except (IndexError, KeyError, ValueError, struct.error):
         raise bad("truncated or incomplete header") from None
     if (x1 - x0 + 1, y1 - y0 + 1) != (width, height):
         raise ImageSetError(f"{path}: {x1 - x0 + 1}x{y1 - y0 + 1} px, manifest.json says {width}x{height}")
+    if channels is None:
+        raise ImageSetError(f"{path}: manifest.json {key} is not one of {', '.join(_CHANNELS)}")
+    if channels != () and tuple(n for n, _ in chans) != channels or any(t != 2 for _, t in chans):
+        raise ImageSetError(f"{path}: channels {', '.join(f'{n} (type {t})' for n, t in chans)}; manifest.json "
+                            f"{key} says {','.join(sorted(channels))}, expected exactly those as float32 (type 2)")
     if comp not in _EXR_LINES:
         raise bad(f"unknown compression {comp}")
     chunks = -(-height // _EXR_LINES[comp])
@@ -171,8 +239,9 @@ def check_exr(path, width, height):
             raise bad("truncated pixel data")
 
 
-def check_png(path, width, height):
-    """Every chunk's CRC, IHDR size and the complete image data of a PNG."""
+def check_png(path, width, height, ctype_want=-1, key="channels"):
+    """Every chunk's CRC, IHDR size, 16 bits of the colour type the manifest's channels promise (when given), and
+    the complete image data of a PNG."""
     import struct
     import zlib
     b = _read_bytes(path)
@@ -201,6 +270,12 @@ def check_png(path, width, height):
     chans = {0: 1, 2: 3, 4: 2, 6: 4}.get(ctype)
     if chans is None or depth not in (8, 16) or ihdr[6] != 0:
         raise bad(f"colour type {ctype} at {depth} bits, interlace {ihdr[6]}: not written by skinbake")
+    if ctype_want is None:
+        raise ImageSetError(f"{path}: manifest.json {key} is not one of {', '.join(_PNG_TYPES)}")
+    if ctype_want != -1 and (ctype != ctype_want or depth != 16):
+        raise ImageSetError(f"{path}: colour type {ctype} at {depth} bits; manifest.json {key} says "
+                            f"{[k for k, t in _PNG_TYPES.items() if t == ctype_want][0]}, expected colour type "
+                            f"{ctype_want} at 16 bits")
     try:
         raw = zlib.decompress(b"".join(idat))
     except zlib.error as e:

@@ -10,6 +10,7 @@
 
 #include "base/check.h"
 #include "base/util.h"
+#include "bake/checkpoint.h"
 #include "engine/ad_solver.h"
 #include "engine/mc.h"
 #include "skin/colour.h"
@@ -191,19 +192,51 @@ static int bake_ad(const struct bake_spec *s, const struct solver_problem *p, co
 	return 0;
 }
 
+static int bake_solve(const struct bake_spec *s, const struct solver_run *run, struct bake_result *r, char **cause);
+
+/* With a checkpoint (bake.h): open it, run, say what it restored and
+ * whether it could be written. */
 int bake_run(const struct bake_spec *s, struct bake_result *r, char **cause)
 {
 	CHECK(s->n_wl >= 1 && s->n_wl <= BAKE_MAX_WL && s->n_ti >= 1 && s->n_ti <= BAKE_MAX_TI);
 	memset(r, 0, sizeof *r);
+	struct solver_run run = {
+		.threads = s->threads, .rank = s->rank, .n_ranks = s->n_ranks > 0 ? s->n_ranks : 1,
+		.allreduce = s->allreduce, .progress = s->progress, .progress_user = s->progress_user,
+	};
+	if (s->resume && run.n_ranks > 1) {
+		*cause = xstrdup("--resume works in one process only (skinbake, not skinbake-mpi under mpirun)");
+		return -1;
+	}
+	struct checkpoint *ck = NULL;
+	if (s->checkpoint_out) {
+		ck = checkpoint_open(s->checkpoint_out, s, s->resume, run.n_ranks == 1, s->checkpoint_s, cause);
+		if (ck == NULL)
+			return -1;
+		run.ckpt = checkpoint_hooks(ck);
+	}
+	int rc = bake_solve(s, &run, r, cause);
+	if (rc == 0 && ck && (*checkpoint_note(ck) || checkpoint_write_error(ck))) {
+		const char *e = checkpoint_write_error(ck);
+		char *line = xasprintf("%s%s%s%s", checkpoint_note(ck), e ? "checkpoint not written: " : "", e ? e : "",
+		    e ? "\n" : "");
+		char *all = xasprintf("%s%s", line, r->notes ? r->notes : "");
+		free(line);
+		free(r->notes);
+		r->notes = all;
+	}
+	checkpoint_close(ck);
+	return rc;
+}
+
+static int bake_solve(const struct bake_spec *s, const struct solver_run *run0, struct bake_result *r, char **cause)
+{
 	struct solver_problem p = {
 		.n_wl = s->n_wl, .wl_nm = s->wl_nm, .slab = s->slab, .n_ti = s->n_ti, .theta_i = s->theta_i,
 		.grid = { .n_theta = s->n_to, .n_phi = s->n_phi, .n_r = s->n_r, .dr = s->dr },
 		.fresnel = s->opts.fresnel, .target_error = s->target_error,
 	};
-	struct solver_run run = {
-		.threads = s->threads, .rank = s->rank, .n_ranks = s->n_ranks > 0 ? s->n_ranks : 1,
-		.allreduce = s->allreduce, .progress = s->progress, .progress_user = s->progress_user,
-	};
+	struct solver_run run = *run0;
 	if (s->method == BAKE_SOLVER_MC) {
 		struct mc_settings mc;
 		mc_from_spec(s, &mc);

@@ -73,6 +73,13 @@ struct bake_spec {
 	void (*allreduce)(double *v, long n);
 	void (*progress)(void *user, long done, long total);	/* may be NULL */
 	void *progress_user;
+	/* Checkpoints (bake/checkpoint.h): the output directory the checkpoint
+	 * goes beside (NULL: none), whether to resume from it, and the interval
+	 * between writes [s].  One process only: under MPI a checkpoint is
+	 * neither written nor resumed (resume is refused). */
+	const char *checkpoint_out;
+	int resume;
+	double checkpoint_s;
 };
 
 /* What a bake computed: the solver's table and what the bake directory
@@ -94,7 +101,8 @@ struct bake_result {
 };
 
 /* Run the bake: 0, or -1 and *cause (caller frees) when the solver refuses
- * the spec.  Caller frees r with bake_result_free. */
+ * the spec or the checkpoint cannot be used (stale without resume, of
+ * another bake, damaged, resume under MPI).  Caller frees r with bake_result_free. */
 int bake_run(const struct bake_spec *s, struct bake_result *r, char **cause);
 void bake_result_free(struct bake_result *r);
 

@@ -182,6 +182,35 @@ int util_parse_double(const char *s, double *out)
 	return 0;
 }
 
+int util_parse_decimal(const char *s, double *out)
+{
+	const char *p = s;
+	int digits = 0;
+	if (s == NULL)
+		return -1;
+	if (*p == '+' || *p == '-')
+		p++;
+	for (; *p >= '0' && *p <= '9'; p++)
+		digits++;
+	if (*p == '.')
+		for (p++; *p >= '0' && *p <= '9'; p++)
+			digits++;
+	if (digits == 0)
+		return -1;
+	if (*p == 'e' || *p == 'E') {
+		p++;
+		if (*p == '+' || *p == '-')
+			p++;
+		if (!(*p >= '0' && *p <= '9'))
+			return -1;
+		while (*p >= '0' && *p <= '9')
+			p++;
+	}
+	if (*p != '\0' || util_parse_double(s, out) != 0 || !isfinite(*out))
+		return -1;
+	return 0;
+}
+
 int util_parse_long(const char *s, long *out)
 {
 	double v;

@@ -36,4 +36,8 @@ double util_now(void);
 /* Parse a double/long from the whole string (no trailing junk); 0 on success. */
 int util_parse_double(const char *s, double *out);
 int util_parse_long(const char *s, long *out);
+/* A finite number in decimal notation only ([+-]digits[.digits][e[+-]digits]:
+ * no hexadecimal, inf, nan or blanks), as files read by skinbake write them;
+ * 0 on success. */
+int util_parse_decimal(const char *s, double *out);
 #endif

@@ -8,6 +8,7 @@
 
 #include "bake/bake.h"
 #include "bake/bakefile.h"
+#include "bake/checkpoint.h"
 #include "bake/summary.h"
 #include "cli/cli.h"
 #include "cli/opt.h"
@@ -25,14 +26,10 @@ static int parse_resolution(struct opt_ctx *x, const struct opt *o, const char *
 	int rc = -1;
 	if (p == NULL)
 		opt_error(x, "--resolution = '%s' is not TxP (theta_o bands x delta_phi bins)", v);
-	else {
-		*p = '\0';
-		rc = opt_long(x, "--resolution: T", c, 1, 360, 0, NULL, &a) || opt_long(x, "--resolution: P", p + 1, 1, 360, 0,
-		    NULL, &b) ? -1 : 0;
-	}
+	else if ((*p = '\0', opt_long(x, "--resolution: T", c, 1, 360, 0, NULL, &a) == 0) &&
+	    opt_long(x, "--resolution: P", p + 1, 1, 360, 0, NULL, &b) == 0)
+		s->n_to = (int)a, s->n_phi = (int)b, rc = 0;
 	free(c);
-	if (rc == 0)
-		s->n_to = (int)a, s->n_phi = (int)b;
 	return rc;
 }
 
@@ -52,7 +49,7 @@ static int run(struct bake_spec *s, const char *preset, const char *pfile, const
 	struct bake_meta meta = { .preset = preset ? preset : pfile, .ior = preset_surface_ior(p),
 		.roughness = preset_surface_roughness(p), .rgb_from_wl = m, .rgb_note = bake_rgb_weights(s, m),
 		.command = cmdline };
-	s->rank = cli_par.rank, s->n_ranks = cli_par.size, s->allreduce = cli_par.allreduce;
+	s->rank = cli_par.rank, s->n_ranks = cli_par.size, s->allreduce = cli_par.allreduce, s->checkpoint_out = out;
 	struct cli_progress pr;
 	cli_progress_start(&pr, "bake");
 	s->progress = cli_progress_update, s->progress_user = &pr;
@@ -65,7 +62,7 @@ static int run(struct bake_spec *s, const char *preset, const char *pfile, const
 		rc = cli_usage_error(CMD, "%s", cause);
 	else if (cli_par.rank != 0)
 		;	/* every rank holds the whole result; rank 0 writes it */
-	else if (bake_write(out, s, &r, &meta, &cause) != 0)
+	else if (bake_write(out, s, &r, &meta, &cause) != 0 || checkpoint_remove(out, &cause) != 0)
 		rc = cli_fail(CMD, "%s", cause);
 	else if (!quiet)
 		bake_summary(stdout, s, &r, meta.preset, out);
@@ -128,6 +125,9 @@ int cmd_bake(int argc, char **argv)
 		{ "seed", OPT_LONG, &seed, "N", "1", .lo = 0, .hi = (double)LONG_MAX, .help = "mc: random seed" },
 		{ "threads", OPT_INT, &s.threads, "N", "0", .lo = 0, .hi = 1024, .help = "OpenMP threads (0 = all cores)" },
 		{ "quiet", OPT_FLAG, &quiet, .help = "no summary on stdout" },
+		{ "resume", OPT_FLAG, &s.resume, .help = "go on from DIR.checkpoint (none: from the start); not under MPI" },
+		{ "checkpoint-seconds", OPT_DOUBLE, &s.checkpoint_s, "S", "5", .lo = 0, .hi = 1e6, .unit = "s",
+		  .help = "write DIR.checkpoint at most every S seconds (0: after every step)" },
 		OPT_END
 	};
 	const struct opt_cmd cmd = { "bake", "(--preset NAME | --preset-file FILE) --out DIR [options]",

@@ -158,12 +158,42 @@ static void ad_finish(void *state, struct brdf_table *out)
 	free(a);
 }
 
+/* The wavelengths solved so far: next, then met[] and the entries of each. */
+static void *ad_pack(const void *state, size_t *len)
+{
+	const struct ad_state *a = state;
+	struct solver_buf b = { 0 };
+	solver_buf_put(&b, &a->next, sizeof a->next);
+	solver_buf_put(&b, a->met, sizeof(int) * (size_t)a->next);
+	for (int j = 0; j < a->next * a->p.n_ti; j++)
+		solver_entry_put(&b, &a->t.entry[j], &a->p.grid);
+	*len = b.len;
+	return b.p;
+}
+
+static int ad_unpack(void *state, const void *buf, size_t len)
+{
+	struct ad_state *a = state;
+	struct solver_buf b = { .p = (unsigned char *)buf, .len = len };
+	int next;
+	solver_buf_get(&b, &next, sizeof next);
+	if (b.bad || next < 0 || next > a->p.n_wl)
+		return -1;
+	a->next = next;
+	solver_buf_get(&b, a->met, sizeof(int) * (size_t)next);
+	for (int j = 0; j < next * a->p.n_ti; j++)
+		solver_entry_get(&b, &a->t.entry[j], &a->p.grid, "ad");
+	return b.bad || b.pos != len ? -1 : 0;
+}
+
 const struct solver_ops ad_solver = {
 	.name = "ad",
 	.provides = SOLVER_BRDF,
 	.begin = ad_begin,
 	.step = ad_step,
 	.finish = ad_finish,
+	.pack = ad_pack,
+	.unpack = ad_unpack,
 };
 
 /* Beam 0 of a as a sim_result on grid g (no Rd(r)). */

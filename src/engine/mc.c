@@ -258,20 +258,33 @@ static int plan_round(struct mc_state *m)
 	return 1;
 }
 
-/* One round: every (job, batch) wanted and not yet run. */
+/* A step runs at most this many batches of each job: a round of a large
+ * budget is cut into steps that a checkpoint can stop after.  Each job's
+ * batches still merge in batch order, so the sums (and the table) are
+ * those of the whole round at once. */
+enum { STEP_BATCHES = 32 };
+
+static long step_end(const struct mc_state *m, int j)
+{
+	long end = m->acc[j].batches + STEP_BATCHES;
+	return end < m->want[j] ? end : m->want[j];
+}
+
+/* The next part of a round: up to STEP_BATCHES of every (job, batch)
+ * wanted and not yet run; when the round is complete, plan the next. */
 static int mc_step(void *state, const struct solver_run *run)
 {
 	struct mc_state *m = state;
 	long nu = 0;
 	for (int j = 0; j < m->nj; j++)
-		nu += m->want[j] - m->acc[j].batches;
+		nu += step_end(m, j) - m->acc[j].batches;
 	if (nu <= 0)
 		return 0;
 	int *uj = xmalloc(sizeof(int) * (size_t)nu);
 	long *ub = xmalloc(sizeof(long) * (size_t)nu);
 	long k = 0;
 	for (int j = 0; j < m->nj; j++)
-		for (long b = m->acc[j].batches; b < m->want[j]; b++)
+		for (long b = m->acc[j].batches, end = step_end(m, j); b < end; b++)
 			uj[k] = j, ub[k++] = b;
 	CHECK(k == nu);
 	double *vals = xcalloc((size_t)nu * (size_t)(m->nq + 1), sizeof(double));
@@ -288,6 +301,9 @@ static int mc_step(void *state, const struct solver_run *run)
 	free(vals);
 	free(uj);
 	free(ub);
+	for (int j = 0; j < m->nj; j++)
+		if (m->acc[j].batches < m->want[j])
+			return 1;
 	return plan_round(m);
 }
 
@@ -350,10 +366,52 @@ static void mc_finish(void *state, struct brdf_table *out)
 	free(m);
 }
 
+/* The scalars of the state that change between steps, in this order. */
+#define MC_PACKED_LONGS(m) { &(m)->bp, &(m)->offset, &(m)->pilot_photons, &(m)->job_cap, &(m)->done_photons, &(m)->budget }
+
+static void *mc_pack(const void *state, size_t *len)
+{
+	const struct mc_state *m = state;
+	struct solver_buf b = { 0 };
+	long *const l[] = MC_PACKED_LONGS((struct mc_state *)m);
+	for (size_t i = 0; i < sizeof l / sizeof l[0]; i++)
+		solver_buf_put(&b, l[i], sizeof(long));
+	solver_buf_put(&b, &m->pilot, sizeof m->pilot);
+	solver_buf_put(&b, m->want, sizeof(long) * (size_t)m->nj);
+	solver_buf_put(&b, m->events, sizeof(double) * (size_t)m->nj);
+	for (int j = 0; j < m->nj; j++) {
+		solver_buf_put(&b, &m->acc[j].batches, sizeof(long));
+		solver_buf_put(&b, m->acc[j].s1, sizeof(double) * (size_t)m->nq);
+		solver_buf_put(&b, m->acc[j].s2, sizeof(double) * (size_t)m->nq);
+	}
+	*len = b.len;
+	return b.p;
+}
+
+static int mc_unpack(void *state, const void *buf, size_t len)
+{
+	struct mc_state *m = state;
+	struct solver_buf b = { .p = (unsigned char *)buf, .len = len };
+	long *const l[] = MC_PACKED_LONGS(m);
+	for (size_t i = 0; i < sizeof l / sizeof l[0]; i++)
+		solver_buf_get(&b, l[i], sizeof(long));
+	solver_buf_get(&b, &m->pilot, sizeof m->pilot);
+	solver_buf_get(&b, m->want, sizeof(long) * (size_t)m->nj);
+	solver_buf_get(&b, m->events, sizeof(double) * (size_t)m->nj);
+	for (int j = 0; j < m->nj; j++) {
+		solver_buf_get(&b, &m->acc[j].batches, sizeof(long));
+		solver_buf_get(&b, m->acc[j].s1, sizeof(double) * (size_t)m->nq);
+		solver_buf_get(&b, m->acc[j].s2, sizeof(double) * (size_t)m->nq);
+	}
+	return b.bad || b.pos != len || m->bp < 1 ? -1 : 0;
+}
+
 const struct solver_ops mc_solver = {
 	.name = "mc",
 	.provides = SOLVER_BRDF | SOLVER_RADIAL,
 	.begin = mc_begin,
 	.step = mc_step,
 	.finish = mc_finish,
+	.pack = mc_pack,
+	.unpack = mc_unpack,
 };

@@ -19,6 +19,7 @@
  * driver to ask another method (engine/ad_solver.h). */
 #ifndef SKINBAKE_SOLVER_H
 #define SKINBAKE_SOLVER_H
+#include <stddef.h>
 #include "engine/batchstat.h"
 #include "engine/optics.h"
 #include "engine/slab.h"
@@ -37,6 +38,20 @@ struct solver_problem {
 					 * to reach [-]; 0 = the method's own budget decides */
 };
 
+struct solver_ops;
+
+/* Checkpoints (bake/checkpoint.h keeps them in a file; the methods only
+ * pack their state into bytes).  After begin, restore may put a saved state
+ * of this solve into the method's: 1 when that state was the finished one
+ * (no step runs), 0 to step on from it (or from the start when nothing was
+ * saved), -1 and *cause when the saved bytes do not fit.  After every step,
+ * save gets the state (done: 1 after the last step). */
+struct solver_ckpt {
+	int (*restore)(void *user, const struct solver_ops *ops, void *state, char **cause);
+	void (*save)(void *user, const struct solver_ops *ops, const void *state, int done);
+	void *user;
+};
+
 /* Where and how a method runs; none of it changes the numbers. */
 struct solver_run {
 	int threads;			/* OpenMP threads, 0 = all cores */
@@ -44,6 +59,7 @@ struct solver_run {
 	void (*allreduce)(double *v, long n);	/* sum n doubles over ranks in place; NULL = one process */
 	void (*progress)(void *user, long done, long total);	/* work units done of total; may be NULL */
 	void *progress_user;
+	const struct solver_ckpt *ckpt;	/* NULL: no checkpoints */
 };
 
 /* One table entry: one (wavelength, incidence angle) pair.  Fractions are
@@ -101,10 +117,33 @@ struct solver_ops {
 	int (*step)(void *state, const struct solver_run *run);
 	/* Fill out (caller frees with brdf_table_free) and free the state. */
 	void (*finish)(void *state, struct brdf_table *out);
+	/* The state between steps as bytes (a new buffer of *len bytes, caller
+	 * frees), and back: unpack replaces a fresh state's progress (after
+	 * begin with the same problem and settings) by packed bytes; -1 when
+	 * they do not fit.  Restoring and stepping on gives the same table,
+	 * byte for byte, as never stopping. */
+	void *(*pack)(const void *state, size_t *len);
+	int (*unpack)(void *state, const void *buf, size_t len);
 };
 
-/* begin, step until done, finish; out->seconds is the wall time of the
- * steps.  -1 and *cause when begin refuses the problem. */
+/* Byte buffers for pack and unpack: put appends (growing p), get reads at
+ * pos (bad set when short).  Numbers are stored in the machine's format: a
+ * checkpoint is resumed on the machine that wrote it. */
+struct solver_buf {
+	unsigned char *p;
+	size_t len, cap, pos;
+	int bad;
+};
+void solver_buf_put(struct solver_buf *b, const void *v, size_t n);
+void solver_buf_get(struct solver_buf *b, void *v, size_t n);
+/* One table entry's values (not its labels wl_nm, theta_i); get sets
+ * method to `method` when the packed entry had one. */
+void solver_entry_put(struct solver_buf *b, const struct brdf_entry *e, const struct tally_grid *g);
+void solver_entry_get(struct solver_buf *b, struct brdf_entry *e, const struct tally_grid *g, const char *method);
+
+/* begin, (restore from run->ckpt,) step until done (saving to run->ckpt
+ * after each step), finish; out->seconds is the wall time of the steps.
+ * -1 and *cause when begin refuses the problem or restore fails. */
 int solver_solve(const struct solver_ops *ops, const void *settings, const struct solver_problem *p,
     const struct solver_run *run, struct brdf_table *out, char **cause);
 

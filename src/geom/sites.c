@@ -258,8 +258,9 @@ int sites_set(struct texture_config *cfg, const struct texture_param *p, const c
 {
 	double x;
 	const char *unit = strcmp(p->unit, "1") == 0 ? "" : p->unit;
-	if (util_parse_double(value, &x) != 0 || !isfinite(x)) {
-		*cause = xasprintf("%s = '%s' is not a number", label, value);
+	if (util_parse_decimal(value, &x) != 0) {
+		*cause = xasprintf("%s = '%s' is not a decimal number in [%.15g, %.15g]%s%s", label, value, p->lo, p->hi,
+		    *unit ? " " : "", unit);
 		return -1;
 	}
 	if (x < p->lo || x > p->hi) {
@@ -312,14 +313,39 @@ struct ini_state {
 	const char *path;
 	int pass;	/* 0: look for site, 1: apply the other keys */
 	char *error;	/* first message */
+	int line[64];	/* pass 0: line of each parameter (index in sites_params, the last: site) seen, 0 if none */
+	struct inifile *in;
 };
+
+/* A key given twice would silently take its last value. */
+static int repeated(struct ini_state *st, const char *name, char **cause)
+{
+	int n;
+	const struct texture_param *all = sites_params(&n), *p = sites_param_find(name);
+	int i = strcmp(name, "site") == 0 ? 63 : p ? (int)(p - all) : -1;
+	if (st->pass != 0 || i < 0 || i > 63)
+		return 0;
+	if (st->line[i]) {
+		*cause = xasprintf("%s is given twice in [texture] (first on line %d)", name, st->line[i]);
+		return 1;
+	}
+	st->line[i] = st->in->line;
+	return 0;
+}
 
 static int on_ini(void *user, const char *section, const char *name, const char *value)
 {
 	struct ini_state *st = user;
-	if (strcmp(section, "texture") != 0)
-		return 1;
+	if (strcmp(section, "texture") != 0) {
+		if (section[0] != '\0')
+			return 1;	/* a skin preset's section (on_section checked the name) */
+		if (st->error == NULL)
+			st->error = xasprintf("key '%s' outside the [texture] section", name);
+		return 0;
+	}
 	char *cause = NULL;
+	if (repeated(st, name, &cause))
+		goto bad;
 	if (strcmp(name, "site") == 0) {
 		if (st->pass == 0 && sites_load(value, st->cfg, &cause) != 0)
 			goto bad;
@@ -343,15 +369,42 @@ bad:
 	return 0;
 }
 
+/* [texture], or a section of a skin preset (skin/preset_keys.c; a preset
+ * file may carry the texture of its skin), whose keys are ignored here. */
+static int on_section(void *user, const char *section)
+{
+	static const char *const preset_sections[] = { "skin", "sebum", "epidermis", "dermis", "subcutis", "surface" };
+	struct ini_state *st = user;
+	if (strcmp(section, "texture") == 0 || strncmp(section, "override.", 9) == 0)
+		return 1;
+	for (size_t i = 0; i < sizeof preset_sections / sizeof preset_sections[0]; i++)
+		if (strcmp(section, preset_sections[i]) == 0)
+			return 1;
+	if (st->error == NULL)
+		st->error = xasprintf("unknown section [%s] (a texture file has [texture], and may have a skin preset's "
+		    "sections: skin, sebum, epidermis, dermis, subcutis, surface, override.WL)", section);
+	return 0;
+}
+
 int sites_read_ini(const char *path, struct texture_config *cfg, char **cause)
 {
-	struct ini_state st = { cfg, path, 0, NULL };
+	struct ini_state st = { .cfg = cfg, .path = path };
 	char *text = inifile_read(path, cause);
 	if (text == NULL)
 		return -1;
 	for (st.pass = 0; st.pass < 2; st.pass++) {
 		struct inifile in;
-		int rc = inifile_parse(&in, path, text, on_ini, &st);
+		st.in = &in;
+		int rc = inifile_parse(&in, path, text, on_ini, on_section, &st);
+		if (in.error || (in.refused && st.error)) {
+			*cause = in.error ? in.error : xasprintf("%s:%d: %s", path, in.refused, st.error);
+			if (in.error)
+				free(st.error);
+			else
+				free(st.error), free(in.error);
+			free(text);
+			return -1;
+		}
 		if (in.too_long) {
 			*cause = xasprintf("%s:%d: line %d is longer than %d characters", path, in.too_long, in.too_long, in.max_line);
 			free(st.error);

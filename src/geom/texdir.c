@@ -405,22 +405,102 @@ static int read_height(const char *hp, struct texdir *t, char **cause)
 		*cause = xasprintf("%s: %d channel(s) at %d bits; expected 16-bit gray", hp, hc, hb);
 		return -1;
 	}
+	/* Maps made elsewhere may be small or not square; the largest is that of `texture --size`. */
+	const struct texture_param *sp = sites_param_find("size");
+	if (t->w < 2 || t->h < 2 || t->w > sp->hi || t->h > sp->hi) {
+		*cause = xasprintf("%s: %dx%d pixels; expected each side in [2, %g]", hp, t->w, t->h, sp->hi);
+		return -1;
+	}
 	return 0;
 }
 
-/* The physical size and range in height.png's tEXt chunks. */
+/* The physical size and range in height.png's tEXt chunks: tile_mm in
+ * the range of the texture parameter tile-mm, the heights both absent or
+ * both finite with min <= max. */
 static int read_numbers(const char *hp, struct texdir *t, char **cause)
 {
+	const struct texture_param *tp = sites_param_find("tile-mm");
 	t->tile_mm_text = pngio_read_text(hp, "skinbake:tile_mm");
-	if (t->tile_mm_text == NULL || util_parse_double(t->tile_mm_text, &t->tile_mm) != 0 || !(t->tile_mm > 0)) {
-		*cause = xasprintf("%s: tEXt skinbake:tile_mm is %s; expected a length > 0 [mm]", hp,
-		    t->tile_mm_text ? t->tile_mm_text : "missing");
+	if (t->tile_mm_text == NULL || util_parse_double(t->tile_mm_text, &t->tile_mm) != 0 ||
+	    !(t->tile_mm >= tp->lo && t->tile_mm <= tp->hi)) {
+		*cause = xasprintf("%s: tEXt skinbake:tile_mm is %s; expected a length in [%g, %g] mm", hp,
+		    t->tile_mm_text ? t->tile_mm_text : "missing", tp->lo, tp->hi);
 		return -1;
 	}
 	t->h_min_text = pngio_read_text(hp, "skinbake:height_min_um");
 	t->h_max_text = pngio_read_text(hp, "skinbake:height_max_um");
-	t->have_range = finite_number(t->h_min_text, &t->h_min_um) && finite_number(t->h_max_text, &t->h_max_um);
+	if (t->h_min_text == NULL && t->h_max_text == NULL)
+		return 0;
+	const char *bad = !finite_number(t->h_min_text, &t->h_min_um) ? "skinbake:height_min_um"
+	    : !finite_number(t->h_max_text, &t->h_max_um) ? "skinbake:height_max_um" : NULL;
+	if (bad) {
+		const char *v = strstr(bad, "min") ? t->h_min_text : t->h_max_text;
+		*cause = xasprintf("%s: tEXt %s is %s; expected a finite height [um] (with the other of "
+		    "skinbake:height_min_um, skinbake:height_max_um)", hp, bad, v ? v : "missing");
+		return -1;
+	}
+	if (!(t->h_min_um <= t->h_max_um)) {
+		*cause = xasprintf("%s: tEXt skinbake:height_min_um = %s is above skinbake:height_max_um = %s; expected "
+		    "min <= max", hp, t->h_min_text, t->h_max_text);
+		return -1;
+	}
+	t->have_range = 1;
 	return 0;
+}
+
+/* One number of manifest.json: present, a number, and (when text is not
+ * NULL) equal to that tEXt value of height.png to rel (relative). */
+static int manifest_number(const char *mp, json_object *m, const char *key, double want, const char *text,
+    double rel, char **cause)
+{
+	json_object *v;
+	if (!json_object_object_get_ex(m, key, &v) || !(json_object_is_type(v, json_type_double) ||
+	    json_object_is_type(v, json_type_int))) {
+		*cause = xasprintf("%s: key %s is %s; expected a number", mp, key,
+		    v ? json_object_to_json_string(v) : "missing");
+		return -1;
+	}
+	double x = json_object_get_double(v);
+	if (!(fabs(x - want) <= rel * fmax(fabs(want), 1e-3))) {
+		*cause = xasprintf("%s: key %s = %s disagrees with height.png (%s); expected %s", mp, key,
+		    json_object_to_json_string(v), text, text);
+		return -1;
+	}
+	return 0;
+}
+
+/* manifest.json, when there is one (maps made elsewhere may come without):
+ * a skinbake texture whose size and physical numbers are those of height.png. */
+static int check_manifest(const char *dir, const struct texdir *t, char **cause)
+{
+	char *mp = xasprintf("%s/manifest.json", dir);
+	FILE *f = fopen(mp, "r");
+	if (f == NULL) {
+		free(mp);
+		return 0;
+	}
+	fclose(f);
+	json_object *m = json_object_from_file(mp), *v;
+	int rc = -1;
+	char px[32];
+	snprintf(px, sizeof px, "%d px", t->w);
+	if (m == NULL || !json_object_is_type(m, json_type_object))
+		*cause = xasprintf("%s: not a JSON object (%s)", mp, json_util_get_last_err());
+	else if (!json_object_object_get_ex(m, "kind", &v) || !json_object_is_type(v, json_type_string) ||
+	    strcmp(json_object_get_string(v), "skinbake texture") != 0)
+		*cause = xasprintf("%s: key kind is %s; expected \"skinbake texture\"", mp,
+		    v ? json_object_to_json_string(v) : "missing");
+	else if (!json_object_object_get_ex(m, "size_px", &v) || !json_object_is_type(v, json_type_int) ||
+	    json_object_get_int64(v) != t->w || t->w != t->h)
+		*cause = xasprintf("%s: key size_px is %s but height.png is %dx%d; expected %d", mp,
+		    v ? json_object_to_json_string(v) : "missing", t->w, t->h, t->w);
+	else if (manifest_number(mp, m, "tile_mm", t->tile_mm, t->tile_mm_text, 1e-9, cause) == 0 &&
+	    (!t->have_range || (manifest_number(mp, m, "height_min_um", t->h_min_um, t->h_min_text, 1e-5, cause) == 0 &&
+	    manifest_number(mp, m, "height_max_um", t->h_max_um, t->h_max_text, 1e-5, cause) == 0)))
+		rc = 0;
+	json_object_put(m);
+	free(mp);
+	return rc;
 }
 
 static int read_normal(const char *np, const char *hp, struct texdir *t, char **cause)
@@ -450,6 +530,8 @@ struct texdir *texdir_load(const char *dir, int with_normal, char **cause)
 		rc = read_normal(np, hp, t, cause);
 	if (rc == 0)
 		rc = read_numbers(hp, t, cause);
+	if (rc == 0)
+		rc = check_manifest(dir, t, cause);
 	free(hp);
 	free(np);
 	if (rc != 0) {

@@ -58,7 +58,7 @@ struct texdir {
 	int w, h;		/* map size [px] (a tile need not be square here) */
 	uint16_t *height;	/* [h][w] height.png, 0 = height_min_um .. 65535 = height_max_um */
 	uint16_t *normal;	/* [h][w][3] normal.png, or NULL when not asked for */
-	double tile_mm;		/* tile edge [mm], > 0 (may be inf: check before use) */
+	double tile_mm;		/* tile edge [mm], in tile-mm's range [0.5, 500] */
 	int have_range;		/* 1 when both heights below are finite numbers */
 	double h_min_um, h_max_um;	/* height of value 0 and 65535 [um] */
 	/* The tEXt values as written, for copies that keep them to the letter
@@ -66,9 +66,13 @@ struct texdir {
 	char *tile_mm_text, *h_min_text, *h_max_text;
 };
 
-/* Read DIR/height.png (16-bit gray with tEXt skinbake:tile_mm > 0) and,
- * with with_normal, DIR/normal.png (16-bit RGB of the same size).  NULL and
- * *cause (caller frees) naming the file and the problem otherwise. */
+/* Read DIR/height.png (16-bit gray, each side in [2, 16384] px, tEXt
+ * skinbake:tile_mm in the range of the texture parameter tile-mm, the
+ * height range both absent or finite with min <= max) and, with with_normal,
+ * DIR/normal.png (16-bit RGB of the same size); DIR/manifest.json, when
+ * there is one, must be a skinbake texture whose size_px, tile_mm and
+ * height range agree with height.png.  NULL and *cause (caller frees)
+ * naming the file, the key, the value and what was expected otherwise. */
 struct texdir *texdir_load(const char *dir, int with_normal, char **cause);
 void texdir_free(struct texdir *t);	/* NULL is a no-op */
 #endif

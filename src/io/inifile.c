@@ -4,17 +4,57 @@
 #include "io/inifile.h"
 
 #include <errno.h>
+#include <stdarg.h>
 #include <stdio.h>
 #include <stdlib.h>
 #include <string.h>
 
 #include "base/util.h"
 
+static char *msg(const char *origin, int line, const char *fmt, ...) __attribute__((format(printf, 3, 4)));
+static char *msg(const char *origin, int line, const char *fmt, ...)
+{
+	va_list ap;
+	va_start(ap, fmt);
+	char *m = inifile_vmsg(origin, line, fmt, ap);
+	va_end(ap);
+	return m;
+}
+
+/* A section header line (after blanks and, on line 1, a UTF-8 byte-order
+ * mark, as libinih skips them): 1 when it is "[NAME]" with at most blanks
+ * and a ';' or '#' comment after it, and NAME into name[size] as libinih
+ * takes it; 0 for other lines; -1 (message in f->error) for a header with
+ * other text after ']'.  A '[' line without ']' is left to libinih, which
+ * reports it as a syntax error. */
+static int header(struct inifile *f, const char *s, char *name, size_t size)
+{
+	if (f->line == 1 && strncmp(s, "\xEF\xBB\xBF", 3) == 0)
+		s += 3;
+	while (*s == ' ' || *s == '\t')
+		s++;
+	if (*s != '[')
+		return 0;
+	const char *end = strchr(s + 1, ']');
+	if (end == NULL)
+		return 0;
+	snprintf(name, size, "%.*s", (int)(end - s - 1), s + 1);
+	const char *t = end + 1;
+	while (*t == ' ' || *t == '\t')
+		t++;
+	if (*t == '\0' || *t == ';' || *t == '#')
+		return 1;
+	f->bad_header = f->line;
+	f->error = msg(f->origin, f->line, "text after the section header [%s]: '%s' (a header line holds only "
+	    "[NAME] and an optional ; comment; put keys on lines of their own)", name, t);
+	return -1;
+}
+
 /* libinih reader: one line per call, stripped of its end of line. */
 static char *reader(char *str, int num, void *stream)
 {
 	struct inifile *f = stream;
-	if (f->too_long || *f->pos == '\0')
+	if (f->too_long || f->bad_header || f->refused || *f->pos == '\0')
 		return NULL;
 	const char *eol = strchr(f->pos, '\n');
 	size_t len = eol ? (size_t)(eol - f->pos) : strlen(f->pos);
@@ -30,19 +70,24 @@ static char *reader(char *str, int num, void *stream)
 	}
 	memcpy(str, f->cur, content);
 	str[content] = '\0';
+	char name[INI_MAX_LINE];
+	int h = header(f, str, name, sizeof name);
+	if (h < 0)
+		return NULL;
+	if (h > 0 && f->section != NULL && !f->section(f->user, name)) {
+		f->refused = f->line;
+		return NULL;
+	}
 	return str;
 }
 
-int inifile_parse(struct inifile *f, const char *origin, const char *text, ini_handler handler, void *user)
+int inifile_parse(struct inifile *f, const char *origin, const char *text, ini_handler handler,
+    inifile_section_fn section, void *user)
 {
-	f->origin = origin;
-	f->pos = text;
-	f->cur = text;
-	f->line = 0;
-	f->too_long = 0;
-	f->max_line = INI_MAX_LINE - 1;
+	*f = (struct inifile){ .origin = origin, .pos = text, .cur = text, .max_line = INI_MAX_LINE - 1,
+		.section = section, .user = user };
 	int rc = ini_parse_stream(reader, f, handler, user);
-	return f->too_long ? f->too_long : rc;
+	return f->too_long ? f->too_long : f->bad_header ? f->bad_header : f->refused ? f->refused : rc;
 }
 
 char *inifile_read(const char *path, char **cause)

@@ -77,11 +77,22 @@ static int handler(void *user, const char *section, const char *name, const char
 	return 0;
 }
 
+static int on_section(void *user, const char *section)
+{
+	struct preset_ctx *c = user;
+	return c->err == NULL && preset_section_check(c, section) == 0;
+}
+
 /* Parse text into c->p (already holding defaults); 0 or -1 with c->err. */
 static int parse_text(struct preset_ctx *c, const char *text)
 {
-	int rc = inifile_parse(&c->in, c->origin, text, handler, c);
-	if (c->in.too_long && (c->err == NULL || c->in.too_long < c->err_line)) {
+	int rc = inifile_parse(&c->in, c->origin, text, handler, on_section, c);
+	if (c->in.error && (c->err == NULL || c->in.bad_header < c->err_line)) {
+		free(c->err);
+		c->err = c->in.error;
+		c->err_line = c->in.bad_header;
+		c->in.error = NULL;
+	} else if (c->in.too_long && (c->err == NULL || c->in.too_long < c->err_line)) {
 		free(c->err);
 		c->err = NULL;
 		c->in.line = c->in.too_long;
@@ -95,6 +106,8 @@ static int parse_text(struct preset_ctx *c, const char *text)
 		c->in.line = 0;
 		preset_ctx_err(c, "libinih failed (code %d)", rc);
 	}
+	free(c->in.error);
+	c->in.error = NULL;
 	return c->err ? -1 : 0;
 }
 

@@ -167,7 +167,7 @@ char *preset_key_names(const char *section)
 
 static int parse_number(const char *v, double *x)
 {
-	return util_parse_double(v, x) != 0 || !isfinite(*x) ? -1 : 0;
+	return util_parse_decimal(v, x);
 }
 
 /* "400:700:10, 720, 750" -> ascending list; -1 with a message on error. */
@@ -296,7 +296,7 @@ int preset_key_set(struct preset_ctx *c, int ki, const char *v)
 			return 0;
 		}
 		if (parse_number(v, &x) != 0) {
-			preset_ctx_err(c, "%s.%s = %s: not a number%s (range %s)", k->section, k->name, v,
+			preset_ctx_err(c, "%s.%s = %s: not a decimal number%s (range %s)", k->section, k->name, v,
 			    k->kind == K_LEN ? " or inf" : k->kind == K_IOR ? " or ding2006"
 			    : k->kind == K_ANISO ? " or vangemert1989" : "", rng);
 			return -1;
@@ -385,6 +385,30 @@ static int find_layer(const char *s, size_t len)
 	return -1;
 }
 
+/* A section header, checked before its keys (an empty section is checked too). */
+int preset_section_check(struct preset_ctx *c, const char *section)
+{
+	if (strncmp(section, "override.", 9) == 0) {
+		double wl;
+		if (parse_number(section + 9, &wl) != 0) {
+			preset_ctx_err(c, "[%s]: '%s' is not a wavelength in nm (e.g. [override.550])", section, section + 9);
+			return -1;
+		}
+		if (!(wl >= SPECTRA_WL_MIN && wl <= SPECTRA_WL_MAX)) {
+			preset_ctx_err(c, "[%s]: wavelength %g nm is out of range [%g, %g] nm", section, wl, SPECTRA_WL_MIN,
+			    SPECTRA_WL_MAX);
+			return -1;
+		}
+		return 0;
+	}
+	if (preset_key_find(section, "") == -2) {
+		preset_ctx_err(c, "unknown section [%s] (sections: skin, sebum, epidermis, dermis, subcutis, surface, "
+		    "override.WL)", section);
+		return -1;
+	}
+	return 0;
+}
+
 /* [override.WL] LAYER.PROP = value */
 int preset_override_set(struct preset_ctx *c, const char *section, const char *name, const char *v)
 {
@@ -412,7 +436,7 @@ int preset_override_set(struct preset_ctx *c, const char *section, const char *n
 	char rng[96];
 	range_text(rng, sizeof rng, ov_props[prop].lo, ov_props[prop].hi, ov_props[prop].unit);
 	if (parse_number(v, &x) != 0) {
-		preset_ctx_err(c, "%s: %s = %s: not a number (range %s)", section, name, v, rng);
+		preset_ctx_err(c, "%s: %s = %s: not a decimal number (range %s)", section, name, v, rng);
 		return -1;
 	}
 	if (!(x >= ov_props[prop].lo && x <= ov_props[prop].hi)) {

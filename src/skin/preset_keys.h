@@ -38,6 +38,9 @@ int preset_key_find(const char *section, const char *name);
 char *preset_key_names(const char *section);
 /* Set key ki from its file text v; 0 or -1 (message in c). */
 int preset_key_set(struct preset_ctx *c, int ki, const char *v);
+/* Section header SECTION: a known section or override.WL with WL in range;
+ * 0 or -1 (message in c). */
+int preset_section_check(struct preset_ctx *c, const char *section);
 /* [override.WL] LAYER.PROP = v; 0 or -1 (message in c). */
 int preset_override_set(struct preset_ctx *c, const char *section, const char *name, const char *v);
 /* Every key's default, through the setters. */

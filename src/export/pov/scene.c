@@ -16,6 +16,7 @@
 
 #include "base/util.h"
 #include "geom/mesh.h"
+#include "geom/sites.h"
 #include "io/inifile.h"
 #include "export/pov/placement.h"
 
@@ -30,7 +31,12 @@ struct parse {
 	int obj_has[SCENE_MAX_OBJECTS];	/* bit mask of keys seen (OBJ_*) */
 	int cam_has;			/* CAM_* bits */
 	int cam_line;
+	char **seen;			/* [n_seen] "SECTION\nKEY" of every key read, for repeats */
+	int *seen_line;
+	int n_seen;
 };
+
+
 
 enum { OBJ_CENTER = 1, OBJ_RADIUS = 2, OBJ_SIZE = 4, OBJ_NORMAL = 8, OBJ_SHAPE = 16, OBJ_COLOR = 32, OBJ_FILE = 64,
 	OBJ_MESH = 128 };
@@ -48,12 +54,29 @@ static int fail(struct parse *p, const char *fmt, ...)
 	return 0;
 }
 
+/* A key given twice in one section (also when the section is opened again)
+ * would silently take the last value: an error naming both lines. */
+static int repeated(struct parse *p, const char *section, const char *k)
+{
+	char *sk = xasprintf("%s\n%s", section, k);
+	for (int i = 0; i < p->n_seen; i++)
+		if (!strcmp(p->seen[i], sk)) {
+			free(sk);
+			return fail(p, "[%s]: %s is given twice (first on line %d)", section, k, p->seen_line[i]), 1;
+		}
+	p->seen = xreallocarray(p->seen, (size_t)p->n_seen + 1, sizeof *p->seen);
+	p->seen_line = xreallocarray(p->seen_line, (size_t)p->n_seen + 1, sizeof *p->seen_line);
+	p->seen_line[p->n_seen] = p->in.line;
+	p->seen[p->n_seen++] = sk;
+	return 0;
+}
+
 static int parse_vec(const char *v, int n, double *out)
 {
 	char *buf = xstrdup(v), *save = NULL;
 	int k = 0, rc = 0;
 	for (char *t = strtok_r(buf, " \t,<>", &save); t; t = strtok_r(NULL, " \t,<>", &save)) {
-		if (k >= n || util_parse_double(t, &out[k]) != 0 || !isfinite(out[k])) {
+		if (k >= n || util_parse_decimal(t, &out[k]) != 0) {
 			rc = -1;
 			break;
 		}
@@ -76,8 +99,8 @@ static int parse_bool(const char *v, int *out)
 static int num(struct parse *p, const char *key, const char *v, double lo, double hi, double *out)
 {
 	double x;
-	if (util_parse_double(v, &x) != 0 || !isfinite(x))
-		return fail(p, "%s = '%s' is not a number", key, v), -1;
+	if (util_parse_decimal(v, &x) != 0)
+		return fail(p, "%s = '%s' is not a decimal number in [%g, %g]", key, v, lo, hi), -1;
 	if (x < lo || x > hi)
 		return fail(p, "%s = %s is out of range [%g, %g]", key, v, lo, hi), -1;
 	*out = x;
@@ -249,8 +272,12 @@ static int key_skin(struct parse *p, struct scene_skin *sk, const char *k, const
 		free(sk->preset);
 		sk->preset = xstrdup(v);
 	} else if (!strcmp(k, "site")) {
-		if (!scene_valid_name(v))
+		struct texture_config tc;
+		char *why = NULL;
+		if (!scene_valid_name(v) || (strcmp(v, "none") && sites_load(v, &tc, &why) != 0)) {
+			free(why);
 			return fail(p, "site = '%s' is not a site name (skinbake texture --list-sites) or none", v);
+		}
 		free(sk->site);
 		sk->site = strcmp(v, "none") ? xstrdup(v) : NULL;
 	} else if (!strcmp(k, "bake")) {
@@ -383,7 +410,7 @@ static int handler(void *user, const char *section, const char *k, const char *v
 	struct parse *p = user;
 	struct scene *s = p->s;
 	char name[64];
-	if (p->err != NULL)
+	if (p->err != NULL || repeated(p, section, k))
 		return 0;
 	if (!strcmp(section, "scene"))
 		return key_scene(p, k, v);
@@ -444,6 +471,27 @@ static int handler(void *user, const char *section, const char *k, const char *v
 		}
 		return key_object(p, i, k, v);
 	}
+	return fail(p, "unknown section [%s] (sections [scene], [camera], [light NAME], [skin NAME], "
+	    "[object NAME])", section);
+}
+
+/* Every section header, also of a section without keys. */
+static int on_section(void *user, const char *section)
+{
+	struct parse *p = user;
+	static const char *const kinds[] = { "light", "skin", "object" };
+	char name[64];
+	if (p->err != NULL)
+		return 0;
+	if (!strcmp(section, "scene") || !strcmp(section, "camera"))
+		return 1;
+	for (size_t i = 0; i < sizeof kinds / sizeof kinds[0]; i++)
+		if (split_section(section, kinds[i], name)) {
+			if (!scene_valid_name(name))
+				return fail(p, "[%s]: '%s' is not a name (letters, digits, _; at most %d)", section, name,
+				    SCENE_NAME_MAX - 1);
+			return 1;
+		}
 	return fail(p, "unknown section [%s] (sections [scene], [camera], [light NAME], [skin NAME], "
 	    "[object NAME])", section);
 }
@@ -548,8 +596,17 @@ struct scene *scene_load(const char *path, char **cause)
 		scene_free(s);
 		return NULL;
 	}
-	int rc = inifile_parse(&p.in, path, text, handler, &p);
+	int rc = inifile_parse(&p.in, path, text, handler, on_section, &p);
 	free(text);
+	if (p.in.error && p.err == NULL) {
+		p.err = p.in.error;
+		p.in.error = NULL;
+	}
+	free(p.in.error);
+	for (int i = 0; i < p.n_seen; i++)
+		free(p.seen[i]);
+	free(p.seen);
+	free(p.seen_line);
 	if (p.in.too_long && p.err == NULL)
 		p.err = xasprintf("%s:%d: line %d is longer than %d characters", path, p.in.too_long, p.in.too_long, p.in.max_line);
 	if (rc != 0 && p.err == NULL) {

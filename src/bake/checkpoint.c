@@ -1,0 +1,324 @@
+/* checkpoint: a bake's solver states saved to OUT.checkpoint and restored
+ * with --resume (see checkpoint.h). */
+#include "config.h"
+#include "bake/checkpoint.h"
+
+#include <errno.h>
+#include <fcntl.h>
+#include <stdlib.h>
+#include <string.h>
+#include <sys/stat.h>
+#include <unistd.h>
+
+#include "base/util.h"
+
+static const char MAGIC[] = "skinbake checkpoint 1\n";
+enum { NAME_MAX_CK = 16 };
+
+struct record {
+	unsigned char *state;	/* packed by the method; NULL: none yet */
+	size_t len;
+	uint32_t done;		/* 1: the run finished */
+	char method[NAME_MAX_CK];
+};
+
+struct checkpoint {
+	char *path, *tmp;
+	uint64_t id;
+	int write;		/* 1: this process writes the file */
+	double every_s, last;	/* interval [s], time of the last write (util_now) */
+	struct record *rec;	/* [n] the runs saved or loaded */
+	int n, cap;
+	int n_loaded;		/* runs read from the file */
+	int seq;		/* solver runs begun in this process */
+	char *note, *error;
+	struct solver_ckpt hooks;
+};
+
+static uint64_t fnv(uint64_t h, const void *v, size_t n)
+{
+	const unsigned char *p = v;
+	for (size_t i = 0; i < n; i++)
+		h = (h ^ p[i]) * 0x100000001b3ULL;
+	return h;
+}
+#define FNV0 0xcbf29ce484222325ULL
+#define HASH(h, x) ((h) = fnv((h), &(x), sizeof(x)))
+
+char *checkpoint_path(const char *out)
+{
+	size_t n = strlen(out);
+	while (n > 1 && out[n - 1] == '/')
+		n--;
+	return xasprintf("%.*s.checkpoint", (int)n, out);
+}
+
+uint64_t checkpoint_identity(const struct bake_spec *s)
+{
+	uint64_t h = fnv(FNV0, MAGIC, sizeof MAGIC);
+	HASH(h, s->n_wl);
+	for (int w = 0; w < s->n_wl; w++) {
+		const struct slab *sl = &s->slab[w];
+		HASH(h, s->wl_nm[w]);
+		HASH(h, sl->n_layers);
+		HASH(h, sl->n_above);
+		HASH(h, sl->n_below);
+		for (int i = 0; i < sl->n_layers + 2; i++) {
+			const struct layer *l = &sl->layer[i];
+			HASH(h, l->d), HASH(h, l->n), HASH(h, l->mu_a), HASH(h, l->mu_s), HASH(h, l->g);
+		}
+	}
+	HASH(h, s->n_ti);
+	for (int k = 0; k < s->n_ti; k++)
+		HASH(h, s->theta_i[k]);
+	HASH(h, s->n_to), HASH(h, s->n_phi), HASH(h, s->n_r), HASH(h, s->dr);
+	HASH(h, s->opts.fresnel), HASH(h, s->opts.roulette_w), HASH(h, s->opts.roulette_chance), HASH(h, s->opts.max_steps);
+	HASH(h, s->method), HASH(h, s->ad_tol), HASH(h, s->ad_quad), HASH(h, s->radial_error), HASH(h, s->radial_photons);
+	HASH(h, s->seed), HASH(h, s->batch_photons), HASH(h, s->min_batches), HASH(h, s->target_error);
+	HASH(h, s->max_photons), HASH(h, s->nee);
+	return h;
+}
+
+/* The whole file in memory; NULL and *cause. */
+static unsigned char *slurp(const char *path, size_t *len, char **cause)
+{
+	FILE *f = fopen(path, "rb");
+	if (f == NULL) {
+		*cause = xasprintf("%s: %s", path, strerror(errno));
+		return NULL;
+	}
+	size_t cap = 1 << 16, n = 0, got;
+	unsigned char *b = xmalloc(cap);
+	while ((got = fread(b + n, 1, cap - n, f)) > 0)
+		if ((n += got) == cap)
+			b = xreallocarray(b, cap *= 2, 1);
+	int bad = ferror(f);
+	fclose(f);
+	if (bad) {
+		free(b);
+		*cause = xasprintf("%s: read error", path);
+		return NULL;
+	}
+	*len = n;
+	return b;
+}
+
+/* Parse the file into c->rec; -1 and *cause when it is damaged or foreign. */
+static int load(struct checkpoint *c, char **cause)
+{
+	size_t len;
+	unsigned char *b = slurp(c->path, &len, cause);
+	if (b == NULL)
+		return -1;
+	struct solver_buf in = { .p = b, .len = len };
+	char magic[sizeof MAGIC];
+	uint64_t id, sum, want = len >= 8 ? fnv(FNV0, b, len - 8) : 0;
+	uint32_t n = 0;
+	solver_buf_get(&in, magic, sizeof magic);
+	if (in.bad || memcmp(magic, MAGIC, sizeof MAGIC) != 0 || (memcpy(&sum, b + len - 8, 8), sum != want)) {
+		*cause = xasprintf("%s is not a complete skinbake checkpoint (damaged, or of another version); remove it "
+		    "to bake from the start", c->path);
+		free(b);
+		return -1;
+	}
+	in.len -= 8;
+	solver_buf_get(&in, &id, sizeof id);
+	if (id != c->id) {
+		*cause = xasprintf("%s was written by a different bake (identity %016llx; this command's is %016llx: "
+		    "another preset, wavelengths, angles, grid, solver setting or seed); run that command with --resume, "
+		    "or remove the file", c->path, (unsigned long long)id, (unsigned long long)c->id);
+		free(b);
+		return -1;
+	}
+	solver_buf_get(&in, &n, sizeof n);
+	if (n > len)
+		in.bad = 1, n = 0;
+	c->rec = xcalloc(n ? n : 1, sizeof *c->rec);
+	c->cap = n ? (int)n : 1;
+	for (uint32_t i = 0; i < n && !in.bad; i++) {
+		struct record *r = &c->rec[i];
+		solver_buf_get(&in, &r->done, sizeof r->done);
+		solver_buf_get(&in, r->method, sizeof r->method);
+		solver_buf_get(&in, &r->len, sizeof r->len);
+		if (in.bad || r->len > in.len - in.pos) {
+			in.bad = 1;
+			break;
+		}
+		r->state = xmalloc(r->len ? r->len : 1);
+		solver_buf_get(&in, r->state, r->len);
+		r->method[NAME_MAX_CK - 1] = '\0';
+		c->n = (int)i + 1;
+	}
+	free(b);
+	if (in.bad || in.pos != in.len) {
+		*cause = xasprintf("%s: its records are inconsistent; remove it to bake from the start", c->path);
+		return -1;
+	}
+	c->n_loaded = c->n;
+	int done = 0;
+	for (int i = 0; i < c->n; i++)
+		done += c->rec[i].done != 0;
+	c->note = xasprintf("resuming from %s: %d solver run%s finished, %d in progress\n", c->path, done,
+	    done == 1 ? "" : "s", c->n - done);
+	return 0;
+}
+
+static int write_all(int fd, const void *v, size_t n)
+{
+	const unsigned char *p = v;
+	while (n > 0) {
+		ssize_t k = write(fd, p, n);
+		if (k < 0 && errno == EINTR)
+			continue;
+		if (k <= 0)
+			return -1;
+		p += k, n -= (size_t)k;
+	}
+	return 0;
+}
+
+/* The records to path.tmp, fsync, rename onto path, fsync of the directory. */
+static int save_file(struct checkpoint *c, char **cause)
+{
+	struct solver_buf b = { 0 };
+	uint32_t n = (uint32_t)c->n;
+	solver_buf_put(&b, MAGIC, sizeof MAGIC);
+	solver_buf_put(&b, &c->id, sizeof c->id);
+	solver_buf_put(&b, &n, sizeof n);
+	for (int i = 0; i < c->n; i++) {
+		const struct record *r = &c->rec[i];
+		solver_buf_put(&b, &r->done, sizeof r->done);
+		solver_buf_put(&b, r->method, sizeof r->method);
+		solver_buf_put(&b, &r->len, sizeof r->len);
+		solver_buf_put(&b, r->state, r->len);
+	}
+	uint64_t sum = fnv(FNV0, b.p, b.len);
+	solver_buf_put(&b, &sum, sizeof sum);
+	int fd = open(c->tmp, O_WRONLY | O_CREAT | O_TRUNC | O_CLOEXEC, 0644);
+	int rc = fd < 0 || write_all(fd, b.p, b.len) != 0 || fsync(fd) != 0 ? -1 : 0;
+	int err = errno;
+	if (fd >= 0 && close(fd) != 0 && rc == 0)
+		rc = -1, err = errno;
+	if (rc == 0 && rename(c->tmp, c->path) != 0)
+		rc = -1, err = errno;
+	free(b.p);
+	if (rc != 0) {
+		unlink(c->tmp);
+		*cause = xasprintf("%s: %s", c->path, strerror(err));
+		return -1;
+	}
+	char *slash = strrchr(c->path, '/');
+	char *dir = slash ? xasprintf("%.*s", slash == c->path ? 1 : (int)(slash - c->path), c->path) : xstrdup(".");
+	int dfd = open(dir, O_RDONLY | O_DIRECTORY | O_CLOEXEC);
+	if (dfd >= 0) {
+		fsync(dfd);
+		close(dfd);
+	}
+	free(dir);
+	return 0;
+}
+
+static int hook_restore(void *user, const struct solver_ops *ops, void *state, char **cause)
+{
+	struct checkpoint *c = user;
+	int k = c->seq++;
+	if (k >= c->n_loaded)
+		return 0;
+	const struct record *r = &c->rec[k];
+	if (strcmp(r->method, ops->name) != 0 || ops->unpack(state, r->state, r->len) != 0) {
+		*cause = xasprintf("%s: solver run %d does not fit this bake (saved by '%s', now '%s'); remove the file "
+		    "to bake from the start", c->path, k + 1, r->method, ops->name);
+		return -1;
+	}
+	return r->done ? 1 : 0;
+}
+
+static void hook_save(void *user, const struct solver_ops *ops, const void *state, int done)
+{
+	struct checkpoint *c = user;
+	int k = c->seq - 1;
+	if (!c->write || ops->pack == NULL || k < 0)
+		return;
+	if (k >= c->cap) {
+		c->rec = xreallocarray(c->rec, (size_t)(c->cap = 2 * k + 4), sizeof *c->rec);
+		memset(c->rec + c->n, 0, sizeof *c->rec * (size_t)(c->cap - c->n));
+	}
+	if (k >= c->n)
+		c->n = k + 1;
+	struct record *r = &c->rec[k];
+	free(r->state);
+	r->state = ops->pack(state, &r->len);
+	r->done = (uint32_t)done;
+	snprintf(r->method, sizeof r->method, "%s", ops->name);
+	double now = util_now();
+	if (c->error == NULL && now - c->last >= c->every_s) {
+		if (save_file(c, &c->error) == 0)
+			c->last = now;
+	}
+}
+
+struct checkpoint *checkpoint_open(const char *out, const struct bake_spec *s, int resume, int write, double every_s,
+    char **cause)
+{
+	struct checkpoint *c = xcalloc(1, sizeof *c);
+	c->path = checkpoint_path(out);
+	c->tmp = xasprintf("%s.tmp", c->path);
+	c->id = checkpoint_identity(s);
+	c->write = write;
+	c->every_s = every_s;
+	c->hooks = (struct solver_ckpt){ hook_restore, hook_save, c };
+	struct stat st;
+	int there = stat(c->path, &st) == 0;
+	if (there && !resume)
+		*cause = xasprintf("%s: a checkpoint of an interrupted bake is there; pass --resume to continue it (the same "
+		    "command), or remove the file to bake from the start", c->path);
+	if ((there && !resume) || (there && load(c, cause) != 0)) {
+		checkpoint_close(c);
+		return NULL;
+	}
+	if (write)
+		unlink(c->tmp);	/* a write cut short by the kill */
+	if (c->note == NULL)
+		c->note = xstrdup("");
+	c->last = util_now();
+	return c;
+}
+
+const struct solver_ckpt *checkpoint_hooks(struct checkpoint *c)
+{
+	return &c->hooks;
+}
+
+const char *checkpoint_note(const struct checkpoint *c)
+{
+	return c->note;
+}
+
+const char *checkpoint_write_error(const struct checkpoint *c)
+{
+	return c->error;
+}
+
+void checkpoint_close(struct checkpoint *c)
+{
+	if (c == NULL)
+		return;
+	for (int i = 0; i < c->n; i++)
+		free(c->rec[i].state);
+	free(c->rec);
+	free(c->path);
+	free(c->tmp);
+	free(c->note);
+	free(c->error);
+	free(c);
+}
+
+int checkpoint_remove(const char *out, char **cause)
+{
+	char *path = checkpoint_path(out);
+	int rc = unlink(path) == 0 || errno == ENOENT ? 0 : -1;
+	if (rc != 0)
+		*cause = xasprintf("%s: %s", path, strerror(errno));
+	free(path);
+	return rc;
+}
