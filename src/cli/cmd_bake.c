@@ -10,6 +10,7 @@
 #include "bake/bake.h"
 #include "bake/bakefile.h"
 #include "cli/cli.h"
+#include "cli/cmd_bake_family.h"
 #include "cli/opt.h"
 #include "skin/preset.h"
 #include "base/util.h"
@@ -50,7 +51,7 @@ static char *command_line(int argc, char **argv)
 
 /* After the options: the preset's layer stacks, the bake, the directory. */
 static int run(struct bake_spec *s, const char *preset, const char *pfile, const char *out, int have_wl, int quiet,
-    int argc, char **argv)
+    const struct bake_vary *vary, int argc, char **argv)
 {
 	const char *label = preset ? preset : pfile;
 	char *cause = NULL;
@@ -74,6 +75,13 @@ static int run(struct bake_spec *s, const char *preset, const char *pfile, const
 		return cli_usage_error(CMD, "--max-photons = %ld is below the first round of the bake "
 		    "(%d wavelengths x %d angles x %d batches x %ld photons)", s->max_photons, s->n_wl, s->n_ti,
 		    s->min_batches, s->batch_photons);
+	}
+	if (vary->n > 0) {
+		char *cmdline = command_line(argc, argv);
+		int rc = bake_family_run(s, p, label, out, vary, quiet, cmdline);
+		free(cmdline);
+		preset_free(p);
+		return rc;
 	}
 	if (bake_spec_layers(s, p, label, &cause) != 0) {
 		int rc = cli_usage_error(CMD, "%s", cause);
@@ -130,7 +138,9 @@ int cmd_bake(int argc, char **argv)
 {
 	static struct bake_spec s;
 	static struct opt_list wl, th;
+	static struct bake_vary vary;
 	memset(&s, 0, sizeof s);
+	vary.n = 0;
 	const char *preset = NULL, *pfile = NULL, *out = NULL;
 	int quiet = 0, nodes, fresnel, est;
 	long seed;
@@ -168,6 +178,8 @@ int cmd_bake(int argc, char **argv)
 		{ "seed", OPT_LONG, &seed, "N", "1", .lo = 0, .hi = (double)LONG_MAX, .help = "random seed" },
 		{ "threads", OPT_INT, &s.threads, "N", "0", .lo = 0, .hi = 1024, .help = "OpenMP threads (0 = all cores)" },
 		{ "quiet", OPT_FLAG, &quiet, .help = "no summary on stdout" },
+		{ "vary", OPT_CUSTOM, &vary, "KEY=LO:HI:N[:SPACING]", .fn = bake_vary_parse, .flags = OPT_REPEAT,
+		  .max = FAMILY_MAX_AXES, .help = BAKE_VARY_HELP },
 		OPT_END
 	};
 	const struct opt_cmd cmd = { "bake", "(--preset NAME | --preset-file FILE) --out DIR [options]",
@@ -191,5 +203,5 @@ int cmd_bake(int argc, char **argv)
 	s.min_batches = 8;
 	s.n_ranks = 1;
 	int have_wl = wl.n > 0;
-	return run(&s, preset, pfile, out, have_wl, quiet, argc, argv);
+	return run(&s, preset, pfile, out, have_wl, quiet, &vary, argc, argv);
 }
