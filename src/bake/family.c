@@ -3,14 +3,11 @@
 #include "config.h"
 #include "bake/family.h"
 
-#include <dirent.h>
-#include <errno.h>
 #include <json-c/json.h>
 #include <math.h>
 #include <stdint.h>
 #include <stdlib.h>
 #include <string.h>
-#include <sys/stat.h>
 #include <unistd.h>
 
 #include "base/check.h"
@@ -106,6 +103,7 @@ void family_free(struct family *f)
 		for (int m = 0; m < f->n_members; m++)
 			bake_free(f->bake[m]);
 	free(f->bake);
+	free(f->log_albedo);
 	free(f->member);
 	free(f->dir);
 	free(f->preset);
@@ -282,30 +280,5 @@ int family_write_index(const char *dir, const struct family *f, const char *comm
 
 int family_check_out(const char *dir, char **cause)
 {
-	struct stat st;
-	if (stat(dir, &st) != 0)
-		return 0;
-	if (!S_ISDIR(st.st_mode)) {
-		*cause = xasprintf("%s exists and is not a directory", dir);
-		return -1;
-	}
-	char *idx = xasprintf("%s/family.json", dir);
-	int is_family = access(idx, F_OK) == 0;
-	free(idx);
-	if (is_family)
-		return 0;
-	DIR *d = opendir(dir);
-	int empty = 1;
-	struct dirent *e;
-	while (d && (e = readdir(d)) != NULL)
-		if (strcmp(e->d_name, ".") != 0 && strcmp(e->d_name, "..") != 0)
-			empty = 0;
-	if (d)
-		closedir(d);
-	if (!empty) {
-		*cause = xasprintf("%s is neither empty nor a family directory (no family.json); a family replaces the "
-		    "whole directory, so give a new or empty one", dir);
-		return -1;
-	}
-	return 0;
+	return util_dir_replaceable(dir, "family.json", "family directory", cause);
 }

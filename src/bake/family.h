@@ -87,6 +87,7 @@ struct family {
 	char *solver;			/* method of the members' tables */
 	struct bake_spec *spec;		/* the members' bake settings (slabs not filled) */
 	struct bake **bake;		/* [n_members] member tables, NULL until family_load_tables */
+	double *log_albedo;		/* [n_members][n_wl] log of albedo_wl, NULL until family_albedo_prepare */
 };
 
 /* ---- axes ---- */
@@ -165,6 +166,9 @@ void family_stencil(const struct family *f, const double *x, struct family_stenc
 /* Blend values v[member * stride]: exp(sum w log v) when all are > 0,
  * else sum w v. */
 double family_blend(const struct family_stencil *st, const double *v, size_t stride);
+/* Precompute what family_albedo needs (the members' log albedos), for
+ * many calls; not thread-safe itself, the calls after it are. */
+void family_albedo_prepare(struct family *f);
 /* The diffuse albedo at x: per wavelength (albedo_wl[n_wl], may be NULL)
  * and in linear sRGB; the subsurface radius per R, G, B [cm] (may be NULL). */
 void family_albedo(const struct family *f, const double *x, double *albedo_wl, double rgb[3], double radius_rgb_cm[3]);

@@ -78,6 +78,23 @@ double family_blend(const struct family_stencil *st, const double *v, size_t str
 	return pos ? exp(s) : s;
 }
 
+void family_albedo_prepare(struct family *f)
+{
+	if (f->log_albedo)
+		return;
+	double *l = xmalloc(sizeof(double) * (size_t)f->n_members * (size_t)f->n_wl);
+	for (int m = 0; m < f->n_members; m++)
+		for (int w = 0; w < f->n_wl; w++) {
+			double a = f->member[m].albedo_wl[w];
+			if (!(a > 0.0)) {
+				free(l);	/* a zero albedo: blend the values (family_blend's rule) */
+				return;
+			}
+			l[(size_t)m * f->n_wl + w] = log(a);
+		}
+	f->log_albedo = l;
+}
+
 void family_albedo(const struct family *f, const double *x, double *albedo_wl, double rgb[3], double radius_rgb_cm[3])
 {
 	struct family_stencil st;
@@ -87,11 +104,22 @@ void family_albedo(const struct family *f, const double *x, double *albedo_wl, d
 	struct family_stencil loc = st;
 	for (int j = 0; j < st.n; j++)
 		loc.member[j] = j;
-	for (int w = 0; w < f->n_wl; w++) {
-		for (int j = 0; j < st.n; j++)
-			v[j] = f->member[st.member[j]].albedo_wl[w];
-		a[w] = family_blend(&loc, v, 1);
-	}
+	if (f->log_albedo) {
+		for (int w = 0; w < f->n_wl; w++)
+			a[w] = 0.0;
+		for (int j = 0; j < st.n; j++) {
+			const double *l = f->log_albedo + (size_t)st.member[j] * f->n_wl;
+			for (int w = 0; w < f->n_wl; w++)
+				a[w] += st.w[j] * l[w];
+		}
+		for (int w = 0; w < f->n_wl; w++)
+			a[w] = exp(a[w]);
+	} else
+		for (int w = 0; w < f->n_wl; w++) {
+			for (int j = 0; j < st.n; j++)
+				v[j] = f->member[st.member[j]].albedo_wl[w];
+			a[w] = family_blend(&loc, v, 1);
+		}
 	for (int c = 0; c < 3; c++) {
 		rgb[c] = 0.0;
 		for (int w = 0; w < f->n_wl; w++)

@@ -5,12 +5,10 @@
 #include "config.h"
 #include "bake/family.h"
 
-#include <dirent.h>
 #include <errno.h>
 #include <math.h>
 #include <stdlib.h>
 #include <string.h>
-#include <sys/stat.h>
 #include <unistd.h>
 
 #include "base/check.h"
@@ -243,26 +241,6 @@ static void unpack(const struct bake_spec *s, const double *v, char *solver, str
 
 /* ---- the directory ---- */
 
-/* rm -r of a directory this module made (regular files and directories). */
-static void rm_tree(const char *path)
-{
-	DIR *d = opendir(path);
-	if (d == NULL) {
-		unlink(path);
-		return;
-	}
-	struct dirent *e;
-	while ((e = readdir(d)) != NULL) {
-		if (strcmp(e->d_name, ".") == 0 || strcmp(e->d_name, "..") == 0)
-			continue;
-		char *p = xasprintf("%s/%s", path, e->d_name);
-		rm_tree(p);
-		free(p);
-	}
-	closedir(d);
-	rmdir(path);
-}
-
 static int write_text(const char *path, const char *text, char **cause)
 {
 	struct outfile of;
@@ -275,13 +253,8 @@ static int write_text(const char *path, const char *text, char **cause)
 /* The staging directory, fresh, with the base preset in it. */
 static char *stage_open(const char *dir, const struct skin_params *base, char **cause)
 {
-	char *d = xstrdup(dir);
-	size_t n = strlen(d);
-	while (n > 1 && d[n - 1] == '/')
-		d[--n] = '\0';
-	char *stage = xasprintf("%s.staging", d);
-	free(d);
-	rm_tree(stage);
+	char *stage = util_stage_name(dir);
+	util_rm_tree(stage);
 	char *ini = preset_to_ini(base), *ip = xasprintf("%s/preset.ini", stage);
 	int rc = util_mkdirs(stage, cause) || write_text(ip, ini, cause) ? -1 : 0;
 	free(ini);
@@ -291,32 +264,6 @@ static char *stage_open(const char *dir, const struct skin_params *base, char **
 		return NULL;
 	}
 	return stage;
-}
-
-/* Replace DIR (absent, empty or an earlier family) by the staging directory. */
-static int stage_commit(const char *stage, const char *dir, char **cause)
-{
-	struct stat st;
-	char *old = NULL;
-	if (stat(dir, &st) == 0) {
-		old = xasprintf("%s.old.%ld", stage, (long)getpid());
-		if (rename(dir, old) != 0) {
-			*cause = xasprintf("%s: cannot move the earlier directory aside: %s", dir, strerror(errno));
-			free(old);
-			return -1;
-		}
-	}
-	if (rename(stage, dir) != 0) {
-		*cause = xasprintf("%s: cannot rename %s into place: %s", dir, stage, strerror(errno));
-		if (old)
-			rename(old, dir);
-		free(old);
-		return -1;
-	}
-	if (old)
-		rm_tree(old);
-	free(old);
-	return 0;
 }
 
 /* The family record of member m from its result (rank 0): albedo at the
@@ -510,9 +457,9 @@ int family_bake(const struct family_plan *pl, const char *dir, struct family **o
 	free(buf);
 	free(s);
 	if (rank == 0 && rc == 0)
-		rc = family_write_index(stage, f, pl->command, cause) || stage_commit(stage, dir, cause) ? -2 : 0;
+		rc = family_write_index(stage, f, pl->command, cause) || util_replace_dir(stage, dir, cause) ? -2 : 0;
 	if (rank == 0 && rc != 0 && stage)
-		rm_tree(stage);
+		util_rm_tree(stage);
 	free(stage);
 	if (rc == 0 && rank == 0 && out) {
 		f->dir = xstrdup(dir);

@@ -26,6 +26,7 @@ static const struct opt_sub commands[] = {
 	{ "eval", "evaluate a baked BRDF at given angles", cmd_eval },
 	{ "texture", "grow pores and furrows as seamless height and normal maps", cmd_texture },
 	{ "export", "export pov|blender: scenes and image sets for renderers", cmd_export },
+	{ "maps", "maps new|fit|edit|render-albedo: parameter maps of a family", cmd_maps },
 	{ NULL, NULL, NULL },
 };
 
