@@ -38,6 +38,7 @@ struct lut {
 	double c0[FAMILY_MAX_AXES], c1[FAMILY_MAX_AXES];	/* axis coordinate at the grid's ends */
 	int n;				/* grid points */
 	double *lab;			/* [n][3] */
+	int n_coarse;			/* grid points in the buckets: every step-th per axis and the last */
 	double lo[3], cell;		/* bucket grid origin and cell size (CIELAB units) */
 	int dim[3];
 	int *start, *item;		/* CSR: bucket b holds item[start[b] .. start[b + 1]) */
@@ -90,46 +91,58 @@ static void lut_build(struct lut *t, const struct family *f, int threads)
 		grid_params(t, g, x);
 		params_lab(f, x, t->lab + 3 * (size_t)i);
 	}
-	/* Buckets of 1 CIELAB unit (coarser if there would be more than 4M). */
+	/* Buckets of 2 CIELAB units over a coarse subset of the grid (the
+	 * refinement walks the fine grid from the coarse point found). */
+	static const int step[FAMILY_MAX_AXES + 1] = { 1, 16, 4, 4 };
+	int *coarse = xmalloc(sizeof(int) * (size_t)t->n);
+	t->n_coarse = 0;
+	for (int i = 0; i < t->n; i++) {
+		int q[FAMILY_MAX_AXES] = { i % t->g[0], (i / t->g[0]) % t->g[1], i / (t->g[0] * t->g[1]) }, in = 1;
+		for (int a = 0; a < t->k; a++)
+			in = in && (q[a] % step[t->k] == 0 || q[a] == t->g[a] - 1);
+		if (in)
+			coarse[t->n_coarse++] = i;
+	}
 	double hi[3] = { -INFINITY, -INFINITY, -INFINITY };
 	for (int c = 0; c < 3; c++)
 		t->lo[c] = INFINITY;
-	for (int i = 0; i < t->n; i++)
+	for (int j = 0; j < t->n_coarse; j++)
 		for (int c = 0; c < 3; c++) {
-			t->lo[c] = fmin(t->lo[c], t->lab[3 * i + c]);
-			hi[c] = fmax(hi[c], t->lab[3 * i + c]);
+			t->lo[c] = fmin(t->lo[c], t->lab[3 * (size_t)coarse[j] + c]);
+			hi[c] = fmax(hi[c], t->lab[3 * (size_t)coarse[j] + c]);
 		}
-	t->cell = 1.0;
+	t->cell = 2.0;
 	double vol = 1.0;
 	for (int c = 0; c < 3; c++)
 		vol *= (hi[c] - t->lo[c]) / t->cell + 1.0;
-	if (vol > 4e6)
-		t->cell *= cbrt(vol / 4e6);
+	if (vol > 1e6)
+		t->cell *= cbrt(vol / 1e6);
 	size_t nb = 1;
 	for (int c = 0; c < 3; c++) {
 		t->dim[c] = (int)floor((hi[c] - t->lo[c]) / t->cell) + 1;
 		nb *= (size_t)t->dim[c];
 	}
 	t->start = xcalloc(nb + 1, sizeof(int));
-	t->item = xmalloc(sizeof(int) * (size_t)t->n);
-	int *bi = xmalloc(sizeof(int) * (size_t)t->n);
-	for (int i = 0; i < t->n; i++) {
+	t->item = xmalloc(sizeof(int) * (size_t)t->n_coarse);
+	int *bi = xmalloc(sizeof(int) * (size_t)t->n_coarse);
+	for (int j = 0; j < t->n_coarse; j++) {
 		int b[3];
 		for (int c = 0; c < 3; c++) {
-			b[c] = (int)floor((t->lab[3 * i + c] - t->lo[c]) / t->cell);
+			b[c] = (int)floor((t->lab[3 * (size_t)coarse[j] + c] - t->lo[c]) / t->cell);
 			b[c] = b[c] < 0 ? 0 : b[c] >= t->dim[c] ? t->dim[c] - 1 : b[c];
 		}
-		bi[i] = (b[2] * t->dim[1] + b[1]) * t->dim[0] + b[0];
-		t->start[bi[i] + 1]++;
+		bi[j] = (b[2] * t->dim[1] + b[1]) * t->dim[0] + b[0];
+		t->start[bi[j] + 1]++;
 	}
 	for (size_t b = 0; b < nb; b++)
 		t->start[b + 1] += t->start[b];
 	int *fill = xmalloc(sizeof(int) * nb);
 	memcpy(fill, t->start, sizeof(int) * nb);
-	for (int i = 0; i < t->n; i++)
-		t->item[fill[bi[i]]++] = i;
+	for (int j = 0; j < t->n_coarse; j++)
+		t->item[fill[bi[j]]++] = coarse[j];
 	free(fill);
 	free(bi);
+	free(coarse);
 }
 
 static void lut_free(struct lut *t)
@@ -145,8 +158,9 @@ static double d2(const double *a, const double *b)
 	return x * x + y * y + z * z;
 }
 
-/* The grid point nearest to lab in CIELAB: buckets shell by shell around
- * lab's bucket until no closer point can remain; all points past 40 shells. */
+/* The coarse grid point nearest to lab in CIELAB: buckets shell by shell
+ * around lab's bucket until no closer point can remain; all coarse points
+ * past 40 shells. */
 static int lut_nearest(const struct lut *t, const double lab[3])
 {
 	int tc[3], best = -1;
@@ -161,10 +175,10 @@ static int lut_nearest(const struct lut *t, const double lab[3])
 	int smax = t->dim[0] + t->dim[1] + t->dim[2] + s0;
 	for (int s = s0; s <= smax; s++) {
 		if (s > s0 + 40) {
-			for (int i = 0; i < t->n; i++) {
-				double d = d2(t->lab + 3 * (size_t)i, lab);
-				if (d < bd)
-					bd = d, best = i;
+			for (int j = 0; j < t->n_coarse; j++) {
+				double d = d2(t->lab + 3 * (size_t)t->item[j], lab);
+				if (d < bd || (d == bd && t->item[j] < best))
+					bd = d, best = t->item[j];
 			}
 			return best;
 		}
@@ -282,8 +296,9 @@ static int solve(int k, double m[3][3], double *b)
 	return 1;
 }
 
-/* Damped Gauss-Newton (Levenberg-Marquardt) from g, inside the grid. */
-static void refine(const struct lut *t, double *g, const double *target)
+/* Damped Gauss-Newton (Levenberg-Marquardt) from g, inside the grid; the
+ * CIELAB distance reached. */
+static double refine(const struct lut *t, double *g, const double *target)
 {
 	double lab[3], jac[3][FAMILY_MAX_AXES], lambda = 1e-3;
 	double c = cost(t, g, target, lab, jac);
@@ -324,6 +339,7 @@ static void refine(const struct lut *t, double *g, const double *target)
 				break;
 		}
 	}
+	return sqrt(d2(lab, target));
 }
 
 void maps_texel_linear(const struct image *im, size_t i, int input_linear, double rgb[3])
@@ -334,28 +350,83 @@ void maps_texel_linear(const struct image *im, size_t i, int input_linear, doubl
 	}
 }
 
-/* Distinct colours: texels sorted by the bits of their three values. */
-struct key {
-	uint32_t v[3];
-	int texel;
+/* Distinct colours: a hash of the bits of the three values, ids in the
+ * order of first appearance (raster order, so neighbouring ids are mostly
+ * neighbouring texels of similar colour). */
+struct colours {
+	long n;			/* distinct colours */
+	uint32_t (*key)[3];	/* [n] */
+	long *first;		/* [n] a texel of that colour */
+	int *id;		/* [texels] its colour, -1 not fitted */
 };
 
-static int key_cmp(const void *a, const void *b)
-{
-	const struct key *x = a, *y = b;
-	for (int c = 0; c < 3; c++)
-		if (x->v[c] != y->v[c])
-			return x->v[c] < y->v[c] ? -1 : 1;
-	return x->texel < y->texel ? -1 : x->texel > y->texel;
-}
-
-static void texel_key(const struct image *im, size_t i, struct key *k)
+static void texel_bits(const struct image *im, size_t i, uint32_t k[3])
 {
 	for (int c = 0; c < 3; c++) {
 		float v = image_get(im, i, c);
-		memcpy(&k->v[c], &v, sizeof v);
+		memcpy(&k[c], &v, sizeof v);
 	}
-	k->texel = (int)i;
+}
+
+static void colours_find(struct colours *cl, const struct image *im, const unsigned char *status)
+{
+	size_t n = (size_t)im->w * im->h, cap = 1024;
+	while (cap < 2 * n)
+		cap *= 2;
+	long *slot = xmalloc(sizeof(long) * cap);
+	for (size_t i = 0; i < cap; i++)
+		slot[i] = -1;
+	cl->n = 0;
+	cl->key = xmalloc(sizeof *cl->key * (n > 0 ? n : 1));
+	cl->first = xmalloc(sizeof(long) * (n > 0 ? n : 1));
+	cl->id = xmalloc(sizeof(int) * (n > 0 ? n : 1));
+	for (size_t i = 0; i < n; i++) {
+		cl->id[i] = -1;
+		if (status[i] == MAPS_NOT_FITTED)
+			continue;
+		uint32_t k[3];
+		texel_bits(im, i, k);
+		uint64_t h = ((uint64_t)k[0] * 0x9E3779B97F4A7C15ULL) ^ ((uint64_t)k[1] * 0xC2B2AE3D27D4EB4FULL) ^
+		    ((uint64_t)k[2] * 0x165667B19E3779F9ULL);
+		size_t j = (size_t)(h ^ (h >> 29)) & (cap - 1);
+		while (slot[j] >= 0 && memcmp(cl->key[slot[j]], k, sizeof k) != 0)
+			j = (j + 1) & (cap - 1);
+		if (slot[j] < 0) {
+			slot[j] = cl->n;
+			memcpy(cl->key[cl->n], k, sizeof k);
+			cl->first[cl->n++] = (long)i;
+		}
+		cl->id[i] = (int)slot[j];
+	}
+	free(slot);
+}
+
+static void colours_free(struct colours *cl)
+{
+	free(cl->key);
+	free(cl->first);
+	free(cl->id);
+}
+
+/* One colour's parameters (grid coordinates g, warm-started from g when
+ * warm), by the coarse nearest point and the refinement; a warm start that
+ * reaches an exact match (within 0.02 CIELAB) is taken as it is. */
+static void solve_colour(const struct lut *t, const double target[3], double *g, int warm)
+{
+	double gw[FAMILY_MAX_AXES], rw = INFINITY;
+	if (warm) {
+		memcpy(gw, g, sizeof gw);
+		rw = refine(t, gw, target);
+		if (rw < 0.02) {
+			memcpy(g, gw, sizeof gw);
+			return;
+		}
+	}
+	int nb = lut_nearest(t, target);
+	for (int a = 0; a < t->k; a++)
+		g[a] = (nb / (a == 0 ? 1 : a == 1 ? t->g[0] : t->g[0] * t->g[1])) % t->g[a];
+	if (refine(t, g, target) > rw)
+		memcpy(g, gw, sizeof gw);
 }
 
 /* Median, 95th percentile and maximum of the errors over fitted texels. */
@@ -405,46 +476,51 @@ int maps_fit(struct family *f, const struct image *albedo, const struct image *m
 	m->status = xmalloc(n);
 	memset(sum, 0, sizeof *sum);
 	sum->texels = (long)n;
-	struct key *keys = xmalloc(sizeof *keys * (n > 0 ? n : 1));
 	for (size_t i = 0; i < n; i++) {
 		int in = image_get(albedo, i, 3) >= 0.5f && (mask == NULL || image_get(mask, i, 0) >= 0.5f);
 		m->status[i] = in ? MAPS_MATCHED : MAPS_NOT_FITTED;
-		if (in)
-			texel_key(albedo, i, &keys[sum->fitted++]);
+		sum->fitted += in;
 	}
-	qsort(keys, (size_t)sum->fitted, sizeof *keys, key_cmp);
-	/* The first texel of each run of equal colours. */
-	long *first = xmalloc(sizeof(long) * (size_t)(sum->fitted + 1));
-	for (long i = 0; i < sum->fitted; i++)
-		if (i == 0 || memcmp(keys[i].v, keys[i - 1].v, sizeof keys[i].v) != 0)
-			first[sum->unique++] = i;
-	first[sum->unique] = sum->fitted;
-#pragma omp parallel for schedule(dynamic, 256) num_threads(threads)
-	for (long u = 0; u < sum->unique; u++) {
-		double rgb[3], target[3], g[FAMILY_MAX_AXES], x[FAMILY_MAX_AXES], lab[3];
-		maps_texel_linear(albedo, (size_t)keys[first[u]].texel, o->input_linear, rgb);
-		colour_linear_srgb_to_lab(rgb, target);
-		int nb = lut_nearest(&t, target);
-		for (int a = 0; a < t.k; a++)
-			g[a] = (nb / (a == 0 ? 1 : a == 1 ? t.g[0] : t.g[0] * t.g[1])) % t.g[a];
-		refine(&t, g, target);
-		grid_params(&t, g, x);
-		params_lab(f, x, lab);
-		double de = colour_de2000(target, lab);
-		for (long j = first[u]; j < first[u + 1]; j++) {
-			size_t i = (size_t)keys[j].texel;
+	struct colours cl;
+	colours_find(&cl, albedo, m->status);
+	sum->unique = cl.n;
+	/* Colours in fixed chunks, each solved in order with warm starts: the
+	 * result does not depend on the threads. */
+	enum { CHUNK = 512 };
+	float *res = xmalloc(sizeof(float) * (size_t)(cl.n > 0 ? cl.n : 1) * (FAMILY_MAX_AXES + 1));
+	long n_chunks = (cl.n + CHUNK - 1) / CHUNK;
+#pragma omp parallel for schedule(dynamic, 1) num_threads(threads)
+	for (long ch = 0; ch < n_chunks; ch++) {
+		double g[FAMILY_MAX_AXES] = { 0 };
+		for (long u = ch * CHUNK; u < cl.n && u < (ch + 1) * CHUNK; u++) {
+			double rgb[3], target[3], x[FAMILY_MAX_AXES], lab[3];
+			maps_texel_linear(albedo, (size_t)cl.first[u], o->input_linear, rgb);
+			colour_linear_srgb_to_lab(rgb, target);
+			solve_colour(&t, target, g, u > ch * CHUNK);
+			grid_params(&t, g, x);
+			params_lab(f, x, lab);
+			float *r = res + (size_t)u * (FAMILY_MAX_AXES + 1);
 			for (int a = 0; a < t.k; a++)
-				m->p[a].v[i] = (float)x[a];
-			m->de2000[i] = (float)de;
-			m->status[i] = de <= o->max_de ? MAPS_MATCHED : MAPS_UNMATCHED;
+				r[a] = (float)x[a];
+			r[FAMILY_MAX_AXES] = (float)colour_de2000(target, lab);
 		}
 	}
+#pragma omp parallel for schedule(static) num_threads(threads)
+	for (long i = 0; i < (long)n; i++) {
+		if (cl.id[i] < 0)
+			continue;
+		const float *r = res + (size_t)cl.id[i] * (FAMILY_MAX_AXES + 1);
+		for (int a = 0; a < t.k; a++)
+			m->p[a].v[i] = r[a];
+		m->de2000[i] = r[FAMILY_MAX_AXES];
+		m->status[i] = r[FAMILY_MAX_AXES] <= o->max_de ? MAPS_MATCHED : MAPS_UNMATCHED;
+	}
+	free(res);
+	colours_free(&cl);
 	for (size_t i = 0; i < n; i++)
 		sum->unmatched += m->status[i] == MAPS_UNMATCHED;
 	sum->matched = sum->fitted - sum->unmatched;
 	error_stats(m, sum);
-	free(first);
-	free(keys);
 	lut_free(&t);
 	sum->seconds = util_now() - t0;
 	*out = m;

@@ -5,9 +5,12 @@
  * members) is tabulated on a dense grid uniform in each axis' coordinate
  * (2048 points for one axis, 160^2 for two, 48^3 for three), as CIELAB
  * (D65, the sRGB white).  Every distinct input colour (texels of equal
- * colour are solved once) starts at the grid point nearest in CIELAB
- * (a bucket grid over L*a*b* with 1-unit cells, searched shell by shell)
- * and is refined by damped Gauss-Newton on the grid's multilinear
+ * colour are solved once) starts at the point nearest in CIELAB among a
+ * coarse subset of the grid (every 16th, 4th, 4th point per axis, in
+ * buckets of 2 CIELAB units searched shell by shell), or, within a chunk
+ * of 512 colours in order of first appearance, from the previous colour's
+ * solution when that reaches an exact match (0.02), and is refined by
+ * damped Gauss-Newton on the grid's multilinear
  * interpolant, minimising the CIELAB distance plus a tiny pull (0.01 per
  * unit of the normalised coordinate) toward the middle of each axis, which
  * only decides parameters the colour does not determine.  Parameters stay
@@ -17,8 +20,8 @@
  * unmatched (status 255, their parameters the closest in range, not
  * forced to a match); transparent texels (alpha < 0.5) and texels outside
  * the mask (< 0.5) are not fitted (status 128, parameters at the middle).
- * Each colour is solved independently, so the result does not depend on
- * the number of threads. */
+ * Chunks are fixed, so the result does not depend on the number of
+ * threads. */
 #ifndef SKINBAKE_FIT_H
 #define SKINBAKE_FIT_H
 #include "bake/family.h"
