@@ -18,7 +18,14 @@
  *       against family_bake_at there: the solid-angle-weighted RMS relative
  *       difference of the tables, and the family's own error.
  *   maps_check swatch FILE.exr R G B [R G B ...]
- *       a 1-pixel-high linear EXR of the given colours. */
+ *       a 1-pixel-high linear EXR of the given colours.
+ *   maps_check spectra TABLE.tsv OUT.exr
+ *       measured reflectance spectra (a column of wavelengths [nm], then
+ *       one column per spectrum; '#' lines are comments) as a 1-pixel-high
+ *       linear sRGB EXR (CIE 1931 2-degree, D65, white = 1), one texel per
+ *       spectrum; prints per spectrum its CIELAB D65/10-degree, ITA and the
+ *       Fitzpatrick type of its ITA class (Chardon 1991, Del Bino 2013:
+ *       > 55 I, 41-55 II, 28-41 III, 10-28 IV, -30-10 V, < -30 VI). */
 #include "config.h"
 
 #include <math.h>
@@ -254,8 +261,67 @@ static int swatch(int argc, char **argv)
 	return 0;
 }
 
+static int spectra(int argc, char **argv)
+{
+	if (argc < 4)
+		fatalx("usage: maps_check spectra TABLE.tsv OUT.exr");
+	FILE *fp = fopen(argv[2], "r");
+	if (fp == NULL)
+		fatalx("cannot read %s", argv[2]);
+	enum { MAXS = 16, MAXW = 128 };
+	double wl[MAXW], r[MAXS][MAXW];
+	int nw = 0, ns = -1;
+	char line[4096];
+	while (fgets(line, sizeof line, fp) && nw < MAXW) {
+		if (line[0] == '#')
+			continue;
+		char *p = line, *e;
+		double v = strtod(p, &e);
+		if (e == p)
+			continue;	/* the header row */
+		wl[nw] = v;
+		int k = 0;
+		for (p = e; k < MAXS; k++, p = e) {
+			v = strtod(p, &e);
+			if (e == p)
+				break;
+			r[k][nw] = v;
+		}
+		if (ns >= 0 && k != ns)
+			fatalx("%s: row %d has %d spectra, expected %d", argv[2], nw, k, ns);
+		ns = k;
+		nw++;
+	}
+	fclose(fp);
+	struct image *im = image_new(ns, 1, 3, 32);
+	double w2[3], w10[3], wr[3];
+	colour_white_xyz(COLOUR_CIE1931_2DEG, w2);
+	colour_xyz_to_linear_srgb(w2, wr);
+	colour_white_xyz(COLOUR_CIE1964_10DEG, w10);
+	for (int k = 0; k < ns; k++) {
+		double xyz[3], rgb[3], lab[3];
+		colour_spectrum_xyz(COLOUR_CIE1931_2DEG, nw, wl, r[k], xyz);
+		colour_xyz_to_linear_srgb(xyz, rgb);
+		for (int c = 0; c < 3; c++)
+			im->v[3 * k + c] = (float)(rgb[c] / wr[c]);
+		colour_spectrum_xyz(COLOUR_CIE1964_10DEG, nw, wl, r[k], xyz);
+		colour_xyz_to_lab(xyz, w10, lab);
+		double ita = colour_ita(lab);
+		int type = ita > 55 ? 1 : ita > 41 ? 2 : ita > 28 ? 3 : ita > 10 ? 4 : ita > -30 ? 5 : 6;
+		printf("%d %.2f %.2f %.2f %.1f %d\n", k, lab[0], lab[1], lab[2], ita, type);
+	}
+	const char *names[] = { "R", "G", "B" };
+	char *cause = NULL;
+	if (image_write_exr(argv[3], im, names, 0, NULL, &cause) != 0)
+		fatalx("%s", cause);
+	image_free(im);
+	return 0;
+}
+
 int main(int argc, char **argv)
 {
+	if (argc >= 2 && strcmp(argv[1], "spectra") == 0)
+		return spectra(argc, argv);
 	if (argc >= 2 && strcmp(argv[1], "synth") == 0)
 		return synth(argc, argv);
 	if (argc >= 2 && strcmp(argv[1], "compare") == 0)
@@ -264,6 +330,6 @@ int main(int argc, char **argv)
 		return offnode(argc, argv);
 	if (argc >= 2 && strcmp(argv[1], "swatch") == 0)
 		return swatch(argc, argv);
-	fprintf(stderr, "usage: maps_check synth|compare|offnode|swatch ...\n");
+	fprintf(stderr, "usage: maps_check synth|compare|offnode|swatch|spectra ...\n");
 	return 2;
 }
