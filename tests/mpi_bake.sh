@@ -10,9 +10,11 @@ if command -v mpirun >/dev/null 2>&1; then
 	for f in brdf.exr brdf_rgb.exr albedo.exr; do
 		check "$f bit-identical over 1 and 2 ranks" cmp "$tmpd/one/$f" "$tmpd/two/$f"
 	done
-	mpirun --allow-run-as-root -np 2 "$MPI" bake --preset no-such-preset --out "$tmpd/bad" >/dev/null 2>&1
+	mpirun --allow-run-as-root -np 2 "$MPI" bake --preset no-such-preset --out "$tmpd/bad" >/dev/null 2>"$tmpd/bad.err"
 	rc=$?
 	check "bad preset under MPI exits 2" [ "$rc" = 2 ]
+	check "bad preset under MPI: one rank prints the error" \
+		[ "$(grep -c "^skinbake bake: .*no-such-preset" "$tmpd/bad.err")" = 1 ]
 	check "bad preset under MPI writes nothing" [ ! -e "$tmpd/bad" ]
 else
 	fail "mpirun is missing (scripts/setup.sh installs openmpi-bin)"

@@ -313,7 +313,8 @@ static int read_specular(json_object *o, struct bake *b, const char *mpath, char
 	b->roughness = jnum(sp, "alpha", 0.3);
 	b->stack = xcalloc((size_t)b->n_wl, sizeof *b->stack);
 	enum optics_fresnel model = OPTICS_FRESNEL_EXACT;
-	if (json_object_object_get_ex(sp, "fresnel", &fr) && strcmp(json_object_get_string(fr), "schlick") == 0)
+	if (json_object_object_get_ex(sp, "fresnel", &fr) && json_object_is_type(fr, json_type_string) &&
+	    strcmp(json_object_get_string(fr), "schlick") == 0)
 		model = OPTICS_FRESNEL_SCHLICK;
 	if (!json_object_object_get_ex(sp, "stack_n", &v) || (int)json_object_array_length(v) != b->n_wl) {
 		*cause = xasprintf("%s: missing specular.stack_n", mpath);
@@ -369,15 +370,16 @@ int bake_manifest_read(const char *dir, struct bake *b, char **cause)
 		goto out;
 	}
 	o = json_object_from_file(mpath);
-	if (o == NULL || !json_object_object_get_ex(o, "format", &v) || strcmp(json_object_get_string(v), "skinbake-bake") != 0) {
+	if (o == NULL || !json_object_object_get_ex(o, "format", &v) || !json_object_is_type(v, json_type_string) ||
+	    strcmp(json_object_get_string(v), "skinbake-bake") != 0) {
 		*cause = xasprintf("%s: not a skinbake bake manifest (corrupt JSON or wrong format)", mpath);
 		goto out;
 	}
-	if ((int)jnum(o, "format_version", 0) != BAKE_FORMAT_VERSION) {
+	if (jnum(o, "format_version", 0) != BAKE_FORMAT_VERSION) {	/* a double: (int)1e999 is undefined */
 		*cause = xasprintf("%s: format_version %g is not %d", mpath, jnum(o, "format_version", 0), BAKE_FORMAT_VERSION);
 		goto out;
 	}
-	if (json_object_object_get_ex(o, "preset", &v))
+	if (json_object_object_get_ex(o, "preset", &v) && json_object_is_type(v, json_type_string))
 		b->preset = xstrdup(json_object_get_string(v));
 	if (read_axes(o, b, mpath, cause) || read_rgb(o, b, mpath, cause) || read_specular(o, b, mpath, cause))
 		goto out;
