@@ -12,6 +12,7 @@
 #include <unistd.h>
 
 #include "base/check.h"
+#include "base/outdir.h"
 #include "base/util.h"
 #include "bake/manifest.h"
 #include "skin/colour.h"
@@ -250,20 +251,18 @@ static int write_text(const char *path, const char *text, char **cause)
 	return outfile_commit(&of, cause);
 }
 
-/* The staging directory, fresh, with the base preset in it. */
-static char *stage_open(const char *dir, const struct skin_params *base, char **cause)
+/* The staging directory (base/outdir.h), with the base preset in it. */
+static int stage_open(struct outdir *od, const char *dir, const struct skin_params *base, char **cause)
 {
-	char *stage = util_stage_name(dir);
-	util_rm_tree(stage);
-	char *ini = preset_to_ini(base), *ip = xasprintf("%s/preset.ini", stage);
-	int rc = util_mkdirs(stage, cause) || write_text(ip, ini, cause) ? -1 : 0;
+	if (outdir_begin(od, dir, "family.json", cause) != 0)
+		return -1;
+	char *ini = preset_to_ini(base), *ip = xasprintf("%s/preset.ini", outdir_path(od));
+	int rc = write_text(ip, ini, cause);
 	free(ini);
 	free(ip);
-	if (rc != 0) {
-		free(stage);
-		return NULL;
-	}
-	return stage;
+	if (rc != 0)
+		outdir_abort(od);
+	return rc;
 }
 
 /* The family record of member m from its result (rank 0): albedo at the
@@ -407,10 +406,14 @@ int family_bake(const struct family_plan *pl, const char *dir, struct family **o
 	if (count_members(pl, &n_members, cause) != 0)
 		return -1;
 	struct family *f = family_new(pl, n_members);
-	char *stage = NULL;
-	if (rank == 0 && (stage = stage_open(dir, pl->base, cause)) == NULL) {
-		family_free(f);
-		return -2;
+	struct outdir od;
+	const char *stage = NULL;
+	if (rank == 0) {
+		if (stage_open(&od, dir, pl->base, cause) != 0) {
+			family_free(f);
+			return -2;
+		}
+		stage = outdir_path(&od);
 	}
 	/* Ranks go round by round in lockstep: each bakes one member of the
 	 * round, the sum over ranks gathers them, rank 0 writes them.  The slot
@@ -457,10 +460,9 @@ int family_bake(const struct family_plan *pl, const char *dir, struct family **o
 	free(buf);
 	free(s);
 	if (rank == 0 && rc == 0)
-		rc = family_write_index(stage, f, pl->command, cause) || util_replace_dir(stage, dir, cause) ? -2 : 0;
-	if (rank == 0 && rc != 0 && stage)
-		util_rm_tree(stage);
-	free(stage);
+		rc = family_write_index(stage, f, pl->command, cause) || outdir_commit(&od, cause) ? -2 : 0;
+	if (rank == 0 && rc != 0)
+		outdir_abort(&od);
 	if (rc == 0 && rank == 0 && out) {
 		f->dir = xstrdup(dir);
 		*out = f;

@@ -193,61 +193,6 @@ int util_parse_long(const char *s, long *out)
 	return 0;
 }
 
-void util_rm_tree(const char *path)
-{
-	DIR *d = opendir(path);
-	if (d == NULL) {
-		unlink(path);
-		return;
-	}
-	struct dirent *e;
-	while ((e = readdir(d)) != NULL) {
-		if (strcmp(e->d_name, ".") == 0 || strcmp(e->d_name, "..") == 0)
-			continue;
-		char *p = xasprintf("%s/%s", path, e->d_name);
-		util_rm_tree(p);
-		free(p);
-	}
-	closedir(d);
-	rmdir(path);
-}
-
-char *util_stage_name(const char *dir)
-{
-	char *d = xstrdup(dir);
-	size_t n = strlen(d);
-	while (n > 1 && d[n - 1] == '/')
-		d[--n] = '\0';
-	char *stage = xasprintf("%s.staging", d);
-	free(d);
-	return stage;
-}
-
-int util_replace_dir(const char *stage, const char *dir, char **cause)
-{
-	struct stat st;
-	char *old = NULL;
-	if (stat(dir, &st) == 0) {
-		old = xasprintf("%s.old.%ld", stage, (long)getpid());
-		if (rename(dir, old) != 0) {
-			*cause = xasprintf("%s: cannot move the earlier directory aside: %s", dir, strerror(errno));
-			free(old);
-			return -1;
-		}
-	}
-	if (rename(stage, dir) != 0) {
-		*cause = xasprintf("%s: cannot rename %s into place: %s", dir, stage, strerror(errno));
-		if (old && rename(old, dir) != 0)
-			*cause = xasprintf("%s: cannot rename into place, and the earlier one is left in %s", dir, old);
-		free(old);
-		return -1;
-	}
-	if (old)
-		util_rm_tree(old);
-	free(old);
-	return 0;
-}
-
 int util_dir_replaceable(const char *dir, const char *marker, const char *what, char **cause)
 {
 	struct stat st;

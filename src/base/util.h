@@ -31,16 +31,11 @@ char *util_tmp_name(const char *path);
 int util_commit_tmp(const char *tmp, const char *path, char **cause);
 /* mkdir -p; -1 and *cause on failure. */
 int util_mkdirs(const char *dir, char **cause);
-/* Output directories written as a whole (a family, maps): built in
- * util_stage_name(DIR) = "DIR.staging" (caller frees) and swapped into
- * place by util_replace_dir, which replaces an earlier DIR.
- * util_dir_replaceable: 0 when DIR is absent, empty, or holds MARKER (an
- * earlier output of the kind WHAT); -1 and *cause otherwise.  util_rm_tree
- * removes a directory tree this program made. */
-char *util_stage_name(const char *dir);
-int util_replace_dir(const char *stage, const char *dir, char **cause);
+/* Whether an output directory written as a whole (base/outdir.h) may
+ * replace DIR, checked before any work without touching anything: 0 when
+ * DIR is absent, empty, or holds MARKER (an earlier output of the kind
+ * WHAT); -1 and *cause otherwise. */
 int util_dir_replaceable(const char *dir, const char *marker, const char *what, char **cause);
-void util_rm_tree(const char *path);
 /* Monotonic wall clock [s]. */
 double util_now(void);
 /* Parse a double/long from the whole string (no trailing junk); 0 on success. */

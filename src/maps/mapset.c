@@ -11,6 +11,7 @@
 #include <string.h>
 #include <unistd.h>
 
+#include "base/outdir.h"
 #include "base/util.h"
 #include "maps/image.h"
 
@@ -234,13 +235,14 @@ static int write_all(const char *stage, const struct mapset *m, char **cause)
 
 int mapset_write(const char *dir, const struct mapset *m, char **cause)
 {
-	char *stage = util_stage_name(dir);
-	util_rm_tree(stage);
-	int rc = util_mkdirs(stage, cause) || write_all(stage, m, cause) || util_replace_dir(stage, dir, cause) ? -1 : 0;
-	if (rc != 0)
-		util_rm_tree(stage);
-	free(stage);
-	return rc;
+	struct outdir od;
+	if (outdir_begin(&od, dir, "maps.json", cause) != 0)
+		return -1;
+	if (write_all(outdir_path(&od), m, cause) != 0) {
+		outdir_abort(&od);
+		return -1;
+	}
+	return outdir_commit(&od, cause);
 }
 
 /* ---- reader ---- */
