@@ -1,9 +1,11 @@
 #!/bin/sh
-# skinbake bake --vary: a small Monte Carlo family (2 x 2 members, 4
-# wavelengths, one angle, a 1 x 1 table; about 5 s): the documented
-# directory, family.json agreeing with the members' own files, the same
-# member tables as plain bakes of its parameters, the same tables over 1
-# and 2 MPI ranks; bad input exits 2 and writes nothing.
+# skinbake bake --vary: a small family with the default solver (auto =
+# adding-doubling; 2 x 2 members, 4 wavelengths, one angle, a 1 x 1 table;
+# about 3 s): the documented directory, family.json agreeing with the
+# members' own files, the same member tables and solver record as plain
+# bakes of its parameters, the same tables over 1 and 2 MPI ranks; a 2-member
+# Monte Carlo family (--solver mc, about 2 s) likewise; bad input exits 2
+# and writes nothing.
 . "$top_srcdir/tests/tap.sh"
 B="$SKINBAKE"
 small="--wavelengths 400:700:100 --theta-in 0 --resolution 1x1 --target-error 0.1 --batch-photons 500 --r-bins 50 --seed 3"
@@ -38,6 +40,27 @@ for d in "$fam/m0003" "$tmpd/m3"; do
 	python3 -c "import json; print(json.load(open('$d/manifest.json'))['jobs'])" >> "$d.eval"
 done
 check "member m0003 has the plain bake's table" cmp "$fam/m0003.eval" "$tmpd/m3.eval"
+check "members record the solver as the plain bake does (ad)" python3 -c "
+import json; f=json.load(open('$fam/family.json')); a=json.load(open('$fam/m0003/manifest.json'))
+b=json.load(open('$tmpd/m3/manifest.json'))
+assert f['bake']['solver']=='ad' and a['solver']==b['solver'] and a['solver']['name']=='ad', (f['bake'], a['solver'])
+assert [j['solver'] for j in a['jobs']]==['ad']*4 and [j.get('n_quad') for j in a['jobs']]==[j.get('n_quad') for j in b['jobs']]
+nos=lambda r: {k: v for k, v in r.items() if k!='seconds'}
+assert nos(a['radial'])==nos(b['radial'])"
+# Monte Carlo members: the packed result (photons, batches, method) survives the gather.
+check "Monte Carlo family" "$B" bake --preset fair-oily $small --solver mc --vary dermis.blood=0.01,0.06 \
+	--out "$tmpd/fmc" --quiet --threads 2
+awk '/^\[/ { s = $0 } s == "[dermis]" && /^blood =/ { $0 = "blood = 0.06" } { print }' "$fam/preset.ini" > "$tmpd/mc1.ini"
+check "plain Monte Carlo bake of its member 1" "$B" bake --preset-file "$tmpd/mc1.ini" $small --solver mc \
+	--out "$tmpd/mc1" --quiet
+check "Monte Carlo member m0001 = the plain bake (jobs, solver, radial)" python3 -c "
+import json; a=json.load(open('$tmpd/fmc/m0001/manifest.json')); b=json.load(open('$tmpd/mc1/manifest.json'))
+assert a['jobs']==b['jobs'] and a['solver']==b['solver'] and a['solver']['name']=='mc'
+assert {k: v for k, v in a['radial'].items() if k!='seconds'}=={k: v for k, v in b['radial'].items() if k!='seconds'}"
+for d in "$tmpd/fmc/m0001" "$tmpd/mc1"; do
+	"$B" eval --bake "$d" --theta-in 0 --theta-out 50 --phi 180 --json > "$d.eval"
+done
+check "Monte Carlo member m0001 has the plain bake's fr" cmp "$tmpd/fmc/m0001.eval" "$tmpd/mc1.eval"
 if command -v mpirun >/dev/null 2>&1 && [ -x "$top_builddir/skinbake-mpi" ]; then
 	check "the family over 2 MPI ranks" mpirun --allow-run-as-root -np 2 "$top_builddir/skinbake-mpi" bake \
 		--preset fair-oily $small --vary epidermis.melanin=0.01:0.2:2:log --vary dermis.blood=0.01,0.06 \

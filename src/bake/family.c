@@ -108,6 +108,7 @@ void family_free(struct family *f)
 	free(f->dir);
 	free(f->preset);
 	free(f->preset_ini);
+	free(f->notes);
 	free(f->wl_nm);
 	free(f->rgb_from_wl);
 	free(f->solver);

@@ -84,7 +84,8 @@ struct family {
 	double *rgb_from_wl;		/* [3][n_wl] spectral -> linear sRGB */
 	double albedo_theta_i;		/* incidence of the members' albedos and radii [rad] */
 	double rms_rel_err;		/* the largest member table error [-] */
-	char *solver;			/* method of the members' tables */
+	char *solver;			/* method of the members' tables ("ad+mc" when they differ) */
+	char *notes;			/* lines for the user: the members' Monte Carlo fallbacks; NULL: none */
 	struct bake_spec *spec;		/* the members' bake settings (slabs not filled) */
 	struct bake **bake;		/* [n_members] member tables, NULL until family_load_tables */
 	double *log_albedo;		/* [n_members][n_wl] log of albedo_wl, NULL until family_albedo_prepare */

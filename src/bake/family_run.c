@@ -149,15 +149,46 @@ int family_place_nodes(struct family_plan *pl, char **cause)
 /* ---- one member's result as doubles, for the gather over ranks ---- */
 
 #define SOLVER_NAME_MAX 8
+/* Characters kept of a wavelength's fallback cause (bake_result.fallback_cause). */
+#define CAUSE_MAX 240
 
 static size_t entry_len(const struct bake_spec *s)
 {
-	return 3 + 2 * (5 + SLAB_MAX_LAYERS + 2) + 2 * (size_t)s->n_to * s->n_phi + 2 * (size_t)s->n_r + 4;
+	return 3 + 2 * (5 + SLAB_MAX_LAYERS + 2) + 2 * (size_t)s->n_to * s->n_phi + 2 * (size_t)s->n_r + 7;
 }
 
 static size_t pack_len(const struct bake_spec *s)
 {
-	return 1 + SOLVER_NAME_MAX + 4 + (size_t)s->n_wl * s->n_ti * entry_len(s) + (size_t)s->n_wl;
+	return 1 + SOLVER_NAME_MAX + 8 + (size_t)s->n_wl * s->n_ti * entry_len(s) + (size_t)s->n_wl * (2 + CAUSE_MAX);
+}
+
+/* The entry's method as a number (the names are static strings). */
+static double method_code(const char *m)
+{
+	return m == NULL ? 0.0 : strcmp(m, "mc") == 0 ? 1.0 : strcmp(m, "ad") == 0 ? 2.0 : 3.0;
+}
+
+static const char *method_name(double c)
+{
+	return c == 1.0 ? "mc" : c == 2.0 ? "ad" : c == 3.0 ? "?" : NULL;
+}
+
+static void put_text(double **p, const char *t)
+{
+	size_t n = t ? strlen(t) : 0;
+	for (size_t i = 0; i < CAUSE_MAX; i++)
+		*(*p)++ = i < n && i + 1 < CAUSE_MAX ? (double)(unsigned char)t[i] : 0.0;
+}
+
+/* NULL for an empty text. */
+static char *get_text(const double **p)
+{
+	char t[CAUSE_MAX];
+	for (size_t i = 0; i < CAUSE_MAX; i++)
+		t[i] = (char)(*p)[i];
+	t[CAUSE_MAX - 1] = '\0';
+	*p += CAUSE_MAX;
+	return t[0] ? xstrdup(t) : NULL;
 }
 
 static void put_est(double **p, struct estimate e)
@@ -180,6 +211,7 @@ static void pack(const struct bake_spec *s, const struct bake_result *r, double 
 	for (int i = 0; i < SOLVER_NAME_MAX; i++)
 		*p++ = i < (int)strlen(r->solver) ? (double)(unsigned char)r->solver[i] : 0.0;
 	*p++ = r->table.rms_rel_err, *p++ = r->table.target_met, *p++ = (double)r->table.photons, *p++ = r->table.seconds;
+	*p++ = (double)r->table.pilot_photons, *p++ = r->ad_tol, *p++ = (double)r->radial_photons, *p++ = r->radial_seconds;
 	size_t nb = (size_t)s->n_to * s->n_phi;
 	for (int j = 0; j < s->n_wl * s->n_ti; j++) {
 		const struct brdf_entry *e = &r->table.entry[j];
@@ -194,8 +226,13 @@ static void pack(const struct bake_spec *s, const struct bake_result *r, double 
 			p[k] = e->rd_r ? e->rd_r[k] : 0.0, p[s->n_r + k] = e->rd_r_err ? e->rd_r_err[k] : 0.0;
 		p += 2 * (size_t)s->n_r;
 		*p++ = e->rms_rel_err, *p++ = (double)e->batches, *p++ = (double)e->photons, *p++ = e->events;
+		*p++ = method_code(e->method), *p++ = e->n_quad, *p++ = e->n_orders;
 	}
 	memcpy(p, r->mean_radius_cm, sizeof(double) * (size_t)s->n_wl), p += s->n_wl;
+	for (int w = 0; w < s->n_wl; w++)
+		*p++ = r->mean_radius_err_cm ? r->mean_radius_err_cm[w] : 0.0;
+	for (int w = 0; w < s->n_wl; w++)
+		put_text(&p, r->fallback_cause ? r->fallback_cause[w] : NULL);
 	CHECK((size_t)(p - v) == pack_len(s));
 }
 
@@ -214,8 +251,9 @@ static void unpack(const struct bake_spec *s, const double *v, char *solver, str
 		.theta_i = s->theta_i, .grid = { .n_theta = s->n_to, .n_phi = s->n_phi, .n_r = s->n_r, .dr = s->dr } };
 	brdf_table_init(&r->table, &pr);
 	r->table.rms_rel_err = p[0], r->table.target_met = (int)p[1], r->table.photons = (long)p[2];
-	r->table.seconds = p[3];
-	p += 4;
+	r->table.seconds = p[3], r->table.pilot_photons = (long)p[4], r->ad_tol = p[5], r->radial_photons = (long)p[6];
+	r->radial_seconds = p[7];
+	p += 8;
 	size_t nb = (size_t)s->n_to * s->n_phi;
 	for (int j = 0; j < s->n_wl * s->n_ti; j++) {
 		struct brdf_entry *e = &r->table.entry[j];
@@ -231,10 +269,22 @@ static void unpack(const struct bake_spec *s, const double *v, char *solver, str
 			e->rd_r[k] = p[k], e->rd_r_err[k] = p[s->n_r + k];
 		p += 2 * (size_t)s->n_r;
 		e->rms_rel_err = p[0], e->batches = (long)p[1], e->photons = (long)p[2], e->events = p[3];
-		p += 4;
+		e->method = method_name(p[4]), e->n_quad = (int)p[5], e->n_orders = (int)p[6];
+		p += 7;
 	}
 	r->mean_radius_cm = xmalloc(sizeof(double) * (size_t)s->n_wl);
 	memcpy(r->mean_radius_cm, p, sizeof(double) * (size_t)s->n_wl);
+	p += s->n_wl;
+	r->mean_radius_err_cm = xmalloc(sizeof(double) * (size_t)s->n_wl);
+	memcpy(r->mean_radius_err_cm, p, sizeof(double) * (size_t)s->n_wl);
+	p += s->n_wl;
+	for (int w = 0; w < s->n_wl; w++) {
+		char *c = get_text(&p);
+		if (c && r->fallback_cause == NULL)
+			r->fallback_cause = xcalloc((size_t)s->n_wl, sizeof *r->fallback_cause);
+		if (c)
+			r->fallback_cause[w] = c;
+	}
 	r->stack = xcalloc((size_t)s->n_wl, sizeof *r->stack);
 	for (int w = 0; w < s->n_wl; w++)
 		specular_stack_of_slab(&s->slab[w], s->opts.fresnel, &r->stack[w]);
@@ -350,6 +400,17 @@ static int write_member(const struct family_plan *pl, struct family *f, int m, c
 	unpack(s, v, solver, &r);
 	if (f->solver == NULL)
 		f->solver = xstrdup(solver);
+	else if (strcmp(f->solver, solver) != 0) {
+		free(f->solver);
+		f->solver = xstrdup("ad+mc");
+	}
+	for (int w = 0; r.fallback_cause && w < s->n_wl; w++)
+		if (r.fallback_cause[w]) {
+			char *l = xasprintf("%smember m%04d at %g nm: Monte Carlo made the table (%s)\n", f->notes ? f->notes : "",
+			    m, s->wl_nm[w], r.fallback_cause[w]);
+			free(f->notes);
+			f->notes = l;
+		}
 	double *w = xmalloc(sizeof(double) * 3 * (size_t)s->n_wl);
 	struct bake_meta meta = { .preset = pl->preset, .ior = preset_surface_ior(p),
 		.roughness = preset_surface_roughness(p), .rgb_from_wl = w, .rgb_note = bake_rgb_weights(s, w),

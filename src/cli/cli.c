@@ -24,6 +24,7 @@ static const struct opt_sub commands[] = {
 	{ "preset", "preset show NAME: print a preset's layers per wavelength", cmd_preset },
 	{ "bake", "bake a skin preset's BRDF into OpenEXR lookup tables", cmd_bake },
 	{ "eval", "evaluate a baked BRDF at given angles", cmd_eval },
+	{ "verify", "check a bake's table against an independent Monte Carlo run", cmd_verify },
 	{ "texture", "grow pores and furrows as seamless height and normal maps", cmd_texture },
 	{ "export", "export pov|blender: scenes and image sets for renderers", cmd_export },
 	{ "maps", "maps new|fit|edit|render-albedo: parameter maps of a family", cmd_maps },
@@ -165,7 +166,7 @@ void cli_progress_start(struct cli_progress *p, const char *label)
 	p->label = label;
 	p->t0 = util_now();
 	p->shown = -1;
-	p->tty = isatty(2);
+	p->tty = isatty(2) && cli_par.rank == 0;	/* under MPI rank 0 shows it */
 }
 
 void cli_progress_update(void *user, long done, long total)
@@ -192,4 +193,15 @@ void cli_progress_end(struct cli_progress *p)
 {
 	if (p->tty && p->shown >= 0)
 		fputc('\n', stderr);
+}
+
+char *cli_command_line(int argc, char **argv)
+{
+	char *line = xstrdup("skinbake");
+	for (int i = 0; i < argc; i++) {
+		char *t = xasprintf("%s %s", line, argv[i]);
+		free(line);
+		line = t;
+	}
+	return line;
 }

@@ -124,6 +124,8 @@ int bake_family_run(const struct bake_spec *s, const struct skin_params *p, cons
 		free(cause);
 		return rc;
 	}
+	for (const char *l = cli_par.rank == 0 ? f->notes : NULL; l && *l; l = strchr(l, '\n') + 1)
+		fprintf(stderr, "skinbake bake: %.*s\n", (int)(strchr(l, '\n') - l), l);	/* never silent, even with --quiet */
 	if (!quiet && cli_par.rank == 0) {
 		printf("skinbake bake: %s family -> %s\n  %d members x %d wavelengths x %d incidence angles, table %d x %d, "
 		    "solver %s\n", label, out, n_members, s->n_wl, s->n_ti, s->n_to, s->n_phi, f->solver);
