@@ -19,9 +19,14 @@
  *       difference of the tables, and the family's own error.
  *   maps_check swatch FILE.exr R G B [R G B ...]
  *       a 1-pixel-high linear EXR of the given colours.
- *   maps_check spectra TABLE.tsv OUT.exr
+ *   maps_check values MAPS
+ *       per texel of a 1-pixel-high maps directory: its index, each map's
+ *       value and the fit's CIEDE2000 ("i v0 v1 ... de").
+ *   maps_check spectra TABLE.tsv OUT.exr [R0]
  *       measured reflectance spectra (a column of wavelengths [nm], then
- *       one column per spectrum; '#' lines are comments) as a 1-pixel-high
+ *       one column per spectrum; '#' lines are comments), less R0 (a
+ *       surface reflection a d/8 instrument includes, 0 by default, floored
+ *       at 0.001), as a 1-pixel-high
  *       linear sRGB EXR (CIE 1931 2-degree, D65, white = 1), one texel per
  *       spectrum; prints per spectrum its CIELAB D65/10-degree, ITA and the
  *       Fitzpatrick type of its ITA class (Chardon 1991, Del Bino 2013:
@@ -264,7 +269,8 @@ static int swatch(int argc, char **argv)
 static int spectra(int argc, char **argv)
 {
 	if (argc < 4)
-		fatalx("usage: maps_check spectra TABLE.tsv OUT.exr");
+		fatalx("usage: maps_check spectra TABLE.tsv OUT.exr [R0]");
+	double r0 = argc > 4 ? atof(argv[4]) : 0.0;
 	FILE *fp = fopen(argv[2], "r");
 	if (fp == NULL)
 		fatalx("cannot read %s", argv[2]);
@@ -285,7 +291,7 @@ static int spectra(int argc, char **argv)
 			v = strtod(p, &e);
 			if (e == p)
 				break;
-			r[k][nw] = v;
+			r[k][nw] = fmax(v - r0, r0 > 0 ? 0.001 : v);
 		}
 		if (ns >= 0 && k != ns)
 			fatalx("%s: row %d has %d spectra, expected %d", argv[2], nw, k, ns);
@@ -318,8 +324,28 @@ static int spectra(int argc, char **argv)
 	return 0;
 }
 
+static int values(int argc, char **argv)
+{
+	if (argc != 3)
+		fatalx("usage: maps_check values MAPS");
+	char *cause = NULL;
+	struct mapset *m = mapset_read(argv[2], &cause);
+	if (m == NULL)
+		fatalx("%s", cause);
+	for (int i = 0; i < m->w; i++) {
+		printf("%d", i);
+		for (int a = 0; a < m->n; a++)
+			printf(" %.5g", m->p[a].v[i]);
+		printf(" %.4f\n", m->de2000 ? m->de2000[i] : -1.0);
+	}
+	mapset_free(m);
+	return 0;
+}
+
 int main(int argc, char **argv)
 {
+	if (argc >= 2 && strcmp(argv[1], "values") == 0)
+		return values(argc, argv);
 	if (argc >= 2 && strcmp(argv[1], "spectra") == 0)
 		return spectra(argc, argv);
 	if (argc >= 2 && strcmp(argv[1], "synth") == 0)
@@ -330,6 +356,6 @@ int main(int argc, char **argv)
 		return offnode(argc, argv);
 	if (argc >= 2 && strcmp(argv[1], "swatch") == 0)
 		return swatch(argc, argv);
-	fprintf(stderr, "usage: maps_check synth|compare|offnode|swatch|spectra ...\n");
+	fprintf(stderr, "usage: maps_check synth|compare|offnode|swatch|spectra|values ...\n");
 	return 2;
 }
