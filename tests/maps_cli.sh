@@ -47,6 +47,14 @@ png(d + '/paint.png', 96, 64, 4, alb)
 PY
 printf 'not an image\n' > "$tmpd/notimage.png"
 
+# Interpolation between members against a direct bake off the nodes (issue:
+# within the family's own error plus 1 %).
+"$M" offnode "$fam" epidermis.melanin=0.05,dermis.blood=0.03 > "$tmpd/off.txt"
+sed 's/^/# /' "$tmpd/off.txt"
+ov() { awk -v k="$1" '$1 == k { print $2 }' "$tmpd/off.txt"; }
+check "off-node: table RMS difference $(ov table_rms_rel_diff) <= family error $(ov family_rms_rel_err) + 0.01" \
+	awk "BEGIN { exit !($(ov table_rms_rel_diff) <= $(ov family_rms_rel_err) + 0.01) }"
+
 # Round trip with 16-bit albedos.
 check "made-up maps (smooth fields plus freckles)" "$M" synth "$fam" "$tmpd/true" 96 64
 check "render-albedo (16-bit PNG)" "$B" maps render-albedo --family "$fam" --maps "$tmpd/true" --out "$tmpd/a.png" --quiet

@@ -177,6 +177,14 @@ static json_object *spec_json(const struct family *f)
 	add(o, "roulette_w", json_object_new_double(s->opts.roulette_w));
 	add(o, "roulette_chance", json_object_new_double(s->opts.roulette_chance));
 	add(o, "max_steps", json_object_new_int64(s->opts.max_steps));
+	/* The solver asked for and its settings, so that a reader (an off-node
+	 * bake, family_bake_at's users) bakes as the members were baked. */
+	add(o, "requested", json_object_new_string(s->method == BAKE_SOLVER_MC ? "mc" : s->method == BAKE_SOLVER_AD ? "ad"
+	    : "auto"));
+	add(o, "ad_tol", json_object_new_double(s->ad_tol));
+	add(o, "ad_quad", json_object_new_int(s->ad_quad));
+	add(o, "radial_error", json_object_new_double(s->radial_error));
+	add(o, "radial_photons", json_object_new_int64(s->radial_photons));
 	return o;
 }
 

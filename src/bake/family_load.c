@@ -156,6 +156,18 @@ static int read_spec(const struct rd *r, json_object *o, struct family *f)
 	if ((v = get(r, b, "bake", "solver", json_type_string)) == NULL)
 		return -1;
 	f->solver = xstrdup(json_object_get_string(v));
+	/* Families from before the adding-doubling solver have no "requested": Monte Carlo. */
+	s->method = BAKE_SOLVER_MC;
+	if (json_object_object_get_ex(b, "requested", &v) && json_object_is_type(v, json_type_string)) {
+		const char *q = json_object_get_string(v);
+		s->method = !strcmp(q, "ad") ? BAKE_SOLVER_AD : !strcmp(q, "auto") ? BAKE_SOLVER_AUTO : BAKE_SOLVER_MC;
+		double y[4] = { 0 };
+		static const char *k2[] = { "ad_tol", "ad_quad", "radial_error", "radial_photons" };
+		for (int i = 0; i < 4; i++)
+			if (get_num(r, b, "bake", k2[i], &y[i]))
+				return -1;
+		s->ad_tol = y[0], s->ad_quad = (int)y[1], s->radial_error = y[2], s->radial_photons = (long)y[3];
+	}
 	s->n_wl = f->n_wl;
 	memcpy(s->wl_nm, f->wl_nm, sizeof(double) * (size_t)f->n_wl);
 	s->n_ranks = 1;

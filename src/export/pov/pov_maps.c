@@ -128,8 +128,9 @@ static void write_blend(FILE *fp, const char *name, const struct pov_maps *pm, i
     const char *mapping)
 {
 	const struct family_axis *ax = &pm->fam->axis[a];
-	fprintf(fp, "%*spigment { %simage_pattern { png \"%s\" gamma 1.0 map_type 0 interpolate 2 }\n", depth, "",
-	    top ? mapping : "", pm->png[a]);
+	/* A blend-map entry holds a pigment body, not `pigment { }` (pov.md). */
+	fprintf(fp, "%*s%s%simage_pattern { png \"%s\" gamma 1.0 map_type 0 interpolate 2 }\n", depth, "",
+	    top ? "pigment { " : "", top ? mapping : "", pm->png[a]);
 	fprintf(fp, "%*s  pigment_map {\n", depth, "");
 	for (int j = pm->lo_idx[a]; j <= pm->hi_idx[a]; j++) {
 		idx[a] = j;
@@ -144,8 +145,6 @@ static void write_blend(FILE *fp, const char *name, const struct pov_maps *pm, i
 		}
 	}
 	fprintf(fp, "%*s  }\n", depth, "");
-	if (!top)
-		fprintf(fp, "%*s}\n", depth, "");
 }
 
 int pov_maps_write_key(FILE *fp, const char *name, const struct pov_maps *pm, const struct pov_light *l,
