@@ -17,6 +17,11 @@ nbad=0
 "$S" texture --size 16 --out "$tmpd/tex" --quiet || fail "fixture texture"
 printf 'x\n' >"$tmpd/file"
 mkdir "$tmpd/emptydir"
+# A tiny family (2 members), maps and an albedo for the maps commands.
+"$S" bake --preset paper --wavelengths 550 --theta-nodes 1 --resolution 1x1 --target-error 0 --max-photons 2000 \
+	--batch-photons 100 --r-bins 2 --vary dermis.blood=0.01,0.02 --out "$tmpd/fam" --quiet || fail "fixture family"
+"$S" maps new --family "$tmpd/fam" --size 4x4 --out "$tmpd/maps" --quiet || fail "fixture maps"
+"$S" maps render-albedo --family "$tmpd/fam" --maps "$tmpd/maps" --out "$tmpd/alb.png" --quiet || fail "fixture albedo"
 
 # bad DESC NEEDLE ARGS...: exit 2, nothing on stdout, one line on stderr that
 # starts "skinbake " and holds NEEDLE, no $tmpd/new*, $tmpd/file unchanged.
@@ -130,10 +135,15 @@ rules texture -- --size 32 "[16, 16384] px" 8 --quiet -- --out "$tmpd/new"
 rules export blender -- --sun-elevation 30 "(0, 90] deg" 0 - -- --bake "$tmpd/bake" --out "$tmpd/new"
 rules export blender -- --lut-cos 16 "[8, 1024]" 4 - -- --bake "$tmpd/bake" --out "$tmpd/new"
 rules preset show -- --wavelengths 550 "[380, 780] nm" 300 - -- paper
+rules maps fit -- --max-de 2 "(0, 100]" 0 --quiet -- --family "$tmpd/fam" --albedo "$tmpd/alb.png" --out "$tmpd/new"
+rules maps render-albedo -- --bits 16 "[8, 16]" 4 --quiet -- --family "$tmpd/fam" --maps "$tmpd/maps" --out "$tmpd/new.png"
 
 out_rules bake -- --preset paper
 out_rules texture -- --size 16
 out_rules export blender -- --bake "$tmpd/bake"
+out_rules maps fit -- --family "$tmpd/fam" --albedo "$tmpd/alb.png"
+out_rules maps new -- --family "$tmpd/fam" --size 4x4
+out_rules maps edit -- --maps "$tmpd/maps" --scale dermis.blood=1.1
 
 in_rules bake -- --preset-file file --out "$tmpd/new"
 in_rules eval -- --bake dir --theta-in 1 --theta-out 1 --phi 1
@@ -142,6 +152,10 @@ in_rules texture -- --preset-file file --out "$tmpd/new"
 in_rules export blender -- --bake dir --out "$tmpd/new"
 in_rules export blender -- --textures dir --bake "$tmpd/bake" --out "$tmpd/new"
 in_rules preset show -- --preset-file file
+in_rules maps fit -- --family dir --albedo "$tmpd/alb.png" --out "$tmpd/new"
+in_rules maps fit -- --albedo file --family "$tmpd/fam" --out "$tmpd/new"
+in_rules maps edit -- --maps dir --scale dermis.blood=1.1 --out "$tmpd/new"
+in_rules maps render-albedo -- --maps dir --family "$tmpd/fam" --out "$tmpd/new.png"
 
 # Numbers inside compound values follow the same rules.
 bad "simulate --layer mua=0x10" "--layer 1: mua = '0x10' is not a decimal number in [0, 1e8] 1/cm" simulate --layer d=1,mua=0x10,mus=1
@@ -181,6 +195,14 @@ bad "preset keys with an argument" "unexpected argument 'x'" preset keys x
 bad "presets with an argument" "unexpected argument 'x'" presets x
 bad "preset, unknown action" "unknown action 'frob' (show, cat, keys)" preset frob
 bad "export, unknown exporter" "unknown action 'pbrt' (pov, blender)" export pbrt
+bad "maps, unknown action" "unknown action 'paint' (new, fit, edit, render-albedo)" maps paint
+bad "maps edit --scale hex" "--scale dermis.blood = '0x2' is not a decimal number in [0, 100]" maps edit --maps "$tmpd/maps" --scale dermis.blood=0x2 --out "$tmpd/new"
+bad "maps edit --add without =" "--add = 'dermis.blood' is not KEY=VALUE" maps edit --maps "$tmpd/maps" --add dermis.blood --out "$tmpd/new"
+bad "maps new --size 0x4" "--size: W = 0 is out of range [1, 16384]" maps new --family "$tmpd/fam" --size 0x4 --out "$tmpd/new"
+bad "maps new --size and --like" "--size and --like exclude each other" maps new --family "$tmpd/fam" --size 4x4 --like "$tmpd/alb.png" --out "$tmpd/new"
+bad "maps fit --input unknown" "--input = 'gamma' is not one of auto, srgb, linear" maps fit --family "$tmpd/fam" --albedo "$tmpd/alb.png" --input gamma --out "$tmpd/new"
+bad "maps render-albedo --bits 12" "--bits = 12 is not 8 or 16" maps render-albedo --family "$tmpd/fam" --maps "$tmpd/maps" --bits 12 --out "$tmpd/new.png"
+bad "bake --vary nan" "--vary dermis.blood = 'nan' is not a decimal number" bake --preset paper --vary dermis.blood=nan:0.1:3 --out "$tmpd/new"
 
 # --out FILE is found before the work: exit 2 at once, not after the bake.
 bad "bake --out FILE before a long bake" "exists and is not a directory" bake --preset paper --target-error 0 --max-photons 1e13 --out "$tmpd/file"

@@ -6,6 +6,7 @@
 #include <cmocka.h>
 #include <math.h>
 #include <stdio.h>
+#include <stdlib.h>
 #include <string.h>
 
 #include "skin/colour.h"
@@ -140,6 +141,56 @@ static void test_weights(void **state)
 	assert_true(m1[0] == 1 && m1[1] == 1 && m1[2] == 1);
 }
 
+/* CIEDE2000 against the 34 pairs of Sharma, Wu & Dalal 2005 (Table 1),
+ * published to 4 decimals: agreement within 5e-5 (rounding), both orders. */
+static void test_de2000(void **state)
+{
+	(void)state;
+	const char *top = getenv("top_srcdir");
+	char path[4096];
+	snprintf(path, sizeof path, "%s/tests/data/ciede2000_sharma2005.tsv", top ? top : ".");
+	FILE *fp = fopen(path, "r");
+	assert_non_null(fp);
+	char line[512];
+	int n = 0;
+	while (fgets(line, sizeof line, fp)) {
+		double l1[3], l2[3], de;
+		int k;
+		if (line[0] == '#' || sscanf(line, "%d %lf %lf %lf %lf %lf %lf %lf", &k, &l1[0], &l1[1], &l1[2], &l2[0],
+		    &l2[1], &l2[2], &de) != 8)
+			continue;
+		double d12 = colour_de2000(l1, l2), d21 = colour_de2000(l2, l1);
+		if (fabs(d12 - de) > 5e-5 || fabs(d21 - de) > 5e-5)
+			fail_msg("pair %d: dE00 %.6f / %.6f, published %.4f", k, d12, d21, de);
+		n++;
+	}
+	fclose(fp);
+	assert_int_equal(n, 34);
+	double a[3] = { 55, 12, 16 };
+	assert_float_equal(colour_de2000(a, a), 0.0, 0);
+}
+
+/* Lab -> XYZ -> Lab is the identity; through linear sRGB it is up to the
+ * 7-digit IEC matrices, which are inverses to about 1e-7 (1e-4 in Lab). */
+static void test_lab_inverse(void **state)
+{
+	(void)state;
+	static const double labs[][3] = { { 58.4, 8.7, 16.7 }, { 5.0, 1.0, -2.0 }, { 95.0, -3.0, 4.0 }, { 0.5, 0, 0 } };
+	double w[3];
+	colour_white_xyz(COLOUR_CIE1931_2DEG, w);
+	for (size_t i = 0; i < sizeof labs / sizeof labs[0]; i++) {
+		double xyz[3], rgb[3], back[3];
+		colour_lab_to_xyz(labs[i], w, xyz);
+		colour_xyz_to_lab(xyz, w, back);
+		for (int c = 0; c < 3; c++)
+			assert_float_equal(back[c], labs[i][c], 1e-9);
+		colour_lab_to_linear_srgb(labs[i], rgb);
+		colour_linear_srgb_to_lab(rgb, back);
+		for (int c = 0; c < 3; c++)
+			assert_float_equal(back[c], labs[i][c], 1e-4);
+	}
+}
+
 int main(void)
 {
 	const struct CMUnitTest tests[] = {
@@ -148,6 +199,8 @@ int main(void)
 		cmocka_unit_test(test_lab),
 		cmocka_unit_test(test_xiao_spectra),
 		cmocka_unit_test(test_weights),
+		cmocka_unit_test(test_de2000),
+		cmocka_unit_test(test_lab_inverse),
 	};
 	return cmocka_run_group_tests(tests, NULL, NULL);
 }

@@ -214,6 +214,39 @@ static void test_wavelength_list(void **state)
 	free(cause);
 }
 
+/* Numeric keys by name: range, set (range-checked), get; others refused. */
+static void test_number_keys(void **state)
+{
+	(void)state;
+	char *cause = NULL;
+	struct skin_params *p = preset_load_builtin("fair-oily", &cause);
+	assert_non_null(p);
+	double lo, hi, v;
+	const char *unit;
+	assert_int_equal(preset_number_key("epidermis.melanin", &lo, &hi, &unit, &cause), 0);
+	assert_true(lo == 0 && hi == 0.5 && strcmp(unit, "") == 0);
+	assert_int_equal(preset_number_key("dermis.thickness", &lo, &hi, &unit, &cause), 0);
+	assert_string_equal(unit, "cm");
+	assert_int_equal(preset_set_number(p, "dermis.blood", 0.07, &cause), 0);
+	assert_int_equal(preset_get_number(p, "dermis.blood", &v), 0);
+	assert_true(v == 0.07 && p->layer[SKIN_DERMIS].blood == 0.07);
+	assert_int_equal(preset_set_number(p, "surface.roughness_skin", 0.5, &cause), 0);
+	assert_true(p->roughness_skin == 0.5);
+	assert_int_equal(preset_set_number(p, "dermis.blood", 0.3, &cause), -1);
+	assert_non_null(strstr(cause, "dermis.blood = 0.3: out of range [0, 0.2]"));
+	free(cause);
+	cause = NULL;
+	for (const char *bad = "skin.name\0skin.wavelengths\0epidermis.colour\0melanin\0"; *bad; bad += strlen(bad) + 1) {
+		assert_int_equal(preset_number_key(bad, &lo, &hi, &unit, &cause), -1);
+		assert_non_null(strstr(cause, "is not a numeric preset key"));
+		assert_non_null(strstr(cause, "epidermis.melanin"));
+		free(cause);
+		cause = NULL;
+		assert_int_equal(preset_get_number(p, bad, &v), -1);
+	}
+	preset_free(p);
+}
+
 int main(void)
 {
 	const struct CMUnitTest tests[] = {
@@ -222,6 +255,7 @@ int main(void)
 		cmocka_unit_test(test_errors),
 		cmocka_unit_test(test_files),
 		cmocka_unit_test(test_wavelength_list),
+		cmocka_unit_test(test_number_keys),
 	};
 	return cmocka_run_group_tests(tests, NULL, NULL);
 }

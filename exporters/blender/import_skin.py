@@ -130,6 +130,8 @@ def read_manifest(directory):
             _number(d, "mean_normal_z", 1e-3, 1.0, f"{path}: detail")
     if "general_fit" in m:
         _check_fit(_need(m, "general_fit", dict, path), f"{path}: general_fit")
+    if "family" in m:
+        _check_family(m, directory, path, nc, nphi)
     m["_dir"] = directory
     return m
 
@@ -164,6 +166,39 @@ def _check_fit(f, where):
         if key in f or key != "subsurface_roughness":
             _number(f, key, 0.0, 1.0, where)
     _number(f, "specular_ior", 1.0, 3.0, where)
+
+
+FAMILY_FILES = ("family_lut", "family_coord", "albedo_map", "sss_radius_map")
+
+
+def _check_family(m, directory, path, nc, nphi):
+    """The family section of a set with parameter maps (`export blender --family --maps`)."""
+    fam = _need(m, "family", dict, path)
+    where = f"{path}: family"
+    counts = _need(fam, "sub_counts", list, where)
+    if len(counts) != 3 or not all(isinstance(n, int) and n >= 1 for n in counts):
+        raise ImageSetError(f"{where}: \"sub_counts\" must be 3 integers >= 1, got {counts!r}")
+    slices = _need(fam, "slices", int, where)
+    if slices != counts[0] * counts[1] * counts[2]:
+        raise ImageSetError(f"{where}: slices {slices} is not the product of sub_counts {counts}")
+    files = _need(fam, "files", dict, where)
+    size = None
+    for role in FAMILY_FILES:
+        e = _need(files, role, dict, f"{where}.files")
+        for key, kind in (("file", str), ("width", int), ("height", int)):
+            _need(e, key, kind, f"{where}.files.{role}")
+        p = os.path.join(directory, e["file"])
+        if not os.path.isfile(p) or os.path.getsize(p) == 0:
+            raise ImageSetError(f"{p}: missing or empty (listed in manifest.json as family {role})")
+        check_exr(p, e["width"], e["height"])
+        if role != "family_lut":
+            if size not in (None, (e["width"], e["height"])):
+                raise ImageSetError(f"{p}: {e['width']}x{e['height']} px, the other maps are {size[0]}x{size[1]}")
+            size = (e["width"], e["height"])
+    lut = files["family_lut"]
+    if (lut["width"], lut["height"]) != (nc * nphi, nc * slices):
+        raise ImageSetError(f"{where}: family_lut is {lut['width']}x{lut['height']} px, expected "
+                            f"{nc * nphi}x{nc * slices} ({slices} slices of the brdf_lut layout)")
 
 
 # Blender's readers can hang on a truncated EXR (measured with 3.4.1: a 300-byte albedo.exr made
@@ -300,6 +335,12 @@ def load_image(m, role, data=True):
         raise ImageSetError(f"{p}: Blender read {w}x{h} px, manifest.json says "
                             f"{e['width']}x{e['height']} (corrupt or replaced file)")
     return img
+
+
+def load_family_image(m, role):
+    """One of the family files (float EXR data), checked as load_image checks."""
+    e = m["family"]["files"][role]
+    return load_image({"files": {role: dict(e, path=e["file"])}, "_dir": m["_dir"]}, role)
 
 
 # ------------------------------------------------------------------ node helpers
@@ -454,7 +495,10 @@ def _general_principled(tr, m, nrm, unit_scale, no_specular, calibrate, area_mea
     bsdf = tr.node("ShaderNodeBsdfPrincipled", (200, 300))
     bsdf.subsurface_method = "RANDOM_WALK"
     uv = tr.node("ShaderNodeTexCoord", (-1500, 600))
-    alb = tr.tex(load_image(m, "albedo", data=False), uv.outputs["UV"], (-600, 700), label="albedo.exr")
+    fam = "family" in m
+    alb = tr.tex(load_family_image(m, "albedo_map") if fam else load_image(m, "albedo", data=False),
+                 uv.outputs["UV"], (-600, 700), "EXTEND" if fam else "REPEAT",
+                 label="albedo_map.exr (per texel)" if fam else "albedo.exr")
     base = alb.outputs["Color"]
     k = albedo_calibration(m["albedo_rgb"], float(m["roughness"])) if calibrate else [1.0] * 3
     k = [x / area_mean for x in k]
@@ -469,6 +513,8 @@ def _general_principled(tr, m, nrm, unit_scale, no_specular, calibrate, area_mea
     if sock(bsdf.inputs, "Subsurface Scale"):
         sock(bsdf.inputs, "Subsurface Scale").default_value = 1.0
     bsdf.inputs["Subsurface Radius"].default_value = [x / unit_scale for x in m["sss_radius_m"]]
+    if fam:
+        tr.link(_family_radius(tr, m, uv.outputs["UV"], unit_scale, (-600, 200)), bsdf.inputs["Subsurface Radius"])
     n = float(m["ior"])
     bsdf.inputs["IOR"].default_value = n
     spec = sock(bsdf.inputs, "Specular")                           # 3.x: 0.5 <-> F0 = 0.04
@@ -520,6 +566,13 @@ def _general_fit(tr, m, nrm, area, geo, unit_scale, no_specular, calibrate, area
         k = _interp(_K0_ALBEDO, _K_SSS, v) if calibrate and bpy.app.version < (4, 0, 0) else 1.0
         return v / k * area_mean
     col_s = _ramp(tr, cos_v, nodes, f["subsurface_rgb"], sss_scale, (-1000, 1500), "subsurface colour s(cos_view)")
+    fam_uv = tr.node("ShaderNodeTexCoord", (-1500, 1900)).outputs["UV"] if "family" in m else None
+    if fam_uv is not None:                   # the fit's colour scaled by the texel's albedo
+        amap = tr.tex(load_family_image(m, "albedo_map"), fam_uv, (-1300, 1900), "EXTEND", "albedo_map.exr")
+        ratio = tr.vmath("MULTIPLY", amap.outputs["Color"], [1.0 / max(x, 1e-6) for x in m["albedo_rgb"]],
+                         loc=(-1000, 1900))
+        ratio.node.label = "albedo_map / albedo (per texel)"
+        col_s = tr.vmath("MULTIPLY", col_s, ratio, loc=(-800, 1700))
     col_g = _ramp(tr, cos_v, nodes, f["glossy_rgb"], lambda c, v: v, (-1000, 1100), "glossy colour g(cos_view)")
     if area is not None:
         col_g = tr.vmath("SCALE", col_g, loc=(-700, 1100), scale=area)
@@ -530,6 +583,8 @@ def _general_fit(tr, m, nrm, area, geo, unit_scale, no_specular, calibrate, area
         tr.link(col_s, sock(sss.inputs, "Subsurface Color"))
     sock(sss.inputs, "Subsurface Weight", "Subsurface").default_value = 1.0
     sss.inputs["Subsurface Radius"].default_value = [x / unit_scale for x in m["sss_radius_m"]]
+    if fam_uv is not None:
+        tr.link(_family_radius(tr, m, fam_uv, unit_scale, (-800, 1950)), sss.inputs["Subsurface Radius"])
     # Its retro-reflection term is in the fit; roughness 0 would give NaN pixels in EEVEE.
     sss.inputs["Roughness"].default_value = float(f.get("subsurface_roughness", 0.0))
     sock(sss.inputs, "Specular", "Specular IOR Level").default_value = 0.0
@@ -594,9 +649,11 @@ VL_POS = PREFIX + "_light_pos"          # lamp position (point and spot)
 VL_POINT = PREFIX + "_light_point"      # 1 for point and spot lamps, 0 for suns
 
 
-def _lut_sample(tr, img, nc, nphi, cl, cv, dphi, x0, y0):
+def _lut_sample(tr, img, nc, nphi, cl, cv, dphi, x0, y0, row_off=0.0, nrows=None):
     """pi f_r from the atlas at cos_light, cos_view in [0, 1] and dphi in [0, pi]: bilinear in the
     two neighbouring delta_phi tiles, then linear between them (blender_lut_sample in C).
+    ROW_OFF (a number or a socket) and NROWS place the atlas in a taller image: its bottom row is
+    row ROW_OFF of NROWS counted from the bottom (a family's stacked atlases).
 
     Eight texel fetches with Closest interpolation at texel centres, blended here: no GPU
     filtering and no mip-mapping, so EEVEE shows no seams where the tiles meet (its Linear
@@ -614,7 +671,9 @@ def _lut_sample(tr, img, nc, nphi, cl, cv, dphi, x0, y0):
     # u of texel (tile s0, column j0) and v of row i0 (v = 0 is the bottom row, cos_light = 0).
     u00 = tr.math("DIVIDE", tr.math("ADD", tr.math("MULTIPLY_ADD", s0, nc, 0.5, loc=(x0 + 600, y0 + 250)), j0,
                                     loc=(x0 + 750, y0 + 250)), width, loc=(x0 + 900, y0 + 250))
-    v00 = tr.math("DIVIDE", tr.math("ADD", i0, 0.5, loc=(x0 + 600, y0 - 50)), nc, loc=(x0 + 750, y0 - 50))
+    nrows = nrows or nc
+    v00 = tr.math("DIVIDE", tr.math("ADD", tr.math("ADD", i0, 0.5, loc=(x0 + 450, y0 - 50)), row_off,
+                                    loc=(x0 + 600, y0 - 50)), nrows, loc=(x0 + 750, y0 - 50))
     tiles = []
     for ds in (0, 1):
         rows = []
@@ -623,7 +682,7 @@ def _lut_sample(tr, img, nc, nphi, cl, cv, dphi, x0, y0):
             for dj in (0, 1):
                 k = 4 * ds + 2 * di + dj
                 u = tr.math("ADD", u00, (ds * nc + dj) / width, loc=(x0 + 1050, y0 + 400 - 150 * k))
-                v = tr.math("ADD", v00, di / nc, loc=(x0 + 1050, y0 + 330 - 150 * k))
+                v = tr.math("ADD", v00, di / nrows, loc=(x0 + 1050, y0 + 330 - 150 * k))
                 te = tr.tex(img, tr.xyz(u, v, 0.0, (x0 + 1200, y0 + 400 - 150 * k)), (x0 + 1350, y0 + 400 - 150 * k),
                             "EXTEND", f"brdf_lut.exr {'s0+1' if ds else 's0'} i{'+1' if di else ''} j{'+1' if dj else ''}",
                             interpolation="Closest")
@@ -631,6 +690,51 @@ def _lut_sample(tr, img, nc, nphi, cl, cv, dphi, x0, y0):
             rows.append(tr.mix(cols[0], cols[1], tx, (x0 + 1650, y0 + 350 - 300 * (2 * ds + di))))
         tiles.append(tr.mix(rows[0], rows[1], ty, (x0 + 1850, y0 + 200 - 600 * ds)))
     return tr.mix(tiles[0], tiles[1], t, (x0 + 2050, y0 - 100))
+
+
+def _family_radius(tr, m, uv, unit_scale, loc):
+    """The texel's subsurface radius (sss_radius_map.exr, metres) in scene units."""
+    t = tr.tex(load_family_image(m, "sss_radius_map"), uv, loc, "EXTEND", "sss_radius_map.exr (per texel)")
+    return tr.vmath("SCALE", t.outputs["Color"], loc=(loc[0] + 300, loc[1]), scale=1.0 / unit_scale)
+
+
+def _family_lut_sample(tr, m, nc, nphi, cl, cv, dphi):
+    """pi f_r of the texel's parameters: the stacked atlases of the family's sub-grid
+    (family_lut.exr), each read as _lut_sample reads brdf_lut.exr, blended multilinearly at
+    the texel's sub-grid position (family_coord.exr, per axis in R, G, B)."""
+    fam = m["family"]
+    counts = fam["sub_counts"]
+    img = load_family_image(m, "family_lut")
+    if hasattr(img, "use_half_precision"):
+        img.use_half_precision = False
+    uv = tr.node("ShaderNodeTexCoord", (-900, -1200)).outputs["UV"]
+    coord = tr.tex(load_family_image(m, "family_coord"), uv, (-700, -1200), "EXTEND", "family_coord.exr",
+                   interpolation="Closest")
+    sep = tr.node("ShaderNodeSeparateColor", (-450, -1200))
+    tr.link(coord.outputs["Color"], sep.inputs["Color"])
+    axes = [a for a in range(3) if counts[a] > 1]
+    stride = [1, counts[0], counts[0] * counts[1]]
+    base, frac = 0.0, {}
+    for k, a in enumerate(axes):
+        p = sep.outputs[a]
+        i0 = tr.math("MINIMUM", tr.math("FLOOR", p, loc=(-250, -1100 - 150 * k)), counts[a] - 2,
+                     loc=(-100, -1100 - 150 * k))
+        frac[a] = tr.math("SUBTRACT", p, i0, loc=(50, -1100 - 150 * k))
+        base = tr.math("MULTIPLY_ADD", i0, stride[a], base, loc=(200, -1100 - 150 * k))
+    nrows = nc * fam["slices"]
+    cols = []
+    for corner in range(1 << len(axes)):
+        s = base
+        if corner:
+            s = tr.math("ADD", base, sum(stride[a] for k, a in enumerate(axes) if corner >> k & 1),
+                        loc=(350, -1100 - 150 * corner))
+        row_off = tr.math("MULTIPLY", s, nc, loc=(500, -1100 - 150 * corner))
+        cols.append(_lut_sample(tr, img, nc, nphi, cl, cv, dphi, -450, -2000 - 1400 * corner, row_off, nrows))
+    # Blend axis by axis: the list is ordered by corner bits, lowest bit (the first axis) first.
+    for k, a in enumerate(axes):
+        cols = [tr.mix(cols[2 * j], cols[2 * j + 1], frac[a], (2100 + 200 * k, -1500 - 300 * j))
+                for j in range(len(cols) // 2)]
+    return cols[0]
 
 
 def build_exact(m, name="skinbake exact", no_detail=False, no_specular=False, unit_scale=1.0,
@@ -670,7 +774,10 @@ def build_exact(m, name="skinbake exact", no_detail=False, no_specular=False, un
     dphi = tr.math("ARCCOSINE", tr.math("MINIMUM", tr.math("MAXIMUM", tr.vmath("DOT_PRODUCT", vp, lp, (-1050, 200)),
                                                            -1.0, loc=(-900, 200)), 1.0, loc=(-750, 200)),
                    loc=(-600, 200))
-    col = _lut_sample(tr, lutimg, nc, nphi, cl, cv, dphi, -450, 0)
+    if "family" in m:
+        col = _family_lut_sample(tr, m, nc, nphi, cl, cv, dphi)
+    else:
+        col = _lut_sample(tr, lutimg, nc, nphi, cl, cv, dphi, -450, 0)
     if area is not None:
         col = tr.vmath("SCALE", col, loc=(1800, 0), scale=area)
     dif = tr.node("ShaderNodeBsdfDiffuse", (2000, 0))

@@ -1,5 +1,6 @@
 /* srgb: the sRGB transfer function (IEC 61966-2-1) that turns a linear
- * value into the encoded one of 8-bit previews.  Header only. */
+ * value into the encoded one of 8-bit previews, and its inverse for
+ * sRGB-encoded input images.  Header only. */
 #ifndef SKINBAKE_SRGB_H
 #define SKINBAKE_SRGB_H
 #include <math.h>
@@ -10,5 +11,12 @@ static inline double srgb_encode(double linear)
 {
 	double v = fmax(0.0, fmin(1.0, linear));
 	return v <= 0.0031308 ? 12.92 * v : 1.055 * pow(v, 1.0 / 2.4) - 0.055;
+}
+
+/* Linear value of an encoded value in [0, 1] (clamped first). */
+static inline double srgb_decode(double encoded)
+{
+	double v = fmax(0.0, fmin(1.0, encoded));
+	return v <= 0.04045 ? v / 12.92 : pow((v + 0.055) / 1.055, 2.4);
 }
 #endif

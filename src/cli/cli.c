@@ -27,6 +27,7 @@ static const struct opt_sub commands[] = {
 	{ "verify", "check a bake's table against an independent Monte Carlo run", cmd_verify },
 	{ "texture", "grow pores and furrows as seamless height and normal maps", cmd_texture },
 	{ "export", "export pov|blender: scenes and image sets for renderers", cmd_export },
+	{ "maps", "maps new|fit|edit|render-albedo: parameter maps of a family", cmd_maps },
 	{ NULL, NULL, NULL },
 };
 

@@ -11,6 +11,7 @@
 #include "bake/checkpoint.h"
 #include "bake/summary.h"
 #include "cli/cli.h"
+#include "cli/cmd_bake_family.h"
 #include "cli/opt.h"
 #include "skin/preset.h"
 #include "base/util.h"
@@ -34,14 +35,21 @@ static int parse_resolution(struct opt_ctx *x, const struct opt *o, const char *
 }
 
 /* After the options: the preset's layer stacks, the bake, the directory. */
-static int run(struct bake_spec *s, const char *preset, const char *pfile, const char *out, int quiet, int argc,
-    char **argv)
+static int run(struct bake_spec *s, const char *preset, const char *pfile, const char *out, int quiet,
+    const struct bake_vary *vary, int argc, char **argv)
 {
 	char *cause = NULL;
 	struct skin_params *p = bake_spec_preset(s, preset, pfile, &cause);
 	if (p == NULL) {
 		int rc = cli_usage_error(CMD, "%s", cause);
 		free(cause);
+		return rc;
+	}
+	if (vary->n > 0) {
+		char *cmdline = cli_command_line(argc, argv);
+		int rc = bake_family_run(s, p, preset ? preset : pfile, out, vary, quiet, cmdline);
+		free(cmdline);
+		preset_free(p);
 		return rc;
 	}
 	double *m = xmalloc(sizeof(double) * 3 * (size_t)s->n_wl);
@@ -78,7 +86,9 @@ int cmd_bake(int argc, char **argv)
 {
 	static struct bake_spec s;
 	static struct opt_list wl, th;
+	static struct bake_vary vary;
 	memset(&s, 0, sizeof s);
+	vary.n = 0;
 	const char *preset = NULL, *pfile = NULL, *out = NULL;
 	int quiet = 0, nodes, fresnel, est, solver;
 	long seed;
@@ -128,6 +138,8 @@ int cmd_bake(int argc, char **argv)
 		{ "resume", OPT_FLAG, &s.resume, .help = "go on from DIR.checkpoint (none: from the start); not under MPI" },
 		{ "checkpoint-seconds", OPT_DOUBLE, &s.checkpoint_s, "S", "5", .lo = 0, .hi = 1e6, .unit = "s",
 		  .help = "write DIR.checkpoint at most every S seconds (0: after every step)" },
+		{ "vary", OPT_CUSTOM, &vary, "KEY=LO:HI:N[:SPACING]", .fn = bake_vary_parse, .flags = OPT_REPEAT,
+		  .max = FAMILY_MAX_AXES, .help = BAKE_VARY_HELP },
 		OPT_END
 	};
 	const struct opt_cmd cmd = { "bake", "(--preset NAME | --preset-file FILE) --out DIR [options]",
@@ -145,5 +157,5 @@ int cmd_bake(int argc, char **argv)
 	s.opts.fresnel = fresnel == 0 ? OPTICS_FRESNEL_EXACT : OPTICS_FRESNEL_SCHLICK;
 	s.method = (int[]){ BAKE_SOLVER_AUTO, BAKE_SOLVER_AD, BAKE_SOLVER_MC }[solver];
 	s.nee = est == 0, s.seed = (uint64_t)seed, s.min_batches = 8, s.n_ranks = 1;
-	return run(&s, preset, pfile, out, quiet, argc, argv);
+	return run(&s, preset, pfile, out, quiet, &vary, argc, argv);
 }

@@ -7,6 +7,8 @@
 #include <string.h>
 
 #include "export/blender/blender.h"
+#include "export/blender/blender_family.h"
+#include "maps/mapset.h"
 #include "export/source.h"
 #include "cli/cli.h"
 #include "cli/opt.h"
@@ -37,15 +39,40 @@ static int run(const char *bake_dir, const char *tex_dir, const char *out, const
 	return rc;
 }
 
+/* --family and --maps: the family's image set with per-texel maps. */
+static int run_family(const char *fam_dir, const char *maps_dir, const char *tex_dir, const char *out, int sub,
+    const struct blender_options *o)
+{
+	char *cause = NULL;
+	struct family *f = family_load(fam_dir, &cause);
+	struct mapset *m = f ? mapset_read(maps_dir, &cause) : NULL;
+	int rc = CLI_EXIT_OK, e;
+	if (f == NULL || m == NULL)
+		rc = cli_usage_error(CMD, "%s %s: %s", f ? "--maps" : "--family", f ? maps_dir : fam_dir, cause);
+	else if ((e = blender_family_export(f, m, o, sub, tex_dir, out, &cause)) != 0)
+		rc = e == -1 ? cli_usage_error(CMD, "%s", cause) : cli_fail(CMD, "%s", cause);
+	free(cause);
+	mapset_free(m);
+	family_free(f);
+	return rc;
+}
+
 int cmd_export_blender(int argc, char **argv)
 {
 	struct blender_options o;
-	const char *bake_dir, *out, *tex_dir = NULL;
+	const char *bake_dir = NULL, *out, *tex_dir = NULL, *fam_dir = NULL, *maps_dir = NULL;
 	double se, sa, ve, va;
+	int sub;
 	blender_options_default(&o);
 	const struct opt opts[] = {
-		{ "bake", OPT_PATH_IN, &bake_dir, "DIR", .flags = OPT_REQUIRED | OPT_DIR,
+		{ "bake", OPT_PATH_IN, &bake_dir, "DIR", .flags = OPT_REQUIRED | OPT_DIR, .excl = "family",
 		  .help = "bake directory written by `skinbake bake`" },
+		{ "family", OPT_PATH_IN, &fam_dir, "DIR", .flags = OPT_REQUIRED | OPT_DIR, .excl = "bake",
+		  .help = "a family directory (`skinbake bake --vary`), with --maps: per-texel skin (docs/maps.md)" },
+		{ "maps", OPT_PATH_IN, &maps_dir, "DIR", .flags = OPT_DIR,
+		  .help = "the family's parameter maps (`skinbake maps`), for --family" },
+		{ "family-sub", OPT_INT, &sub, "N", "4", .lo = BLENDER_FAMILY_SUB_MIN, .hi = BLENDER_FAMILY_SUB_MAX,
+		  .help = "exact-mode tables per varying axis over the maps' range, for --family" },
 		{ "out", OPT_PATH_OUT, &out, "DIR", .flags = OPT_REQUIRED, .help = "output directory, created if needed" },
 		{ "textures", OPT_PATH_IN, &tex_dir, "DIR", .flags = OPT_DIR, .def_note = "flat maps, noted in the manifest",
 		  .help = "`skinbake texture` output (height.png, normal.png)" },
@@ -81,5 +108,11 @@ int cmd_export_blender(int argc, char **argv)
 	o.sun_azimuth = sa * M_PI / 180.0;
 	o.view_elevation = ve * M_PI / 180.0;
 	o.view_azimuth = va * M_PI / 180.0;
+	if (fam_dir && !maps_dir)
+		return opt_error(&x, "--family needs --maps (the parameter maps to export)");
+	if (maps_dir && !fam_dir)
+		return opt_error(&x, "--maps goes with --family, not --bake");
+	if (fam_dir)
+		return run_family(fam_dir, maps_dir, tex_dir, out, sub, &o);
 	return run(bake_dir, tex_dir, out, &o);
 }

@@ -69,21 +69,17 @@ static int set_camera(struct opt_ctx *x, const struct opt *o, const char *v)
 /* --bake/--textures [SKIN=]DIR, once per skin. */
 static int bind(struct opt_ctx *x, const struct opt *o, const char *v)
 {
-	struct povexport_options *po = o->dest;
-	(void)x;
-	if (!strcmp(o->name, "bake"))
-		return po->bakes[po->n_bakes++] = v, 0;
-	return po->texs[po->n_texs++] = v, 0;
+	struct povexport_options *po = ((void)x, o->dest);
+	return !strcmp(o->name, "bake") ? (po->bakes[po->n_bakes++] = v, 0) : (po->texs[po->n_texs++] = v, 0);
 }
 
 static int set_size(struct opt_ctx *x, const struct opt *o, const char *v)
 {
 	struct povexport_options *po = o->dest;
 	int end = 0;
-	if (sscanf(v, "%dx%d%n", &po->width, &po->height, &end) != 2 || v[end] != '\0' || po->width < 16
-	    || po->width > 8192 || po->height < 16 || po->height > 8192)
-		return opt_error(x, "--size = '%s' is not WxH with W and H in [16, 8192] pixels", v), -1;
-	return 0;
+	int bad = sscanf(v, "%dx%d%n", &po->width, &po->height, &end) != 2 || v[end] != '\0' || po->width < 16
+	    || po->width > 8192 || po->height < 16 || po->height > 8192;
+	return bad ? (opt_error(x, "--size = '%s' is not WxH with W and H in [16, 8192] pixels", v), -1) : 0;
 }
 
 int cmd_export_pov(int argc, char **argv)
@@ -98,7 +94,7 @@ int cmd_export_pov(int argc, char **argv)
 		  .fn = add_light, .excl = "scene", .help = "without --scene, once per light: KEY=VALUE,..." },
 		{ "camera", OPT_CUSTOM, &cl, "SPEC", .keys = camera_keys, .fn = set_camera, .excl = "scene",
 		  .help = "without --scene (then only the include is written): KEY=VALUE,..." },
-		{ "bake", OPT_CUSTOM, &po, "[SKIN=]DIR", .flags = OPT_REPEAT, .max = POVEXPORT_MAX_BIND, .fn = bind,
+		{ "bake", OPT_CUSTOM, &po, "[SKIN=]DIR", .flags = OPT_REPEAT, .max = POVEXPORT_MAX_BIND, .fn = bind, .excl = "family",
 		  .def_note = "the scene skin's bake = DIR", .help = "`skinbake bake` output for skin SKIN (bare: every skin)" },
 		{ "textures", OPT_CUSTOM, &po, "[SKIN=]DIR", .flags = OPT_REPEAT, .max = POVEXPORT_MAX_BIND, .fn = bind,
 		  .def_note = "the skin's textures = DIR", .help = "`skinbake texture` output (height.png) per skin" },
@@ -117,23 +113,27 @@ int cmd_export_pov(int argc, char **argv)
 		  .def_note = "$SKINBAKE_DATADIR, " PKGDATADIR ", ../exporters/pov", .help = "where skinbake_shapes.inc is" },
 		{ "bump-filter", OPT_ENUM, &filter, .choices = "auto|off", .def = "auto",
 		  .help = "box-filter the height map to half an image pixel" },
-		{ "analytic", OPT_FLAG, &po.analytic, .help = "an analytic skin-like BRDF instead of a bake (tests)" },
+		{ "analytic", OPT_FLAG, &po.analytic, .excl = "family", .help = "an analytic skin-like BRDF, no bake (tests)" },
+		{ "family", OPT_PATH_IN, &po.family, "DIR", .flags = OPT_DIR, .excl = "bake|analytic", .help = "with --maps: "
+		  "a family (bake --vary) blended per texel by the maps, one light (docs/maps.md)" },
+		{ "maps", OPT_PATH_IN, &po.maps, "DIR", .flags = OPT_DIR, .help = "with --family: `skinbake maps` output" },
 		{ "plan", OPT_FLAG, &po.plan, .help = "print the incidence angles the scene needs from a bake, write nothing" },
 		OPT_END
 	};
 	const struct opt_cmd cmd = { "export pov",
 		"--bake [SKIN=]DIR [--textures [SKIN=]DIR] (--scene FILE | --light SPEC ... --camera SPEC) --out DIR",
-		"Write POV-Ray 3.7 SDL that evaluates a baked skin BRDF as 'lit tables'\n"
-		"(pigment = pi*f_r over slope/aoi blend maps, finish diffuse 1 brilliance 1):\n"
-		"shadows, area lights and bump maps stay right.  See docs/pov.md.", opts,
+		"Write POV-Ray 3.7 SDL that evaluates a baked skin BRDF as 'lit tables' (pigment = pi*f_r\n"
+		"over slope/aoi blend maps, finish diffuse 1 brilliance 1): shadows, area lights and bump\n"
+		"maps stay right.  --family/--maps blend a family's tables by maps.  See docs/pov.md.", opts,
 		"Renders are linear (assumed_gamma 1): a white Lambertian under a light of colour 1\n"
 		"at normal incidence shows 1, so pixel = pi * radiance.", 0, 0 };
 	struct opt_ctx x;
 	if (opt_parse(&x, &cmd, argc, argv) != 0)
 		return x.exit;
-	po.have_camera = opt_given(&x, "camera");
+	po.have_camera = opt_given(&x, "camera"), po.bump_filter = filter == 0;
 	po.lights = opt_given(&x, "lights") ? opt_text(&x, "lights") : NULL;
-	po.bump_filter = filter == 0;
+	if (!po.family != !po.maps)
+		return opt_error(&x, "--family and --maps go together");
 	struct povexport_result r = { 0 };
 	char *cause = NULL;
 	int e = povexport_run(&po, &r, &cause), ok = e == 0;

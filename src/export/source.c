@@ -25,8 +25,11 @@ static void bake_specular(void *ctx, double ti, double to, double dphi, double *
 struct brdf_source *brdf_source_open(const char *bake_dir, char **cause)
 {
 	struct bake *b = bake_load(bake_dir, cause);
-	if (b == NULL)
-		return NULL;
+	return b ? brdf_source_of_bake(b, 1) : NULL;
+}
+
+struct brdf_source *brdf_source_of_bake(struct bake *b, int own)
+{
 	struct brdf_source *s = xcalloc(1, sizeof *s);
 	*s = (struct brdf_source){
 		.f_rgb = bake_rgb,
@@ -47,7 +50,7 @@ struct brdf_source *brdf_source_open(const char *bake_dir, char **cause)
 		.sss_radius_cm = { b->sss_radius_rgb_cm[0], b->sss_radius_rgb_cm[1], b->sss_radius_rgb_cm[2] },
 		.source = b->dir,
 		.preset = b->preset,
-		.bake = b,
+		.bake = own ? b : NULL,
 	};
 	return s;
 }

@@ -50,6 +50,9 @@ struct brdf_source {
 /* A source from the bake directory BAKE_DIR; NULL and *cause (caller frees)
  * when it cannot be read.  Free with brdf_source_free. */
 struct brdf_source *brdf_source_open(const char *bake_dir, char **cause);
+/* A source over a bake in memory (e.g. a family interpolated at a point,
+ * family_bake_at); with own, brdf_source_free frees b too. */
+struct brdf_source *brdf_source_of_bake(struct bake *b, int own);
 /* Add the detail maps of texture directory TEX_DIR (height.png and
  * normal.png, texdir_load); -1 and *cause when they cannot be read. */
 int brdf_source_add_textures(struct brdf_source *s, const char *tex_dir, char **cause);

@@ -167,6 +167,81 @@ void colour_linear_srgb_to_lab(const double rgb[3], double lab[3])
 	colour_xyz_to_lab(xyz, white, lab);
 }
 
+/* CIE 15 inverse of lab_f. */
+static double lab_finv(double f)
+{
+	const double d = 6.0 / 29.0;
+	return f > d ? f * f * f : 3.0 * d * d * (f - 4.0 / 29.0);
+}
+
+void colour_lab_to_xyz(const double lab[3], const double white_xyz[3], double xyz[3])
+{
+	double fy = (lab[0] + 16.0) / 116.0;
+	xyz[0] = white_xyz[0] * lab_finv(fy + lab[1] / 500.0);
+	xyz[1] = white_xyz[1] * lab_finv(fy);
+	xyz[2] = white_xyz[2] * lab_finv(fy - lab[2] / 200.0);
+}
+
+void colour_lab_to_linear_srgb(const double lab[3], double rgb[3])
+{
+	static const double one[3] = { 1.0, 1.0, 1.0 };
+	double xyz[3], white[3];
+	colour_linear_srgb_to_xyz(one, white);
+	colour_lab_to_xyz(lab, white, xyz);
+	colour_xyz_to_linear_srgb(xyz, rgb);
+}
+
+/* Hue angle [deg] in [0, 360); 0 for a neutral colour (Sharma et al. eq. 4). */
+static double hue_deg(double b, double ap)
+{
+	if (b == 0.0 && ap == 0.0)
+		return 0.0;
+	double h = atan2(b, ap) * 180.0 / M_PI;
+	return h < 0.0 ? h + 360.0 : h;
+}
+
+double colour_de2000(const double lab1[3], const double lab2[3])
+{
+	const double d2r = M_PI / 180.0, p25_7 = 6103515625.0;	/* 25^7 */
+	/* eqs. 2-5: a' stretched by G, C', h'. */
+	double c1 = hypot(lab1[1], lab1[2]), c2 = hypot(lab2[1], lab2[2]);
+	double cb7 = pow(0.5 * (c1 + c2), 7.0);
+	double g = 0.5 * (1.0 - sqrt(cb7 / (cb7 + p25_7)));
+	double a1 = (1.0 + g) * lab1[1], a2 = (1.0 + g) * lab2[1];
+	double cp1 = hypot(a1, lab1[2]), cp2 = hypot(a2, lab2[2]);
+	double h1 = hue_deg(lab1[2], a1), h2 = hue_deg(lab2[2], a2);
+	/* eqs. 8-10: differences. */
+	double dl = lab2[0] - lab1[0], dc = cp2 - cp1, dh = 0.0;
+	if (cp1 * cp2 != 0.0) {
+		dh = h2 - h1;
+		if (dh > 180.0)
+			dh -= 360.0;
+		else if (dh < -180.0)
+			dh += 360.0;
+	}
+	double dhh = 2.0 * sqrt(cp1 * cp2) * sin(0.5 * dh * d2r);
+	/* eqs. 12-22: means, weights and the rotation term. */
+	double lb = 0.5 * (lab1[0] + lab2[0]), cb = 0.5 * (cp1 + cp2), hb = h1 + h2;
+	if (cp1 * cp2 != 0.0) {
+		if (fabs(h1 - h2) <= 180.0)
+			hb = 0.5 * (h1 + h2);
+		else if (h1 + h2 < 360.0)
+			hb = 0.5 * (h1 + h2 + 360.0);
+		else
+			hb = 0.5 * (h1 + h2 - 360.0);
+	}
+	double t = 1.0 - 0.17 * cos((hb - 30.0) * d2r) + 0.24 * cos(2.0 * hb * d2r) + 0.32 * cos((3.0 * hb + 6.0) * d2r)
+	    - 0.20 * cos((4.0 * hb - 63.0) * d2r);
+	double dtheta = 30.0 * exp(-((hb - 275.0) / 25.0) * ((hb - 275.0) / 25.0));
+	double cb7p = pow(cb, 7.0);
+	double rc = 2.0 * sqrt(cb7p / (cb7p + p25_7));
+	double l50 = (lb - 50.0) * (lb - 50.0);
+	double sl = 1.0 + 0.015 * l50 / sqrt(20.0 + l50), sc = 1.0 + 0.045 * cb, sh = 1.0 + 0.015 * cb * t;
+	double rt = -sin(2.0 * dtheta * d2r) * rc;
+	double xl = dl / sl, xc = dc / sc, xh = dhh / sh;
+	return sqrt(fmax(0.0, xl * xl + xc * xc + xh * xh + rt * xc * xh));
+}
+
 double colour_ita(const double lab[3])
 {
 	return atan2(lab[0] - 50.0, lab[2]) * 180.0 / M_PI;

@@ -5,6 +5,9 @@
  * - D65 relative SPD: CIE 15 table, 380-780 nm in 5 nm steps, linear
  *   interpolation in between (the CIE-recommended way).
  * - XYZ <-> linear sRGB: IEC 61966-2-1 matrices (D65 white); CIELAB: CIE 15.
+ * - Colour difference CIEDE2000: CIE 142-2001, as written out by Sharma, Wu
+ *   & Dalal, Color Res. Appl. 30(1) 2005, eqs. 1-23 (tests/test_colour.c
+ *   checks their 34 published test pairs).
  * Wavelengths in nm.  Pure functions; no state. */
 #ifndef SKINBAKE_COLOUR_H
 #define SKINBAKE_COLOUR_H
@@ -34,6 +37,13 @@ void colour_linear_srgb_to_xyz(const double rgb[3], double xyz[3]);
 void colour_xyz_to_lab(const double xyz[3], const double white_xyz[3], double lab[3]);
 /* CIELAB of a linear sRGB colour, D65 white (sRGB's (1,1,1)). */
 void colour_linear_srgb_to_lab(const double rgb[3], double lab[3]);
+/* The inverses: CIELAB (relative to white_xyz) -> XYZ, and CIELAB with the
+ * D65 white of sRGB -> linear sRGB. */
+void colour_lab_to_xyz(const double lab[3], const double white_xyz[3], double xyz[3]);
+void colour_lab_to_linear_srgb(const double lab[3], double rgb[3]);
+/* CIEDE2000 colour difference of two CIELAB colours, parametric factors
+ * kL = kC = kH = 1 (symmetric in its arguments). */
+double colour_de2000(const double lab1[3], const double lab2[3]);
 /* Individual typology angle ITA = atan2(L* - 50, b*) [degrees] (Chardon 1991). */
 double colour_ita(const double lab[3]);
 

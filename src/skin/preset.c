@@ -310,3 +310,69 @@ const char *preset_get_name(const struct skin_params *p)
 {
 	return p->name;
 }
+
+/* Numeric key "section.name": 0 and its table row, or -1. */
+static int number_key(const char *key, struct preset_key_info *ki)
+{
+	const char *dot = strchr(key, '.');
+	if (dot == NULL || (size_t)(dot - key) >= 32)
+		return -1;
+	char sec[32];
+	memcpy(sec, key, (size_t)(dot - key));
+	sec[dot - key] = '\0';
+	int i = preset_key_find(sec, dot + 1);
+	if (i < 0)
+		return -1;
+	preset_key_info(i, ki);
+	return ki->numeric ? 0 : -1;
+}
+
+int preset_number_key(const char *key, double *lo, double *hi, const char **unit, char **cause)
+{
+	struct preset_key_info ki;
+	if (number_key(key, &ki) != 0) {
+		char *list = xstrdup("");
+		for (int j = 0; j < preset_key_count(); j++) {
+			preset_key_info(j, &ki);
+			if (!ki.numeric)
+				continue;
+			char *t = xasprintf("%s%s%s.%s", list, *list ? ", " : "", ki.section, ki.name);
+			free(list);
+			list = t;
+		}
+		*cause = xasprintf("'%s' is not a numeric preset key (one of %s)", key, list);
+		free(list);
+		return -1;
+	}
+	*lo = ki.lo;
+	*hi = ki.hi;
+	if (unit)
+		*unit = ki.unit;
+	return 0;
+}
+
+int preset_set_number(struct skin_params *p, const char *key, double v, char **cause)
+{
+	struct preset_key_info ki;
+	double lo, hi;
+	if (preset_number_key(key, &lo, &hi, NULL, cause) != 0)
+		return -1;
+	number_key(key, &ki);
+	if (!(v >= lo && v <= hi)) {
+		*cause = xasprintf("%s = %g: out of range [%g, %g]%s%s", key, v, lo, hi, *ki.unit ? " " : "", ki.unit);
+		return -1;
+	}
+	char *base = ki.layer < 0 ? (char *)p : (char *)&p->layer[ki.layer];
+	*(double *)(base + ki.off) = v;
+	return 0;
+}
+
+int preset_get_number(const struct skin_params *p, const char *key, double *v)
+{
+	struct preset_key_info ki;
+	if (number_key(key, &ki) != 0)
+		return -1;
+	const char *base = ki.layer < 0 ? (const char *)p : (const char *)&p->layer[ki.layer];
+	*v = *(const double *)(base + ki.off);
+	return 0;
+}

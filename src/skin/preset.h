@@ -49,6 +49,18 @@ char *preset_to_ini(const struct skin_params *p);
  * each in [380, 780] nm) into wl[SKIN_MAX_WL]; returns the count, or -1 with
  * *cause (the problem only; the caller names the option). */
 int preset_parse_wavelengths(const char *s, double *wl, char **cause);
+/* Numeric keys ("epidermis.melanin", "dermis.blood", ...): those whose value
+ * is a number in a range (thicknesses, indices and anisotropies given as
+ * numbers included), which a family bake may vary.  preset_number_key gives
+ * the key's range and unit (unit "" for pure numbers); -1 and *cause naming
+ * the key and listing the numeric keys when KEY is not one. */
+int preset_number_key(const char *key, double *lo, double *hi, const char **unit, char **cause);
+/* Set numeric key KEY of p to v, range-checked; -1 and *cause ("KEY = V:
+ * out of range [LO, HI] UNIT") otherwise. */
+int preset_set_number(struct skin_params *p, const char *key, double v, char **cause);
+/* The value of numeric key KEY in p (NAN when it is ding2006 or
+ * vangemert1989, INFINITY for a semi-infinite layer); -1 if KEY is not one. */
+int preset_get_number(const struct skin_params *p, const char *key, double *v);
 /* Print every key: section, name, unit, default, range, meaning. */
 void preset_print_keys(FILE *fp);
 #endif

@@ -574,6 +574,18 @@ int preset_parse_wavelengths(const char *s, double *wl, char **cause)
 	return preset_wavelengths_parse(s, wl, &n, cause) == 0 ? n : -1;
 }
 
+void preset_key_info(int i, struct preset_key_info *out)
+{
+	const struct key *k = &keys[i];
+	*out = (struct preset_key_info){ k->section, k->name, k->unit, k->lo, k->hi, k->layer, k->off,
+		k->kind == K_NUM || k->kind == K_LEN || k->kind == K_IOR || k->kind == K_ANISO };
+}
+
+int preset_key_count(void)
+{
+	return N_KEYS;
+}
+
 void preset_print_keys(FILE *fp)
 {
 	fprintf(fp, "%-28s %-6s %-14s %-20s %s\n", "key", "unit", "default", "range", "meaning");

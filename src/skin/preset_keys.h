@@ -31,6 +31,17 @@ struct preset_ctx {
 /* Record the first error as "origin:line: message". */
 void preset_ctx_err(struct preset_ctx *c, const char *fmt, ...) __attribute__((format(printf, 2, 3)));
 
+/* What preset.c needs of key i (0 <= i < preset_key_count()). */
+struct preset_key_info {
+	const char *section, *name, *unit;
+	double lo, hi;		/* range of a numeric key */
+	int layer;		/* enum skin_layer_id, or -1 for a struct skin_params field */
+	size_t off;		/* offset of the double in the layer or the params */
+	int numeric;		/* a number (or thickness, index, anisotropy given as a number) */
+};
+void preset_key_info(int i, struct preset_key_info *out);
+int preset_key_count(void);
+
 /* Index of key section.name in the table; -1 when the section has no such
  * key, -2 when there is no such section. */
 int preset_key_find(const char *section, const char *name);

@@ -566,6 +566,13 @@ out:
 	return rc;
 }
 
+void blender_set_add_section(struct blender_set *s, const char *key, const char *json)
+{
+	json_object *o = json_tokener_parse(json);
+	CHECK(o != NULL);
+	json_object_object_add(s->manifest, key, o);
+}
+
 int blender_export(const struct brdf_source *m, const struct blender_options *o, const char *dir,
     char **cause)
 {

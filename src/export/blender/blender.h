@@ -77,6 +77,8 @@ struct blender_set;
 struct blender_set *blender_prepare(const struct brdf_source *m, const struct blender_options *o, char **cause);
 int blender_write(const struct blender_set *s, const char *dir, char **cause);
 void blender_set_free(struct blender_set *s);
+/* Add a section KEY (JSON object text) to the manifest s will write. */
+void blender_set_add_section(struct blender_set *s, const char *key, const char *json);
 /* prepare + write: nothing is written when an option or a texture is bad. */
 int blender_export(const struct brdf_source *m, const struct blender_options *o, const char *dir,
     char **cause);

@@ -14,6 +14,7 @@
 #include "export/source.h"
 #include "export/pov/bumpmap.h"
 #include "export/pov/povfiles.h"
+#include "export/pov/pov_maps.h"
 #include "export/pov/placement.h"
 #include "export/pov/povscene.h"
 #include "geom/mesh.h"
@@ -277,6 +278,7 @@ struct inputs {
 	struct bumpmap hm[SCENE_MAX_SKINS];
 	struct pov_skin ps[SCENE_MAX_SKINS];
 	char *heights[SCENE_MAX_SKINS];
+	struct pov_maps *maps[SCENE_MAX_SKINS];
 	char *shapes;
 };
 
@@ -286,8 +288,39 @@ static void inputs_free(struct inputs *in)
 		brdf_source_free(in->src[k]);
 		bumpmap_free(&in->hm[k]);
 		free(in->heights[k]);
+		pov_maps_free(in->maps[k]);
 	}
 	free(in->shapes);
+}
+
+/* --family --maps: skin k blends the family's members by the maps (key
+ * light only); the member at the maps' median stands in where one BRDF is
+ * needed (strategy, Lambert and Phong stand-ins). */
+static int load_maps(const struct povexport_options *o, struct scene *s, const char *base, int k, struct inputs *in,
+    char **cause)
+{
+	struct scene_skin *sk = &s->skins[k];
+	struct pov_skin *ps = &in->ps[k];
+	if (s->n_lights != 1 || (s->lights_strategy != SCENE_LIGHTS_AUTO && s->lights_strategy != SCENE_LIGHTS_KEY))
+		return *cause = xasprintf("--maps: the scene has %d lights and lights = %s; maps take one light (key)",
+			   s->n_lights, scene_strategy_name(s->lights_strategy)), -1;
+	struct pov_maps *pm = in->maps[k] = pov_maps_open(o->family, o->maps, base, sk->name, cause);
+	if (pm == NULL)
+		return -1;
+	const struct brdf_source *b = pm->src[pm->ref];
+	ps->brdf = pov_maps_brdf(pm, pm->ref);
+	ps->ior = b->ior;
+	for (int ch = 0; ch < 3; ch++)
+		ps->albedo_rgb[ch] = b->albedo_rgb[ch * b->n_albedo];
+	ps->maps = pm;
+	if (o->scene_path == NULL && pm->fam->preset) {
+		free(sk->preset);
+		sk->preset = xstrdup(pm->fam->preset);
+	}
+	for (int i = 0; i < s->n_objects; i++)
+		ps->maps_uv |= s->objects[i].shape == SCENE_MESH && s->objects[i].material == SCENE_MAT_SKIN &&
+		    s->objects[i].skin == k;
+	return 0;
 }
 
 static int load_brdf(const struct povexport_options *o, struct scene *s, int k, struct inputs *in,
@@ -301,6 +334,8 @@ static int load_brdf(const struct povexport_options *o, struct scene *s, int k, 
 		ps->brdf = (struct pov_brdf){ .f_rgb = littable_brdf_analytic };
 		return 0;
 	}
+	if (o->family)
+		return 0;	/* load_maps */
 	const char *dir = bind_find(o->bakes, o->n_bakes, sk->name);
 	if (dir == NULL)
 		dir = sk->bake;
@@ -387,6 +422,9 @@ static int write_extras(const struct scene *s, const char *out, const char *base
 		if (e != 0)
 			return -1;
 	}
+	for (int k = 0; k < s->n_skins; k++)
+		if (in->maps[k] && pov_maps_write_images(in->maps[k], out, cause) != 0)
+			return -1;
 	if (in->shapes) {
 		char *dst = xasprintf("%s/skinbake_shapes.inc", out);
 		int e = povfiles_copy(in->shapes, dst, cause);
@@ -469,7 +507,8 @@ int povexport_run(const struct povexport_options *o, struct povexport_result *r,
 		goto done;
 	}
 	for (int k = 0; k < s->n_skins; k++)
-		if (load_brdf(o, s, k, &in, r, cause) != 0 || load_bumps(o, s, base, k, &in, r, cause) != 0)
+		if (load_brdf(o, s, k, &in, r, cause) != 0 || (o->family && load_maps(o, s, base, k, &in, cause) != 0) ||
+		    load_bumps(o, s, base, k, &in, r, cause) != 0)
 			goto done;
 	int need_shapes = 0;
 	for (int i = 0; i < s->n_objects; i++)

@@ -24,6 +24,7 @@ struct povexport_options {
 	const char *lights;		/* strategy name overriding the scene's, or NULL */
 	int n_theta, n_gamma, n_mix;	/* table nodes */
 	int analytic;			/* the analytic BRDF instead of bakes */
+	const char *family, *maps;	/* a family and its maps for every skin (pov_maps.h), or NULL */
 	int plan;			/* print the plan to `plan_out`, write nothing */
 	int bump_filter;		/* box-filter height maps to the pixel footprint */
 	int width, height;		/* image size [px], 0 = the scene's (320x240 without one) */

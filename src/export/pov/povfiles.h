@@ -11,6 +11,7 @@
 #include "export/pov/scene.h"
 
 /* Everything the exporter knows about one skin of the scene. */
+struct pov_maps;
 struct pov_skin {
 	struct pov_brdf brdf;
 	double albedo_rgb[3];	/* diffuse albedo at normal incidence (lambert/phong stand-ins) [-] */
@@ -18,6 +19,8 @@ struct pov_skin {
 	const char *height_png;	/* height map file name inside the output directory, or NULL */
 	double bump_size;	/* POV bump_size [-] */
 	double tile_units;	/* tile edge [scene units] */
+	const struct pov_maps *maps;	/* a family blended by maps (export/pov/pov_maps.h), or NULL */
+	int maps_uv;		/* the maps follow the mesh UVs (else a planar projection) */
 };
 
 struct pov_options {

@@ -10,6 +10,7 @@
 #include <stdlib.h>
 
 #include "base/util.h"
+#include "export/pov/pov_maps.h"
 #include "export/pov/povscene.h"
 #include "export/pov/sdl.h"
 #include "export/pov/separable.h"
@@ -112,7 +113,8 @@ void povinc_write(FILE *fp, const struct scene *s, const struct pov_skin *skins,
 		fprintf(fp, "#declare SKIN_%s_Interior = interior { ior " SDL_G " }\n", sk->name, ps->ior);
 		if (st == SCENE_LIGHTS_KEY) {
 			nm = xasprintf("SKIN_%s_Pigment", sk->name);
-			int g = littable_write_key(fp, nm, &ps->brdf, &pl[0], &v, lo, hi, o->n_theta, o->n_gamma);
+			int g = ps->maps ? pov_maps_write_key(fp, nm, ps->maps, &pl[0], &v, lo, hi, o->n_theta, o->n_gamma,
+			    ps->maps_uv) : littable_write_key(fp, nm, &ps->brdf, &pl[0], &v, lo, hi, o->n_theta, o->n_gamma);
 			r->n_gamma_used = g > r->n_gamma_used ? g : r->n_gamma_used;
 			free(nm);
 		} else if (st == SCENE_LIGHTS_MIXTURE) {

@@ -1,0 +1,53 @@
+#!/bin/sh
+# Maps benchmarks (issue 15): the family bake of the issue (fair-oily, epidermis.melanin 8 x
+# dermis.blood 6, the preset's 16 wavelengths, default solver auto = adding-doubling, default
+# table), the fit of a 2048 x 2048 16-bit albedo texture, and the round trip made-up maps ->
+# albedo -> fit -> albedo on it.  Prints one markdown section.  Wall times depend on the load of
+# the machine; CPU times (user + system) are given beside them.  FAMILY=DIR reuses a family of
+# these settings instead of baking one (its bake is then not timed); BENCH_QUICK=1 fits 512 x 512.
+set -eu
+SKINBAKE=${SKINBAKE:-./skinbake}
+top_builddir=${top_builddir:-.}
+M="$top_builddir/tests/maps_check"
+QUICK=${BENCH_QUICK:-0}
+N=2048
+[ "$QUICK" = 1 ] && N=512
+W=$(mktemp -d "${TMPDIR:-/tmp}/skinbake-bench-maps.XXXXXX")
+trap 'rm -rf "$W"' EXIT INT TERM
+# timed LABEL CMD...: runs CMD, appends "LABEL wall cpu" to $W/times
+timed() {
+	l=$1
+	shift
+	/usr/bin/time -f "$l %e %U %S" -a -o "$W/times" "$@"
+}
+fam=${FAMILY:-}
+if [ -z "$fam" ]; then
+	fam="$W/fam"
+	timed family "$SKINBAKE" bake --preset fair-oily --vary epidermis.melanin=0.005:0.3:8 \
+		--vary dermis.blood=0.005:0.1:6 --out "$fam" --quiet --threads 2
+fi
+"$M" synth "$fam" "$W/true" "$N" "$N" >/dev/null
+timed render "$SKINBAKE" maps render-albedo --family "$fam" --maps "$W/true" --out "$W/a.png" --quiet
+timed fit "$SKINBAKE" maps fit --family "$fam" --albedo "$W/a.png" --out "$W/fit" --quiet --threads 2
+"$SKINBAKE" maps render-albedo --family "$fam" --maps "$W/fit" --out "$W/r.png" --quiet
+"$M" compare "$fam" "$W/true" "$W/fit" "$W/a.png" "$W/r.png" 0.1 >"$W/cmp.txt"
+val() { awk -v k="$1" '$1 == k { print $2 }' "$W/cmp.txt"; }
+t() { awk -v k="$1" -v f="$2" '$1 == k { if (f == "wall") printf "%.1f", $2; else printf "%.1f", $3 + $4 }' "$W/times"; }
+echo "## Maps"
+echo
+echo "Machine: $(nproc) cores, load average $(cut -d' ' -f1-3 /proc/loadavg) at the end (wall times grow with it)."
+echo
+echo "| step | wall [s] | CPU [s] |"
+echo "|---|---|---|"
+if [ -z "${FAMILY:-}" ]; then
+	echo "| family bake, fair-oily, melanin 8 x blood 6, 16 wavelengths, 10 angles, 18x18, ad (48 members) | $(t family wall) | $(t family cpu) |"
+fi
+echo "| maps render-albedo ${N}x${N} | $(t render wall) | $(t render cpu) |"
+echo "| maps fit ${N}x${N} 16-bit, 2 threads | $(t fit wall) | $(t fit cpu) |"
+echo
+echo "Round trip on the ${N}x${N} made-up maps (smooth fields plus freckles): median CIEDE2000 of the"
+echo "re-rendered albedo $(val de2000_median) (95th percentile $(val de2000_p95), max $(val de2000_max));"
+for k in epidermis.melanin dermis.blood; do
+	echo "$k: $(val ${k}_sensitive_share) of the texels are sensitive (a 5 % change moves the colour by"
+	echo "0.1 CIEDE2000 or more), of which $(val ${k}_within_5pct_share) are within 5 % (max relative error $(val ${k}_relerr_max))."
+done

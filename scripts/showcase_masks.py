@@ -1,0 +1,92 @@
+# Masks for the maps showcase (scripts/render-maps-showcase.sh), run by Blender:
+#   blender -b --factory-startup --python scripts/showcase_masks.py -- MODEL OUT_DIR SIZE
+# Imports the MakeHuman model (a .zae zip or its .dae), and paints three 8-bit grey masks in the
+# UV space of its body mesh (human-baseMesh), SIZE x SIZE texels, from 3-D regions of the face:
+# lips.png (an ellipsoid around the mouth), cheeks.png (two soft ellipsoids), freckles.png
+# (about 220 spots of 0.9-1.8 mm radius over the nose and upper cheeks, from vertices picked by a fixed
+# seed).  Landmarks were measured on the model in Blender's frame (z up, face toward -y): nose tip
+# (0, -0.160, 1.516) m, upper lip at z 1.495, lower lip at z 1.480, mouth 5 cm wide.
+import bpy, math, os, random, struct, sys, zipfile, zlib, tempfile
+
+argv = sys.argv[sys.argv.index('--') + 1:]
+model, out, size = argv[0], argv[1], int(argv[2])
+if model.endswith('.zae'):
+    tmp = tempfile.mkdtemp()
+    with zipfile.ZipFile(model) as z:
+        z.extractall(tmp)
+    model = os.path.join(tmp, [n for n in os.listdir(tmp) if n.endswith('.dae')][0])
+bpy.ops.wm.read_factory_settings(use_empty=True)
+bpy.ops.wm.collada_import(filepath=model)
+ob = [o for o in bpy.data.objects if o.type == 'MESH' and 'base' in o.name.lower()][0]
+me = ob.data
+me.calc_loop_triangles()
+mw = ob.matrix_world
+P = [tuple(mw @ v.co) for v in me.vertices]
+uv = me.uv_layers.active.data
+
+def smooth(d):  # 1 inside, 0 outside, smooth between d = 0.7 and 1
+    return 1.0 if d <= 0.7 else 0.0 if d >= 1 else 0.5 + 0.5 * math.cos(math.pi * (d - 0.7) / 0.3)
+
+def lips(p):
+    x, y, z = p
+    if y > -0.125:
+        return 0.0
+    return smooth(math.sqrt((x / 0.026) ** 2 + ((z - 1.4875) / 0.0135) ** 2))
+
+def cheeks(p):
+    x, y, z = p
+    if y > -0.08:
+        return 0.0
+    return smooth(math.sqrt(((abs(x) - 0.048) / 0.03) ** 2 + ((z - 1.507) / 0.024) ** 2))
+
+rng = random.Random(15)
+cand = [p for p in P if abs(p[0]) < 0.065 and 1.50 < p[2] < 1.56 and p[1] < -0.105]
+spots = []
+for _ in range(220):
+    c = rng.choice(cand)
+    c = (c[0] + rng.uniform(-0.003, 0.003), c[1], c[2] + rng.uniform(-0.003, 0.003))
+    spots.append((c, rng.uniform(0.0009, 0.0018)))
+
+def freckles(p):
+    best = 0.0
+    for c, r in spots:
+        d = math.dist(p, c) / r
+        if d < 1:
+            best = max(best, smooth(d))
+    return best
+
+masks = {'lips': lips, 'cheeks': cheeks, 'freckles': freckles}
+img = {k: bytearray(size * size) for k in masks}
+for t in me.loop_triangles:
+    ps = [P[i] for i in t.vertices]
+    if max(p[2] for p in ps) < 1.42 or min(p[1] for p in ps) > -0.05:
+        continue  # far from the face
+    us = [uv[l].uv for l in t.loops]
+    xs = [u[0] * size - 0.5 for u in us]
+    ys = [(1 - u[1]) * size - 0.5 for u in us]
+    det = (xs[1] - xs[0]) * (ys[2] - ys[0]) - (xs[2] - xs[0]) * (ys[1] - ys[0])
+    if abs(det) < 1e-12:
+        continue
+    for py in range(max(0, math.floor(min(ys))), min(size - 1, math.ceil(max(ys))) + 1):
+        for px in range(max(0, math.floor(min(xs))), min(size - 1, math.ceil(max(xs))) + 1):
+            b1 = ((px - xs[0]) * (ys[2] - ys[0]) - (xs[2] - xs[0]) * (py - ys[0])) / det
+            b2 = ((xs[1] - xs[0]) * (py - ys[0]) - (px - xs[0]) * (ys[1] - ys[0])) / det
+            b0 = 1 - b1 - b2
+            if min(b0, b1, b2) < -0.02:
+                continue
+            p = tuple(b0 * ps[0][k] + b1 * ps[1][k] + b2 * ps[2][k] for k in range(3))
+            for k, f in masks.items():
+                v = int(round(255 * f(p)))
+                if v > img[k][py * size + px]:
+                    img[k][py * size + px] = v
+
+def png(path, w, h, data):
+    raw = b''.join(b'\0' + bytes(data[y * w:(y + 1) * w]) for y in range(h))
+    ch = lambda t, d: struct.pack('>I', len(d)) + t + d + struct.pack('>I', zlib.crc32(t + d) & 0xffffffff)
+    open(path, 'wb').write(b'\x89PNG\r\n\x1a\n' + ch(b'IHDR', struct.pack('>IIBBBBB', w, h, 8, 0, 0, 0, 0)) +
+                           ch(b'IDAT', zlib.compress(raw, 6)) + ch(b'IEND', b''))
+
+os.makedirs(out, exist_ok=True)
+for k in masks:
+    png(os.path.join(out, k + '.png'), size, size, img[k])
+    print('showcase_masks.py: %s.png %d texels painted' % (k, sum(1 for v in img[k] if v)))

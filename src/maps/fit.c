@@ -1,0 +1,549 @@
+/* fit: parameters per texel from an albedo colour (method in fit.h): the
+ * dense CIELAB table of the family, its bucket grid, the nearest node and
+ * the Gauss-Newton refinement, distinct colours, the summary. */
+#include "config.h"
+#include "maps/fit.h"
+
+#include <json-c/json.h>
+#include <math.h>
+#include <stdint.h>
+#include <stdlib.h>
+#include <string.h>
+#ifdef _OPENMP
+#include <omp.h>
+#endif
+
+#include "base/check.h"
+#include "base/srgb.h"
+#include "base/util.h"
+#include "skin/colour.h"
+
+#define REG 0.01	/* pull toward the axis middle, CIELAB units per unit of normalised coordinate */
+
+static int n_threads(int t)
+{
+#ifdef _OPENMP
+	return t > 0 ? t : omp_get_max_threads();
+#else
+	(void)t;
+	return 1;
+#endif
+}
+
+/* The family's CIELAB on a dense grid, and buckets over CIELAB. */
+struct lut {
+	const struct family *f;
+	int k;				/* axes */
+	int g[FAMILY_MAX_AXES];		/* grid points per axis */
+	double c0[FAMILY_MAX_AXES], c1[FAMILY_MAX_AXES];	/* axis coordinate at the grid's ends */
+	int n;				/* grid points */
+	double *lab;			/* [n][3] */
+	int n_coarse;			/* grid points in the buckets: every step-th per axis and the last */
+	double lo[3], cell;		/* bucket grid origin and cell size (CIELAB units) */
+	int dim[3];
+	int *start, *item;		/* CSR: bucket b holds item[start[b] .. start[b + 1]) */
+};
+
+static double axis_coord(const struct family_axis *a, double v)
+{
+	return a->log_coord ? log(v) : v;
+}
+
+/* Parameter values at grid coordinates g (continuous, in grid units). */
+static void grid_params(const struct lut *t, const double *g, double *x)
+{
+	for (int a = 0; a < t->k; a++) {
+		double c = t->c0[a] + (t->c1[a] - t->c0[a]) * g[a] / (t->g[a] - 1);
+		x[a] = t->f->axis[a].log_coord ? exp(c) : c;
+		/* keep the ends exact (exp(log(v)) may differ in the last bit) */
+		const struct family_axis *ax = &t->f->axis[a];
+		x[a] = fmin(fmax(x[a], ax->node[0]), ax->node[ax->n - 1]);
+	}
+}
+
+static void params_lab(const struct family *f, const double *x, double lab[3])
+{
+	double rgb[3];
+	family_albedo(f, x, NULL, rgb, NULL);
+	colour_linear_srgb_to_lab(rgb, lab);
+}
+
+static void lut_build(struct lut *t, const struct family *f, int threads)
+{
+	memset(t, 0, sizeof *t);
+	t->f = f;
+	t->k = f->n_axes;
+	static const int per_axis[FAMILY_MAX_AXES + 1] = { 0, 2048, 160, 48 };
+	t->n = 1;
+	for (int a = 0; a < FAMILY_MAX_AXES; a++) {
+		t->g[a] = a < t->k ? per_axis[t->k] : 1;
+		if (a < t->k) {
+			const struct family_axis *ax = &f->axis[a];
+			t->c0[a] = axis_coord(ax, ax->node[0]);
+			t->c1[a] = axis_coord(ax, ax->node[ax->n - 1]);
+		}
+		t->n *= t->g[a];
+	}
+	t->lab = xmalloc(sizeof(double) * 3 * (size_t)t->n);
+#pragma omp parallel for schedule(static) num_threads(threads)
+	for (int i = 0; i < t->n; i++) {
+		double g[FAMILY_MAX_AXES] = { i % t->g[0], (i / t->g[0]) % t->g[1], i / (t->g[0] * t->g[1]) }, x[3];
+		grid_params(t, g, x);
+		params_lab(f, x, t->lab + 3 * (size_t)i);
+	}
+	/* Buckets of 2 CIELAB units over a coarse subset of the grid (the
+	 * refinement walks the fine grid from the coarse point found). */
+	static const int step[FAMILY_MAX_AXES + 1] = { 1, 16, 4, 4 };
+	int *coarse = xmalloc(sizeof(int) * (size_t)t->n);
+	t->n_coarse = 0;
+	for (int i = 0; i < t->n; i++) {
+		int q[FAMILY_MAX_AXES] = { i % t->g[0], (i / t->g[0]) % t->g[1], i / (t->g[0] * t->g[1]) }, in = 1;
+		for (int a = 0; a < t->k; a++)
+			in = in && (q[a] % step[t->k] == 0 || q[a] == t->g[a] - 1);
+		if (in)
+			coarse[t->n_coarse++] = i;
+	}
+	double hi[3] = { -INFINITY, -INFINITY, -INFINITY };
+	for (int c = 0; c < 3; c++)
+		t->lo[c] = INFINITY;
+	for (int j = 0; j < t->n_coarse; j++)
+		for (int c = 0; c < 3; c++) {
+			t->lo[c] = fmin(t->lo[c], t->lab[3 * (size_t)coarse[j] + c]);
+			hi[c] = fmax(hi[c], t->lab[3 * (size_t)coarse[j] + c]);
+		}
+	t->cell = 2.0;
+	double vol = 1.0;
+	for (int c = 0; c < 3; c++)
+		vol *= (hi[c] - t->lo[c]) / t->cell + 1.0;
+	if (vol > 1e6)
+		t->cell *= cbrt(vol / 1e6);
+	size_t nb = 1;
+	for (int c = 0; c < 3; c++) {
+		t->dim[c] = (int)floor((hi[c] - t->lo[c]) / t->cell) + 1;
+		nb *= (size_t)t->dim[c];
+	}
+	t->start = xcalloc(nb + 1, sizeof(int));
+	t->item = xmalloc(sizeof(int) * (size_t)t->n_coarse);
+	int *bi = xmalloc(sizeof(int) * (size_t)t->n_coarse);
+	for (int j = 0; j < t->n_coarse; j++) {
+		int b[3];
+		for (int c = 0; c < 3; c++) {
+			b[c] = (int)floor((t->lab[3 * (size_t)coarse[j] + c] - t->lo[c]) / t->cell);
+			b[c] = b[c] < 0 ? 0 : b[c] >= t->dim[c] ? t->dim[c] - 1 : b[c];
+		}
+		bi[j] = (b[2] * t->dim[1] + b[1]) * t->dim[0] + b[0];
+		t->start[bi[j] + 1]++;
+	}
+	for (size_t b = 0; b < nb; b++)
+		t->start[b + 1] += t->start[b];
+	int *fill = xmalloc(sizeof(int) * nb);
+	memcpy(fill, t->start, sizeof(int) * nb);
+	for (int j = 0; j < t->n_coarse; j++)
+		t->item[fill[bi[j]]++] = coarse[j];
+	free(fill);
+	free(bi);
+	free(coarse);
+}
+
+static void lut_free(struct lut *t)
+{
+	free(t->lab);
+	free(t->start);
+	free(t->item);
+}
+
+static double d2(const double *a, const double *b)
+{
+	double x = a[0] - b[0], y = a[1] - b[1], z = a[2] - b[2];
+	return x * x + y * y + z * z;
+}
+
+/* The coarse grid point nearest to lab in CIELAB: buckets shell by shell
+ * around lab's bucket until no closer point can remain; all coarse points
+ * past 40 shells. */
+static int lut_nearest(const struct lut *t, const double lab[3])
+{
+	int tc[3], best = -1;
+	double bd = INFINITY;
+	for (int c = 0; c < 3; c++)
+		tc[c] = (int)floor((lab[c] - t->lo[c]) / t->cell);
+	int s0 = 0;	/* shells before the box */
+	for (int c = 0; c < 3; c++) {
+		int out = tc[c] < 0 ? -tc[c] : tc[c] >= t->dim[c] ? tc[c] - t->dim[c] + 1 : 0;
+		s0 = out > s0 ? out : s0;
+	}
+	int smax = t->dim[0] + t->dim[1] + t->dim[2] + s0;
+	for (int s = s0; s <= smax; s++) {
+		if (s > s0 + 40) {
+			for (int j = 0; j < t->n_coarse; j++) {
+				double d = d2(t->lab + 3 * (size_t)t->item[j], lab);
+				if (d < bd || (d == bd && t->item[j] < best))
+					bd = d, best = t->item[j];
+			}
+			return best;
+		}
+		int lo[3], hi[3];
+		for (int c = 0; c < 3; c++) {
+			lo[c] = tc[c] - s < 0 ? 0 : tc[c] - s;
+			hi[c] = tc[c] + s >= t->dim[c] ? t->dim[c] - 1 : tc[c] + s;
+		}
+		for (int z = lo[2]; z <= hi[2]; z++)
+			for (int y = lo[1]; y <= hi[1]; y++)
+				for (int x = lo[0]; x <= hi[0]; x++) {
+					int cheb = abs(x - tc[0]);
+					cheb = abs(y - tc[1]) > cheb ? abs(y - tc[1]) : cheb;
+					cheb = abs(z - tc[2]) > cheb ? abs(z - tc[2]) : cheb;
+					if (cheb != s)
+						continue;
+					int b = (z * t->dim[1] + y) * t->dim[0] + x;
+					for (int j = t->start[b]; j < t->start[b + 1]; j++) {
+						double d = d2(t->lab + 3 * (size_t)t->item[j], lab);
+						if (d < bd || (d == bd && t->item[j] < best))
+							bd = d, best = t->item[j];
+					}
+				}
+		/* A point in shell s + 1 or beyond is at least s cells away. */
+		if (best >= 0 && bd <= (s * t->cell) * (s * t->cell))
+			return best;
+	}
+	return best;
+}
+
+/* The multilinear interpolant of the grid at g and its Jacobian. */
+static void lut_eval(const struct lut *t, const double *g, double lab[3], double jac[3][FAMILY_MAX_AXES])
+{
+	int i0[FAMILY_MAX_AXES];
+	double fr[FAMILY_MAX_AXES];
+	for (int a = 0; a < t->k; a++) {
+		i0[a] = (int)floor(g[a]);
+		if (i0[a] > t->g[a] - 2)
+			i0[a] = t->g[a] - 2;
+		if (i0[a] < 0)
+			i0[a] = 0;
+		fr[a] = g[a] - i0[a];
+	}
+	for (int c = 0; c < 3; c++) {
+		lab[c] = 0.0;
+		for (int a = 0; a < t->k; a++)
+			jac[c][a] = 0.0;
+	}
+	for (int corner = 0; corner < (1 << t->k); corner++) {
+		int idx = 0, mul = 1;
+		double w = 1.0, dw[FAMILY_MAX_AXES];
+		for (int a = 0; a < t->k; a++) {
+			int bit = (corner >> a) & 1;
+			idx += (i0[a] + bit) * mul;
+			mul *= t->g[a];
+			w *= bit ? fr[a] : 1.0 - fr[a];
+		}
+		for (int a = 0; a < t->k; a++) {
+			dw[a] = 1.0;
+			for (int b = 0; b < t->k; b++) {
+				int bit = (corner >> b) & 1;
+				dw[a] *= b == a ? (bit ? 1.0 : -1.0) : (bit ? fr[b] : 1.0 - fr[b]);
+			}
+		}
+		const double *L = t->lab + 3 * (size_t)idx;
+		for (int c = 0; c < 3; c++) {
+			lab[c] += w * L[c];
+			for (int a = 0; a < t->k; a++)
+				jac[c][a] += dw[a] * L[c];
+		}
+	}
+}
+
+static double cost(const struct lut *t, const double *g, const double *target, double lab[3],
+    double jac[3][FAMILY_MAX_AXES])
+{
+	lut_eval(t, g, lab, jac);
+	double s = d2(lab, target);
+	for (int a = 0; a < t->k; a++) {
+		double r = REG * (g[a] / (t->g[a] - 1) - 0.5);
+		s += r * r;
+	}
+	return s;
+}
+
+/* Solve the k x k system m x = b (k <= 3) by Gaussian elimination with
+ * pivoting; 0 when singular. */
+static int solve(int k, double m[3][3], double *b)
+{
+	for (int c = 0; c < k; c++) {
+		int p = c;
+		for (int r = c + 1; r < k; r++)
+			if (fabs(m[r][c]) > fabs(m[p][c]))
+				p = r;
+		if (fabs(m[p][c]) < 1e-300)
+			return 0;
+		for (int j = 0; j < k; j++) {
+			double x = m[c][j];
+			m[c][j] = m[p][j], m[p][j] = x;
+		}
+		double x = b[c];
+		b[c] = b[p], b[p] = x;
+		for (int r = c + 1; r < k; r++) {
+			double q = m[r][c] / m[c][c];
+			for (int j = c; j < k; j++)
+				m[r][j] -= q * m[c][j];
+			b[r] -= q * b[c];
+		}
+	}
+	for (int c = k - 1; c >= 0; c--) {
+		for (int j = c + 1; j < k; j++)
+			b[c] -= m[c][j] * b[j];
+		b[c] /= m[c][c];
+	}
+	return 1;
+}
+
+/* Damped Gauss-Newton (Levenberg-Marquardt) from g, inside the grid; the
+ * CIELAB distance reached. */
+static double refine(const struct lut *t, double *g, const double *target)
+{
+	double lab[3], jac[3][FAMILY_MAX_AXES], lambda = 1e-3;
+	double c = cost(t, g, target, lab, jac);
+	for (int it = 0; it < 50; it++) {
+		double m[3][3] = { { 0 } }, b[3] = { 0 }, gn[FAMILY_MAX_AXES];
+		for (int a = 0; a < t->k; a++) {
+			double ra = REG / (t->g[a] - 1), r = REG * (g[a] / (t->g[a] - 1) - 0.5);
+			for (int bb = 0; bb < t->k; bb++)
+				for (int q = 0; q < 3; q++)
+					m[a][bb] += jac[q][a] * jac[q][bb];
+			m[a][a] += ra * ra;
+			for (int q = 0; q < 3; q++)
+				b[a] -= jac[q][a] * (lab[q] - target[q]);
+			b[a] -= ra * r;
+		}
+		for (int a = 0; a < t->k; a++)
+			m[a][a] *= 1.0 + lambda;
+		if (!solve(t->k, m, b))
+			break;
+		double step = 0.0;
+		for (int a = 0; a < t->k; a++) {
+			gn[a] = fmin(fmax(g[a] + b[a], 0.0), t->g[a] - 1.0);
+			step = fmax(step, fabs(gn[a] - g[a]));
+		}
+		double labn[3], jacn[3][FAMILY_MAX_AXES], cn = cost(t, gn, target, labn, jacn);
+		if (cn <= c) {
+			memcpy(g, gn, sizeof(double) * (size_t)t->k);
+			memcpy(lab, labn, sizeof lab);
+			memcpy(jac, jacn, sizeof jac);
+			lambda = fmax(lambda / 3.0, 1e-9);
+			int done = step < 1e-7 || c - cn < 1e-14;
+			c = cn;
+			if (done)
+				break;
+		} else {
+			lambda *= 10.0;
+			if (lambda > 1e8)
+				break;
+		}
+	}
+	return sqrt(d2(lab, target));
+}
+
+void maps_texel_linear(const struct image *im, size_t i, int input_linear, double rgb[3])
+{
+	for (int c = 0; c < 3; c++) {
+		double v = image_get(im, i, c);
+		rgb[c] = input_linear ? v : srgb_decode(v);
+	}
+}
+
+/* Distinct colours: a hash of the bits of the three values, ids in the
+ * order of first appearance (raster order, so neighbouring ids are mostly
+ * neighbouring texels of similar colour). */
+struct colours {
+	long n;			/* distinct colours */
+	uint32_t (*key)[3];	/* [n] */
+	long *first;		/* [n] a texel of that colour */
+	int *id;		/* [texels] its colour, -1 not fitted */
+};
+
+static void texel_bits(const struct image *im, size_t i, uint32_t k[3])
+{
+	for (int c = 0; c < 3; c++) {
+		float v = image_get(im, i, c);
+		memcpy(&k[c], &v, sizeof v);
+	}
+}
+
+static void colours_find(struct colours *cl, const struct image *im, const unsigned char *status)
+{
+	size_t n = (size_t)im->w * im->h, cap = 1024;
+	while (cap < 2 * n)
+		cap *= 2;
+	long *slot = xmalloc(sizeof(long) * cap);
+	for (size_t i = 0; i < cap; i++)
+		slot[i] = -1;
+	cl->n = 0;
+	cl->key = xmalloc(sizeof *cl->key * (n > 0 ? n : 1));
+	cl->first = xmalloc(sizeof(long) * (n > 0 ? n : 1));
+	cl->id = xmalloc(sizeof(int) * (n > 0 ? n : 1));
+	for (size_t i = 0; i < n; i++) {
+		cl->id[i] = -1;
+		if (status[i] == MAPS_NOT_FITTED)
+			continue;
+		uint32_t k[3];
+		texel_bits(im, i, k);
+		uint64_t h = ((uint64_t)k[0] * 0x9E3779B97F4A7C15ULL) ^ ((uint64_t)k[1] * 0xC2B2AE3D27D4EB4FULL) ^
+		    ((uint64_t)k[2] * 0x165667B19E3779F9ULL);
+		size_t j = (size_t)(h ^ (h >> 29)) & (cap - 1);
+		while (slot[j] >= 0 && memcmp(cl->key[slot[j]], k, sizeof k) != 0)
+			j = (j + 1) & (cap - 1);
+		if (slot[j] < 0) {
+			slot[j] = cl->n;
+			memcpy(cl->key[cl->n], k, sizeof k);
+			cl->first[cl->n++] = (long)i;
+		}
+		cl->id[i] = (int)slot[j];
+	}
+	free(slot);
+}
+
+static void colours_free(struct colours *cl)
+{
+	free(cl->key);
+	free(cl->first);
+	free(cl->id);
+}
+
+/* One colour's parameters (grid coordinates g, warm-started from g when
+ * warm), by the coarse nearest point and the refinement; a warm start that
+ * reaches an exact match (within 0.02 CIELAB) is taken as it is. */
+static void solve_colour(const struct lut *t, const double target[3], double *g, int warm)
+{
+	double gw[FAMILY_MAX_AXES], rw = INFINITY;
+	if (warm) {
+		memcpy(gw, g, sizeof gw);
+		rw = refine(t, gw, target);
+		if (rw < 0.02) {
+			memcpy(g, gw, sizeof gw);
+			return;
+		}
+	}
+	int nb = lut_nearest(t, target);
+	for (int a = 0; a < t->k; a++)
+		g[a] = (nb / (a == 0 ? 1 : a == 1 ? t->g[0] : t->g[0] * t->g[1])) % t->g[a];
+	if (refine(t, g, target) > rw)
+		memcpy(g, gw, sizeof gw);
+}
+
+/* Median, 95th percentile and maximum of the errors over fitted texels. */
+static void error_stats(const struct mapset *m, struct maps_fit_summary *s)
+{
+	enum { NB = 100000 };	/* 0.001 bins up to 100 */
+	long *h = xcalloc(NB + 1, sizeof(long));
+	size_t n = (size_t)m->w * m->h;
+	s->de_max = 0.0;
+	for (size_t i = 0; i < n; i++) {
+		if (m->status[i] == MAPS_NOT_FITTED)
+			continue;
+		double d = m->de2000[i];
+		s->de_max = fmax(s->de_max, d);
+		long b = lround(d * 1000.0);
+		h[b > NB ? NB : b]++;
+	}
+	long cum = 0;
+	s->de_median = s->de_p95 = -1.0;
+	for (long b = 0; b <= NB && s->fitted > 0; b++) {
+		cum += h[b];
+		if (s->de_median < 0 && 2 * cum >= s->fitted)
+			s->de_median = b / 1000.0;
+		if (s->de_p95 < 0 && 100 * cum >= 95 * s->fitted)
+			s->de_p95 = b / 1000.0;
+	}
+	if (s->fitted == 0)
+		s->de_median = s->de_p95 = 0.0;
+	free(h);
+}
+
+int maps_fit(struct family *f, const struct image *albedo, const struct image *mask, const struct maps_fit_opts *o,
+    struct mapset **out, struct maps_fit_summary *sum, char **cause)
+{
+	if (mask && (mask->w != albedo->w || mask->h != albedo->h)) {
+		*cause = xasprintf("the mask is %d x %d texels, the albedo %d x %d", mask->w, mask->h, albedo->w, albedo->h);
+		return -1;
+	}
+	double t0 = util_now();
+	int threads = n_threads(o->threads);
+	family_albedo_prepare(f);
+	struct lut t;
+	lut_build(&t, f, threads);
+	struct mapset *m = mapset_new(f, albedo->w, albedo->h, NULL);
+	size_t n = (size_t)albedo->w * albedo->h;
+	m->de2000 = xcalloc(n, sizeof(float));
+	m->status = xmalloc(n);
+	memset(sum, 0, sizeof *sum);
+	sum->texels = (long)n;
+	for (size_t i = 0; i < n; i++) {
+		int in = image_get(albedo, i, 3) >= 0.5f && (mask == NULL || image_get(mask, i, 0) >= 0.5f);
+		m->status[i] = in ? MAPS_MATCHED : MAPS_NOT_FITTED;
+		sum->fitted += in;
+	}
+	struct colours cl;
+	colours_find(&cl, albedo, m->status);
+	sum->unique = cl.n;
+	/* Colours in fixed chunks, each solved in order with warm starts: the
+	 * result does not depend on the threads. */
+	enum { CHUNK = 512 };
+	float *res = xmalloc(sizeof(float) * (size_t)(cl.n > 0 ? cl.n : 1) * (FAMILY_MAX_AXES + 1));
+	long n_chunks = (cl.n + CHUNK - 1) / CHUNK;
+#pragma omp parallel for schedule(dynamic, 1) num_threads(threads)
+	for (long ch = 0; ch < n_chunks; ch++) {
+		double g[FAMILY_MAX_AXES] = { 0 };
+		for (long u = ch * CHUNK; u < cl.n && u < (ch + 1) * CHUNK; u++) {
+			double rgb[3], target[3], x[FAMILY_MAX_AXES], lab[3];
+			maps_texel_linear(albedo, (size_t)cl.first[u], o->input_linear, rgb);
+			colour_linear_srgb_to_lab(rgb, target);
+			solve_colour(&t, target, g, u > ch * CHUNK);
+			grid_params(&t, g, x);
+			params_lab(f, x, lab);
+			float *r = res + (size_t)u * (FAMILY_MAX_AXES + 1);
+			for (int a = 0; a < t.k; a++)
+				r[a] = (float)x[a];
+			r[FAMILY_MAX_AXES] = (float)colour_de2000(target, lab);
+		}
+	}
+#pragma omp parallel for schedule(static) num_threads(threads)
+	for (long i = 0; i < (long)n; i++) {
+		if (cl.id[i] < 0)
+			continue;
+		const float *r = res + (size_t)cl.id[i] * (FAMILY_MAX_AXES + 1);
+		for (int a = 0; a < t.k; a++)
+			m->p[a].v[i] = r[a];
+		m->de2000[i] = r[FAMILY_MAX_AXES];
+		m->status[i] = r[FAMILY_MAX_AXES] <= o->max_de ? MAPS_MATCHED : MAPS_UNMATCHED;
+	}
+	free(res);
+	colours_free(&cl);
+	for (size_t i = 0; i < n; i++)
+		sum->unmatched += m->status[i] == MAPS_UNMATCHED;
+	sum->matched = sum->fitted - sum->unmatched;
+	error_stats(m, sum);
+	lut_free(&t);
+	sum->seconds = util_now() - t0;
+	*out = m;
+	return 0;
+}
+
+char *maps_fit_summary_json(const struct maps_fit_summary *s, const struct maps_fit_opts *o, const char *albedo)
+{
+	json_object *j = json_object_new_object();
+	json_object_object_add(j, "albedo", json_object_new_string(albedo));
+	json_object_object_add(j, "input", json_object_new_string(o->input_linear ? "linear sRGB" : "sRGB-encoded"));
+	json_object_object_add(j, "max_de2000", json_object_new_double(o->max_de));
+	json_object_object_add(j, "texels", json_object_new_int64(s->texels));
+	json_object_object_add(j, "fitted", json_object_new_int64(s->fitted));
+	json_object_object_add(j, "matched", json_object_new_int64(s->matched));
+	json_object_object_add(j, "unmatched", json_object_new_int64(s->unmatched));
+	json_object_object_add(j, "not_fitted", json_object_new_int64(s->texels - s->fitted));
+	json_object_object_add(j, "distinct_colours", json_object_new_int64(s->unique));
+	json_object_object_add(j, "de2000_median", json_object_new_double(s->de_median));
+	json_object_object_add(j, "de2000_p95", json_object_new_double(s->de_p95));
+	json_object_object_add(j, "de2000_max", json_object_new_double(s->de_max));
+	json_object_object_add(j, "seconds", json_object_new_double(s->seconds));
+	char *text = xstrdup(json_object_to_json_string_ext(j, JSON_C_TO_STRING_PLAIN | JSON_C_TO_STRING_NOSLASHESCAPE));
+	json_object_put(j);
+	return text;
+}

@@ -1,0 +1,56 @@
+/* fit: per texel, the family parameters whose albedo matches a colour
+ * (`skinbake maps fit`).
+ *
+ * Method.  The family's albedo (family_albedo: cubic in log between the
+ * members) is tabulated on a dense grid uniform in each axis' coordinate
+ * (2048 points for one axis, 160^2 for two, 48^3 for three), as CIELAB
+ * (D65, the sRGB white).  Every distinct input colour (texels of equal
+ * colour are solved once) starts at the point nearest in CIELAB among a
+ * coarse subset of the grid (every 16th, 4th, 4th point per axis, in
+ * buckets of 2 CIELAB units searched shell by shell), or, within a chunk
+ * of 512 colours in order of first appearance, from the previous colour's
+ * solution when that reaches an exact match (0.02), and is refined by
+ * damped Gauss-Newton on the grid's multilinear
+ * interpolant, minimising the CIELAB distance plus a tiny pull (0.01 per
+ * unit of the normalised coordinate) toward the middle of each axis, which
+ * only decides parameters the colour does not determine.  Parameters stay
+ * inside the family's range.  The reported error is the CIEDE2000 between
+ * the input colour and the family's albedo at the parameters (exact
+ * interpolation, not the grid).  Texels whose error exceeds max_de are
+ * unmatched (status 255, their parameters the closest in range, not
+ * forced to a match); transparent texels (alpha < 0.5) and texels outside
+ * the mask (< 0.5) are not fitted (status 128, parameters at the middle).
+ * Chunks are fixed, so the result does not depend on the number of
+ * threads. */
+#ifndef SKINBAKE_FIT_H
+#define SKINBAKE_FIT_H
+#include "bake/family.h"
+#include "maps/image.h"
+#include "maps/mapset.h"
+
+struct maps_fit_opts {
+	int input_linear;	/* 1: the albedo's values are linear sRGB; 0: sRGB-encoded */
+	double max_de;		/* CIEDE2000 above which a texel is unmatched */
+	int threads;		/* OpenMP threads, 0 = all */
+};
+
+struct maps_fit_summary {
+	long texels;		/* in the image */
+	long fitted;		/* not transparent, inside the mask */
+	long matched, unmatched;	/* fitted texels within / beyond max_de */
+	long unique;		/* distinct colours solved */
+	double de_median, de_p95, de_max;	/* CIEDE2000 over the fitted texels (0.001 bins) */
+	double seconds;		/* wall time of the fit [s] */
+};
+
+/* Fit f (family_albedo_prepare'd or not) to the colours of albedo (RGB or
+ * grey, optional alpha); mask (NULL: all) must have albedo's size.  *out
+ * gets the maps with de2000 and status (caller frees).  -1 and *cause when
+ * the sizes differ. */
+int maps_fit(struct family *f, const struct image *albedo, const struct image *mask, const struct maps_fit_opts *o,
+    struct mapset **out, struct maps_fit_summary *sum, char **cause);
+/* The summary as a JSON object (caller frees), for maps.json. */
+char *maps_fit_summary_json(const struct maps_fit_summary *s, const struct maps_fit_opts *o, const char *albedo);
+/* Linear sRGB of texel i of an image read as the fit reads it. */
+void maps_texel_linear(const struct image *im, size_t i, int input_linear, double rgb[3]);
+#endif

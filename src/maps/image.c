@@ -1,0 +1,177 @@
+/* image: PNG and OpenEXR pictures in memory (see image.h). */
+#include "config.h"
+#include "maps/image.h"
+
+#include <errno.h>
+#include <math.h>
+#include <stdio.h>
+#include <stdlib.h>
+#include <string.h>
+
+#include "base/util.h"
+#include "io/exrio.h"
+
+enum image_kind image_kind(const char *path, char **cause)
+{
+	FILE *fp = fopen(path, "rb");
+	if (fp == NULL) {
+		*cause = xasprintf("%s: cannot read: %s", path, strerror(errno));
+		return IMAGE_NONE;
+	}
+	unsigned char b[8] = { 0 };
+	size_t n = fread(b, 1, sizeof b, fp);
+	fclose(fp);
+	static const unsigned char png[8] = { 0x89, 'P', 'N', 'G', '\r', '\n', 0x1a, '\n' };
+	static const unsigned char exr[4] = { 0x76, 0x2f, 0x31, 0x01 };
+	if (n == 8 && memcmp(b, png, 8) == 0)
+		return IMAGE_PNG;
+	if (n >= 4 && memcmp(b, exr, 4) == 0)
+		return IMAGE_EXR;
+	*cause = xasprintf("%s: not a PNG or OpenEXR image (its first bytes are neither signature)", path);
+	return IMAGE_NONE;
+}
+
+struct image *image_new(int w, int h, int nch, int bits)
+{
+	struct image *im = xcalloc(1, sizeof *im);
+	im->w = w, im->h = h, im->nch = nch, im->bits = bits;
+	im->v = xcalloc((size_t)w * (size_t)h * (size_t)nch, sizeof(float));
+	return im;
+}
+
+void image_free(struct image *im)
+{
+	if (im == NULL)
+		return;
+	free(im->v);
+	free(im);
+}
+
+float image_get(const struct image *im, size_t i, int c)
+{
+	const float *p = im->v + i * (size_t)im->nch;
+	if (c == 3)
+		return im->nch == 4 ? p[3] : im->nch == 2 ? p[1] : 1.0f;
+	return im->nch >= 3 ? p[c] : p[0];
+}
+
+int image_size(const char *path, int *w, int *h, char **cause)
+{
+	enum image_kind k = image_kind(path, cause);
+	if (k == IMAGE_EXR)
+		return exrio_size(path, w, h, cause);
+	if (k == IMAGE_NONE)
+		return -1;
+	/* PNG: width and height are the first fields of IHDR (bytes 16-23). */
+	FILE *fp = fopen(path, "rb");
+	unsigned char b[24];
+	size_t n = fp ? fread(b, 1, sizeof b, fp) : 0;
+	if (fp)
+		fclose(fp);
+	if (n != sizeof b || memcmp(b + 12, "IHDR", 4) != 0) {
+		*cause = xasprintf("%s: not a readable PNG file (no IHDR)", path);
+		return -1;
+	}
+	*w = (int)((unsigned)b[16] << 24 | (unsigned)b[17] << 16 | (unsigned)b[18] << 8 | b[19]);
+	*h = (int)((unsigned)b[20] << 24 | (unsigned)b[21] << 16 | (unsigned)b[22] << 8 | b[23]);
+	return 0;
+}
+
+static struct image *read_png(const char *path, char **cause)
+{
+	int w, h, nch, bits;
+	uint16_t *px = pngio_read(path, &w, &h, &nch, &bits, cause);
+	if (px == NULL)
+		return NULL;
+	struct image *im = image_new(w, h, nch, bits);
+	size_t n = (size_t)w * h * nch;
+	for (size_t i = 0; i < n; i++)
+		im->v[i] = (float)(px[i] / 65535.0);
+	free(px);
+	return im;
+}
+
+/* EXR: R, G, B (A optional) or a single Y channel. */
+static struct image *read_exr(const char *path, char **cause)
+{
+	int w, h;
+	if (exrio_size(path, &w, &h, cause) != 0)
+		return NULL;
+	size_t n = (size_t)w * h;
+	float *plane = xmalloc(sizeof(float) * n);
+	char *why = NULL;
+	struct image *im = NULL;
+	if (exrio_read_channel(path, "R", w, h, plane, &why) == 0) {
+		free(why);
+		why = NULL;
+		int has_a = exrio_read_channel(path, "A", w, h, plane, &why) == 0;
+		free(why);
+		why = NULL;
+		im = image_new(w, h, has_a ? 4 : 3, 32);
+		static const char *names[] = { "R", "G", "B", "A" };
+		for (int c = 0; c < im->nch; c++) {
+			if (exrio_read_channel(path, names[c], w, h, plane, cause) != 0) {
+				image_free(im);
+				free(plane);
+				return NULL;
+			}
+			for (size_t i = 0; i < n; i++)
+				im->v[i * im->nch + c] = plane[i];
+		}
+	} else if (free(why), why = NULL, exrio_read_channel(path, "Y", w, h, plane, &why) == 0) {
+		im = image_new(w, h, 1, 32);
+		memcpy(im->v, plane, sizeof(float) * n);
+	} else
+		*cause = xasprintf("%s: an OpenEXR image without R, G, B or Y channels", path);
+	free(why);
+	free(plane);
+	return im;
+}
+
+struct image *image_read(const char *path, char **cause)
+{
+	enum image_kind k = image_kind(path, cause);
+	struct image *im = k == IMAGE_PNG ? read_png(path, cause) : k == IMAGE_EXR ? read_exr(path, cause) : NULL;
+	if (im && im->bits == 32)
+		for (size_t i = 0; i < (size_t)im->w * im->h * im->nch; i++)
+			if (!isfinite(im->v[i])) {
+				*cause = xasprintf("%s: texel %zu holds a value that is not finite", path, i / (size_t)im->nch);
+				image_free(im);
+				return NULL;
+			}
+	return im;
+}
+
+int image_write_png(const char *path, const struct image *im, int bits, int srgb, int ntext,
+    const struct png_text_kv *text, char **cause)
+{
+	size_t n = (size_t)im->w * im->h * im->nch;
+	uint16_t *px = xmalloc(sizeof(uint16_t) * n);
+	double top = bits == 16 ? 65535.0 : 255.0;
+	for (size_t i = 0; i < n; i++)
+		px[i] = (uint16_t)lround(top * fmin(1.0, fmax(0.0, im->v[i])));
+	int rc = pngio_write(path, im->w, im->h, im->nch, bits, px, srgb, ntext, text, cause);
+	free(px);
+	return rc;
+}
+
+int image_write_exr(const char *path, const struct image *im, const char *const *names, int nattr,
+    const char *const *attr_kv, char **cause)
+{
+	size_t n = (size_t)im->w * im->h;
+	float **planes = xcalloc((size_t)im->nch, sizeof(float *));
+	for (int c = 0; c < im->nch; c++) {
+		planes[c] = xmalloc(sizeof(float) * n);
+		for (size_t i = 0; i < n; i++)
+			planes[c][i] = im->v[i * im->nch + c];
+	}
+	struct exr_attr_kv *a = xcalloc((size_t)(nattr > 0 ? nattr : 1), sizeof *a);
+	for (int k = 0; k < nattr; k++)
+		a[k].key = attr_kv[2 * k], a[k].value = attr_kv[2 * k + 1];
+	int rc = exrio_write(path, im->w, im->h, im->nch, names, (const float *const *)planes, nattr, a, cause);
+	for (int c = 0; c < im->nch; c++)
+		free(planes[c]);
+	free(planes);
+	free(a);
+	return rc;
+}

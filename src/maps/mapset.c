@@ -1,0 +1,423 @@
+/* mapset: the maps directory (layout in mapset.h): maps.json and one
+ * image per parameter, the fit's error map and status, written through a
+ * staging directory and read back with messages that name the file. */
+#include "config.h"
+#include "maps/mapset.h"
+
+#include <errno.h>
+#include <json-c/json.h>
+#include <math.h>
+#include <stdlib.h>
+#include <string.h>
+#include <unistd.h>
+
+#include "base/outdir.h"
+#include "base/util.h"
+#include "maps/image.h"
+
+struct mapset *mapset_new(const struct family *f, int w, int h, const double *x)
+{
+	struct mapset *m = xcalloc(1, sizeof *m);
+	m->w = w, m->h = h, m->n = f->n_axes;
+	size_t n = (size_t)w * h;
+	for (int a = 0; a < f->n_axes; a++) {
+		const struct family_axis *ax = &f->axis[a];
+		struct maps_param *p = &m->p[a];
+		snprintf(p->key, sizeof p->key, "%s", ax->key);
+		snprintf(p->unit, sizeof p->unit, "%s", ax->unit);
+		p->key_lo = ax->key_lo, p->key_hi = ax->key_hi;
+		p->fam_lo = ax->node[0], p->fam_hi = ax->node[ax->n - 1];
+		double v = x ? x[a] : ax->log_coord ? sqrt(p->fam_lo * p->fam_hi) : 0.5 * (p->fam_lo + p->fam_hi);
+		p->v = xmalloc(sizeof(float) * n);
+		for (size_t i = 0; i < n; i++)
+			p->v[i] = (float)v;
+	}
+	m->family_dir = xstrdup(f->dir ? f->dir : "");
+	m->family_preset = xstrdup(f->preset ? f->preset : "");
+	return m;
+}
+
+void mapset_free(struct mapset *m)
+{
+	if (m == NULL)
+		return;
+	for (int a = 0; a < m->n; a++)
+		free(m->p[a].v);
+	for (int i = 0; i < m->n_history; i++)
+		free(m->history[i]);
+	free(m->history);
+	free(m->de2000);
+	free(m->status);
+	free(m->family_dir);
+	free(m->family_preset);
+	free(m->fit);
+	free(m);
+}
+
+void mapset_add_history(struct mapset *m, const char *command)
+{
+	m->history = xreallocarray(m->history, (size_t)m->n_history + 1, sizeof *m->history);
+	m->history[m->n_history++] = xstrdup(command);
+}
+
+int mapset_find(const struct mapset *m, const char *key)
+{
+	for (int a = 0; a < m->n; a++)
+		if (strcmp(m->p[a].key, key) == 0)
+			return a;
+	return -1;
+}
+
+int mapset_check_out(const char *dir, char **cause)
+{
+	return util_dir_replaceable(dir, "maps.json", "maps directory", cause);
+}
+
+/* ---- writer ---- */
+
+static void add(json_object *o, const char *k, json_object *v)
+{
+	json_object_object_add(o, k, v);
+}
+
+static json_object *num(double v)
+{
+	return json_object_new_double(v);
+}
+
+/* One float map: 16-bit PNG of (v - lo) / (hi - lo), or float EXR. */
+static int write_map(const char *path, const struct mapset *m, const float *v, double lo, double hi, const char *key,
+    char **cause)
+{
+	struct image *im = image_new(m->w, m->h, 1, m->exr ? 32 : 16);
+	size_t n = (size_t)m->w * m->h;
+	for (size_t i = 0; i < n; i++)
+		im->v[i] = m->exr ? v[i] : (float)((v[i] - lo) / (hi - lo));
+	char los[40], his[40];
+	snprintf(los, sizeof los, "%.17g", lo);
+	snprintf(his, sizeof his, "%.17g", hi);
+	int rc;
+	if (m->exr) {
+		const char *names[] = { "Y" }, *kv[] = { "skinbake:key", key };
+		rc = image_write_exr(path, im, names, 1, kv, cause);
+	} else {
+		struct png_text_kv tx[] = { { "Software", PACKAGE_STRING }, { "skinbake:key", key },
+			{ "skinbake:lo", los }, { "skinbake:hi", his },
+			{ "Comment", "16-bit map: value = lo + (hi - lo) * q / 65535 (see maps.json)" } };
+		rc = image_write_png(path, im, 16, 0, 5, tx, cause);
+	}
+	image_free(im);
+	return rc;
+}
+
+static json_object *summary_stats(const float *v, size_t n)
+{
+	double lo = INFINITY, hi = -INFINITY, s = 0.0;
+	for (size_t i = 0; i < n; i++) {
+		lo = fmin(lo, v[i]);
+		hi = fmax(hi, v[i]);
+		s += v[i];
+	}
+	json_object *o = json_object_new_object();
+	add(o, "min", num(lo));
+	add(o, "max", num(hi));
+	add(o, "mean", num(s / (double)n));
+	return o;
+}
+
+static char *index_text(const struct mapset *m)
+{
+	const char *ext = m->exr ? "exr" : "png";
+	json_object *o = json_object_new_object(), *fam = json_object_new_object(), *maps = json_object_new_array();
+	add(o, "format", json_object_new_string("skinbake-maps"));
+	add(o, "format_version", json_object_new_int(MAPS_FORMAT_VERSION));
+	add(o, "skinbake_version", json_object_new_string(PACKAGE_VERSION));
+	add(o, "width", json_object_new_int(m->w));
+	add(o, "height", json_object_new_int(m->h));
+	add(o, "image_format", json_object_new_string(ext));
+	add(fam, "dir", json_object_new_string(m->family_dir ? m->family_dir : ""));
+	add(fam, "preset", json_object_new_string(m->family_preset ? m->family_preset : ""));
+	add(o, "family", fam);
+	size_t n = (size_t)m->w * m->h;
+	for (int a = 0; a < m->n; a++) {
+		const struct maps_param *p = &m->p[a];
+		json_object *e = json_object_new_object();
+		char *file = xasprintf("%s.%s", p->key, ext);
+		add(e, "key", json_object_new_string(p->key));
+		add(e, "unit", json_object_new_string(p->unit));
+		add(e, "file", json_object_new_string(file));
+		add(e, "encoding", json_object_new_string(m->exr ? "float32 channel Y: the value in the key's unit"
+		    : "16-bit grey q: value = lo + (hi - lo) * q / 65535"));
+		add(e, "lo", num(p->key_lo));
+		add(e, "hi", num(p->key_hi));
+		json_object *fr = json_object_new_array();
+		json_object_array_add(fr, num(p->fam_lo));
+		json_object_array_add(fr, num(p->fam_hi));
+		add(e, "family_range", fr);
+		add(e, "values", summary_stats(p->v, n));
+		json_object_array_add(maps, e);
+		free(file);
+	}
+	add(o, "maps", maps);
+	if (m->de2000) {
+		json_object *e = json_object_new_object();
+		char *file = xasprintf("de2000.%s", ext);
+		add(e, "file", json_object_new_string(file));
+		add(e, "encoding", json_object_new_string(m->exr ? "float32 channel Y: CIEDE2000"
+		    : "16-bit grey q: CIEDE2000 = q / 1000 (up to 65.535)"));
+		add(e, "meaning", json_object_new_string("CIEDE2000 between the texel's colour and the family's albedo at "
+		    "the fitted parameters"));
+		add(o, "de2000", e);
+		free(file);
+	}
+	if (m->status) {
+		json_object *e = json_object_new_object();
+		add(e, "file", json_object_new_string("status.png"));
+		add(e, "encoding", json_object_new_string("8-bit grey: 0 matched, 255 unmatched (closest family colour "
+		    "further than max_de), 128 not fitted (transparent or outside the mask)"));
+		add(o, "status", e);
+	}
+	if (m->fit) {
+		json_object *f = json_tokener_parse(m->fit);
+		if (f)
+			add(o, "fit", f);
+	}
+	json_object *h = json_object_new_array();
+	for (int i = 0; i < m->n_history; i++)
+		json_object_array_add(h, json_object_new_string(m->history[i]));
+	add(o, "history", h);
+	char *text = xstrdup(json_object_to_json_string_ext(o, JSON_C_TO_STRING_PRETTY | JSON_C_TO_STRING_NOSLASHESCAPE));
+	json_object_put(o);
+	return text;
+}
+
+static int write_all(const char *stage, const struct mapset *m, char **cause)
+{
+	const char *ext = m->exr ? "exr" : "png";
+	for (int a = 0; a < m->n; a++) {
+		char *path = xasprintf("%s/%s.%s", stage, m->p[a].key, ext);
+		int rc = write_map(path, m, m->p[a].v, m->p[a].key_lo, m->p[a].key_hi, m->p[a].key, cause);
+		free(path);
+		if (rc)
+			return -1;
+	}
+	if (m->de2000) {
+		char *path = xasprintf("%s/de2000.%s", stage, ext);
+		int rc = write_map(path, m, m->de2000, 0.0, 65.535, "de2000", cause);
+		free(path);
+		if (rc)
+			return -1;
+	}
+	if (m->status) {
+		struct image *im = image_new(m->w, m->h, 1, 8);
+		for (size_t i = 0; i < (size_t)m->w * m->h; i++)
+			im->v[i] = (float)(m->status[i] / 255.0);
+		char *path = xasprintf("%s/status.png", stage);
+		struct png_text_kv tx[] = { { "Comment", "0 matched, 255 unmatched, 128 not fitted (see maps.json)" } };
+		int rc = image_write_png(path, im, 8, 0, 1, tx, cause);
+		free(path);
+		image_free(im);
+		if (rc)
+			return -1;
+	}
+	char *path = xasprintf("%s/maps.json", stage), *text = index_text(m);
+	struct outfile of;
+	int rc = outfile_open(&of, path, cause);
+	if (rc == 0) {
+		fputs(text, of.fp);
+		fputc('\n', of.fp);
+		rc = outfile_commit(&of, cause);
+	}
+	free(text);
+	free(path);
+	return rc;
+}
+
+int mapset_write(const char *dir, const struct mapset *m, char **cause)
+{
+	struct outdir od;
+	if (outdir_begin(&od, dir, "maps.json", cause) != 0)
+		return -1;
+	if (write_all(outdir_path(&od), m, cause) != 0) {
+		outdir_abort(&od);
+		return -1;
+	}
+	return outdir_commit(&od, cause);
+}
+
+/* ---- reader ---- */
+
+static const char *jstr(json_object *o, const char *k)
+{
+	json_object *v;
+	return json_object_object_get_ex(o, k, &v) && json_object_is_type(v, json_type_string) ? json_object_get_string(v)
+	    : NULL;
+}
+
+static int jnum(json_object *o, const char *k, double *out)
+{
+	json_object *v;
+	if (!json_object_object_get_ex(o, k, &v) ||
+	    !(json_object_is_type(v, json_type_double) || json_object_is_type(v, json_type_int)))
+		return -1;
+	*out = json_object_get_double(v);
+	return 0;
+}
+
+/* A map file of the directory: its size must be maps.json's. */
+static float *read_map(const char *dir, const char *file, const struct mapset *m, int png, double lo, double hi,
+    char **cause)
+{
+	char *path = xasprintf("%s/%s", dir, file);
+	struct image *im = image_read(path, cause);
+	float *v = NULL;
+	if (im && (im->w != m->w || im->h != m->h))
+		*cause = xasprintf("%s: %d x %d texels, expected %d x %d (maps.json)", path, im->w, im->h, m->w, m->h);
+	else if (im && ((png && im->bits == 32) || (!png && im->bits != 32)))
+		*cause = xasprintf("%s: a %s image, expected %s (maps.json image_format)", path, im->bits == 32 ? "EXR"
+		    : "PNG", png ? "PNG" : "EXR");
+	else if (im) {
+		size_t n = (size_t)m->w * m->h;
+		v = xmalloc(sizeof(float) * n);
+		for (size_t i = 0; i < n; i++) {
+			double x = image_get(im, i, 0);
+			v[i] = (float)(png ? lo + (hi - lo) * x : x);
+		}
+	}
+	image_free(im);
+	free(path);
+	return v;
+}
+
+static int read_params(const char *dir, const char *path, json_object *o, struct mapset *m, int png, char **cause)
+{
+	json_object *maps;
+	if (!json_object_object_get_ex(o, "maps", &maps) || !json_object_is_type(maps, json_type_array) ||
+	    json_object_array_length(maps) < 1 || json_object_array_length(maps) > FAMILY_MAX_AXES) {
+		*cause = xasprintf("%s: field maps is missing or not an array of 1 to %d maps", path, FAMILY_MAX_AXES);
+		return -1;
+	}
+	m->n = (int)json_object_array_length(maps);
+	for (int a = 0; a < m->n; a++) {
+		json_object *e = json_object_array_get_idx(maps, (size_t)a), *fr;
+		struct maps_param *p = &m->p[a];
+		const char *key = jstr(e, "key"), *file = jstr(e, "file"), *unit = jstr(e, "unit");
+		if (!key || !file || jnum(e, "lo", &p->key_lo) || jnum(e, "hi", &p->key_hi) ||
+		    !json_object_object_get_ex(e, "family_range", &fr) || json_object_array_length(fr) != 2) {
+			*cause = xasprintf("%s: field maps[%d] lacks key, file, lo, hi or family_range", path, a);
+			return -1;
+		}
+		if (strlen(key) >= sizeof p->key || strchr(file, '/')) {
+			*cause = xasprintf("%s: field maps[%d] has a bad key or file name", path, a);
+			return -1;
+		}
+		snprintf(p->key, sizeof p->key, "%s", key);
+		snprintf(p->unit, sizeof p->unit, "%s", unit ? unit : "");
+		p->fam_lo = json_object_get_double(json_object_array_get_idx(fr, 0));
+		p->fam_hi = json_object_get_double(json_object_array_get_idx(fr, 1));
+		if ((p->v = read_map(dir, file, m, png, p->key_lo, p->key_hi, cause)) == NULL)
+			return -1;
+	}
+	return 0;
+}
+
+static int read_extras(const char *dir, json_object *o, struct mapset *m, int png, char **cause)
+{
+	json_object *e, *h;
+	const char *f;
+	if (json_object_object_get_ex(o, "de2000", &e) && (f = jstr(e, "file")) != NULL &&
+	    (m->de2000 = read_map(dir, f, m, png, 0.0, 65.535, cause)) == NULL)
+		return -1;
+	if (json_object_object_get_ex(o, "status", &e) && (f = jstr(e, "file")) != NULL) {
+		float *s = read_map(dir, f, m, 1, 0.0, 255.0, cause);
+		if (s == NULL)
+			return -1;
+		m->status = xmalloc((size_t)m->w * m->h);
+		for (size_t i = 0; i < (size_t)m->w * m->h; i++)
+			m->status[i] = (unsigned char)lround(s[i]);
+		free(s);
+	}
+	if (json_object_object_get_ex(o, "fit", &e))
+		m->fit = xstrdup(json_object_to_json_string_ext(e, JSON_C_TO_STRING_PLAIN));
+	if (json_object_object_get_ex(o, "history", &h) && json_object_is_type(h, json_type_array))
+		for (size_t i = 0; i < json_object_array_length(h); i++)
+			mapset_add_history(m, json_object_get_string(json_object_array_get_idx(h, i)));
+	return 0;
+}
+
+struct mapset *mapset_read(const char *dir, char **cause)
+{
+	char *path = xasprintf("%s/maps.json", dir);
+	struct mapset *m = xcalloc(1, sizeof *m);
+	json_object *o = NULL, *fam;
+	double ver, w, h;
+	const char *s, *fmt;
+	if (access(path, R_OK) != 0) {
+		*cause = xasprintf("%s: not a maps directory (%s: %s)", dir, path, strerror(errno));
+		goto fail;
+	}
+	if ((o = json_object_from_file(path)) == NULL || !json_object_is_type(o, json_type_object)) {
+		*cause = xasprintf("%s: not a skinbake maps index (corrupt JSON)", path);
+		goto fail;
+	}
+	if ((s = jstr(o, "format")) == NULL || strcmp(s, "skinbake-maps") != 0) {
+		*cause = xasprintf("%s: field format = '%s', expected 'skinbake-maps'", path, s ? s : "(missing)");
+		goto fail;
+	}
+	if (jnum(o, "format_version", &ver) || ver != MAPS_FORMAT_VERSION) {
+		*cause = xasprintf("%s: field format_version = %g, expected %d", path, ver, MAPS_FORMAT_VERSION);
+		goto fail;
+	}
+	if (jnum(o, "width", &w) || jnum(o, "height", &h) || !(w >= 1 && h >= 1 && w <= 65536 && h <= 65536)) {
+		*cause = xasprintf("%s: fields width and height must be sizes in [1, 65536]", path);
+		goto fail;
+	}
+	m->w = (int)w, m->h = (int)h;
+	if ((fmt = jstr(o, "image_format")) == NULL || (strcmp(fmt, "png") != 0 && strcmp(fmt, "exr") != 0)) {
+		*cause = xasprintf("%s: field image_format = '%s', expected png or exr", path, fmt ? fmt : "(missing)");
+		goto fail;
+	}
+	m->exr = strcmp(fmt, "exr") == 0;
+	if (json_object_object_get_ex(o, "family", &fam)) {
+		m->family_dir = xstrdup(jstr(fam, "dir") ? jstr(fam, "dir") : "");
+		m->family_preset = xstrdup(jstr(fam, "preset") ? jstr(fam, "preset") : "");
+	}
+	if (read_params(dir, path, o, m, !m->exr, cause) || read_extras(dir, o, m, !m->exr, cause))
+		goto fail;
+	json_object_put(o);
+	free(path);
+	return m;
+fail:
+	if (o)
+		json_object_put(o);
+	free(path);
+	mapset_free(m);
+	return NULL;
+}
+
+int mapset_check_family(const struct mapset *m, const char *dir, const struct family *f, char **cause)
+{
+	if (m->n != f->n_axes) {
+		*cause = xasprintf("%s: %d maps, but the family %s has %d axes", dir, m->n, f->dir, f->n_axes);
+		return -1;
+	}
+	size_t n = (size_t)m->w * m->h;
+	const char *ext = m->exr ? "exr" : "png";
+	for (int a = 0; a < m->n; a++) {
+		const struct family_axis *ax = &f->axis[a];
+		if (strcmp(m->p[a].key, ax->key) != 0) {
+			*cause = xasprintf("%s: map %d is %s, but axis %d of the family %s is %s", dir, a, m->p[a].key, a, f->dir,
+			    ax->key);
+			return -1;
+		}
+		/* Allow the 16-bit quantisation of the PNG encoding at the ends. */
+		double lo = ax->node[0], hi = ax->node[ax->n - 1], tol = m->exr ? 0 : (m->p[a].key_hi - m->p[a].key_lo) / 65535.0;
+		for (size_t i = 0; i < n; i++)
+			if (!(m->p[a].v[i] >= lo - tol && m->p[a].v[i] <= hi + tol)) {
+				*cause = xasprintf("%s/%s.%s: texel (%zu, %zu) has %s = %g, outside the family's range [%g, %g]", dir,
+				    m->p[a].key, ext, i % (size_t)m->w, i / (size_t)m->w, m->p[a].key, m->p[a].v[i], lo, hi);
+				return -1;
+			}
+	}
+	return 0;
+}

@@ -1,0 +1,72 @@
+/* mapset: a maps directory, the parameters of a family per texel (written
+ * and read here).
+ *
+ * Directory (format "skinbake-maps", MAPS_FORMAT_VERSION):
+ *   maps.json        size, the family (directory, preset, axes and their
+ *                    ranges), per map its key, file and encoding, the fit's
+ *                    summary, and the commands that made the maps
+ *   KEY.png          one map per axis of the family (e.g.
+ *                    epidermis.melanin.png): 16-bit grey, value =
+ *                    lo + (hi - lo) q / 65535 with [lo, hi] the preset key's
+ *                    whole range (so maps are independent of one family's
+ *                    range and 16 bits resolve 1/65535 of it); or KEY.exr
+ *                    (float channel Y, the value itself) with --format exr
+ *   de2000.png       after a fit: the CIEDE2000 between the texel's colour
+ *                    and the family's albedo at its parameters, q / 1000
+ *                    (16-bit; de2000.exr with exr)
+ *   status.png       after a fit: 8-bit, 0 matched, 255 unmatched (the
+ *                    family's closest colour is further than the fit's
+ *                    max_de), 128 not fitted (transparent or masked out)
+ * Written in DIR.staging and renamed into place. */
+#ifndef SKINBAKE_MAPSET_H
+#define SKINBAKE_MAPSET_H
+#include "bake/family.h"
+
+#define MAPS_FORMAT_VERSION 1
+
+enum { MAPS_MATCHED = 0, MAPS_UNMATCHED = 255, MAPS_NOT_FITTED = 128 };
+
+struct maps_param {
+	char key[64];		/* the family axis' preset key */
+	char unit[16];
+	double key_lo, key_hi;	/* the key's whole range: the PNG encoding */
+	double fam_lo, fam_hi;	/* the family's range of the key */
+	float *v;		/* [w * h] values in the key's unit */
+};
+
+struct mapset {
+	int w, h;		/* texels */
+	int n;			/* parameter maps, one per family axis, in axis order */
+	struct maps_param p[FAMILY_MAX_AXES];
+	float *de2000;		/* [w * h] or NULL */
+	unsigned char *status;	/* [w * h] MAPS_* or NULL */
+	char *family_dir;	/* the family, as given */
+	char *family_preset;
+	char *fit;		/* the fit's summary, a JSON object as text, or NULL */
+	int n_history;
+	char **history;		/* commands that made and edited the maps */
+	int exr;		/* write float EXR maps instead of 16-bit PNG */
+};
+
+/* Maps of size w x h for the axes of f, every texel at value x[a] (NULL:
+ * the middle of each axis in its interpolation coordinate). */
+struct mapset *mapset_new(const struct family *f, int w, int h, const double *x);
+void mapset_free(struct mapset *m);	/* NULL is a no-op */
+void mapset_add_history(struct mapset *m, const char *command);
+/* The index of the map of KEY, or -1. */
+int mapset_find(const struct mapset *m, const char *key);
+
+/* Write DIR (absent, empty, or earlier maps, which are replaced); -1 and
+ * *cause. */
+int mapset_write(const char *dir, const struct mapset *m, char **cause);
+/* Check DIR can take maps (as family_check_out); -1 and *cause. */
+int mapset_check_out(const char *dir, char **cause);
+/* Read DIR; NULL and *cause naming the file, field, value and what was
+ * expected when it is missing, corrupt, of another format version, or a
+ * map's size differs from maps.json. */
+struct mapset *mapset_read(const char *dir, char **cause);
+/* Whether the maps fit family f: the same keys in the same order and
+ * every value within the family's range; -1 and *cause naming the map
+ * file, the texel, the value and the range otherwise. */
+int mapset_check_family(const struct mapset *m, const char *dir, const struct family *f, char **cause);
+#endif
