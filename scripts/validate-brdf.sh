@@ -305,7 +305,7 @@ if [ -n "$fitted" ]; then
 			echo "set title \"incidence $ti deg\""
 			[ "$i" = 0 ] || [ "$i" = 4 ] && echo 'set ylabel "BRDF [1/sr]"' || echo 'unset ylabel'
 			[ "$i" -ge 4 ] && echo 'set xlabel "view angle [deg]"' || echo 'unset xlabel'
-			[ "$i" = 7 ] && echo 'set key left top font ",7"' || echo 'set key off'
+			[ "$i" = 7 ] && echo 'set key left center font ",7"' || echo 'set key off'
 			printf 'plot "%s" using ($1 == %s && (strcol(4) eq "train") ? $2 : 1/0):3 with points pt 7 ps 1.1 lc rgb "#2040c0" title "CUReT, used by the fit", ' "$br/curet-inplane.tsv" "$ti"
 			printf '"" using ($1 == %s && (strcol(4) ne "train") ? $2 : 1/0):3 with points pt 6 ps 1.1 lc rgb "#2040c0" title "CUReT, held out", ' "$ti"
 			printf '"%s" using ($1 == %s ? $2 : 1/0):3 with lines lw 2 lc rgb "#d02020" title "%s total", ' "$br/dense-$fitted.tsv" "$ti" "$fitted"
@@ -476,6 +476,16 @@ EOF
 } >"$br/section.md"
 
 # 3.3: the fitted preset, if there is one.
+# Held-out error split by incidence and side: preset -> markdown row.
+splitstats() {
+	awk -F'\t' -v p="$1" '$6 == "held" { r = ($10 - $5) / $5; q = $10 / $5
+		if ($2 < 60) { a += r * r; na++ } else { if (q < mn || mn == "") mn = q; if ($4 < 90) { c += r * r; nc++ } else { d += r * r; nd++ } } }
+		END { l = p == "whatif" ? "diagnostic (rough boundary)" : "`" p "`"
+			printf "| %s | %.1f (%d) | %.1f (%d) | %.1f (%d) | %.2f |\n", l, 100 * sqrt(a / na), na, 100 * sqrt(c / nc), nc, 100 * sqrt(d / nd), nd, mn }' "$br/pts-$1.tsv"
+}
+splitcol() { splitstats "$1" | awk -F'|' -v c="$2" '{ v = $(c + 1); sub(/ *\(.*/, "", v); gsub(/ /, "", v); print v }'; }
+# The unfitted preset with the smallest held-out error.
+best_held=$(awk -F'\t' '$1 != "whatif" && $1 != "marschner-fit" && $1 != "curet39" { if (m == "" || $3 < m) { m = $3; n = $1 } } END { print n }' "$br/held.tsv")
 if [ "$fit_ok" = 1 ]; then
 	held_f=$(hs "$fitted" 3)
 	back_f=$(f5 "$fitted" total 9)
@@ -519,28 +529,37 @@ fitted points (1 for a good fit); "held out after that k" applies it to the held
 
 ![why the fitted preset misses the grazing points](validation/fit-why.png)
 
-**Why.** $(awk -F'\t' -v f="$fitted" '$1 == f { printf "The fitted points are matched to %.1f %% RMS, but the held-out points only to %.1f %%, and the misses are not random: ", $2, $3 }' "$br/held.tsv")
-panel (a) shows the simulation falling below the measurement as the incidence grows, on both
-sides, down to a third of the measured value at the grazing out-of-plane points (the worst:
-$(hs "$fitted" 9)). On the back side, where the surface lobe is small, the measured/simulated
-ratio rises with θi (panel b) as the factor c = T_r/T_s does: the ratio of the light a rough
-surface lets through to what the smooth boundary of the simulation lets through
-($(awk -F'\t' '$1 == 0 || $1 == 60 || $1 == 77.5 { printf "%sc(%g°) = %.2f", (n++ ? ", " : ""), $1, $4 }' "$br/coupling.tsv"); T_s
-from exact Fresnel at the preset's top stack, T_r = 1 − the directional albedo of its GGX lobe).
-The Monte Carlo enters and leaves the skin through a smooth plane: at 78.75° exact Fresnel
-reflects $(awk -F'\t' '$1 == 77.5 { printf "%.0f", 100 * $3 }' "$br/coupling.tsv") % (at 77.5°) of the light, all of which the simulation takes away
-from the subsurface part, while the rough surface lobe that stands in for that reflection
-returns only $(awk -F'\t' '$1 == 77.5 { printf "%.0f", 100 * $2 }' "$br/coupling.tsv") %. Real skin's surface is rough at the scale of its cells and furrows:
-light meets it at smaller local angles, so more of it enters at grazing incidence and more
-leaves toward grazing views. **The missing physical effect is refraction through the rough
-surface (microfacet transmission, Walter et al. 2007) for the light that enters and leaves the
-tissue;** the model has roughness only in its reflected lobe. Applying c(θi) c(θv) to the
-subsurface part as a diagnostic (not fitted again, not shipped) brings the held-out error from
-$(hs "$fitted" 3) % to $(hs whatif 3) % and the back-side fall from $back_f to $(f5 whatif total 9)
-(forward rise $(f5 whatif total 10)). The grazing points out of the plane of incidence on the
-mirror side (θi ≈ 78°, θv ≈ 60-84°, 25-40° from the mirror direction: CUReT 0.33-0.40 /sr) stay
-too low even so: the measured forward scattering there is broader than a GGX lobe of α = $(jq -r '.specular.alpha' "$br/bake-$fitted/manifest.json"),
-which points to shadowing and interreflection on the sample's coarser relief as well.
+Where the held-out error sits (RMS relative error [%] and number of points):
+
+| preset | held out, θi < 60° | θi ≥ 60°, back side (Δφ < 90°) | θi ≥ 60°, mirror side | smallest simulated / measured at θi ≥ 60° |
+|---|---|---|---|---|
+$(for p in "$fitted" whatif $best_held; do splitstats "$p"; done)
+
+**Why.** The fitted points are matched to $(hs "$fitted" 2) % RMS, the held-out ones to
+$(hs "$fitted" 3) %, and the misses are not random (panel a): up to θi ≈ 56° the simulation stays
+within about $(splitcol "$fitted" 2) % RMS, beyond 60° it falls below the measurement on both sides,
+to $(splitcol "$fitted" 5) of it at the worst point ($(hs "$fitted" 9)). On the back side, where
+the surface lobe is small, measured/simulated rises with θi (panel b) as the factor c = T_r/T_s
+does: the light a rough surface lets through over what the smooth boundary of the simulation lets
+through ($(awk -F'\t' '$1 == 0 || $1 == 60 || $1 == 77.5 { printf "%sc(%g°) = %.2f", (n++ ? ", " : ""), $1, $4 }' "$br/coupling.tsv");
+T_s from exact Fresnel at the preset's top stack, T_r = 1 − the directional albedo of its GGX
+lobe). The Monte Carlo enters and leaves the skin through a smooth plane: at 77.5° exact Fresnel
+reflects $(awk -F'\t' '$1 == 77.5 { printf "%.0f", 100 * $3 }' "$br/coupling.tsv") % of the light, all of which the simulation takes from the subsurface
+part, while the rough lobe that stands in for that reflection returns only
+$(awk -F'\t' '$1 == 77.5 { printf "%.0f", 100 * $2 }' "$br/coupling.tsv") %: the difference, $(awk -F'\t' '$1 == 77.5 { printf "%.0f", 100 * ($3 - $2) }' "$br/coupling.tsv") % of the incident light, is returned by neither part. Real skin is
+rough at the scale of its cells and furrows: light meets it at smaller local angles, so more of
+it enters at grazing incidence and more leaves toward grazing views. **The missing physical
+effect is refraction through the rough surface (microfacet transmission, Walter et al. 2007) for
+the light that enters and leaves the tissue;** the model has roughness only in its reflected
+lobe, and no fit of melanin, blood, scattering, sebum or roughness can supply it. Applying
+c(θi) c(θv) to the subsurface part as a diagnostic (not fitted again, not shipped) brings the
+held-out error from $(hs "$fitted" 3) % to $(hs whatif 3) %, the back-side fall from $back_f to
+$(f5 whatif total 9) and the forward rise from $fwd_f to $(f5 whatif total 10). What it leaves are
+the grazing points out of the plane of incidence on the mirror side (θi ≈ 78°, θv ≈ 60-84°,
+25-40° from the mirror direction, where CUReT reads 0.33-0.40 /sr): the measured forward
+scattering there is broader than a GGX lobe of α = $(jq -r '.specular.alpha' "$br/bake-$fitted/manifest.json") (single scattering on the
+facets, Smith shadowing), which points to shadowing, masking and interreflection on the sample's
+coarser relief (furrows, the sample's mounting) as a second missing effect.
 EOF
 	} >>"$br/section.md"
 fi
