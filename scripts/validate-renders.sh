@@ -213,4 +213,29 @@ EOF
 	else
 		echo "All renders succeeded. Time per figure (export + POV-Ray, s): $(awk -F'\t' '{ printf "%s%s %s", (NR > 1 ? ", " : ""), $1, $2 }' "$rn/times.tsv")."
 	fi
+	cat <<'EOF'
+
+**What looks wrong** (from looking at these pictures; the text is kept with the script, so check
+it when the scenes or the presets change):
+
+- *Colour.* Every figure is a dark, red-brown skin: that is the paper's Tables 1-2 (L* 39, a* 15
+  in section 4), darker and redder than any measured skin colour of section 4.
+- *Figure 6.* With sebum the highlight is brighter and a little tighter; without it, broader and
+  dimmer. The difference is real but small under one white light. Both spheres end in a hard
+  black terminator (one light, no fill, no ambient).
+- *Figure 7.* Phong gives the sharp white "plastic" highlight, Lambert the flat chalky look, the
+  baked BRDF a broad soft sheen, as the paper describes. A BRDF cannot carry light past the
+  terminator, so "subsurface" shading shows no translucency at the shadow edge.
+- *Figure 8.* The head is the exporter's analytic isosurface: no eyes, mouth or hair, it reads as
+  a mannequin; its far side falls into full black. Pores are hardly visible at 640 px for the
+  whole head (a pixel is about 0.2 mm), hence the close-up. In the close-up the pores are dark
+  pinholes of nearly one size on an even grid-like spacing, and the 8 mm tile repeats about
+  seven times across the picture: it reads as perforated leather more than as a cheek.
+- *Figure 9.* The net of triangles reads well, the primary furrows darker than the secondary
+  ones; on the patch the net shows at grazing light but the patch looks like crackle glaze on
+  dark leather.
+- *Figure 10.* The hand is a blob with sphere sweeps: the fingertips are cut by the top of the
+  frame, the thumb is a separate sausage, there are no nails or knuckles; the furrows show only
+  as a fine grain at this size.
+EOF
 } >"$rn/section.md"
