@@ -54,20 +54,10 @@ for s in cheek face hand; do
 	"$SKINBAKE" texture --site "$s" --size 1024 --out "$rn/tex-$s" --quiet
 done
 
-# PNGs over 120 KB (noisy relief at 640 px reaches 400-600 KB) are re-encoded
-# with a 256-colour palette through gnuplot's gd terminal (ImageMagick is not
-# a dependency); smooth renders stay as POV-Ray wrote them.
-shrink() { # in out
-	if [ "$(wc -c <"$1")" -le 122880 ]; then
-		cp "$1" "$2"
-		return
-	fi
-	wh=$(file "$1" | sed -n 's/.*data, \([0-9]*\) x \([0-9]*\).*/\1 \2/p')
-	set -- "$1" "$2" $wh
-	printf 'set terminal png size %s,%s\nset output "%s"\nset margins 0,0,0,0\nunset border\nunset tics\nunset key\nset xrange [-0.5:%s-0.5]\nset yrange [-0.5:%s-0.5]\nplot "%s" binary filetype=png with rgbimage\n' \
-		"$3" "$4" "$2" "$3" "$4" "$1" | "$GNUPLOT"
-}
-
+# The renders are kept as POV-Ray writes them (8-bit RGB PNG, 100-600 KB):
+# re-encoding them with a 256-colour palette (gnuplot's gd terminal, the only
+# re-encoder among the dependencies) posterized the head's highlight into a
+# grey cross with orange fringes that is not in the render.
 # render NAME SCENEFILE WIDTH HEIGHT [POV-Ray options]: export + POV-Ray at
 # WIDTH x HEIGHT; on failure the reason goes into the report.
 render_failures=""
@@ -102,7 +92,7 @@ render() {
 		say "$n: POV-Ray FAILED"
 		return 0
 	fi
-	shrink "$rn/$n/$n.png" "$png/render-$n.png"
+	cp "$rn/$n/$n.png" "$png/render-$n.png"
 	echo "$n	$(($(date +%s) - t0))	$wd x $ht	$(wc -c <"$png/render-$n.png")" >>"$rn/times.tsv"
 	say "$n: $wd x $ht, $(($(date +%s) - t0)) s, $(wc -c <"$png/render-$n.png") bytes"
 }
@@ -112,10 +102,11 @@ die_scene() { echo "validate-renders: $1 has no width = line in [scene]" >&2; ex
 # baked BRDF.  Figure 10: the hand.  From the shipped scenes, larger.
 render sebum "$top_srcdir/scenes/sebum.scene" 960 480
 render shading-models "$top_srcdir/scenes/shading-models.scene" 1350 480
-# Bump-mapped skin needs finer antialiasing than the scenes' threshold 0.3:
-# with it the sebum highlight on the pores breaks into bright single-sample
-# sparkles (measured: a grainy white cross on the head's brow and nose that
-# +A0.05 +AM2 +R3 shows to be aliasing; it costs about 3x the render time).
+# Bump-mapped skin gets finer antialiasing than the scenes' threshold 0.3,
+# which leaves single-sample grain on the pores and a moire of vertical
+# stripes near the head's right silhouette (where the bump map is projected
+# along the view) at 640 px; +A0.05 +AM2 +R3 removes both (seen side by side)
+# and costs about 3 times the render time.
 # shellcheck disable=SC2086
 render hand "$top_srcdir/scenes/hand.scene" 640 640 $AA
 # Figure 8: the shipped head, and a close-up of its cheek (generated here):

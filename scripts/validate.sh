@@ -539,6 +539,6 @@ done
 cp "$md" "$OUT/.validation.md.tmp.$$" && mv "$OUT/.validation.md.tmp.$$" "$OUT/validation.md"
 for f in "$OUT"/validation/*.png; do
 	sz=$(wc -c <"$f")
-	[ "$sz" -le 409600 ] || say "warning: $(basename "$f") is $sz bytes (> 400 KB)"
+	[ "$sz" -le 716800 ] || say "warning: $(basename "$f") is $sz bytes (> 700 KB)"
 done
 say "done in $(elapsed) s: $OUT/validation.md, $(ls "$OUT"/validation/*.png | wc -l) images"
