@@ -68,13 +68,13 @@ e1=$(rms < "$OUT/bt.json")
 J "'| estimator | photons | seconds | RMS relative error |\n|---|---|---|---|\n| plain band tallies (simulate) | %d | %.2f | %.4f |' % (d['photons'], d['seconds'], float('$e1'))" < "$OUT/bt.json"
 # The same quantity as a one-column bake of the same stack (the `refstack` preset at 550 nm is
 # this skin stack): next-event estimation, stopping at 1% by itself.
-"$SKINBAKE" bake --preset refstack --wavelengths 550 --theta-in 0.0, --resolution 18x1 --target-error 0.01 \
+"$SKINBAKE" bake --preset refstack --wavelengths 550 --theta-in 0 --resolution 18x1 --target-error 0.01 \
 	--batch-photons 500 --out "$OUT/az-bake" --quiet
 python3 -c "import json; r=json.load(open('$OUT/az-bake/manifest.json'))['result']; print('| next-event estimation (bake) | %d | %.2f | %.4f |' % (r['photons'], r['seconds'], r['rms_rel_err']))"
 rm -rf "$OUT/az-bake"
 echo
 echo "Commands: \`skinbake simulate SKIN --photons N\` (bands of 5 degrees, azimuth-averaged), and"
-echo "\`skinbake bake --preset refstack --wavelengths 550 --theta-in 0.0, --resolution 18x1 --target-error 0.01 --batch-photons 500\`"
+echo "\`skinbake bake --preset refstack --wavelengths 550 --theta-in 0 --resolution 18x1 --target-error 0.01 --batch-photons 500\`"
 echo "(18 bands x 1 azimuth bin = the azimuth average). MCML needs about half a minute of one core."
 echo
 echo "### Error against photons (skin stack Rd, one thread)"

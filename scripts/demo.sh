@@ -8,7 +8,7 @@ B=${SKINBAKE:-./skinbake}
 out=${1:-out/demo}
 mkdir -p "$out"
 echo "== bake (preset paper, 3 wavelengths, 10 incidence nodes, 5% RMS error)"
-$B bake --preset paper --out "$out/paper" --theta-in 10 --target-error 0.05 --batch-photons 1000
+$B bake --preset paper --out "$out/paper" --theta-nodes 10 --target-error 0.05 --batch-photons 1000
 echo "== texture (face pores and furrows, 512 px, 10 mm tile)"
 $B texture --site face --size 512 --tile-mm 10 --out "$out/face" --quiet
 echo "== export pov (scenes/sphere.scene)"

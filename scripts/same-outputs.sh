@@ -16,9 +16,9 @@ run presets
 run preset show paper
 run preset show fair-oily
 run preset keys
-run bake --preset paper --out bake --theta-in 4 --resolution 9x6 --target-error 0 --max-photons 400000 --batch-photons 1000 --quiet
+run bake --preset paper --out bake --theta-nodes 4 --resolution 9x6 --target-error 0 --max-photons 400000 --batch-photons 1000 --quiet
 run bake --preset fair-oily --out bake2 --wavelengths 450,550,650 --theta-in 30.0,60.0 --resolution 6x4 --target-error 0.2 --batch-photons 500 --quiet
-run bake --preset paper --out bakeb --estimator bins --theta-in 2 --resolution 6x4 --target-error 0 --max-photons 100000 --batch-photons 1000 --fresnel schlick --quiet
+run bake --preset paper --out bakeb --estimator bins --theta-nodes 2 --resolution 6x4 --target-error 0 --max-photons 100000 --batch-photons 1000 --fresnel schlick --quiet
 run eval --bake bake --theta-in 20 --theta-out 35 --phi 40
 run eval --bake bake --theta-in 20 --theta-out 35 --phi 40 --json
 run texture --site face --size 128 --out tex --quiet
@@ -30,6 +30,19 @@ run export pov --bake bake --light position=3:4:-5 --light type=point,position=-
 run export blender --bake bake --textures tex --out blend
 run bake --preset nope --out x
 run simulate --layer d=-1
+# More options of simulate, bake, eval, texture and export blender.
+run simulate --layer d=0.02,n=1.5,mua=0,mus=0 --layer d=0.05,n=1.4,mua=5,mus=200,g=0.85 --layer d=inf,n=1.37,mua=1,mus=80,g=0.8 --n-above 1.33 --n-below 1.5 --theta-in 55 --photons 8000 --seed 9 --threads 1 --batches 7 --fresnel schlick --theta-out-step 10 --phi-step 30 --r-step 0.01 --r-bins 20 --roulette-w 0.1 --roulette-chance 0.5 --max-steps 100000 --json
+run simulate --layer d=0.05,mua=3,mus=90,g=0.7 --photons 3000 --r-bins 0 --theta-out-step 15 --phi-step 45 --json
+printf '[skin]\nbase = fair-oily\nname = mine\n[dermis]\nblood = 0.05\n' > mine.ini
+run bake --preset-file mine.ini --out bake3 --spectral 500:600:50 --theta-nodes 3 --resolution 4x3 --target-error 0 --max-photons 72000 --batch-photons 1000 --r-step 0.01 --r-bins 10 --seed 5 --threads 1 --quiet
+run eval --bake bake2 --theta-in 45 --theta-out 10 --phi 250 --json
+run eval --bake bakeb --theta-in 0 --theta-out 89 --phi 180
+run texture --site forearm --size 64 --levels 1 --stretch 2 --seed 3 --out tex3 --quiet
+run texture --site back --dump-config
+run export blender --bake bake3 --textures tex3 --sun-elevation 30 --sun-azimuth 20 --view-elevation 70 --lut-cos 16 --lut-phi 5 --map-size 4 --out blend2
+run export blender --bake bakeb --out blend3 --lut-cos 8 --lut-phi 3
+run export blender --bake nope --out blend4
+run texture --size 16 --out tex4
 find . -type f | LC_ALL=C sort | while read -r f; do
 	sed -E 's/"(seconds|photons_per_second|events_per_second)": *[0-9.e+-]*/"\1":X/g; s/[0-9.e+-]+ (s|photons\/s|events\/s)\b/X \1/g; s/\(([0-9.]+) s\)/(X s)/g' "$f" |
 	    sha256sum | sed "s|-|$f|"

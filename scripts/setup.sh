@@ -6,7 +6,7 @@ set -eu
 cd "$(dirname "$0")/.."
 PKGS="build-essential autoconf automake pkg-config autoconf-archive \
  libopenexr-dev openexr libpng-dev libjson-c-dev libinih-dev libqhull-dev \
- librandom123-dev libcmocka-dev libopenmpi-dev openmpi-bin \
+ librandom123-dev libcmocka-dev libopenmpi-dev openmpi-bin libopenblas-dev liblapacke-dev \
  gnuplot-nox hyperfine python3 povray blender"
 SUDO=
 if [ "$(id -u)" != 0 ]; then

@@ -67,7 +67,7 @@ for p in $presets; do
 	t0=$(date +%s)
 	# VALIDATE_REUSE=1 keeps the bakes of an earlier run (for developing the script).
 	[ "${VALIDATE_REUSE:-0}" = 1 ] && [ -f "$br/bake-$p/manifest.json" ] && continue
-	"$SKINBAKE" bake --preset "$p" --theta-in 8 --wavelengths 470,550,656 --out "$br/bake-$p" \
+	"$SKINBAKE" bake --preset "$p" --theta-nodes 8 --wavelengths 470,550,656 --out "$br/bake-$p" \
 		--batch-photons "$BAKE_BATCH" --target-error "$BAKE_TARGET" --threads "$THREADS" --quiet
 	dt=$(($(date +%s) - t0))
 	bake_time=$((bake_time + dt))
@@ -375,7 +375,7 @@ evaluated at the same geometries and averaged over R, G, B.
 
 **Simulation.** Every preset is baked at the 8 incidence nodes 0, 11.25, ..., 78.75° (CUReT's
 in-plane incidences; the out-of-plane ones are interpolated between nodes) and at 470, 550 and
-656 nm (\`skinbake bake --preset P --theta-in 8 --wavelengths 470,550,656 --batch-photons
+656 nm (\`skinbake bake --preset P --theta-nodes 8 --wavelengths 470,550,656 --batch-photons
 $BAKE_BATCH --target-error $BAKE_TARGET\`; $bake_time s for all $(echo $presets | wc -w) bakes) and
 evaluated with \`tests/brdf_points\` (the interpolation of \`skinbake eval\`, many points per
 process) at CUReT's geometries. The value compared is the mean over the three wavelengths,

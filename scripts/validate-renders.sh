@@ -45,7 +45,7 @@ for p in paper paper-dry; do
 	if [ ! -f "$br/bake-$p/manifest.json" ]; then
 		say "bake $p (no bake from validate-brdf.sh)"
 		mkdir -p "$br"
-		"$SKINBAKE" bake --preset "$p" --theta-in 8 --out "$br/bake-$p" --batch-photons 2000 \
+		"$SKINBAKE" bake --preset "$p" --theta-nodes 8 --out "$br/bake-$p" --batch-photons 2000 \
 			--target-error "$([ "${VALIDATE_QUICK:-0}" = 1 ] && echo 0.2 || echo 0.02)" --threads "$THREADS" --quiet
 	fi
 done

@@ -47,7 +47,7 @@ bad "bad resolution" "\[1, 360\]" bake --preset paper --resolution 0x5 --out "$t
 bad "unknown flag" "unknown" bake --preset paper --frobnicate --out "$tmpd/bad"
 bad "no --out" "--out" bake --preset paper
 bad "estimator" "nee, bins" bake --preset paper --estimator magic --out "$tmpd/bad"
-bad "eval on a missing bake" "not a bake directory" eval --bake "$tmpd/bad" --theta-in 1 --theta-out 1 --phi 1
+bad "eval on a missing bake" "No such file or directory" eval --bake "$tmpd/bad" --theta-in 1 --theta-out 1 --phi 1
 bad "eval angle out of range" "\[0, 90\]" eval --bake "$out" --theta-in 95 --theta-out 1 --phi 1
 echo "{" > "$tmpd/corrupt.json"; mkdir -p "$tmpd/corrupt"; cp "$tmpd/corrupt.json" "$tmpd/corrupt/manifest.json"
 bad "eval on a corrupt manifest" "corrupt" eval --bake "$tmpd/corrupt" --theta-in 1 --theta-out 1 --phi 1

@@ -21,9 +21,9 @@ static void analytic_f(void *ctx, double ti, double to, double dphi, double rgb[
 		rgb[c] = analytic_rho[c] / M_PI * k;
 }
 
-static void analytic_model(struct blender_model *m)
+static void analytic_model(struct brdf_source *m)
 {
-	*m = (struct blender_model){
+	*m = (struct brdf_source){
 		.f_rgb = analytic_f,
 		.n_albedo = 2,
 		.theta_albedo = analytic_theta,

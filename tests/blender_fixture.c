@@ -6,6 +6,7 @@
 #include <stdlib.h>
 
 #include "export/blender/blender.h"
+#include "geom/texdir.h"
 #include "blender_analytic.h"
 
 int main(int argc, char **argv)
@@ -14,18 +15,25 @@ int main(int argc, char **argv)
 		fprintf(stderr, "usage: blender_fixture DIR [TEXTURES]\n");
 		return 2;
 	}
-	struct blender_model m;
+	struct brdf_source m;
 	struct blender_options o;
 	char *cause = NULL;
 	analytic_model(&m);
 	blender_options_default(&o);
 	o.lut_cos = 32;
 	o.lut_phi = 19;
-	o.textures = argc == 3 ? argv[2] : NULL;
-	if (blender_export(&m, &o, argv[1], &cause) != 0) {
+	struct texdir *t = NULL;
+	if (argc == 3 && (t = texdir_load(argv[2], 1, &cause)) == NULL) {
 		fprintf(stderr, "blender_fixture: %s\n", cause);
 		free(cause);
 		return 1;
 	}
-	return 0;
+	m.detail = t;
+	int rc = blender_export(&m, &o, argv[1], &cause);
+	if (rc != 0) {
+		fprintf(stderr, "blender_fixture: %s\n", cause);
+		free(cause);
+	}
+	texdir_free(t);
+	return rc != 0;
 }

@@ -78,7 +78,7 @@ fi
 # 4. The real pipeline: a small bake, `skinbake export blender`, the exact check on it, and a
 # textured general-mode render whose centre must be skin-coloured (R > G > B > 0).
 bake="$tmpd/bake"
-if "$SKINBAKE" bake --preset paper --out "$bake" --theta-in 6 --resolution 9x9 --batch-photons 1000 \
+if "$SKINBAKE" bake --preset paper --out "$bake" --theta-nodes 6 --resolution 9x9 --batch-photons 1000 \
 	--max-photons 3e5 --target-error 0 --threads 1 --quiet >"$tmpd/bake.log" 2>&1; then
 	"$SKINBAKE" export blender --bake "$bake" --out "$tmpd/real" >"$tmpd/export.log" 2>&1
 	check "skinbake export blender writes an image set" test $? -eq 0 -a -f "$tmpd/real/manifest.json"

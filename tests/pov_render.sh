@@ -40,7 +40,7 @@ export_pov() {
 
 # A small real bake (coarse, few photons: a few seconds) and micro-geometry.
 B="$tmpd/bake"
-if "$SKINBAKE" bake --preset paper --out "$B" --theta-in 4 --resolution 9x9 --estimator bins \
+if "$SKINBAKE" bake --preset paper --out "$B" --theta-nodes 4 --resolution 9x9 --estimator bins \
 	--max-photons 1e6 --batch-photons 4000 --target-error 0 --quiet >"$tmpd/bake.log" 2>&1; then
 	ok "small bake of preset paper"
 else
@@ -158,7 +158,7 @@ fi
 
 # --plan: the angles a flat patch needs, and nothing written.
 r=$("$SKINBAKE" export pov --scene "$TD/bump.scene" --plan --out "$tmpd/plan")
-echo "$r" | grep -q "theta-in 69.04," && test ! -e "$tmpd/plan"
+echo "$r" | grep -q "theta-in 69.04 " && test ! -e "$tmpd/plan"
 check "--plan names the incidence angle of the patch and writes nothing" test $? -eq 0
 
 # 7. The include file alone (lights and camera on the command line),

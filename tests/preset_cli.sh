@@ -64,10 +64,10 @@ bad_case "value out of range" "range.ini:2: epidermis.melanin = 0.7: out of rang
 	preset show --preset-file "$tmpd/range.ini"
 { printf '[skin]\ndescription = '; head -c 300 /dev/zero | tr '\0' x; printf '\n'; } >"$tmpd/long.ini"
 bad_case "over-long line" "long.ini:2: line 2 is longer than 199 characters" preset show --preset-file "$tmpd/long.ini"
-bad_case "missing file" "cannot open $tmpd/none.ini: No such file or directory" preset show --preset-file "$tmpd/none.ini"
+bad_case "missing file" "--preset-file = '$tmpd/none.ini': No such file or directory" preset show --preset-file "$tmpd/none.ini"
 bad_case "unknown preset" "unknown preset 'purple' (presets: paper, paper-dry," preset show purple
 bad_case "paper at an untabulated wavelength" "tabulates only 470, 550 and 656 nm" preset show paper --wavelengths 500
-bad_case "wavelength out of range" "--wavelengths = '800'" preset show medium-oily --wavelengths 800
+bad_case "wavelength out of range" "--wavelengths = 800 is out of range [380, 780] nm" preset show medium-oily --wavelengths 800
 bad_case "no name" "either a preset NAME or --preset-file" preset show
 bad_case "unknown action" "unknown action 'frobnicate'" preset frobnicate
 tap_done

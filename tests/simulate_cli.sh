@@ -42,9 +42,11 @@ else
 	fail "simulate --help"
 fi
 
-# The option names from the getopt table, so that an option added to the
-# table without documentation fails here.
-grep -o '{ "[a-z][a-z-]*", [a-z]*_argument' "$src" | sed 's/{ "\([^"]*\)", \([a-z]*\)_argument/\1 \2/' >"$tmpd/opts.txt"
+# The option names from the option table (entries with a destination,
+# "{ "name", OPT_TYPE, &dest"), so that an option added to the table without
+# documentation fails here.
+grep -o '{ "[a-z][a-z-]*", OPT_[A-Z]*, &' "$src" |
+	sed 's/{ "\([^"]*\)", OPT_\([A-Z]*\), &/\1 \2/; s/ FLAG$/ no/; s/ [A-Z]*$/ required/' >"$tmpd/opts.txt"
 nopt=$(wc -l <"$tmpd/opts.txt")
 if [ "$nopt" -ge 15 ]; then ok "found $nopt long options in $src"; else fail "found only $nopt long options in $src"; fi
 
@@ -68,9 +70,12 @@ while read -r name kind; do
 	case $name in
 	layer)
 		# Per key: d, n, mua, mus, g with ranges, units and the defaults of n and g.
-		if echo "$p" | grep -q 'd thickness \[cm\] in (0, inf)' && echo "$p" | grep -q '\[1/cm\] in \[0, 1e8\]' &&
-		    echo "$p" | grep -q 'refractive index \[1, 10\]' && echo "$p" | grep -q '(default 1)' &&
-		    echo "$p" | grep -q 'g HG anisotropy in (-1, 1) (default 0)'; then
+		p=$(echo "$p" | tr '\n' ' ' | tr -s ' ')
+		if echo "$p" | grep -q ' d thickness .* in (0, inf) cm (required)' &&
+		    echo "$p" | grep -q ' mua absorption coefficient in \[0, 1e8\] 1/cm (required)' &&
+		    echo "$p" | grep -q ' mus scattering coefficient in \[0, 1e8\] 1/cm (required)' &&
+		    echo "$p" | grep -q ' n refractive index in \[1, 10\] (default 1)' &&
+		    echo "$p" | grep -q ' g Henyey-Greenstein anisotropy in (-1, 1) (default 0)'; then
 			ok "--layer documents every key's range, unit and default"
 		else
 			fail "--layer help lacks a key's range, unit or default: $p"
@@ -87,7 +92,7 @@ while read -r name kind; do
 done <"$tmpd/opts.txt"
 
 # Units where the quantity has one.
-for nu in "theta-in:degrees" "theta-out-step:DEG" "phi-step:DEG" "r-step:cm"; do
+for nu in "theta-in:) deg" "theta-out-step:] deg" "phi-step:] deg" "r-step:] cm"; do
 	name=${nu%%:*} unit=${nu#*:}
 	if para "$name" | grep -q "$unit"; then ok "--$name shows its unit ($unit)"; else fail "--$name lacks its unit $unit"; fi
 done
@@ -103,7 +108,7 @@ S2="--layer d=inf,mua=0,mus=100 --r-bins 0 --photons 2000"
 while read -r name kind; do
 	[ "$kind" = required ] || continue
 	case $name in layer|photons) continue ;; esac
-	def=$(para "$name" | sed -n 's/.*(default \([^)]*\)).*/\1/p' | head -n 1)
+	def=$(para "$name" | tr '\n' ' ' | sed -n 's/.*[(;] *default \([^;)]*\)).*/\1/p')
 	[ -n "$def" ] || continue
 	if [ "$name" = max-steps ]; then S=$S2 base=base2; else S=$S1 base=base1; fi
 	if "$SKINBAKE" simulate $S "--$name" "$def" --json 2>"$tmpd/def.err" | norm >"$tmpd/def.json" &&
@@ -207,7 +212,7 @@ bad() {
 
 G="mua=1,mus=10"
 bad "negative thickness" "--layer 1|d = -1|(0, inf)" --layer "d=-1,$G"
-bad "NaN thickness" "--layer 1|d = nan|(0, inf)" --layer "d=nan,$G"
+bad "NaN thickness" "--layer 1|d = 'nan'|(0, inf)" --layer "d=nan,$G"
 bad "zero thickness" "--layer 1|d = 0|(0, inf)" --layer "d=0,$G"
 bad "inf thickness above another layer" "--layer 1|d = inf|last layer" --layer "d=inf,$G" --layer "d=1,$G"
 bad "g = 1" "--layer 1|g = 1|(-1, 1)" --layer "d=0.1,$G,g=1"

@@ -17,6 +17,7 @@
 #include <unistd.h>
 
 #include "export/blender/blender.h"
+#include "geom/texdir.h"
 #include "blender_analytic.h"
 #include "io/exrio.h"
 #include "io/pngio.h"
@@ -32,7 +33,7 @@ static void linear_f(void *ctx, double ti, double to, double dphi, double rgb[3]
 	rgb[2] = 3.0 + 0.25 * dphi;
 }
 
-static void linear_model(struct blender_model *m)
+static void linear_model(struct brdf_source *m)
 {
 	analytic_model(m);
 	m->f_rgb = linear_f;
@@ -63,7 +64,7 @@ static int exists(const char *path)
 static void test_lut_layout(void **state)
 {
 	(void)state;
-	struct blender_model m;
+	struct brdf_source m;
 	linear_model(&m);
 	int n = 8, np = 3, w = n * np;
 	float *lut = blender_lut(&m, n, np);
@@ -87,7 +88,7 @@ static void test_lut_layout(void **state)
 static void test_lut_sample(void **state)
 {
 	(void)state;
-	struct blender_model m;
+	struct brdf_source m;
 	linear_model(&m);
 	int n = 9, np = 5;
 	float *lut = blender_lut(&m, n, np);
@@ -121,7 +122,7 @@ static void test_lut_sample(void **state)
 static void test_albedo_mean(void **state)
 {
 	(void)state;
-	struct blender_model m;
+	struct brdf_source m;
 	analytic_model(&m);
 	double a[3];
 	blender_albedo_mean(&m, a);
@@ -175,7 +176,7 @@ static void test_export_flat(void **state)
 {
 	(void)state;
 	char *d = tmpdir(), *out = xasprintf("%s/set", d), *cause = NULL, *p;
-	struct blender_model m;
+	struct brdf_source m;
 	struct blender_options o;
 	analytic_model(&m);
 	blender_options_default(&o);
@@ -278,13 +279,15 @@ static void test_export_textures(void **state)
 	char *d = tmpdir(), *tex = xasprintf("%s/tex", d), *out = xasprintf("%s/set", d), *cause = NULL;
 	assert_int_equal(util_mkdirs(tex, &cause), 0);
 	write_textures(tex, 16, 1);
-	struct blender_model m;
+	struct brdf_source m;
 	struct blender_options o;
 	analytic_model(&m);
 	blender_options_default(&o);
 	o.lut_cos = 8;
 	o.lut_phi = 2;
-	o.textures = tex;
+	struct texdir *td = texdir_load(tex, 1, &cause);
+	assert_non_null(td);
+	m.detail = td;
 	assert_int_equal(blender_export(&m, &o, out, &cause), 0);
 	int w, h, ch, bits;
 	char *p = xasprintf("%s/height.png", out);
@@ -308,6 +311,7 @@ static void test_export_textures(void **state)
 	assert_float_equal(jget(j, "detail.height_max_um"), 35.0, 0);
 	assert_int_equal((int)jget(j, "files.normal.width"), 6);
 	json_object_put(j);
+	texdir_free(td);
 	free(tex);
 	free(out);
 	rmtree(d);
@@ -319,32 +323,41 @@ static void test_export_bad_input(void **state)
 {
 	(void)state;
 	char *d = tmpdir(), *tex = xasprintf("%s/tex", d), *out = xasprintf("%s/set", d), *cause = NULL;
-	struct blender_model m;
+	struct brdf_source m;
 	struct blender_options o;
 	analytic_model(&m);
 	blender_options_default(&o);
 
-	o.textures = tex;	/* does not exist */
-	assert_int_equal(blender_export(&m, &o, out, &cause), -1);
+	/* Textures are read into the source before the export (texdir_load). */
+	assert_null(texdir_load(tex, 1, &cause));	/* does not exist */
 	assert_non_null(strstr(cause, "height.png"));
 	free(cause);
 	cause = NULL;
-	assert_false(exists(out));
 
 	assert_int_equal(util_mkdirs(tex, &cause), 0);
 	write_textures(tex, 8, 1);
-	assert_int_equal(blender_export(&m, &o, out, &cause), -1);
+	assert_null(texdir_load(tex, 1, &cause));
 	assert_non_null(strstr(cause, "16-bit gray"));
 	free(cause);
 	cause = NULL;
 	write_textures(tex, 16, 0);
-	assert_int_equal(blender_export(&m, &o, out, &cause), -1);
+	assert_null(texdir_load(tex, 1, &cause));
 	assert_non_null(strstr(cause, "skinbake:tile_mm"));
 	free(cause);
 	cause = NULL;
+	/* Detail maps read without the normal map cannot be exported. */
+	write_textures(tex, 16, 1);
+	struct texdir *td = texdir_load(tex, 0, &cause);
+	assert_non_null(td);
+	m.detail = td;
+	assert_int_equal(blender_export(&m, &o, out, &cause), -1);
+	assert_non_null(strstr(cause, "normal.png"));
+	free(cause);
+	cause = NULL;
+	m.detail = NULL;
+	texdir_free(td);
 	assert_false(exists(out));
 
-	o.textures = NULL;
 	o.lut_cos = 3;
 	assert_int_equal(blender_export(&m, &o, out, &cause), -1);
 	assert_string_equal(cause, "lut_cos = 3 is out of range [8, 1024]");

@@ -7,6 +7,7 @@
 #include <math.h>
 
 #include "engine/optics.h"
+#include "engine/specular.h"
 
 static void test_normal_incidence(void **state)
 {
@@ -110,6 +111,43 @@ static void test_reciprocity(void **state)
 		}
 }
 
+/* The microfacet pieces: Schlick's end points and its agreement with the
+ * Schlick model of optics_fresnel, D normalised over the hemisphere of
+ * half vectors, G1 = 1 at normal view and equal to the tangent form, and
+ * specular_ggx built from them for a single interface. */
+static void test_microfacet_pieces(void **state)
+{
+	(void)state;
+	double n = 1.44, r0 = (n - 1) * (n - 1) / ((n + 1) * (n + 1)), ct;
+	assert_float_equal(specular_schlick(1.0, n), r0, 1e-15);
+	assert_float_equal(specular_schlick(0.0, n), 1.0, 1e-15);
+	for (double c = 0.05; c < 1; c += 0.1)
+		assert_float_equal(specular_schlick(c, n), optics_fresnel(OPTICS_FRESNEL_SCHLICK, 1.0, n, c, &ct), 1e-14);
+	for (double a = 0.1; a < 1; a += 0.2) {
+		/* int D(h) cos(h) d(omega_h) = 1, midpoint rule in cos(h). */
+		double a2 = a * a, sum = 0.0;
+		enum { N = 200000 };
+		for (int i = 0; i < N; i++) {
+			double mu = (i + 0.5) / N;
+			sum += specular_ggx_d(mu, a2) * mu * 2 * M_PI / N;
+		}
+		assert_float_equal(sum, 1.0, 1e-4);
+		assert_float_equal(specular_smith_g1(1.0, a2), 1.0, 1e-15);
+		for (double c = 0.05; c < 1; c += 0.1) {
+			double t2 = (1 - c * c) / (c * c);
+			assert_float_equal(specular_smith_g1(c, a2), 2 / (1 + sqrt(1 + a2 * t2)), 1e-14);
+		}
+	}
+	struct specular_stack st = { .n = 2, .n_list = { 1.0, n }, .model = OPTICS_FRESNEL_SCHLICK };
+	double ti = 0.4, to = 0.7, dphi = 2.5, a = 0.3;
+	double wi[3] = { sin(ti), 0, cos(ti) }, wo[3] = { sin(to) * cos(dphi), sin(to) * sin(dphi), cos(to) };
+	double h[3] = { wi[0] + wo[0], wi[1] + wo[1], wi[2] + wo[2] }, hn = sqrt(h[0] * h[0] + h[1] * h[1] + h[2] * h[2]);
+	double ch = h[2] / hn, cd = (wi[0] * h[0] + wi[2] * h[2]) / hn;
+	double want = specular_schlick(cd, n) * specular_ggx_d(ch, a * a) * specular_smith_g1(cos(ti), a * a) *
+	    specular_smith_g1(cos(to), a * a) / (4 * cos(ti) * cos(to));
+	assert_float_equal(specular_ggx(&st, a, ti, to, dphi), want, 1e-12 * want);
+}
+
 int main(void)
 {
 	const struct CMUnitTest tests[] = {
@@ -119,6 +157,7 @@ int main(void)
 		cmocka_unit_test(test_snell),
 		cmocka_unit_test(test_against_trig_form),
 		cmocka_unit_test(test_reciprocity),
+		cmocka_unit_test(test_microfacet_pieces),
 	};
 	return cmocka_run_group_tests_name("optics", tests, NULL, NULL);
 }

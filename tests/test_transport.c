@@ -63,7 +63,7 @@ static void cfg_prepare(struct sim_config *c)
 	slab_prepare(&c->slab);
 }
 
-static int finite_v(struct sim_value v)
+static int finite_v(struct estimate v)
 {
 	return isfinite(v.v) && isfinite(v.err) && v.err >= 0.0;
 }

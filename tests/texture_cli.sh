@@ -80,14 +80,14 @@ bad() {
 }
 bad "size too small" "--size = 3 is out of range" --size 3
 bad "negative pore depth" "--pore-depth" --pore-depth -5
-bad "not a number" "not a number" --stretch abc
+bad "not a number" "--stretch = 'abc' is not a decimal number in \[1, 10\]" --stretch abc
 bad "unknown site" "unknown site 'elbow'" --site elbow
 bad "too many levels" "--levels" --levels 9
 bad "fractional levels" "whole number" --levels 1.5
 bad "cell larger than half the tile" "furrow cell" --furrow-cell 8 --tile-mm 10
 bad "too many junctions" "junctions" --furrow-cell 0.02 --tile-mm 100
 bad "unknown option" "unknown option" --frobnicate 1
-bad "missing preset file" "cannot open" --preset-file "$tmpd/nope.ini"
+bad "missing preset file" "nope.ini': No such file or directory" --preset-file "$tmpd/nope.ini"
 printf '[texture]\nsize = 20\nwibble = 3\n' >"$tmpd/badkey.ini"
 bad "unknown preset key, with line" "badkey.ini:3: unknown key 'wibble'" --preset-file "$tmpd/badkey.ini"
 printf '[texture]\nsite = hand\n; %s\n' "$(printf '%0250d' 0)" > "$tmpd/long.ini"

@@ -1,3 +1,5 @@
+/* util: allocation that never fails, messages, and atomic file output
+ * (see util.h). */
 #include "config.h"
 #include "base/util.h"
 

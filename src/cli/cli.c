@@ -1,5 +1,5 @@
-/* skinbake's entry point: the subcommand table, shared option parsing,
- * error printing and the progress bar. */
+/* skinbake's entry point: the command table, error printing and the
+ * progress bar (options are parsed by opt.c). */
 #include "config.h"
 #include "cli/cli.h"
 
@@ -9,7 +9,7 @@
 #include <string.h>
 #include <unistd.h>
 
-#include "engine/optics.h"
+#include "cli/opt.h"
 #include "base/util.h"
 
 #ifdef SKINBAKE_MPI
@@ -18,13 +18,7 @@
 
 struct cli_parallel cli_par = { 0, 1, NULL };
 
-struct command {
-	const char *name;
-	const char *summary;
-	int (*exec)(int argc, char **argv);
-};
-
-static const struct command commands[] = {
+static const struct opt_sub commands[] = {
 	{ "simulate", "Monte Carlo transport in a layered slab: totals, BRDF, Rd(r)", cmd_simulate },
 	{ "presets", "list the shipped skin presets", cmd_presets },
 	{ "preset", "preset show NAME: print a preset's layers per wavelength", cmd_preset },
@@ -32,12 +26,13 @@ static const struct command commands[] = {
 	{ "eval", "evaluate a baked BRDF at given angles", cmd_eval },
 	{ "texture", "grow pores and furrows as seamless height and normal maps", cmd_texture },
 	{ "export", "export pov|blender: scenes and image sets for renderers", cmd_export },
+	{ NULL, NULL, NULL },
 };
 
 static void usage(FILE *fp)
 {
 	fprintf(fp, "usage: skinbake COMMAND [options]\n\ncommands:\n");
-	for (size_t i = 0; i < sizeof commands / sizeof commands[0]; i++)
+	for (size_t i = 0; commands[i].name; i++)
 		fprintf(fp, "  %-10s %s\n", commands[i].name, commands[i].summary);
 	fprintf(fp, "\n  skinbake COMMAND --help   shows every option with its default, unit and range.\n"
 	    "  skinbake --version        prints the version.\n");
@@ -52,7 +47,7 @@ static int cli_main(int argc, char **argv)
 	if (strcmp(argv[1], "--help") == 0 || strcmp(argv[1], "-h") == 0 || strcmp(argv[1], "help") == 0) {
 		if (argc > 2 && strcmp(argv[1], "help") == 0) {
 			char *hv[] = { argv[2], (char *)"--help", NULL };
-			for (size_t i = 0; i < sizeof commands / sizeof commands[0]; i++)
+			for (size_t i = 0; commands[i].name; i++)
 				if (strcmp(commands[i].name, argv[2]) == 0)
 					return commands[i].exec(2, hv);
 		}
@@ -63,7 +58,7 @@ static int cli_main(int argc, char **argv)
 		printf("%s\n", PACKAGE_STRING);
 		return CLI_EXIT_OK;
 	}
-	for (size_t i = 0; i < sizeof commands / sizeof commands[0]; i++)
+	for (size_t i = 0; commands[i].name; i++)
 		if (strcmp(commands[i].name, argv[1]) == 0)
 			return commands[i].exec(argc - 1, argv + 1);
 	fprintf(stderr, "skinbake: unknown command '%s'\n", argv[1]);
@@ -111,11 +106,18 @@ static void vmsg(const char *cmd, const char *fmt, va_list ap)
 	fputc('\n', stderr);
 }
 
+int cli_vusage_error(const char *cmd, const char *fmt, va_list ap)
+{
+	if (cli_par.rank == 0)
+		vmsg(cmd, fmt, ap);
+	return CLI_EXIT_USAGE;
+}
+
 int cli_usage_error(const char *cmd, const char *fmt, ...)
 {
 	va_list ap;
 	va_start(ap, fmt);
-	vmsg(cmd, fmt, ap);
+	cli_vusage_error(cmd, fmt, ap);
 	va_end(ap);
 	return CLI_EXIT_USAGE;
 }
@@ -131,45 +133,16 @@ int cli_fail(const char *cmd, const char *fmt, ...)
 
 int cli_double(const char *cmd, const char *opt, const char *s, double lo, double hi, double *out)
 {
-	double v;
-	if (util_parse_double(s, &v) != 0 || isnan(v)) {
-		cli_usage_error(cmd, "%s: '%s' is not a number (allowed range [%g, %g])", opt, s, lo, hi);
-		return -1;
-	}
-	if (v < lo || v > hi) {
-		cli_usage_error(cmd, "%s = %g is out of range [%g, %g]", opt, v, lo, hi);
-		return -1;
-	}
-	*out = v;
-	return 0;
+	struct opt_cmd c = { .name = cmd };
+	struct opt_ctx x = { .cmd = &c };
+	return opt_double(&x, opt, s, lo, hi, 0, NULL, out);
 }
 
 int cli_long(const char *cmd, const char *opt, const char *s, long lo, long hi, long *out)
 {
-	long v;
-	if (util_parse_long(s, &v) != 0) {
-		cli_usage_error(cmd, "%s: '%s' is not a whole number (allowed range [%ld, %ld])", opt, s, lo, hi);
-		return -1;
-	}
-	if (v < lo || v > hi) {
-		cli_usage_error(cmd, "%s = %ld is out of range [%ld, %ld]", opt, v, lo, hi);
-		return -1;
-	}
-	*out = v;
-	return 0;
-}
-
-int cli_fresnel(const char *cmd, const char *s, int *model)
-{
-	if (strcmp(s, "exact") == 0)
-		*model = OPTICS_FRESNEL_EXACT;
-	else if (strcmp(s, "schlick") == 0)
-		*model = OPTICS_FRESNEL_SCHLICK;
-	else {
-		cli_usage_error(cmd, "--fresnel = '%s' is not one of exact, schlick", s);
-		return -1;
-	}
-	return 0;
+	struct opt_cmd c = { .name = cmd };
+	struct opt_ctx x = { .cmd = &c };
+	return opt_long(&x, opt, s, (double)lo, (double)hi, 0, NULL, out);
 }
 
 void cli_progress_start(struct cli_progress *p, const char *label)

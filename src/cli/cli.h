@@ -3,14 +3,17 @@
  * (usage, flag, preset, file), 1 runtime failure (I/O). */
 #ifndef SKINBAKE_CLI_H
 #define SKINBAKE_CLI_H
+#include <stdarg.h>
 #include <stdio.h>
 
 #define CLI_EXIT_OK 0
 #define CLI_EXIT_FAIL 1
 #define CLI_EXIT_USAGE 2
 
-/* Print "skinbake CMD: message" to stderr; returns CLI_EXIT_USAGE. */
+/* Print "skinbake CMD: message" to stderr; returns CLI_EXIT_USAGE.  Under
+ * MPI only rank 0 prints: every rank sees the same bad input. */
 int cli_usage_error(const char *cmd, const char *fmt, ...) __attribute__((format(printf, 2, 3)));
+int cli_vusage_error(const char *cmd, const char *fmt, va_list ap) __attribute__((format(printf, 2, 0)));
 /* Print "skinbake CMD: message" to stderr; returns CLI_EXIT_FAIL. */
 int cli_fail(const char *cmd, const char *fmt, ...) __attribute__((format(printf, 2, 3)));
 
@@ -26,12 +29,11 @@ void cli_progress_start(struct cli_progress *p, const char *label);
 void cli_progress_update(void *user, long done, long total);
 void cli_progress_end(struct cli_progress *p);
 
-/* Parse helpers for option values: on failure print a message naming the
- * option, the value and the allowed range, and return -1. */
+/* Option values by the rules of opt.h (decimal only, message with the
+ * range); -1 after reporting.  For commands not yet described by an opt
+ * table (cmd_export_pov.c); new code uses opt.h. */
 int cli_double(const char *cmd, const char *opt, const char *s, double lo, double hi, double *out);
 int cli_long(const char *cmd, const char *opt, const char *s, long lo, long hi, long *out);
-/* --fresnel exact|schlick into *model (enum optics_fresnel). */
-int cli_fresnel(const char *cmd, const char *s, int *model);
 
 /* Process layout for bakes split over MPI ranks: {0, 1, NULL} in the plain
  * build; skinbake-mpi fills it after MPI_Init.  Only rank 0 prints and writes. */

@@ -1,7 +1,6 @@
 /* skinbake eval: the interpolated baked BRDF at given angles. */
 #include "config.h"
 
-#include <getopt.h>
 #include <json-c/json.h>
 #include <math.h>
 #include <stdlib.h>
@@ -9,63 +8,38 @@
 
 #include "bake/bakefile.h"
 #include "cli/cli.h"
+#include "cli/opt.h"
 #include "base/util.h"
-
-static const char *CMD = "eval";
-
-static void help(FILE *fp)
-{
-	fprintf(fp,
-	    "usage: skinbake eval --bake DIR --theta-in DEG --theta-out DEG --phi DEG [--json]\n"
-	    "\n"
-	    "Print the baked BRDF [1/sr] per wavelength: the diffuse (subsurface) part\n"
-	    "interpolated from the table with its standard error, the analytic specular\n"
-	    "part and their total.\n"
-	    "\n"
-	    "  --bake DIR         a directory written by skinbake bake\n"
-	    "  --theta-in DEG     incidence angle [0, 90] degrees\n"
-	    "  --theta-out DEG    exit angle [0, 90] degrees\n"
-	    "  --phi DEG          azimuth difference [0, 360] degrees: 0 back toward the light,\n"
-	    "                     180 the mirror side\n"
-	    "  --json             one JSON object: wavelengths_nm, diffuse, diffuse_err,\n"
-	    "                     specular, total (arrays), and rgb_total\n"
-	    "  --help             this text\n");
-}
 
 int cmd_eval(int argc, char **argv)
 {
-	enum { O_BAKE = 256, O_TI, O_TO, O_PHI, O_JSON, O_HELP };
-	static const struct option opts[] = {
-		{ "bake", required_argument, 0, O_BAKE }, { "theta-in", required_argument, 0, O_TI },
-		{ "theta-out", required_argument, 0, O_TO }, { "phi", required_argument, 0, O_PHI },
-		{ "json", no_argument, 0, O_JSON }, { "help", no_argument, 0, O_HELP }, { 0, 0, 0, 0 }
+	const char *dir;
+	double ti, to, ph;
+	int json = 0;
+	const struct opt opts[] = {
+		{ "bake", OPT_PATH_IN, &dir, "DIR", .flags = OPT_REQUIRED | OPT_DIR,
+		  .help = "a directory written by skinbake bake" },
+		{ "theta-in", OPT_DOUBLE, &ti, "DEG", .lo = 0, .hi = 90, .unit = "deg", .flags = OPT_REQUIRED,
+		  .help = "incidence angle" },
+		{ "theta-out", OPT_DOUBLE, &to, "DEG", .lo = 0, .hi = 90, .unit = "deg", .flags = OPT_REQUIRED,
+		  .help = "exit angle" },
+		{ "phi", OPT_DOUBLE, &ph, "DEG", .lo = 0, .hi = 360, .unit = "deg", .flags = OPT_REQUIRED,
+		  .help = "azimuth difference: 0 back toward the light, 180 the mirror side" },
+		{ "json", OPT_FLAG, &json, .help = "one JSON object: wavelengths_nm, diffuse, diffuse_err, "
+		  "specular, total (arrays), and rgb_total" },
+		OPT_END
 	};
-	const char *dir = NULL;
-	double ti = NAN, to = NAN, ph = NAN;
-	int json = 0, ch;
-	opterr = 0;
-	optind = 1;
-	while ((ch = getopt_long(argc, argv, "h", opts, NULL)) != -1) {
-		switch (ch) {
-		case O_BAKE: dir = optarg; break;
-		case O_TI: if (cli_double(CMD, "--theta-in", optarg, 0, 90, &ti)) return CLI_EXIT_USAGE; break;
-		case O_TO: if (cli_double(CMD, "--theta-out", optarg, 0, 90, &to)) return CLI_EXIT_USAGE; break;
-		case O_PHI: if (cli_double(CMD, "--phi", optarg, 0, 360, &ph)) return CLI_EXIT_USAGE; break;
-		case O_JSON: json = 1; break;
-		case 'h':
-		case O_HELP: help(stdout); return CLI_EXIT_OK;
-		default:
-			return cli_usage_error(CMD, "unknown or incomplete option '%s' (see skinbake eval --help)", argv[optind - 1]);
-		}
-	}
-	if (optind < argc)
-		return cli_usage_error(CMD, "unexpected argument '%s'", argv[optind]);
-	if (dir == NULL || isnan(ti) || isnan(to) || isnan(ph))
-		return cli_usage_error(CMD, "--bake, --theta-in, --theta-out and --phi are required");
+	const struct opt_cmd cmd = { "eval", "--bake DIR --theta-in DEG --theta-out DEG --phi DEG [--json]",
+		"Print the baked BRDF [1/sr] per wavelength: the diffuse (subsurface) part\n"
+		"interpolated from the table with its standard error, the analytic specular\n"
+		"part and their total.", opts, NULL, 0, 0 };
+	struct opt_ctx x;
+	if (opt_parse(&x, &cmd, argc, argv) != 0)
+		return x.exit;
 	char *cause = NULL;
 	struct bake *b = bake_load(dir, &cause);
 	if (b == NULL) {
-		int rc = cli_usage_error(CMD, "--bake: %s", cause);
+		int rc = cli_usage_error(cmd.name, "--bake: %s", cause);
 		free(cause);
 		return rc;
 	}

@@ -1,19 +1,17 @@
-/* skinbake export pov|blender: dispatch to the exporter. */
+/* skinbake export: the exporter table; each exporter is one command file
+ * (cmd_export_NAME.c) and one line here. */
 #include "config.h"
 
-#include <string.h>
-
 #include "cli/cli.h"
+#include "cli/opt.h"
+
+static const struct opt_sub exporters[] = {
+	{ "pov", "POV-Ray 3.7 include files and scenes that evaluate the baked table", cmd_export_pov },
+	{ "blender", "an image set for Blender's importer (exporters/blender/import_skin.py)", cmd_export_blender },
+	{ NULL, NULL, NULL },
+};
 
 int cmd_export(int argc, char **argv)
 {
-	if (argc >= 2 && strcmp(argv[1], "pov") == 0)
-		return cmd_export_pov(argc - 1, argv + 1);
-	if (argc >= 2 && strcmp(argv[1], "blender") == 0)
-		return cmd_export_blender(argc - 1, argv + 1);
-	if (argc >= 2 && (strcmp(argv[1], "--help") == 0 || strcmp(argv[1], "-h") == 0)) {
-		printf("usage: skinbake export pov|blender [options]   (skinbake export pov --help)\n");
-		return CLI_EXIT_OK;
-	}
-	return cli_usage_error("export", "expected 'pov' or 'blender', got '%s'", argc >= 2 ? argv[1] : "");
+	return opt_dispatch("export", exporters, argc, argv);
 }

@@ -377,12 +377,12 @@ static void print_plan(const struct scene *s)
 		printf("curved skin objects: theta_in over [0, 90] deg (the table nodes are uniform in angle)\n");
 	printf("wavelengths: the visible range (the tables are linear sRGB from the spectral bake)\n");
 	for (int k = 0; k < s->n_skins; k++) {
-		printf("skin %s: skinbake bake --preset %s --theta-in ", s->skins[k].name, s->skins[k].preset);
+		printf("skin %s: skinbake bake --preset %s ", s->skins[k].name, s->skins[k].preset);
 		if (curved || n_ang == 0)
-			printf("10");
+			printf("--theta-nodes 10");
 		else
 			for (int i = 0; i < n_ang; i++)
-				printf("%.2f,", ang[i]);
+				printf("%s%.2f", i ? "," : "--theta-in ", ang[i]);
 		printf(" --out %s\n", s->skins[k].bake ? s->skins[k].bake : "DIR");
 	}
 	if (!curved && n_ang > 0)

@@ -2,74 +2,43 @@
  * built-in preset's INI text, or list the preset file keys. */
 #include "config.h"
 
-#include <getopt.h>
 #include <math.h>
 #include <stdio.h>
 #include <stdlib.h>
 #include <string.h>
 
 #include "cli/cli.h"
+#include "cli/opt.h"
 #include "skin/preset.h"
 #include "base/util.h"
 
-static const char *CMD = "preset";
-
-static void help(FILE *fp)
-{
-	fprintf(fp,
-	    "usage: skinbake preset show NAME [--wavelengths LIST] [--ini]\n"
-	    "       skinbake preset show --preset-file FILE [--wavelengths LIST] [--ini]\n"
-	    "       skinbake preset cat NAME\n"
-	    "       skinbake preset keys\n"
-	    "\n"
-	    "show   prints the layer stack the simulation gets, top first, one row per\n"
-	    "       wavelength and layer: thickness d [cm], refractive index n, absorption\n"
-	    "       mua [1/cm], scattering mus [1/cm], HG anisotropy g and the reduced\n"
-	    "       scattering musp = mus (1 - g) [1/cm].  Air is above; below the deepest\n"
-	    "       layer is a half space of its own index.\n"
-	    "  --wavelengths LIST     wavelengths [nm] in [380, 780]: comma list and\n"
-	    "                         START:STOP:STEP ranges, ascending (default: the preset's)\n"
-	    "  --preset-file FILE     read the preset from FILE instead of a built-in one\n"
-	    "  --ini                  print the fully resolved preset in the file format instead\n"
-	    "cat    prints a built-in preset's INI text (a start for own preset files)\n"
-	    "keys   lists every preset file key with unit, default and range\n"
-	    "\n"
-	    "Built-in presets: skinbake presets.  File format: docs/presets.md.\n");
-}
-
 static int show(int argc, char **argv)
 {
-	enum { O_WL = 256, O_FILE, O_INI, O_HELP };
-	static const struct option opts[] = {
-		{ "wavelengths", required_argument, 0, O_WL }, { "preset-file", required_argument, 0, O_FILE },
-		{ "ini", no_argument, 0, O_INI }, { "help", no_argument, 0, O_HELP }, { 0, 0, 0, 0 }
+	const char *file = NULL;
+	static struct opt_list wlist;	/* checked here, read again by preset_parse_wavelengths */
+	int ini = 0;
+	const struct opt opts[] = {
+		{ "wavelengths", OPT_LIST, &wlist, "LIST", .lo = 380, .hi = 780, .unit = "nm", .max = SKIN_MAX_WL,
+		  .flags = OPT_STEPS, .excl = "ini", .def_note = "the preset's", .help = "wavelengths, ascending" },
+		{ "preset-file", OPT_PATH_IN, &file, "FILE", .flags = OPT_FILE,
+		  .help = "read the preset from FILE instead of a built-in one" },
+		{ "ini", OPT_FLAG, &ini, .excl = "wavelengths",
+		  .help = "print the fully resolved preset in the file format instead" },
+		OPT_END
 	};
-	const char *file = NULL, *wls = NULL;
-	int ini = 0, ch;
-	opterr = 0;
-	optind = 1;
-	while ((ch = getopt_long(argc, argv, "h", opts, NULL)) != -1) {
-		switch (ch) {
-		case O_WL: wls = optarg; break;
-		case O_FILE: file = optarg; break;
-		case O_INI: ini = 1; break;
-		case 'h':
-		case O_HELP: help(stdout); return CLI_EXIT_OK;
-		default:
-			return cli_usage_error(CMD, "unknown or incomplete option '%s' (see skinbake preset --help)",
-			    argv[optind - 1]);
-		}
-	}
-	const char *name = optind < argc ? argv[optind] : NULL;
-	if (optind + 1 < argc)
-		return cli_usage_error(CMD, "unexpected argument '%s'", argv[optind + 1]);
+	const struct opt_cmd cmd = { "preset show", "(NAME | --preset-file FILE) [--wavelengths LIST] [--ini]",
+		"Print the layer stack the simulation gets, top first, one row per wavelength\n"
+		"and layer: thickness d [cm], refractive index n, absorption mua [1/cm],\n"
+		"scattering mus [1/cm], HG anisotropy g and the reduced scattering\n"
+		"musp = mus (1 - g) [1/cm].  Air is above; below the deepest layer is a half\n"
+		"space of its own index.", opts,
+		"Built-in presets: skinbake presets.  File format: docs/presets.md.", 0, 1 };
+	struct opt_ctx x;
+	if (opt_parse(&x, &cmd, argc, argv) != 0)
+		return x.exit;
+	const char *name = x.n_args ? x.args[0] : NULL, *CMD = cmd.name, *wls = opt_text(&x, "wavelengths");
 	if ((name == NULL) == (file == NULL))
-		return cli_usage_error(CMD, "show needs either a preset NAME or --preset-file FILE "
-		    "(see skinbake presets)");
-
-	if (ini && wls)
-		return cli_usage_error(CMD, "--wavelengths and --ini exclude each other (--ini prints the preset, "
-		    "whose [skin] wavelengths are its defaults)");
+		return opt_error(&x, "give either a preset NAME or --preset-file FILE (see skinbake presets)");
 	char *cause = NULL;
 	struct skin_params *p = file ? preset_load_file(file, &cause) : preset_load_builtin(name, &cause);
 	if (p == NULL) {
@@ -130,36 +99,46 @@ static int show(int argc, char **argv)
 	return CLI_EXIT_OK;
 }
 
+static int cat(int argc, char **argv)
+{
+	const struct opt opts[] = { OPT_END };
+	const struct opt_cmd cmd = { "preset cat", "NAME", "Print a built-in preset's INI text (a start for own "
+		"preset files).", opts, NULL, 1, 1 };
+	struct opt_ctx x;
+	if (opt_parse(&x, &cmd, argc, argv) != 0)
+		return x.exit;
+	int i = preset_find(x.args[0]);
+	if (i < 0) {
+		char *cause = NULL;
+		preset_load_builtin(x.args[0], &cause);	/* for the message listing the names */
+		int rc = opt_error(&x, "%s", cause);
+		free(cause);
+		return rc;
+	}
+	fputs(preset_builtin_text(i), stdout);
+	return CLI_EXIT_OK;
+}
+
+static int keys(int argc, char **argv)
+{
+	const struct opt opts[] = { OPT_END };
+	const struct opt_cmd cmd = { "preset keys", "", "List every preset file key with unit, default and range.",
+		opts, NULL, 0, 0 };
+	struct opt_ctx x;
+	if (opt_parse(&x, &cmd, argc, argv) != 0)
+		return x.exit;
+	preset_print_keys(stdout);
+	return CLI_EXIT_OK;
+}
+
+static const struct opt_sub actions[] = {
+	{ "show", "print a preset's resolved layers per wavelength", show },
+	{ "cat", "print a built-in preset's INI text", cat },
+	{ "keys", "list every preset file key with unit, default and range", keys },
+	{ NULL, NULL, NULL },
+};
+
 int cmd_preset(int argc, char **argv)
 {
-	if (argc < 2)
-		return cli_usage_error(CMD, "missing action: show, cat or keys (see skinbake preset --help)");
-	const char *a = argv[1];
-	if (strcmp(a, "--help") == 0 || strcmp(a, "-h") == 0 || strcmp(a, "help") == 0) {
-		help(stdout);
-		return CLI_EXIT_OK;
-	}
-	if (strcmp(a, "show") == 0)
-		return show(argc - 1, argv + 1);
-	if (strcmp(a, "cat") == 0) {
-		if (argc != 3)
-			return cli_usage_error(CMD, "usage: skinbake preset cat NAME");
-		int i = preset_find(argv[2]);
-		if (i < 0) {
-			char *cause = NULL;
-			preset_load_builtin(argv[2], &cause);	/* for the message listing the names */
-			int rc = cli_usage_error(CMD, "%s", cause);
-			free(cause);
-			return rc;
-		}
-		fputs(preset_builtin_text(i), stdout);
-		return CLI_EXIT_OK;
-	}
-	if (strcmp(a, "keys") == 0) {
-		if (argc != 2)
-			return cli_usage_error(CMD, "unexpected argument '%s'", argv[2]);
-		preset_print_keys(stdout);
-		return CLI_EXIT_OK;
-	}
-	return cli_usage_error(CMD, "unknown action '%s' (show, cat, keys)", a);
+	return opt_dispatch("preset", actions, argc, argv);
 }

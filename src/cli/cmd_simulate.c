@@ -2,116 +2,47 @@
  * command line; a readable table or one JSON object on stdout. */
 #include "config.h"
 
-#include <getopt.h>
 #include <json-c/json.h>
+#include <limits.h>
 #include <math.h>
+#include <stddef.h>
 #include <stdlib.h>
 #include <string.h>
 
 #include "cli/cli.h"
+#include "cli/opt.h"
 #include "engine/sim.h"
 #include "base/util.h"
 
-static const char *CMD = "simulate";
+/* --layer d=CM,n=N,mua=1/CM,mus=1/CM,g=G, top layer first. */
+static const struct opt_key layer_keys[] = {
+	{ "d", OPT_DOUBLE, offsetof(struct layer, d), .lo = 0, .hi = INFINITY, .unit = "cm",
+	  .flags = OPT_REQUIRED | OPT_LO_OPEN | OPT_HI_OPEN | OPT_INF, .help = "thickness (the last layer may be inf)" },
+	{ "n", OPT_DOUBLE, offsetof(struct layer, n), "1", .lo = 1, .hi = 10, .help = "refractive index" },
+	{ "mua", OPT_DOUBLE, offsetof(struct layer, mu_a), .lo = 0, .hi = 1e8, .unit = "1/cm", .flags = OPT_REQUIRED,
+	  .help = "absorption coefficient" },
+	{ "mus", OPT_DOUBLE, offsetof(struct layer, mu_s), .lo = 0, .hi = 1e8, .unit = "1/cm", .flags = OPT_REQUIRED,
+	  .help = "scattering coefficient" },
+	{ "g", OPT_DOUBLE, offsetof(struct layer, g), "0", .lo = -1, .hi = 1, .flags = OPT_LO_OPEN | OPT_HI_OPEN,
+	  .help = "Henyey-Greenstein anisotropy" },
+	{ NULL },
+};
 
-static void help(FILE *fp)
-{
-	fprintf(fp,
-	    "usage: skinbake simulate --layer SPEC [--layer SPEC ...] [options]\n"
-	    "\n"
-	    "Monte Carlo light transport (MCML with oblique incidence) in a stack of\n"
-	    "plane-parallel layers, top layer first.\n"
-	    "\n"
-	    "  --layer d=CM,n=N,mua=1/CM,mus=1/CM,g=G\n"
-	    "                         one layer (repeat, 1 to %d): d thickness [cm] in (0, inf),\n"
-	    "                         'inf' allowed for the last layer; n refractive index [1, 10]\n"
-	    "                         (default 1); mua, mus absorption and scattering coefficients\n"
-	    "                         [1/cm] in [0, 1e8]; g HG anisotropy in (-1, 1) (default 0).\n"
-	    "                         mua = mus = 0 makes a clear layer (e.g. sebum).\n"
-	    "  --n-above N            index of the medium above [1, 10] (default 1)\n"
-	    "  --n-below N            index of the medium below [1, 10] (default 1)\n"
-	    "  --theta-in DEG         incidence angle [0, 90) degrees (default 0)\n"
-	    "  --photons N            photons [1, 1e12] (default 1e6)\n"
-	    "  --seed N               random seed [0, 2^63-1] (default 1)\n"
-	    "  --threads N            OpenMP threads [0, 1024], 0 = all cores (default 0)\n"
-	    "  --batches N            independent batches for standard errors [2, 100000] (default 32)\n"
-	    "  --fresnel exact|schlick  reflectance model at every boundary (default exact)\n"
-	    "  --theta-out-step DEG   width of theta_out bands, must divide 90 (default 5)\n"
-	    "  --phi-step DEG         width of delta_phi bins, must divide 180 (default 5)\n"
-	    "  --r-step CM            radial bin width of Rd(r) [cm] in [1e-7, 100] (default 0.005)\n"
-	    "  --r-bins N             radial bins of Rd(r) [0, 100000], 0 = off (default 100)\n"
-	    "  --roulette-w W         weight threshold for roulette [0, 1] (default 0.2)\n"
-	    "  --roulette-chance P    roulette survival probability (0, 1] (default 0.3)\n"
-	    "  --max-steps N          interactions per photon before the guard ends it,\n"
-	    "                         booked as 'lost' [1, 1e12] (default 1e6)\n"
-	    "  --json                 one JSON object on stdout instead of a table\n"
-	    "  --help                 this text\n"
-	    "\n"
-	    "Rd excludes the specular reflection Rsp (MCML convention); Tt includes\n"
-	    "unscattered light.  BRDF values are in 1/sr: the fraction of incident power\n"
-	    "leaving through a band divided by the band's integral of cos(theta) d(omega).\n"
-	    "delta_phi = 0 points back toward the source, 180 to the mirror side.\n",
-	    SLAB_MAX_LAYERS);
-}
+struct layers {
+	int n;
+	struct layer l[SLAB_MAX_LAYERS];
+};
 
-/* Parse "d=0.02,n=1,mua=10,mus=90,g=0.75". */
-static int parse_layer(const char *spec, int idx, struct layer *l)
+static int add_layer(struct opt_ctx *x, const struct opt *o, const char *spec)
 {
-	char *s = xstrdup(spec), *save = NULL;
-	int have_d = 0, have_a = 0, have_s = 0, rc = -1;
-	*l = (struct layer){ .n = 1.0 };
-	for (char *tok = strtok_r(s, ",", &save); tok; tok = strtok_r(NULL, ",", &save)) {
-		char *eq = strchr(tok, '=');
-		if (eq == NULL) {
-			cli_usage_error(CMD, "--layer %d: '%s' is not key=value (keys d, n, mua, mus, g)", idx, tok);
-			goto out;
-		}
-		*eq = '\0';
-		const char *k = tok, *v = eq + 1;
-		double x;
-		if (strcmp(k, "d") == 0 && (strcmp(v, "inf") == 0 || strcmp(v, "INF") == 0)) {
-			l->d = INFINITY;
-			have_d = 1;
-			continue;
-		}
-		if (util_parse_double(v, &x) != 0) {
-			static const char *const keys[] = { "d", "n", "mua", "mus", "g" };
-			static const char *const ranges[] = { "(0, inf) cm, or inf for the last layer", "[1, 10]",
-				"[0, 1e8] 1/cm", "[0, 1e8] 1/cm", "(-1, 1)" };
-			const char *range = NULL;
-			for (int i = 0; i < 5; i++)
-				if (strcmp(k, keys[i]) == 0)
-					range = ranges[i];
-			if (range == NULL)
-				cli_usage_error(CMD, "--layer %d: unknown key '%s' (keys d, n, mua, mus, g)", idx, k);
-			else
-				cli_usage_error(CMD, "--layer %d: %s = '%s' is not a number (allowed range %s)", idx, k, v, range);
-			goto out;
-		}
-		if (strcmp(k, "d") == 0)
-			l->d = x, have_d = 1;
-		else if (strcmp(k, "n") == 0)
-			l->n = x;
-		else if (strcmp(k, "mua") == 0)
-			l->mu_a = x, have_a = 1;
-		else if (strcmp(k, "mus") == 0)
-			l->mu_s = x, have_s = 1;
-		else if (strcmp(k, "g") == 0)
-			l->g = x;
-		else {
-			cli_usage_error(CMD, "--layer %d: unknown key '%s' (keys d, n, mua, mus, g)", idx, k);
-			goto out;
-		}
-	}
-	if (!have_d || !have_a || !have_s) {
-		cli_usage_error(CMD, "--layer %d: '%s' lacks %s (required keys d, mua, mus)", idx, spec,
-		    !have_d ? "d" : !have_a ? "mua" : "mus");
-		goto out;
-	}
-	rc = 0;
-out:
-	free(s);
-	return rc;
+	struct layers *ls = o->dest;
+	char label[32];
+	snprintf(label, sizeof label, "--layer %d", ls->n + 1);
+	ls->l[ls->n] = (struct layer){ 0 };
+	if (opt_keys(x, label, spec, layer_keys, &ls->l[ls->n]) != 0)
+		return -1;
+	ls->n++;
+	return 0;
 }
 
 static int divides(double whole, double step)
@@ -227,99 +158,66 @@ static void print_table(const struct sim_config *c, const struct sim_result *r)
 
 int cmd_simulate(int argc, char **argv)
 {
-	enum { O_LAYER = 256, O_NA, O_NB, O_TH, O_PH, O_SEED, O_THR, O_BAT, O_FR, O_TOS, O_PHS, O_RS, O_RB,
-		O_RW, O_RC, O_MS, O_JSON, O_HELP };
-	static const struct option opts[] = {
-		{ "layer", required_argument, 0, O_LAYER }, { "n-above", required_argument, 0, O_NA },
-		{ "n-below", required_argument, 0, O_NB }, { "theta-in", required_argument, 0, O_TH },
-		{ "photons", required_argument, 0, O_PH }, { "seed", required_argument, 0, O_SEED },
-		{ "threads", required_argument, 0, O_THR }, { "batches", required_argument, 0, O_BAT },
-		{ "fresnel", required_argument, 0, O_FR }, { "theta-out-step", required_argument, 0, O_TOS },
-		{ "phi-step", required_argument, 0, O_PHS }, { "r-step", required_argument, 0, O_RS },
-		{ "r-bins", required_argument, 0, O_RB }, { "roulette-w", required_argument, 0, O_RW },
-		{ "roulette-chance", required_argument, 0, O_RC }, { "max-steps", required_argument, 0, O_MS },
-		{ "json", no_argument, 0, O_JSON }, { "help", no_argument, 0, O_HELP }, { 0, 0, 0, 0 }
-	};
 	struct sim_config c;
 	sim_config_default(&c);
-	struct layer layers[SLAB_MAX_LAYERS];
-	int nl = 0, json = 0, ch;
-	double na = 1.0, nbw = 1.0, th = 0.0, tos = 5.0, phs = 5.0, v;
-	long lv;
+	struct layers ls = { 0 };
+	double na, nbw, th, tos, phs;
+	long seed;
+	int json = 0, fresnel;
 	char *cause = NULL;
-
-	opterr = 0;
-	optind = 1;
-	while ((ch = getopt_long(argc, argv, "h", opts, NULL)) != -1) {
-		switch (ch) {
-		case O_LAYER:
-			if (nl >= SLAB_MAX_LAYERS)
-				return cli_usage_error(CMD, "--layer: at most %d layers are allowed", SLAB_MAX_LAYERS);
-			if (parse_layer(optarg, nl + 1, &layers[nl]) != 0)
-				return CLI_EXIT_USAGE;
-			nl++;
-			break;
-		case O_NA: if (cli_double(CMD, "--n-above", optarg, 1, 10, &na)) return CLI_EXIT_USAGE; break;
-		case O_NB: if (cli_double(CMD, "--n-below", optarg, 1, 10, &nbw)) return CLI_EXIT_USAGE; break;
-		case O_TH:
-			if (cli_double(CMD, "--theta-in", optarg, 0, 90, &th)) return CLI_EXIT_USAGE;
-			if (th >= 90.0)
-				return cli_usage_error(CMD, "--theta-in = %g is out of range [0, 90) degrees", th);
-			break;
-		case O_PH: if (cli_long(CMD, "--photons", optarg, 1, 1000000000000L, &c.photons)) return CLI_EXIT_USAGE; break;
-		case O_SEED: if (cli_long(CMD, "--seed", optarg, 0, 9223372036854775807L, &lv)) return CLI_EXIT_USAGE;
-			c.seed = (uint64_t)lv; break;
-		case O_THR: if (cli_long(CMD, "--threads", optarg, 0, 1024, &lv)) return CLI_EXIT_USAGE;
-			c.threads = (int)lv; break;
-		case O_BAT: if (cli_long(CMD, "--batches", optarg, 2, 100000, &lv)) return CLI_EXIT_USAGE;
-			c.batches = (int)lv; break;
-		case O_FR: {
-			int m;
-			if (cli_fresnel(CMD, optarg, &m))
-				return CLI_EXIT_USAGE;
-			c.opts.fresnel = (enum optics_fresnel)m;
-			break;
-		}
-		case O_TOS:
-			if (cli_double(CMD, "--theta-out-step", optarg, 0.01, 90, &tos)) return CLI_EXIT_USAGE;
-			if (!divides(90.0, tos))
-				return cli_usage_error(CMD, "--theta-out-step = %g does not divide 90 degrees", tos);
-			break;
-		case O_PHS:
-			if (cli_double(CMD, "--phi-step", optarg, 0.01, 180, &phs)) return CLI_EXIT_USAGE;
-			if (!divides(180.0, phs))
-				return cli_usage_error(CMD, "--phi-step = %g does not divide 180 degrees", phs);
-			break;
-		case O_RS: if (cli_double(CMD, "--r-step", optarg, 1e-7, 100, &c.grid.dr)) return CLI_EXIT_USAGE; break;
-		case O_RB: if (cli_long(CMD, "--r-bins", optarg, 0, 100000, &lv)) return CLI_EXIT_USAGE;
-			c.grid.n_r = (int)lv; break;
-		case O_RW: if (cli_double(CMD, "--roulette-w", optarg, 0, 1, &c.opts.roulette_w)) return CLI_EXIT_USAGE; break;
-		case O_RC:
-			if (cli_double(CMD, "--roulette-chance", optarg, 0, 1, &v)) return CLI_EXIT_USAGE;
-			if (v <= 0.0)
-				return cli_usage_error(CMD, "--roulette-chance = %g is out of range (0, 1]", v);
-			c.opts.roulette_chance = v;
-			break;
-		case O_MS: if (cli_long(CMD, "--max-steps", optarg, 1, 1000000000000L, &c.opts.max_steps)) return CLI_EXIT_USAGE; break;
-		case O_JSON: json = 1; break;
-		case 'h':
-		case O_HELP: help(stdout); return CLI_EXIT_OK;
-		default:
-			return cli_usage_error(CMD, "unknown or incomplete option '%s' (see skinbake simulate --help)",
-			    argv[optind - 1]);
-		}
-	}
-	if (optind < argc)
-		return cli_usage_error(CMD, "unexpected argument '%s'", argv[optind]);
-	if (nl == 0)
-		return cli_usage_error(CMD, "at least one --layer is required (see skinbake simulate --help)");
-	(void)v;
+	const struct opt opts[] = {
+		{ "layer", OPT_CUSTOM, &ls, "SPEC", .fn = add_layer, .keys = layer_keys, .max = SLAB_MAX_LAYERS,
+		  .flags = OPT_REQUIRED | OPT_REPEAT, .help = "one layer, top layer first: KEY=VALUE,... with these keys" },
+		{ "n-above", OPT_DOUBLE, &na, "N", "1", .lo = 1, .hi = 10, .help = "index of the medium above" },
+		{ "n-below", OPT_DOUBLE, &nbw, "N", "1", .lo = 1, .hi = 10, .help = "index of the medium below" },
+		{ "theta-in", OPT_DOUBLE, &th, "DEG", "0", .lo = 0, .hi = 90, .flags = OPT_HI_OPEN, .unit = "deg",
+		  .help = "incidence angle" },
+		{ "photons", OPT_LONG, &c.photons, "N", "1e6", .lo = 1, .hi = 1e12, .help = "photons" },
+		{ "seed", OPT_LONG, &seed, "N", "1", .lo = 0, .hi = (double)LONG_MAX, .help = "random seed" },
+		{ "threads", OPT_INT, &c.threads, "N", "0", .lo = 0, .hi = 1024, .help = "OpenMP threads (0 = all cores)" },
+		{ "batches", OPT_INT, &c.batches, "N", "32", .lo = 2, .hi = 100000,
+		  .help = "independent batches for standard errors" },
+		{ "fresnel", OPT_ENUM, &fresnel, .def = "exact", .choices = "exact|schlick",
+		  .help = "reflectance model at every boundary" },
+		{ "theta-out-step", OPT_DOUBLE, &tos, "DEG", "5", .lo = 0.01, .hi = 90, .unit = "deg",
+		  .help = "width of theta_out bands (must divide 90)" },
+		{ "phi-step", OPT_DOUBLE, &phs, "DEG", "5", .lo = 0.01, .hi = 180, .unit = "deg",
+		  .help = "width of delta_phi bins (must divide 180)" },
+		{ "r-step", OPT_DOUBLE, &c.grid.dr, "CM", "0.005", .lo = 1e-7, .hi = 100, .unit = "cm",
+		  .help = "radial bin width of Rd(r)" },
+		{ "r-bins", OPT_INT, &c.grid.n_r, "N", "100", .lo = 0, .hi = 100000, .help = "radial bins of Rd(r) (0 = off)" },
+		{ "roulette-w", OPT_DOUBLE, &c.opts.roulette_w, "W", "0.2", .lo = 0, .hi = 1,
+		  .help = "weight threshold for roulette" },
+		{ "roulette-chance", OPT_DOUBLE, &c.opts.roulette_chance, "P", "0.3", .lo = 0, .hi = 1,
+		  .flags = OPT_LO_OPEN, .help = "roulette survival probability" },
+		{ "max-steps", OPT_LONG, &c.opts.max_steps, "N", "1e6", .lo = 1, .hi = 1e12,
+		  .help = "interactions per photon before the guard ends it (booked as 'lost')" },
+		{ "json", OPT_FLAG, &json, .help = "one JSON object on stdout instead of a table" },
+		OPT_END
+	};
+	const struct opt_cmd cmd = { "simulate", "--layer SPEC [--layer SPEC ...] [options]",
+		"Monte Carlo light transport (MCML with oblique incidence) in a stack of\n"
+		"plane-parallel layers, top layer first.  mua = mus = 0 makes a clear layer\n"
+		"(e.g. sebum).", opts,
+		"Rd excludes the specular reflection Rsp (MCML convention); Tt includes\n"
+		"unscattered light.  BRDF values are in 1/sr: the fraction of incident power\n"
+		"leaving through a band divided by the band's integral of cos(theta) d(omega).\n"
+		"delta_phi = 0 points back toward the source, 180 to the mirror side.", 0, 0 };
+	struct opt_ctx x;
+	if (opt_parse(&x, &cmd, argc, argv) != 0)
+		return x.exit;
+	if (!divides(90.0, tos))
+		return opt_error(&x, "--theta-out-step = %g does not divide 90 degrees", tos);
+	if (!divides(180.0, phs))
+		return opt_error(&x, "--phi-step = %g does not divide 180 degrees", phs);
+	c.seed = (uint64_t)seed;
+	c.opts.fresnel = fresnel == 0 ? OPTICS_FRESNEL_EXACT : OPTICS_FRESNEL_SCHLICK;
 
 	slab_init(&c.slab, na, nbw);
-	for (int i = 0; i < nl; i++)
-		slab_add(&c.slab, &layers[i], &cause);
+	for (int i = 0; i < ls.n; i++)
+		slab_add(&c.slab, &ls.l[i], &cause);
 	if (slab_check(&c.slab, &cause) != 0) {
-		int rc = cli_usage_error(CMD, "--%s", cause);
+		int rc = opt_error(&x, "--%s", cause);
 		free(cause);
 		return rc;
 	}
@@ -328,7 +226,7 @@ int cmd_simulate(int argc, char **argv)
 	c.grid.n_theta = (int)round(90.0 / tos);
 	c.grid.n_phi = (int)round(180.0 / phs);
 	if ((long)c.grid.n_theta * c.grid.n_phi > 1000000)
-		return cli_usage_error(CMD, "--theta-out-step %g and --phi-step %g give %ld bins; at most 1e6 are allowed",
+		return opt_error(&x, "--theta-out-step %g and --phi-step %g give %ld bins; at most 1e6 are allowed",
 		    tos, phs, (long)c.grid.n_theta * c.grid.n_phi);
 
 	struct sim_result r;

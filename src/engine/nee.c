@@ -1,3 +1,5 @@
+/* nee: the per-slab constants of next-event estimation toward the exit
+ * bins; the scoring itself is inline in nee.h. */
 #include "config.h"
 #include "engine/nee.h"
 

@@ -1,3 +1,4 @@
+/* optics: Fresnel reflectance and refraction in cosines (see optics.h). */
 #include "config.h"
 #include "engine/optics.h"
 

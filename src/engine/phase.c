@@ -1,3 +1,4 @@
+/* phase: Henyey-Greenstein sampling and the direction update (see phase.h). */
 #include "config.h"
 #include <math.h>
 #include "engine/phase.h"

@@ -1,3 +1,5 @@
+/* sim: one Monte Carlo run of a slab at one incidence angle, in batches
+ * (see sim.h). */
 #include "config.h"
 #include "engine/sim.h"
 
@@ -8,6 +10,7 @@
 #include <omp.h>
 #endif
 
+#include "base/check.h"
 #include "base/util.h"
 
 void sim_config_default(struct sim_config *c)
@@ -21,32 +24,10 @@ void sim_config_default(struct sim_config *c)
 	c->seed = 1;
 }
 
-double sim_cos_solid_angle(double t0, double t1, double dphi)
-{
-	double s0 = sin(t0), s1 = sin(t1);
-	return 0.5 * (s1 * s1 - s0 * s0) * 2.0 * dphi;
-}
-
-/* Mean and standard error of x_b / n_b over batches, weighting by n_b. */
-static struct sim_value batch_stat(const double *x, size_t stride, const long *n, int nb, long total)
-{
-	double sum = 0.0;
-	for (int b = 0; b < nb; b++)
-		sum += x[(size_t)b * stride];
-	double mean = sum / (double)total, ss = 0.0;
-	for (int b = 0; b < nb; b++) {
-		if (n[b] == 0)
-			continue;
-		double d = x[(size_t)b * stride] / (double)n[b] - mean;
-		ss += (double)n[b] * d * d;
-	}
-	struct sim_value v = { mean, nb > 1 ? sqrt(ss / ((double)(nb - 1) * (double)total)) : NAN };
-	return v;
-}
-
 void sim_run(const struct sim_config *c, struct sim_result *res,
     void (*progress)(void *user, long done, long total), void *user)
 {
+	CHECK(c->photons >= 1 && c->batches >= 1 && c->theta_in >= 0.0 && c->theta_in < 0.5 * M_PI);
 	const struct tally_grid *g = &c->grid;
 	int nb = c->batches;
 	if ((long)nb > c->photons)
@@ -99,14 +80,14 @@ void sim_run(const struct sim_config *c, struct sim_result *res,
 			row[NSCAL + i] = bt[b].a[i];
 		res->events += bt[b].events;
 	}
-	res->rd = batch_stat(sc + RD, nsc, bn, nb, c->photons);
-	res->rd_unscat = batch_stat(sc + RDU, nsc, bn, nb, c->photons);
-	res->tt = batch_stat(sc + TT, nsc, bn, nb, c->photons);
-	res->tt_unscat = batch_stat(sc + TTU, nsc, bn, nb, c->photons);
-	res->lost = batch_stat(sc + LOST, nsc, bn, nb, c->photons);
+	res->rd = batchstat_weighted(sc + RD, nsc, bn, nb, c->photons);
+	res->rd_unscat = batchstat_weighted(sc + RDU, nsc, bn, nb, c->photons);
+	res->tt = batchstat_weighted(sc + TT, nsc, bn, nb, c->photons);
+	res->tt_unscat = batchstat_weighted(sc + TTU, nsc, bn, nb, c->photons);
+	res->lost = batchstat_weighted(sc + LOST, nsc, bn, nb, c->photons);
 	double bal = res->rsp + res->rd.v + res->tt.v + res->lost.v;
 	for (int i = 0; i < na; i++) {
-		res->a[i] = batch_stat(sc + NSCAL + i, nsc, bn, nb, c->photons);
+		res->a[i] = batchstat_weighted(sc + NSCAL + i, nsc, bn, nb, c->photons);
 		bal += res->a[i].v;
 	}
 	res->balance = bal - 1.0;
@@ -121,20 +102,20 @@ void sim_run(const struct sim_config *c, struct sim_result *res,
 	res->fr_az = xcalloc((size_t)g->n_theta, sizeof(double));
 	res->fr_az_err = xcalloc((size_t)g->n_theta, sizeof(double));
 	for (int it = 0; it < g->n_theta; it++) {
-		double band = sim_cos_solid_angle(it * dth, (it + 1) * dth, M_PI);
-		double bin = sim_cos_solid_angle(it * dth, (it + 1) * dth, dph);
+		double band = tally_cos_omega(it * dth, (it + 1) * dth, M_PI);
+		double bin = tally_cos_omega(it * dth, (it + 1) * dth, dph);
 		for (int b = 0; b < nb; b++) {
 			col[b] = 0.0;
 			for (int ip = 0; ip < g->n_phi; ip++)
 				col[b] += bt[b].exit[it * g->n_phi + ip];
 		}
-		struct sim_value v = batch_stat(col, 1, bn, nb, c->photons);
+		struct estimate v = batchstat_weighted(col, 1, bn, nb, c->photons);
 		res->fr_az[it] = v.v / band;
 		res->fr_az_err[it] = v.err / band;
 		for (int ip = 0; ip < g->n_phi; ip++) {
 			for (int b = 0; b < nb; b++)
 				col[b] = bt[b].exit[it * g->n_phi + ip];
-			v = batch_stat(col, 1, bn, nb, c->photons);
+			v = batchstat_weighted(col, 1, bn, nb, c->photons);
 			res->fr[it * g->n_phi + ip] = v.v / bin;
 			res->fr_err[it * g->n_phi + ip] = v.err / bin;
 		}
@@ -143,10 +124,10 @@ void sim_run(const struct sim_config *c, struct sim_result *res,
 		res->rd_r = xcalloc((size_t)g->n_r, sizeof(double));
 		res->rd_r_err = xcalloc((size_t)g->n_r, sizeof(double));
 		for (int ir = 0; ir < g->n_r; ir++) {
-			double area = M_PI * g->dr * g->dr * (double)(2 * ir + 1);
+			double area = tally_annulus_area(g->dr, ir);
 			for (int b = 0; b < nb; b++)
 				col[b] = bt[b].radial[ir];
-			struct sim_value v = batch_stat(col, 1, bn, nb, c->photons);
+			struct estimate v = batchstat_weighted(col, 1, bn, nb, c->photons);
 			res->rd_r[ir] = v.v / area;
 			res->rd_r_err[ir] = v.err / area;
 		}

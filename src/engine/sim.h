@@ -5,6 +5,7 @@
 #ifndef SKINBAKE_SIM_H
 #define SKINBAKE_SIM_H
 #include <stdint.h>
+#include "engine/batchstat.h"
 #include "engine/tally.h"
 #include "engine/transport.h"
 
@@ -20,19 +21,14 @@ struct sim_config {
 	int threads;			/* 0 = OpenMP default */
 };
 
-/* A quantity with its standard error. */
-struct sim_value {
-	double v;	/* mean, fraction of incident power */
-	double err;	/* standard error of the mean */
-};
-
 struct sim_result {
 	long photons;
 	double seconds;		/* wall time of the run [s] */
 	double events;		/* scattering events in total */
 	double rsp;		/* exact, no error */
-	struct sim_value rd, rd_unscat, tt, tt_unscat, lost;
-	struct sim_value a[SLAB_MAX_LAYERS + 2];	/* index as in struct slab */
+	/* Fractions of the incident power with their standard errors. */
+	struct estimate rd, rd_unscat, tt, tt_unscat, lost;
+	struct estimate a[SLAB_MAX_LAYERS + 2];	/* index as in struct slab */
 	int n_layers;
 	struct tally_grid grid;
 	/* Diffuse (scattered) BRDF [1/sr]: mean over each (theta_out, delta_phi) bin,
@@ -51,7 +47,9 @@ void sim_config_default(struct sim_config *c);
 void sim_run(const struct sim_config *c, struct sim_result *res,
     void (*progress)(void *user, long done, long total), void *user);
 void sim_result_free(struct sim_result *res);
-/* Solid-angle integral of cos(theta) over theta in [t0, t1] and a delta_phi range
- * of width dphi on both sides of the incidence plane [sr]. */
-double sim_cos_solid_angle(double t0, double t1, double dphi);
+/* tally_cos_omega under its older name (kept for existing callers). */
+static inline double sim_cos_solid_angle(double t0, double t1, double dphi)
+{
+	return tally_cos_omega(t0, t1, dphi);
+}
 #endif

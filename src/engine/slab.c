@@ -1,3 +1,4 @@
+/* slab: build, check and prepare a layer stack (see slab.h). */
 #include "config.h"
 #include "engine/slab.h"
 

@@ -1,7 +1,18 @@
+/* specular: the analytic GGX surface reflection of the clear top stack
+ * (see specular.h). */
 #include "config.h"
 #include "engine/specular.h"
 
 #include <math.h>
+
+void specular_stack_of_slab(const struct slab *s, enum optics_fresnel model, struct specular_stack *out)
+{
+	out->model = model;
+	out->n = 0;
+	int last = s->first_turbid <= s->n_layers ? s->first_turbid : s->n_layers + 1;
+	for (int i = 0; i <= last && out->n < SPECULAR_MAX_IFACES; i++)
+		out->n_list[out->n++] = s->layer[i].n;
+}
 
 double specular_stack_reflectance(const struct specular_stack *s, double cos_i)
 {
@@ -9,7 +20,28 @@ double specular_stack_reflectance(const struct specular_stack *s, double cos_i)
 	return optics_stack_reflectance(s->model, s->n_list, s->n, cos_i, &ct);
 }
 
-/* Smith's masking for GGX. */
+double specular_schlick(double cos_i, double n)
+{
+	double r0 = (n - 1) / (n + 1);
+	r0 *= r0;
+	return r0 + (1 - r0) * pow(1 - cos_i, 5);
+}
+
+double specular_ggx_d(double cos_h, double alpha2)
+{
+	double den = cos_h * cos_h * (alpha2 - 1.0) + 1.0;
+	return alpha2 / (M_PI * den * den);
+}
+
+double specular_smith_g1(double cos_v, double alpha2)
+{
+	return 2 * cos_v / (cos_v + sqrt(alpha2 + (1 - alpha2) * cos_v * cos_v));
+}
+
+/* Smith's masking for GGX in its tangent form: the same function as
+ * specular_smith_g1, but half of its values differ in the last bit, and
+ * these are the ones every bake's eval and exports were made with.  One
+ * form should replace the other in a commit that may change outputs. */
 static double g1(double alpha, double cos_v)
 {
 	if (cos_v <= 0.0)
@@ -33,9 +65,7 @@ double specular_ggx(const struct specular_stack *s, double alpha, double theta_i
 	if (hn <= 0.0)
 		return 0.0;
 	double ch = h[2] / hn, cd = (wi[0] * h[0] + wi[1] * h[1] + wi[2] * h[2]) / hn;
-	double a2 = alpha * alpha, c2 = ch * ch;
-	double den = c2 * (a2 - 1.0) + 1.0;
-	double D = a2 / (M_PI * den * den);
+	double D = specular_ggx_d(ch, alpha * alpha);
 	double F = specular_stack_reflectance(s, cd > 1.0 ? 1.0 : cd);
 	return F * D * g1(alpha, ci) * g1(alpha, co) / (4.0 * ci * co);
 }

@@ -1,13 +1,18 @@
+/* tally: the exit and absorption sums of a batch of photons and the
+ * geometry of their bins. */
 #include "config.h"
 #include "engine/tally.h"
 
+#include <math.h>
 #include <stdlib.h>
 #include <string.h>
 
+#include "base/check.h"
 #include "base/util.h"
 
 void tally_alloc(struct tally *t, const struct tally_grid *g)
 {
+	CHECK(g->n_theta >= 1 && g->n_phi >= 1 && g->n_r >= 0);
 	memset(t, 0, sizeof *t);
 	t->exit = xcalloc((size_t)g->n_theta * (size_t)g->n_phi, sizeof *t->exit);
 	t->radial = xcalloc((size_t)(g->n_r > 0 ? g->n_r : 1), sizeof *t->radial);
@@ -44,4 +49,32 @@ void tally_add(struct tally *dst, const struct tally *src, const struct tally_gr
 		dst->exit[i] += src->exit[i];
 	for (int i = 0; i < g->n_r; i++)
 		dst->radial[i] += src->radial[i];
+}
+
+double tally_cos_omega(double t0, double t1, double dphi)
+{
+	double s0 = sin(t0), s1 = sin(t1);
+	return 0.5 * (s1 * s1 - s0 * s0) * 2.0 * dphi;
+}
+
+double tally_bin_omega(const struct tally_grid *g, int it)
+{
+	double dth = 0.5 * M_PI / g->n_theta;
+	return (cos(it * dth) - cos((it + 1) * dth)) * 2.0 * M_PI / g->n_phi;
+}
+
+double tally_annulus_area(double dr, int i)
+{
+	return M_PI * dr * dr * (2 * i + 1);
+}
+
+double tally_mean_radius(const double *rd_r, int n_r, double dr)
+{
+	double num = 0.0, den = 0.0;
+	for (int i = 0; i < n_r; i++) {
+		double rc = (i + 0.5) * dr, area = tally_annulus_area(dr, i);
+		num += rc * rd_r[i] * area;
+		den += rd_r[i] * area;
+	}
+	return den > 0.0 ? num / den : 0.0;
 }

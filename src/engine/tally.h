@@ -32,4 +32,18 @@ void tally_free(struct tally *t);
 void tally_zero(struct tally *t, const struct tally_grid *g);
 /* dst += src, element by element. */
 void tally_add(struct tally *dst, const struct tally *src, const struct tally_grid *g);
+
+/* Geometry of the bins, for turning sums into BRDF and Rd(r) values. */
+/* Integral of cos(theta) d(omega) over theta in [t0, t1] [rad] and a
+ * delta_phi range of width dphi [rad] on both sides of the incidence plane [sr]. */
+double tally_cos_omega(double t0, double t1, double dphi);
+/* Plain solid angle of one bin of exit band it (both sides of the
+ * incidence plane) [sr]. */
+double tally_bin_omega(const struct tally_grid *g, int it);
+/* Area of radial bin i, the annulus between i dr and (i + 1) dr [cm^2]. */
+double tally_annulus_area(double dr, int i);
+/* Mean exit radius of the light in a radial profile rd_r[n_r] [1/cm^2]
+ * with bins of width dr [cm]: the first moment of Rd(r) over the bins [cm]
+ * (light beyond the last bin is not counted); 0 for an empty profile. */
+double tally_mean_radius(const double *rd_r, int n_r, double dr);
 #endif

@@ -1,3 +1,5 @@
+/* exrio: OpenEXR files with named float channels through OpenEXRCore
+ * (see exrio.h). */
 #include "config.h"
 #include "io/exrio.h"
 

@@ -1,3 +1,5 @@
+/* inifile: INI text through libinih with line numbers and whole lines
+ * (see inifile.h). */
 #include "config.h"
 #include "io/inifile.h"
 

@@ -1,3 +1,4 @@
+/* pngio: PNG files with tEXt metadata through libpng (see pngio.h). */
 #include "config.h"
 #include "io/pngio.h"
 

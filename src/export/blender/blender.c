@@ -17,6 +17,8 @@
 
 #include "io/exrio.h"
 #include "io/pngio.h"
+#include "geom/texdir.h"
+#include "base/check.h"
 #include "base/util.h"
 
 void blender_options_default(struct blender_options *o)
@@ -30,7 +32,6 @@ void blender_options_default(struct blender_options *o)
 		.view_elevation = 60.0 * M_PI / 180.0,
 		.view_azimuth = -90.0 * M_PI / 180.0,
 		.map_size = 16,
-		.textures = NULL,
 		.generator = PACKAGE_NAME " " PACKAGE_VERSION,
 	};
 }
@@ -47,8 +48,9 @@ static double clamp(double x, double lo, double hi)
 	return x < lo ? lo : x > hi ? hi : x;
 }
 
-float *blender_lut(const struct blender_model *m, int n_cos, int n_phi)
+float *blender_lut(const struct brdf_source *m, int n_cos, int n_phi)
 {
+	CHECK(n_cos >= 2 && n_phi >= 2);
 	size_t w = (size_t)n_phi * (size_t)n_cos, h = (size_t)n_cos, plane = w * h;
 	float *lut = xmalloc(3 * plane * sizeof *lut);
 	for (int k = 0; k < n_phi; k++) {
@@ -101,7 +103,7 @@ void blender_lut_sample(const float *lut, int n_cos, int n_phi, double cos_l, do
 }
 
 /* a(theta) of channel c, linear between nodes, clamped at the ends. */
-static double albedo_at(const struct blender_model *m, int c, double theta)
+static double albedo_at(const struct brdf_source *m, int c, double theta)
 {
 	const double *t = m->theta_albedo, *a = m->albedo_rgb + (size_t)c * (size_t)m->n_albedo;
 	int n = m->n_albedo;
@@ -116,7 +118,7 @@ static double albedo_at(const struct blender_model *m, int c, double theta)
 	return (1 - f) * a[i] + f * a[i + 1];
 }
 
-void blender_albedo_mean(const struct blender_model *m, double rgb[3])
+void blender_albedo_mean(const struct brdf_source *m, double rgb[3])
 {
 	/* Midpoint rule in mu = cos(theta): 2 int_0^1 a(mu) mu dmu. */
 	enum { STEPS = 4096 };
@@ -130,63 +132,32 @@ void blender_albedo_mean(const struct blender_model *m, double rgb[3])
 	}
 }
 
-/* Detail maps: either read from `skinbake texture` output or flat. */
+/* Detail maps: the source's (borrowed) or flat (owned). */
 struct detail {
 	int w, h;		/* size [px] */
-	uint16_t *height;	/* [h][w] gray */
-	uint16_t *normal;	/* [h][w][3] RGB */
+	const uint16_t *height;	/* [h][w] gray */
+	const uint16_t *normal;	/* [h][w][3] RGB */
 	int flat;		/* 1 when no textures were given */
-	char *tile_mm;		/* tEXt values as read, or NULL */
-	char *hmin_um, *hmax_um;
+	const char *tile_mm;	/* tEXt values as read, or NULL */
+	const char *hmin_um, *hmax_um;
+	uint16_t *own_height, *own_normal;	/* flat maps */
 };
 
 static void detail_free(struct detail *d)
 {
-	free(d->height);
-	free(d->normal);
-	free(d->tile_mm);
-	free(d->hmin_um);
-	free(d->hmax_um);
+	free(d->own_height);
+	free(d->own_normal);
 }
 
-static int detail_read(const char *dir, struct detail *d, char **cause)
+static void detail_use(const struct texdir *t, struct detail *d)
 {
-	char *hp = xasprintf("%s/height.png", dir), *np = xasprintf("%s/normal.png", dir);
-	int hw, hh, hc, hb, nw, nh, nc, nb, rc = -1;
-	double v;
-	d->height = pngio_read(hp, &hw, &hh, &hc, &hb, cause);
-	if (d->height == NULL)
-		goto out;
-	if (hc != 1 || hb != 16) {
-		*cause = xasprintf("%s: %d channel(s) at %d bits; expected 16-bit gray", hp, hc, hb);
-		goto out;
-	}
-	d->normal = pngio_read(np, &nw, &nh, &nc, &nb, cause);
-	if (d->normal == NULL)
-		goto out;
-	if (nc != 3 || nb != 16) {
-		*cause = xasprintf("%s: %d channel(s) at %d bits; expected 16-bit RGB", np, nc, nb);
-		goto out;
-	}
-	if (nw != hw || nh != hh) {
-		*cause = xasprintf("%s is %dx%d but %s is %dx%d; they must match", np, nw, nh, hp, hw, hh);
-		goto out;
-	}
-	d->tile_mm = pngio_read_text(hp, "skinbake:tile_mm");
-	if (d->tile_mm == NULL || util_parse_double(d->tile_mm, &v) != 0 || !(v > 0)) {
-		*cause = xasprintf("%s: tEXt skinbake:tile_mm is %s; expected a length > 0 [mm]", hp,
-		    d->tile_mm ? d->tile_mm : "missing");
-		goto out;
-	}
-	d->hmin_um = pngio_read_text(hp, "skinbake:height_min_um");
-	d->hmax_um = pngio_read_text(hp, "skinbake:height_max_um");
-	d->w = hw;
-	d->h = hh;
-	rc = 0;
-out:
-	free(hp);
-	free(np);
-	return rc;
+	d->w = t->w;
+	d->h = t->h;
+	d->height = t->height;
+	d->normal = t->normal;
+	d->tile_mm = t->tile_mm_text;
+	d->hmin_um = t->h_min_text;
+	d->hmax_um = t->h_max_text;
 }
 
 static void detail_flat(int size, struct detail *d)
@@ -194,12 +165,14 @@ static void detail_flat(int size, struct detail *d)
 	size_t n = (size_t)size * (size_t)size;
 	d->w = d->h = size;
 	d->flat = 1;
-	d->height = xcalloc(n, sizeof *d->height);
-	d->normal = xmalloc(3 * n * sizeof *d->normal);
+	d->own_height = xcalloc(n, sizeof *d->own_height);
+	d->own_normal = xmalloc(3 * n * sizeof *d->own_normal);
 	for (size_t i = 0; i < n; i++) {
-		d->normal[3 * i] = d->normal[3 * i + 1] = 32768;	/* 0.5: no tilt */
-		d->normal[3 * i + 2] = 65535;
+		d->own_normal[3 * i] = d->own_normal[3 * i + 1] = 32768;	/* 0.5: no tilt */
+		d->own_normal[3 * i + 2] = 65535;
 	}
+	d->height = d->own_height;
+	d->normal = d->own_normal;
 }
 
 static int check_options(const struct blender_options *o, char **cause)
@@ -236,7 +209,7 @@ static int check_options(const struct blender_options *o, char **cause)
 	return 0;
 }
 
-static int check_model(const struct blender_model *m, char **cause)
+static int check_model(const struct brdf_source *m, char **cause)
 {
 	if (m->n_albedo < 1) {
 		*cause = xasprintf("the model has no albedo nodes");
@@ -246,12 +219,21 @@ static int check_model(const struct blender_model *m, char **cause)
 		*cause = xasprintf("ior %g / roughness %g out of range [1, 10] / [0, 1]", m->ior, m->roughness);
 		return -1;
 	}
+	if (m->detail != NULL && m->detail->normal == NULL) {
+		*cause = xasprintf("%s: the detail maps were read without normal.png", m->detail->dir);
+		return -1;
+	}
 	for (int c = 0; c < 3; c++)
 		if (!(m->sss_radius_cm[c] > 0) || !isfinite(m->sss_radius_cm[c])) {
 			*cause = xasprintf("subsurface radius[%d] = %g cm must be > 0", c, m->sss_radius_cm[c]);
 			return -1;
 		}
 	return 0;
+}
+
+int blender_check(const struct brdf_source *m, const struct blender_options *o, char **cause)
+{
+	return check_options(o, cause) != 0 || check_model(m, cause) != 0 ? -1 : 0;
 }
 
 /* Nine significant digits: plenty for the data, readable in the manifest. */
@@ -302,7 +284,7 @@ struct reference {
 	double radiance[3];		/* E cos_l f_r [W/(m^2 sr)] */
 };
 
-static void reference_compute(const struct blender_model *m, const struct blender_options *o, const float *lut,
+static void reference_compute(const struct brdf_source *m, const struct blender_options *o, const float *lut,
     struct reference *r)
 {
 	blender_direction(o->sun_elevation, o->sun_azimuth, r->sun);
@@ -319,7 +301,7 @@ static void reference_compute(const struct blender_model *m, const struct blende
 	}
 }
 
-static json_object *manifest_build(const struct blender_model *m, const struct blender_options *o,
+static json_object *manifest_build(const struct brdf_source *m, const struct blender_options *o,
     const struct detail *d, const double albedo[3], const struct reference *r)
 {
 	json_object *j = json_object_new_object(), *x;
@@ -334,7 +316,7 @@ static json_object *manifest_build(const struct blender_model *m, const struct b
 	x = json_object_new_object();
 	json_object_object_add(x, "brdf", json_object_new_string(m->source ? m->source : ""));
 	json_object_object_add(x, "preset", m->preset ? json_object_new_string(m->preset) : NULL);
-	json_object_object_add(x, "textures", o->textures ? json_object_new_string(o->textures) : NULL);
+	json_object_object_add(x, "textures", m->detail ? json_object_new_string(m->detail->dir) : NULL);
 	json_object_object_add(j, "source", x);
 	x = json_object_new_object();
 	json_object_object_add(x, "length", json_object_new_string("m"));
@@ -462,7 +444,7 @@ static uint16_t quantise16(double x)
 
 /* Everything blender_write puts on disk, computed and validated up front. */
 struct blender_set {
-	struct blender_options o;	/* copy; o.textures and o.generator are borrowed */
+	struct blender_options o;	/* copy; o.generator is borrowed */
 	struct detail d;		/* height and normal maps */
 	float *lut;			/* pi f_r atlas, 3 planes */
 	float *albedo;			/* map_size^2 x 3 planes */
@@ -483,18 +465,15 @@ void blender_set_free(struct blender_set *s)
 	free(s);
 }
 
-struct blender_set *blender_prepare(const struct blender_model *m, const struct blender_options *o, char **cause)
+struct blender_set *blender_prepare(const struct brdf_source *m, const struct blender_options *o, char **cause)
 {
-	if (check_options(o, cause) != 0 || check_model(m, cause) != 0)
+	if (blender_check(m, o, cause) != 0)
 		return NULL;
 	struct blender_set *s = xcalloc(1, sizeof *s);
 	s->o = *o;
-	if (o->textures != NULL) {
-		if (detail_read(o->textures, &s->d, cause) != 0) {
-			blender_set_free(s);
-			return NULL;
-		}
-	} else
+	if (m->detail != NULL)
+		detail_use(m->detail, &s->d);
+	else
 		detail_flat(o->map_size, &s->d);
 
 	double albedo[3];
@@ -585,7 +564,7 @@ out:
 	return rc;
 }
 
-int blender_export(const struct blender_model *m, const struct blender_options *o, const char *dir,
+int blender_export(const struct brdf_source *m, const struct blender_options *o, const char *dir,
     char **cause)
 {
 	struct blender_set *s = blender_prepare(m, o, cause);

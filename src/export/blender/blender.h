@@ -17,28 +17,18 @@
  * at the top) is cos_light = 1 - r / (n_cos - 1), so Blender's v = 0 (the
  * bottom row) is cos_light = 0.  Texture coordinates of a node sit at texel
  * centres: u = (k n_cos + j + 0.5) / width, v = (i + 0.5) / n_cos with
- * cos_light = i / (n_cos - 1). */
+ * cos_light = i / (n_cos - 1).
+ *
+ * The BRDF, albedo, specular parameters, subsurface radius and detail maps
+ * come from a struct brdf_source (export/source.h): a bake or an analytic
+ * test model; the height and normal maps are the source's detail maps, or
+ * flat ones when it has none. */
 #ifndef SKINBAKE_BLENDER_H
 #define SKINBAKE_BLENDER_H
 
-#define BLENDER_FORMAT_VERSION 1	/* manifest "format_version"; the importer checks it */
+#include "export/source.h"
 
-/* The BRDF to export, independent of where it comes from (a bake or an
- * analytic test model).  f_rgb is the total BRDF [1/sr] in linear sRGB at
- * incidence theta_i, exit theta_o in [0, pi/2] and delta_phi in [0, pi]
- * (0 = back toward the light), all in radians. */
-struct blender_model {
-	void (*f_rgb)(void *ctx, double theta_i, double theta_o, double dphi, double rgb[3]);
-	void *ctx;			/* passed to f_rgb */
-	int n_albedo;			/* nodes of the albedo curve [1, ...] */
-	const double *theta_albedo;	/* [n_albedo] incidence angles [rad], ascending */
-	const double *albedo_rgb;	/* [3][n_albedo] directional-hemispherical diffuse albedo [-] */
-	double ior;			/* refractive index of the top surface [-] */
-	double roughness;		/* GGX alpha of the top surface [-] */
-	double sss_radius_cm[3];	/* subsurface radius (mean free path) per RGB [cm] */
-	const char *source;		/* bake directory or model name, for the manifest */
-	const char *preset;		/* preset name or NULL */
-};
+#define BLENDER_FORMAT_VERSION 1	/* manifest "format_version"; the importer checks it */
 
 struct blender_options {
 	int lut_cos;		/* cosine nodes per LUT axis [BLENDER_LUT_COS_MIN, MAX] */
@@ -49,7 +39,6 @@ struct blender_options {
 	double view_elevation;	/* reference camera above the horizon [rad], (0, pi/2] */
 	double view_azimuth;	/* reference camera azimuth from +X toward +Y [rad] */
 	int map_size;		/* side of the albedo, roughness and flat detail maps [px] */
-	const char *textures;	/* `skinbake texture` output directory, or NULL for flat maps */
 	const char *generator;	/* program name and version for the manifest */
 };
 
@@ -65,7 +54,7 @@ void blender_options_default(struct blender_options *o);
 /* The pi * f_r atlas described above: three planes (R, G, B), each
  * n_cos rows by n_phi * n_cos columns, row 0 at the top.  Caller frees the
  * returned block (planes at offsets 0, w*h, 2*w*h). */
-float *blender_lut(const struct blender_model *m, int n_cos, int n_phi);
+float *blender_lut(const struct brdf_source *m, int n_cos, int n_phi);
 /* What the importer's node tree reads from that atlas at cos_light, cos_view
  * in [0, 1] and dphi in [0, pi]: bilinear inside the two neighbouring
  * delta_phi tiles, then linear between them. */
@@ -73,19 +62,22 @@ void blender_lut_sample(const float *lut, int n_cos, int n_phi, double cos_l, do
     double rgb[3]);
 /* Bihemispherical (white-sky) albedo 2 * int a(mu) mu dmu per channel, with
  * a(theta) linear between the model's nodes and clamped beyond them. */
-void blender_albedo_mean(const struct blender_model *m, double rgb[3]);
+void blender_albedo_mean(const struct brdf_source *m, double rgb[3]);
 /* Unit vector toward a direction at elevation/azimuth [rad] in a +Z-up world. */
 void blender_direction(double elevation, double azimuth, double v[3]);
 
-/* The image set in memory.  blender_prepare validates o and m, reads
- * o->textures and computes every file; NULL and *cause (caller frees) on bad
+/* o and m within the ranges above; -1 and *cause (caller frees) otherwise. */
+int blender_check(const struct brdf_source *m, const struct blender_options *o, char **cause);
+
+/* The image set in memory.  blender_prepare validates o and m (blender_check)
+ * and computes every file; NULL and *cause (caller frees) on bad
  * input.  blender_write writes it into DIR (created if needed), manifest.json
  * last; -1 and *cause on an I/O failure.  blender_set_free(NULL) is a no-op. */
 struct blender_set;
-struct blender_set *blender_prepare(const struct blender_model *m, const struct blender_options *o, char **cause);
+struct blender_set *blender_prepare(const struct brdf_source *m, const struct blender_options *o, char **cause);
 int blender_write(const struct blender_set *s, const char *dir, char **cause);
 void blender_set_free(struct blender_set *s);
 /* prepare + write: nothing is written when an option or a texture is bad. */
-int blender_export(const struct blender_model *m, const struct blender_options *o, const char *dir,
+int blender_export(const struct brdf_source *m, const struct blender_options *o, const char *dir,
     char **cause);
 #endif

@@ -1,0 +1,391 @@
+/* manifest: write and read manifest.json of a bake directory (json-c). */
+#include "config.h"
+#include "bake/manifest.h"
+
+#include <errno.h>
+#include <json-c/json.h>
+#include <math.h>
+#include <stdlib.h>
+#include <string.h>
+#include <unistd.h>
+
+#include "base/check.h"
+#include "base/util.h"
+
+/* ---- writer ---- */
+
+static json_object *jarr(const double *v, int n)
+{
+	json_object *a = json_object_new_array_ext(n);
+	for (int i = 0; i < n; i++)
+		json_object_array_add(a, json_object_new_double(v[i]));
+	return a;
+}
+
+static json_object *jarr_deg(const double *v, int n)
+{
+	json_object *a = json_object_new_array_ext(n);
+	for (int i = 0; i < n; i++)
+		json_object_array_add(a, json_object_new_double(v[i] * 180.0 / M_PI));
+	return a;
+}
+
+static void add(json_object *o, const char *key, json_object *v)
+{
+	json_object_object_add(o, key, v);
+}
+
+static json_object *jstr(const char *s)
+{
+	return json_object_new_string(s);
+}
+
+/* Wavelengths, incidence nodes, and the exit bins' edges and centres [deg]. */
+static void add_axes(json_object *o, const struct bake_spec *s)
+{
+	int nto = s->n_to, np = s->n_phi;
+	add(o, "wavelengths_nm", jarr(s->wl_nm, s->n_wl));
+	add(o, "theta_i_deg", jarr_deg(s->theta_i, s->n_ti));
+	double *e = xmalloc(sizeof(double) * (size_t)(nto + np + 2));
+	for (int i = 0; i <= nto; i++)
+		e[i] = 90.0 * i / nto;
+	add(o, "theta_o_edges_deg", jarr(e, nto + 1));
+	for (int i = 0; i < nto; i++)
+		e[i] = 90.0 * (i + 0.5) / nto;
+	add(o, "theta_o_centres_deg", jarr(e, nto));
+	for (int i = 0; i <= np; i++)
+		e[i] = 180.0 * i / np;
+	add(o, "delta_phi_edges_deg", jarr(e, np + 1));
+	for (int i = 0; i < np; i++)
+		e[i] = 180.0 * (i + 0.5) / np;
+	add(o, "delta_phi_centres_deg", jarr(e, np));
+	free(e);
+}
+
+static json_object *table_info(const struct bake_spec *s)
+{
+	json_object *t = json_object_new_object();
+	add(t, "file", jstr("brdf.exr"));
+	add(t, "width", json_object_new_int(s->n_phi));
+	add(t, "height", json_object_new_int(s->n_ti * s->n_to));
+	add(t, "row", jstr("theta_i_index * n_theta_o + theta_o_index, row 0 at the top"));
+	add(t, "column", jstr("delta_phi bin index"));
+	add(t, "value", jstr("diffuse (subsurface) BRDF [1/sr]: mean over the (theta_o, delta_phi) bin at the theta_i node; "
+	    "delta_phi = 0 back toward the light, 180 the mirror side"));
+	add(t, "channels", jstr("fr.<WL>nm and fr_err.<WL>nm (standard error)"));
+	return t;
+}
+
+static json_object *rgb_info(const struct bake_spec *s, const struct bake_meta *m)
+{
+	json_object *rgb = json_object_new_object();
+	add(rgb, "file", jstr("brdf_rgb.exr"));
+	add(rgb, "colour_space", jstr("linear sRGB (Rec. 709 primaries), D65 white, CIE 1931 2-degree observer"));
+	json_object *mm = json_object_new_array();
+	for (int c = 0; c < 3; c++)
+		json_object_array_add(mm, jarr(m->rgb_from_wl + c * s->n_wl, s->n_wl));
+	add(rgb, "rgb_from_wl", mm);
+	if (m->rgb_note)
+		add(rgb, "note", jstr(m->rgb_note));
+	return rgb;
+}
+
+static json_object *specular_info(const struct bake_spec *s, const struct bake_result *r, const struct bake_meta *m)
+{
+	json_object *sp = json_object_new_object();
+	add(sp, "model", jstr("GGX microfacet (Walter et al. 2007), Smith masking, facet reflectance of the clear top stack"));
+	add(sp, "alpha", json_object_new_double(m->roughness));
+	add(sp, "ior", json_object_new_double(m->ior));
+	add(sp, "fresnel", jstr(s->opts.fresnel == OPTICS_FRESNEL_SCHLICK ? "schlick" : "exact"));
+	json_object *stacks = json_object_new_array();
+	for (int w = 0; w < s->n_wl; w++)
+		json_object_array_add(stacks, jarr(r->stack[w].n_list, r->stack[w].n));
+	add(sp, "stack_n", stacks);
+	return sp;
+}
+
+static json_object *layers_info(const struct bake_spec *s)
+{
+	json_object *layers = json_object_new_array();
+	for (int w = 0; w < s->n_wl; w++) {
+		json_object *lw = json_object_new_object();
+		add(lw, "wavelength_nm", json_object_new_double(s->wl_nm[w]));
+		add(lw, "n_above", json_object_new_double(s->slab[w].n_above));
+		add(lw, "n_below", json_object_new_double(s->slab[w].n_below));
+		json_object *ls = json_object_new_array();
+		for (int i = 1; i <= s->slab[w].n_layers; i++) {
+			const struct layer *l = &s->slab[w].layer[i];
+			json_object *lo = json_object_new_object();
+			add(lo, "d_cm", isinf(l->d) ? jstr("inf") : json_object_new_double(l->d));
+			add(lo, "n", json_object_new_double(l->n));
+			add(lo, "mua_per_cm", json_object_new_double(l->mu_a));
+			add(lo, "mus_per_cm", json_object_new_double(l->mu_s));
+			add(lo, "g", json_object_new_double(l->g));
+			json_object_array_add(ls, lo);
+		}
+		add(lw, "layers", ls);
+		json_object_array_add(layers, lw);
+	}
+	return layers;
+}
+
+/* Radial profile and subsurface radius at the node nearest normal incidence. */
+static json_object *radial_info(const struct bake_spec *s, const struct bake_result *r, const struct bake_meta *m)
+{
+	json_object *rad = json_object_new_object();
+	add(rad, "dr_cm", json_object_new_double(s->dr));
+	add(rad, "n_r", json_object_new_int(s->n_r));
+	add(rad, "theta_i_deg", json_object_new_double(s->theta_i[0] * 180.0 / M_PI));
+	add(rad, "units", jstr("Rd(r) [1/cm^2]; radius [cm]"));
+	json_object *prof = json_object_new_array(), *prof_e = json_object_new_array();
+	for (int w = 0; w < s->n_wl; w++) {
+		const struct brdf_entry *jb = &r->table.entry[w * s->n_ti];
+		json_object_array_add(prof, jarr(jb->rd_r, s->n_r));
+		json_object_array_add(prof_e, jarr(jb->rd_r_err, s->n_r));
+	}
+	add(rad, "rd_r", prof);
+	add(rad, "rd_r_err", prof_e);
+	add(rad, "mean_radius_cm", jarr(r->mean_radius_cm, s->n_wl));
+	/* Per RGB channel: the wavelengths' radii weighted by |rgb_from_wl|. */
+	double rr[3];
+	for (int c = 0; c < 3; c++) {
+		double num = 0.0, den = 0.0;
+		for (int w = 0; w < s->n_wl; w++) {
+			double k = fabs(m->rgb_from_wl[c * s->n_wl + w]);
+			num += k * r->mean_radius_cm[w];
+			den += k;
+		}
+		rr[c] = den > 0 ? num / den : 0.0;
+	}
+	add(rad, "mean_radius_rgb_cm", jarr(rr, 3));
+	add(rad, "definition", jstr(
+	    "mean lateral distance between entry and exit of the diffusely reflected light (first moment of Rd(r) r dr), "
+	    "from the profile's bins (light beyond the last bin is not counted)"));
+	return rad;
+}
+
+static json_object *settings_info(const struct bake_spec *s)
+{
+	json_object *st = json_object_new_object();
+	add(st, "seed", json_object_new_int64((int64_t)s->seed));
+	add(st, "batch_photons", json_object_new_int64(s->batch_photons));
+	add(st, "min_batches", json_object_new_int(s->min_batches));
+	add(st, "target_error", json_object_new_double(s->target_error));
+	add(st, "max_photons", json_object_new_int64(s->max_photons));
+	add(st, "roulette_w", json_object_new_double(s->opts.roulette_w));
+	add(st, "roulette_chance", json_object_new_double(s->opts.roulette_chance));
+	add(st, "max_steps", json_object_new_int64(s->opts.max_steps));
+	return st;
+}
+
+static json_object *result_info(const struct bake_result *r)
+{
+	json_object *res = json_object_new_object();
+	add(res, "photons", json_object_new_int64(r->table.photons));
+	add(res, "seconds", json_object_new_double(r->table.seconds));
+	add(res, "rms_rel_err", json_object_new_double(r->table.rms_rel_err));
+	add(res, "target_met", json_object_new_boolean(r->table.target_met));
+	return res;
+}
+
+static json_object *entries_info(const struct bake_result *r)
+{
+	json_object *jobs = json_object_new_array();
+	for (int j = 0; j < r->table.n_wl * r->table.n_ti; j++) {
+		const struct brdf_entry *b = &r->table.entry[j];
+		json_object *jo = json_object_new_object();
+		add(jo, "wavelength_nm", json_object_new_double(b->wl_nm));
+		add(jo, "theta_i_deg", json_object_new_double(b->theta_i * 180.0 / M_PI));
+		add(jo, "photons", json_object_new_int64(b->photons));
+		add(jo, "Rsp", json_object_new_double(b->rsp));
+		add(jo, "albedo", json_object_new_double(b->albedo.v));
+		add(jo, "albedo_err", json_object_new_double(b->albedo.err));
+		add(jo, "Rd_unscattered", json_object_new_double(b->rd_unscat.v));
+		add(jo, "Tt", json_object_new_double(b->tt.v));
+		add(jo, "A", json_object_new_double(b->a_total.v));
+		add(jo, "lost", json_object_new_double(b->lost.v));
+		add(jo, "rms_rel_err", json_object_new_double(b->rms_rel_err));
+		json_object_array_add(jobs, jo);
+	}
+	return jobs;
+}
+
+char *bake_manifest_text(const struct bake_spec *s, const struct bake_result *r, const struct bake_meta *m)
+{
+	CHECK(r->table.n_wl == s->n_wl && r->table.n_ti == s->n_ti);
+	json_object *o = json_object_new_object();
+	add(o, "format", jstr("skinbake-bake"));
+	add(o, "format_version", json_object_new_int(BAKE_FORMAT_VERSION));
+	add(o, "skinbake_version", jstr(PACKAGE_VERSION));
+	add(o, "preset", jstr(m->preset ? m->preset : ""));
+	if (m->command)
+		add(o, "command", jstr(m->command));
+	add_axes(o, s);
+	add(o, "table", table_info(s));
+	add(o, "rgb", rgb_info(s, m));
+	add(o, "specular", specular_info(s, r, m));
+	add(o, "layers", layers_info(s));
+	add(o, "radial", radial_info(s, r, m));
+	add(o, "settings", settings_info(s));
+	add(o, "result", result_info(r));
+	add(o, "jobs", entries_info(r));
+	char *text = xstrdup(json_object_to_json_string_ext(o, JSON_C_TO_STRING_PRETTY | JSON_C_TO_STRING_NOSLASHESCAPE));
+	json_object_put(o);
+	return text;
+}
+
+/* ---- reader ---- */
+
+static int jnum_array(json_object *o, const char *key, double **out, int *n, char **cause, const char *path)
+{
+	json_object *a;
+	if (!json_object_object_get_ex(o, key, &a) || !json_object_is_type(a, json_type_array)) {
+		*cause = xasprintf("%s: missing array '%s'", path, key);
+		return -1;
+	}
+	*n = (int)json_object_array_length(a);
+	*out = xcalloc((size_t)(*n > 0 ? *n : 1), sizeof(double));
+	for (int i = 0; i < *n; i++)
+		(*out)[i] = json_object_get_double(json_object_array_get_idx(a, (size_t)i));
+	return 0;
+}
+
+static double jnum(json_object *o, const char *key, double dflt)
+{
+	json_object *v;
+	return json_object_object_get_ex(o, key, &v) ? json_object_get_double(v) : dflt;
+}
+
+/* The table axes, converted to radians. */
+static int read_axes(json_object *o, struct bake *b, const char *mpath, char **cause)
+{
+	if (jnum_array(o, "wavelengths_nm", &b->wl_nm, &b->n_wl, cause, mpath) ||
+	    jnum_array(o, "theta_i_deg", &b->theta_i, &b->n_ti, cause, mpath) ||
+	    jnum_array(o, "theta_o_centres_deg", &b->theta_o, &b->n_to, cause, mpath) ||
+	    jnum_array(o, "delta_phi_centres_deg", &b->phi, &b->n_phi, cause, mpath))
+		return -1;
+	if (b->n_wl < 1 || b->n_ti < 1 || b->n_to < 1 || b->n_phi < 1) {
+		*cause = xasprintf("%s: empty table axes", mpath);
+		return -1;
+	}
+	if (b->n_wl > BAKE_MAX_WL) {
+		*cause = xasprintf("%s: %d wavelengths, more than a bake holds (%d)", mpath, b->n_wl, BAKE_MAX_WL);
+		return -1;
+	}
+	for (int i = 0; i < b->n_ti; i++)
+		b->theta_i[i] *= M_PI / 180.0;
+	for (int i = 0; i < b->n_to; i++)
+		b->theta_o[i] *= M_PI / 180.0;
+	for (int i = 0; i < b->n_phi; i++)
+		b->phi[i] *= M_PI / 180.0;
+	return 0;
+}
+
+static int read_rgb(json_object *o, struct bake *b, const char *mpath, char **cause)
+{
+	json_object *rgb, *v;
+	if (!json_object_object_get_ex(o, "rgb", &rgb) || !json_object_object_get_ex(rgb, "rgb_from_wl", &v) ||
+	    json_object_array_length(v) != 3) {
+		*cause = xasprintf("%s: missing rgb.rgb_from_wl", mpath);
+		return -1;
+	}
+	b->rgb_from_wl = xcalloc(3 * (size_t)b->n_wl, sizeof(double));
+	for (int c = 0; c < 3; c++) {
+		json_object *row = json_object_array_get_idx(v, (size_t)c);
+		if ((int)json_object_array_length(row) != b->n_wl) {
+			*cause = xasprintf("%s: rgb_from_wl row %d has the wrong length", mpath, c);
+			return -1;
+		}
+		for (int w = 0; w < b->n_wl; w++)
+			b->rgb_from_wl[c * b->n_wl + w] = json_object_get_double(json_object_array_get_idx(row, (size_t)w));
+	}
+	return 0;
+}
+
+static int read_specular(json_object *o, struct bake *b, const char *mpath, char **cause)
+{
+	json_object *sp, *v, *fr;
+	if (!json_object_object_get_ex(o, "specular", &sp)) {
+		*cause = xasprintf("%s: missing specular", mpath);
+		return -1;
+	}
+	b->ior = jnum(sp, "ior", 1.5);
+	b->roughness = jnum(sp, "alpha", 0.3);
+	b->stack = xcalloc((size_t)b->n_wl, sizeof *b->stack);
+	enum optics_fresnel model = OPTICS_FRESNEL_EXACT;
+	if (json_object_object_get_ex(sp, "fresnel", &fr) && strcmp(json_object_get_string(fr), "schlick") == 0)
+		model = OPTICS_FRESNEL_SCHLICK;
+	if (!json_object_object_get_ex(sp, "stack_n", &v) || (int)json_object_array_length(v) != b->n_wl) {
+		*cause = xasprintf("%s: missing specular.stack_n", mpath);
+		return -1;
+	}
+	for (int w = 0; w < b->n_wl; w++) {
+		json_object *row = json_object_array_get_idx(v, (size_t)w);
+		int k = (int)json_object_array_length(row);
+		if (k < 2 || k > SPECULAR_MAX_IFACES) {
+			*cause = xasprintf("%s: specular.stack_n[%d] has %d entries", mpath, w, k);
+			return -1;
+		}
+		b->stack[w].n = k;
+		b->stack[w].model = model;
+		for (int i = 0; i < k; i++)
+			b->stack[w].n_list[i] = json_object_get_double(json_object_array_get_idx(row, (size_t)i));
+	}
+	return 0;
+}
+
+/* Subsurface radii: optional (0 when the manifest has none). */
+static void read_radial(json_object *o, struct bake *b, const char *mpath)
+{
+	json_object *rad;
+	char *ignored = NULL;
+	double *tmp;
+	int n;
+	b->sss_radius_cm = xcalloc((size_t)b->n_wl, sizeof(double));
+	if (!json_object_object_get_ex(o, "radial", &rad))
+		return;
+	if (jnum_array(rad, "mean_radius_cm", &tmp, &n, &ignored, mpath) == 0) {
+		for (int w = 0; w < b->n_wl && w < n; w++)
+			b->sss_radius_cm[w] = tmp[w];
+		free(tmp);
+	}
+	free(ignored);
+	ignored = NULL;
+	if (jnum_array(rad, "mean_radius_rgb_cm", &tmp, &n, &ignored, mpath) == 0) {
+		for (int c = 0; c < 3 && c < n; c++)
+			b->sss_radius_rgb_cm[c] = tmp[c];
+		free(tmp);
+	}
+	free(ignored);
+}
+
+int bake_manifest_read(const char *dir, struct bake *b, char **cause)
+{
+	char *mpath = xasprintf("%s/manifest.json", dir);
+	json_object *o = NULL, *v;
+	int rc = -1;
+	if (access(mpath, R_OK) != 0) {
+		*cause = xasprintf("%s: not a bake directory (%s: %s)", dir, mpath, strerror(errno));
+		goto out;
+	}
+	o = json_object_from_file(mpath);
+	if (o == NULL || !json_object_object_get_ex(o, "format", &v) || strcmp(json_object_get_string(v), "skinbake-bake") != 0) {
+		*cause = xasprintf("%s: not a skinbake bake manifest (corrupt JSON or wrong format)", mpath);
+		goto out;
+	}
+	if ((int)jnum(o, "format_version", 0) != BAKE_FORMAT_VERSION) {
+		*cause = xasprintf("%s: format_version %g is not %d", mpath, jnum(o, "format_version", 0), BAKE_FORMAT_VERSION);
+		goto out;
+	}
+	if (json_object_object_get_ex(o, "preset", &v))
+		b->preset = xstrdup(json_object_get_string(v));
+	if (read_axes(o, b, mpath, cause) || read_rgb(o, b, mpath, cause) || read_specular(o, b, mpath, cause))
+		goto out;
+	read_radial(o, b, mpath);
+	rc = 0;
+out:
+	if (o)
+		json_object_put(o);
+	free(mpath);
+	return rc;
+}

@@ -1,0 +1,116 @@
+/* ad: the deterministic solver of the skin's radiative transfer by
+ * adding-doubling, the same problem the Monte Carlo samples: plane-parallel
+ * layers (1..16, the last may be a half space) with refractive index,
+ * mu_a, mu_s and a Henyey-Greenstein phase function; smooth Fresnel
+ * interfaces (exact or Schlick, as in optics.h) with refraction and total
+ * internal reflection; clear layers of any thickness crossed incoherently;
+ * ambient media above and below; collimated incidence at any angles.
+ *
+ * One call solves all incidence angles from one set of reflection
+ * matrices (each a collimated beam riding along with the quadrature).  It
+ * returns per angle Rsp, Rd, Tt and the absorption per layer (as
+ * struct sim_result defines them: Rd excludes Rsp and includes light that
+ * returns unscattered), the diffuse BRDF's bin means on the bake's table
+ * (theta_o uniform over [0, 90] deg, dphi over [0, 180] deg, both sides of
+ * the incidence plane, dphi = 0 back toward the light; power through the
+ * bin over the bin's integral of cos d(omega), as bake.c) with their
+ * azimuthal means, and the BRDF at any point (ad_brdf).  Unscattered light
+ * is not in the BRDF (it leaves only along the mirror direction).
+ *
+ * Every value comes with an error estimate (ad_err.h): the difference from
+ * a second solve at half the quadrature nodes (which bounds the error where
+ * doubling the nodes at least halves it, and is scaled up from a third
+ * solve at a quarter where it does not), plus the size of the Fourier
+ * orders beyond those kept where the series was cut.  rms_rel_err is the table's
+ * solid-angle-weighted RMS relative error, defined as the Monte Carlo
+ * bake's.  Asked for a tolerance, the solver doubles its nodes until the
+ * estimate meets it, and fails (-1 and *cause) where it cannot.
+ *
+ * The solver sets OpenBLAS to one thread (process-wide: its matrices are
+ * small) and runs Fourier orders on `threads` OpenMP threads instead.
+ *
+ * Method and sources: ad_quad.h (angles), ad_phase.h (phase function,
+ * delta-M), ad_layer.h (starting layer, doubling), ad_stack.h (boundaries,
+ * adding, fluxes), ad_order.h (Fourier orders), ad_eval.h (the BRDF between
+ * nodes).  Matrix work through BLAS and LAPACK (OpenBLAS, LAPACKE).
+ * The solver allocates; it never prints or exits. */
+#ifndef SKINBAKE_AD_H
+#define SKINBAKE_AD_H
+#include "engine/optics.h"
+#include "engine/slab.h"
+
+#define AD_MAX_BEAMS 256
+
+struct ad_opts {
+	double tol;		/* wanted accuracy: table RMS relative error and relative error of Rd, Tt;
+				 * (0, 0.1]; also sets where the Fourier series is cut */
+	int n_quad;		/* quadrature nodes per unit cosine per hemisphere, [4, 1024];
+				 * 0 = the fewest from 16 up (doubling) that meet tol */
+	int n_quad_max;		/* largest automatic n_quad */
+	int error_estimate;	/* 1 = second solve at n_quad / 2 for the errors; 0 = none (errors 0) */
+	double dtau_frac;	/* starting layer's optical thickness over the smallest cosine, (0, 1] */
+	double dm_terms;	/* Legendre terms of the phase function kept per node of a medium; delta-M beyond */
+	int max_orders;		/* Fourier orders at most, >= 1 */
+	int n_to, n_phi;	/* table bins over theta_o and dphi, >= 1 each */
+	int threads;		/* OpenMP threads over Fourier orders; 0 = all */
+};
+
+struct ad_value {
+	double v;	/* value */
+	double err;	/* error estimate (see top) */
+};
+
+/* Results for one incidence angle. */
+struct ad_beam {
+	double theta_i;			/* [rad] */
+	double rsp;			/* specular reflectance of the smooth top and clear layers on it (exact) */
+	struct ad_value rd;		/* diffuse reflectance: leaves the top, excluding rsp */
+	double rd_unscat;		/* part of rd that never scattered */
+	struct ad_value tt;		/* leaves the bottom, unscattered included */
+	double tt_unscat;		/* part of tt that never scattered */
+	struct ad_value a[SLAB_MAX_LAYERS + 2];	/* absorbed per layer, index as in struct slab */
+	double balance;			/* rsp + rd + tt + sum a - 1 (absorption from each layer's own R, T) */
+	double *fr, *fr_err;		/* [n_to * n_phi] diffuse BRDF bin means [1/sr], it * n_phi + ip */
+	double *fr_az, *fr_az_err;	/* [n_to] their azimuthal means [1/sr] */
+	double rms_rel_err;		/* this angle's table */
+};
+
+struct ad_series;
+
+struct ad_result {
+	int n_beams;
+	struct ad_beam *beam;		/* [n_beams] */
+	int n_to, n_phi;
+	double rms_rel_err;		/* the whole table's (all angles) */
+	int n_quad;			/* nodes per unit cosine used */
+	int n_nodes;			/* quadrature nodes per hemisphere */
+	int n_orders;			/* Fourier orders kept */
+	int series_complete;		/* 1 if the phase function has no higher orders (no truncation) */
+	long doublings;			/* doubling steps, all orders and layers */
+	double delta_m_f;		/* largest delta-M forward fraction moved to the unscattered beam */
+	double norm_max;		/* largest correction of the phase function's discrete normalization */
+	double conv_factor;		/* factor on |X_N - X_N/2| in the errors, >= 1 (ad_err.h) */
+	double seconds;			/* wall time [s] */
+	struct ad_series *series, *series_lo;	/* for ad_brdf */
+};
+
+void ad_opts_default(struct ad_opts *o);
+
+/* Solve slab s (checked and prepared) for incidence angles theta_i[k] in
+ * [0, pi/2) [rad], 1 <= n_beams <= AD_MAX_BEAMS.  0, or -1 with *cause
+ * (caller frees) on bad input, a LAPACK failure or an accuracy the solver
+ * cannot reach.  Free r with ad_result_free after success. */
+int ad_solve(const struct slab *s, enum optics_fresnel model, const double *theta_i, int n_beams,
+    const struct ad_opts *o, struct ad_result *r, char **cause);
+
+/* Diffuse BRDF [1/sr] of angle k at exit theta_o in [0, pi/2] and dphi
+ * [rad]; its error estimate into *err when err != NULL. */
+double ad_brdf(const struct ad_result *r, int k, double theta_o, double dphi, double *err);
+
+/* The Fourier series of the diffuse BRDF of angle k at exit theta_o:
+ * f(dphi) = sum_m coef[m] cos(m dphi), m < the return value (at most max;
+ * dphi = 0 back toward the light). */
+int ad_brdf_fourier(const struct ad_result *r, int k, double theta_o, double *coef, int max);
+
+void ad_result_free(struct ad_result *r);
+#endif

@@ -1,0 +1,156 @@
+/* The diffuse BRDF from the solver's Fourier series: at a point and as the
+ * bake table's bin means (interpolation and integration in ad_eval.h). */
+#include "config.h"
+#include "engine/ad_eval.h"
+
+#include <math.h>
+#include <stdlib.h>
+#include <string.h>
+
+#include "engine/ad_stack.h"
+#include "base/util.h"
+
+/* Top boundary transmittance at exit s. */
+static double top_t(const struct ad_series *sr, double s)
+{
+	double r, t;
+	ad_bnd_rt(sr->md.fresnel, sr->md.bn[0], sr->md.bcnt[0], s, &r, &t);
+	return t;
+}
+
+/* Interpolation weights over all exit nodes (zero outside s's piece) for
+ * exit s, times the top transmittance; 0 if no light leaves there. */
+static int exit_weights(const struct ad_series *sr, double s, double *wt)
+{
+	const struct ad_level *lv = &sr->lv;
+	memset(wt, 0, sizeof(double) * (size_t)lv->na);
+	if (lv->na == 0 || s >= lv->q.sigma[lv->q.n_iv] || s >= sr->md.n_above)
+		return 0;
+	int k = ad_quad_piece(&lv->q, s);
+	if (lv->q.first[k] >= lv->na)
+		return 0;
+	double t = top_t(sr, s);
+	if (t <= 0.0)
+		return 0;
+	int f = lv->q.first[k], nk = lv->q.first[k + 1] - f;
+	ad_quad_interp(&lv->q, k, s, wt + f);
+	/* G = F / t at the nodes, so a weight on F_i is wt_i t(s) / t_i. */
+	for (int j = 0; j < nk; j++)
+		wt[f + j] = lv->t_air[f + j] > 0.0 ? wt[f + j] * t / lv->t_air[f + j] : 0.0;
+	return 1;
+}
+
+double ad_series_point(const struct ad_series *sr, int e, double theta_o, double dphi, int m_max)
+{
+	const struct ad_level *lv = &sr->lv;
+	int M = m_max > 0 && m_max < lv->M ? m_max : lv->M, na = lv->na;
+	double *wt = xcalloc((size_t)na + 1, sizeof(double));
+	double f = 0.0;
+	if (exit_weights(sr, sr->md.n_above * sin(theta_o), wt))
+		for (int m = 0; m < M; m++) {
+			const double *Fm = lv->F + ((size_t)m * lv->E + e) * na;
+			double v = 0.0;
+			for (int i = 0; i < na; i++)
+				v += wt[i] * Fm[i];
+			f += (m & 1 ? -1.0 : 1.0) * cos(m * dphi) * v;
+		}
+	free(wt);
+	return f;
+}
+
+int ad_series_fourier(const struct ad_series *sr, int e, double theta_o, double *coef, int max)
+{
+	const struct ad_level *lv = &sr->lv;
+	int M = max < lv->M ? max : lv->M, na = lv->na;
+	double *wt = xcalloc((size_t)na + 1, sizeof(double));
+	int on = exit_weights(sr, sr->md.n_above * sin(theta_o), wt);
+	for (int m = 0; m < M; m++) {
+		const double *Fm = lv->F + ((size_t)m * lv->E + e) * na;
+		double v = 0.0;
+		for (int i = 0; on && i < na; i++)
+			v += wt[i] * Fm[i];
+		coef[m] = m & 1 ? -v : v;
+	}
+	free(wt);
+	return M;
+}
+
+/* B[it * na + i]: the theta_o bin mean of F_m is sum_i B F_m(i). */
+static void theta_means(const struct ad_series *sr, int n_to, double *B)
+{
+	const struct ad_level *lv = &sr->lv;
+	const int na = lv->na;
+	const double dth = 0.5 * M_PI / n_to, n0 = sr->md.n_above;
+	double *wt = xcalloc((size_t)na + 1, sizeof(double));
+	memset(B, 0, sizeof(double) * (size_t)n_to * na);
+	for (int it = 0; it < n_to; it++) {
+		double t0 = it * dth, t1 = (it + 1) * dth;
+		/* Split at the exit angles of the pieces' edges (critical angles). */
+		double cut[AD_MAX_IV + 2];
+		int nc = 0;
+		cut[nc++] = t0;
+		for (int k = 1; k <= lv->q.n_iv; k++) {
+			double sk = lv->q.sigma[k];
+			if (sk < n0) {
+				double tk = asin(sk / n0);
+				if (tk > t0 && tk < t1)
+					cut[nc++] = tk;
+			}
+		}
+		cut[nc++] = t1;
+		double s0 = sin(t0), s1 = sin(t1), den = 0.5 * (s1 * s1 - s0 * s0);
+		for (int c = 0; c + 1 < nc; c++) {
+			double x[AD_EVAL_POINTS], w[AD_EVAL_POINTS];
+			ad_gauss_legendre(AD_EVAL_POINTS, cut[c], cut[c + 1], x, w);
+			for (int p = 0; p < AD_EVAL_POINTS; p++) {
+				if (!exit_weights(sr, n0 * sin(x[p]), wt))
+					continue;
+				double g = w[p] * cos(x[p]) * sin(x[p]) / den;
+				for (int i = 0; i < na; i++)
+					B[(size_t)it * na + i] += g * wt[i];
+			}
+		}
+	}
+	free(wt);
+}
+
+void ad_series_table(const struct ad_series *sr, int n_to, int n_phi, int m_max, double *fr, double *fr_az,
+    double *last)
+{
+	const struct ad_level *lv = &sr->lv;
+	const int na = lv->na, E = lv->E, nb = n_to * n_phi;
+	int M = m_max > 0 && m_max < lv->M ? m_max : lv->M;
+	double *B = xcalloc((size_t)n_to * na + 1, sizeof(double));
+	double *th = xcalloc((size_t)n_to, sizeof(double));
+	theta_means(sr, n_to, B);
+	memset(fr, 0, sizeof(double) * (size_t)E * nb);
+	if (last)
+		memset(last, 0, sizeof(double) * (size_t)E * nb);
+	const double dph = M_PI / n_phi;
+	for (int m = 0; m < lv->M; m++) {
+		double *out = m < M ? fr : last;
+		if (!out)
+			break;
+		for (int e = 0; e < E; e++) {
+			const double *Fm = lv->F + ((size_t)m * E + e) * na;
+			for (int it = 0; it < n_to; it++) {
+				double v = 0.0;
+				for (int i = 0; i < na; i++)
+					v += B[(size_t)it * na + i] * Fm[i];
+				th[it] = v;
+				if (m == 0)
+					fr_az[(size_t)e * n_to + it] = v;
+			}
+			for (int ip = 0; ip < n_phi; ip++) {
+				double p0 = ip * dph, p1 = (ip + 1) * dph;
+				double cm = m == 0 ? 1.0 : (sin(m * p1) - sin(m * p0)) / (m * dph);
+				if (m & 1)
+					cm = -cm;
+				for (int it = 0; it < n_to; it++)
+					out[(size_t)e * nb + it * n_phi + ip] += cm * th[it];
+			}
+		}
+	}
+	free(B);
+	free(th);
+}

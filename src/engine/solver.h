@@ -1,0 +1,111 @@
+/* solver: the seam between the bake driver and the methods that compute a
+ * BRDF table.  The driver states a problem (prepared slabs, one per
+ * wavelength; incidence angles; the exit grid; the accuracy wanted) and a
+ * run environment (threads, MPI ranks, progress), and gets back a table:
+ * per (wavelength, incidence angle) the bin means of the diffuse BRDF over
+ * (theta_o, delta_phi) with their standard errors, Rsp, the diffuse albedo,
+ * Tt, absorption per layer, optionally the radial profile Rd(r), and what it
+ * cost.  The driver knows nothing of how a method works.
+ *
+ * A method is a table of functions (struct solver_ops) that works in units:
+ * begin, then step until it says it is done, then finish.  A unit is what a
+ * method can stop after (Monte Carlo: one round of photon batches; a
+ * deterministic method: one slab), so a later checkpoint can save the state
+ * between steps.  Monte Carlo is engine/mc.h.  A method that cannot give
+ * some part of the table (e.g. adding-doubling has no Rd(r)) says so in
+ * `provides` and leaves that part at 0; the driver then asks another
+ * method for it. */
+#ifndef SKINBAKE_SOLVER_H
+#define SKINBAKE_SOLVER_H
+#include "engine/batchstat.h"
+#include "engine/optics.h"
+#include "engine/slab.h"
+#include "engine/tally.h"
+
+/* What to compute, independent of the method. */
+struct solver_problem {
+	int n_wl;			/* wavelengths (slabs), >= 1 */
+	const double *wl_nm;		/* [n_wl] [nm], labels of the table's entries */
+	const struct slab *slab;	/* [n_wl] checked and prepared */
+	int n_ti;			/* incidence angles, >= 1 */
+	const double *theta_i;		/* [n_ti] [rad], ascending, in [0, pi/2) */
+	struct tally_grid grid;		/* exit bins over theta_o [0, 90] x delta_phi [0, 180] deg; Rd(r) bins (n_r = 0: none) */
+	enum optics_fresnel fresnel;	/* reflectance model at every boundary */
+	double target_error;		/* solid-angle-weighted RMS relative error of the whole table
+					 * to reach [-]; 0 = the method's own budget decides */
+};
+
+/* Where and how a method runs; none of it changes the numbers. */
+struct solver_run {
+	int threads;			/* OpenMP threads, 0 = all cores */
+	int rank, n_ranks;		/* MPI: this process and the number of processes (1 = none) */
+	void (*allreduce)(double *v, long n);	/* sum n doubles over ranks in place; NULL = one process */
+	void (*progress)(void *user, long done, long total);	/* work units done of total; may be NULL */
+	void *progress_user;
+};
+
+/* One table entry: one (wavelength, incidence angle) pair.  Fractions are
+ * of the incident power; errors are standard errors (0 for exact values). */
+struct brdf_entry {
+	double wl_nm;		/* [nm] */
+	double theta_i;		/* [rad] */
+	double rsp;		/* specular reflectance of the smooth top and clear layers on top (exact) [-] */
+	struct estimate albedo;	/* directional-hemispherical diffuse albedo (scattered light) [-];
+				 * Monte Carlo states the error of all returned light here */
+	struct estimate rd_unscat;	/* returned without scattering below the clear top [-] */
+	struct estimate tt;	/* transmitted through the bottom [-] */
+	struct estimate a_total;	/* absorbed in all layers [-] */
+	struct estimate a[SLAB_MAX_LAYERS + 2];	/* absorbed per layer, index as in struct slab [-] */
+	struct estimate lost;	/* ended by a guard of the method (e.g. step cap) [-] */
+	double *fr, *fr_err;	/* [n_theta * n_phi] diffuse BRDF bin means and errors [1/sr],
+				 * row-major [theta_o][delta_phi] */
+	double *rd_r, *rd_r_err;	/* [n_r] radial profile Rd(r) [1/cm^2], NULL without radial bins */
+	double rms_rel_err;	/* solid-angle-weighted RMS relative error of this entry's fr [-] */
+	/* Cost. */
+	long batches;		/* Monte Carlo batches (0 for other methods) */
+	long photons;		/* Monte Carlo photons (0 for other methods) */
+	double events;		/* scattering events, or the method's own unit of work */
+};
+
+struct brdf_table {
+	int n_wl, n_ti;
+	struct tally_grid grid;
+	struct brdf_entry *entry;	/* [n_wl * n_ti], entry = wavelength * n_ti + angle */
+	double rms_rel_err;	/* over the whole table [-] */
+	int target_met;		/* 1 when target_error was 0 or is met */
+	long photons;		/* total (Monte Carlo) */
+	double seconds;		/* wall time of the steps [s] */
+};
+
+/* Parts of a table a method can give. */
+enum {
+	SOLVER_BRDF = 1,	/* fr, fr_err and the totals */
+	SOLVER_RADIAL = 2	/* rd_r, rd_r_err */
+};
+
+struct solver_ops {
+	const char *name;	/* as in a later --solver NAME and the manifest, e.g. "mc" */
+	unsigned provides;	/* SOLVER_BRDF | SOLVER_RADIAL */
+	/* Check p against the method's settings and set up; NULL and *cause
+	 * (caller frees) when the method cannot solve p. */
+	void *(*begin)(const struct solver_problem *p, const void *settings, char **cause);
+	/* Do one unit of work: 1 while more remain, 0 when the table is done. */
+	int (*step)(void *state, const struct solver_run *run);
+	/* Fill out (caller frees with brdf_table_free) and free the state. */
+	void (*finish)(void *state, struct brdf_table *out);
+};
+
+/* begin, step until done, finish; out->seconds is the wall time of the
+ * steps.  -1 and *cause when begin refuses the problem. */
+int solver_solve(const struct solver_ops *ops, const void *settings, const struct solver_problem *p,
+    const struct solver_run *run, struct brdf_table *out, char **cause);
+
+/* The solid-angle-weighted RMS relative error of every entry's fr (an
+ * empty bin counts as 100%): the accuracy of a table as target_error
+ * means it, the same for every method [-]. */
+double brdf_table_rms(const struct brdf_table *t);
+
+/* An empty table for p (entries labelled, arrays zeroed), for a method's finish. */
+void brdf_table_init(struct brdf_table *t, const struct solver_problem *p);
+void brdf_table_free(struct brdf_table *t);
+#endif

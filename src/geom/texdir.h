@@ -1,0 +1,74 @@
+/* texdir: the texture directory of `skinbake texture`, written and read.
+ * One tile of skin micro-relief as seamless maps, row 0 at the top = +y end
+ * of the tile:
+ *
+ *   height.png          16-bit gray, 0 = lowest point, 65535 = highest; tEXt
+ *                       skinbake:tile_mm, skinbake:height_min_um and
+ *                       skinbake:height_max_um give the physical range
+ *   pores_height.png    the same for the pores alone
+ *   furrows_height.png  the same for the furrows alone
+ *   normal.png          16-bit RGB tangent-space normal, OpenGL +Y:
+ *                       value = (n + 1) / 2 * 65535
+ *   normal.exr          float R, G, B = unit normal x, y, z
+ *   height.exr          float Y = height [um] over the undisturbed surface
+ *   preview.png         8-bit sRGB Lambert shading, for people
+ *   manifest.json       parameters, ranges, furrow levels, files
+ *
+ * Exporters read it through texdir_load (height and normal maps with their
+ * tEXt numbers); nothing else parses these files. */
+#ifndef SKINBAKE_TEXDIR_H
+#define SKINBAKE_TEXDIR_H
+#include <stdint.h>
+
+#include "geom/relief.h"
+#include "geom/sites.h"
+
+/* ---- writer ---- */
+
+/* The maps of one tile, n x n pixels, row 0 at the top. */
+struct texdir_maps {
+	int n;			/* tile edge [px] */
+	float *pores;		/* [n * n] pore heights [cm], 0 = undisturbed surface */
+	float *furrows;		/* [n * n] furrow heights [cm] */
+	float *height;		/* [n * n] pores + furrows [cm] */
+	float *nx, *ny, *nz;	/* [n * n] unit normal, x right, y up, z out */
+};
+
+/* Render relief r (placed for cfg) at cfg->size pixels: heights and normals.
+ * Free with texdir_maps_free. */
+void texdir_maps_render(struct texdir_maps *m, const struct relief *r, const struct texture_config *cfg);
+void texdir_maps_free(struct texdir_maps *m);
+/* Lowest and highest point of m->height [cm]. */
+void texdir_height_range(const struct texdir_maps *m, double *lo, double *hi);
+
+/* Notes on features too small for the pixel pitch (furrows under 2 px wide,
+ * pores under 1.5 px), one line each without a newline at the end, or
+ * NULL when there are none.  Caller frees. */
+char *texdir_resolution_notes(const struct texture_config *cfg, const struct relief *r);
+
+/* Write every file above into DIR (created if needed), manifest.json last;
+ * -1 and *cause (caller frees) on an I/O failure. */
+int texdir_write(const char *dir, const struct texture_config *cfg, const struct relief *r,
+    const struct texdir_maps *m, char **cause);
+
+/* ---- reader ---- */
+
+struct texdir {
+	char *dir;		/* the directory as given */
+	int w, h;		/* map size [px] (a tile need not be square here) */
+	uint16_t *height;	/* [h][w] height.png, 0 = height_min_um .. 65535 = height_max_um */
+	uint16_t *normal;	/* [h][w][3] normal.png, or NULL when not asked for */
+	double tile_mm;		/* tile edge [mm], > 0 (may be inf: check before use) */
+	int have_range;		/* 1 when both heights below are finite numbers */
+	double h_min_um, h_max_um;	/* height of value 0 and 65535 [um] */
+	/* The tEXt values as written, for copies that keep them to the letter
+	 * (NULL when absent). */
+	char *tile_mm_text, *h_min_text, *h_max_text;
+};
+
+/* Read DIR/height.png (16-bit gray with tEXt skinbake:tile_mm > 0) and,
+ * with with_normal, DIR/normal.png (16-bit RGB of the same size).  NULL and
+ * *cause (caller frees) naming the file and the problem otherwise. */
+struct texdir *texdir_load(const char *dir, int with_normal, char **cause);
+void texdir_free(struct texdir *t);	/* NULL is a no-op */
+#endif

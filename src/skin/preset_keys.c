@@ -1,0 +1,573 @@
+/* preset_keys: the table of preset keys and the setters that turn a key's
+ * text into struct skin_params fields (see preset_keys.h); also the
+ * resolved parameters as INI text and the key listing of `preset keys`. */
+#include "config.h"
+#include "skin/preset_keys.h"
+
+#include <math.h>
+#include <stdarg.h>
+#include <stddef.h>
+#include <stdlib.h>
+#include <string.h>
+
+#include "base/util.h"
+#include "skin/preset.h"
+#include "skin/spectra.h"
+
+enum kind {
+	K_NUM,		/* a number in [lo, hi] */
+	K_LEN,		/* a thickness in [lo, hi] or "inf" */
+	K_IOR,		/* a number or "ding2006" */
+	K_ANISO,	/* a number or "vangemert1989" */
+	K_TEXT,		/* name or description */
+	K_MODEL,	/* chromophores | tables */
+	K_WL,		/* wavelength list */
+	K_BASE		/* start from a built-in preset */
+};
+
+#define NONE (-1)
+#define LOFF(f) offsetof(struct skin_layer_params, f)
+#define POFF(f) offsetof(struct skin_params, f)
+
+struct key {
+	const char *section;
+	const char *name;
+	enum kind kind;
+	int layer;		/* enum skin_layer_id, or NONE for a struct skin_params field */
+	size_t off;		/* field offset in the layer or the params */
+	double lo, hi;		/* inclusive range */
+	const char *unit;
+	const char *dflt;	/* default, in the file syntax ("" = none) */
+	const char *doc;
+};
+
+static const struct key keys[] = {
+	{ "skin", "base", K_BASE, NONE, 0, 0, 0, "", "",
+	  "start from this built-in preset (must be the first key of the file)" },
+	{ "skin", "name", K_TEXT, NONE, POFF(name), 1, 64, "", "",
+	  "preset name, letters, digits, '.', '_', '-' (default: file name without .ini)" },
+	{ "skin", "description", K_TEXT, NONE, POFF(description), 0, 160, "", "",
+	  "one-line description" },
+	{ "skin", "model", K_MODEL, NONE, POFF(model), 0, 0, "", "chromophores",
+	  "chromophores: optics from the chromophore model at any wavelength, overrides on top; "
+	  "tables: only the [override.WL] values, at those wavelengths only" },
+	{ "skin", "wavelengths", K_WL, NONE, POFF(wl), 380, 780, "nm", "400:700:20",
+	  "default wavelengths: a comma list of values and START:STOP:STEP ranges, ascending, "
+	  "at most 401 (model = tables: default all override wavelengths)" },
+
+	{ "sebum", "thickness", K_NUM, SKIN_SEBUM, LOFF(d), 0, 0.01, "cm", "0.0005",
+	  "surface lipid film thickness; 0 = no sebum" },
+	{ "sebum", "n", K_NUM, SKIN_SEBUM, LOFF(n), 1, 2, "", "1.5", "refractive index" },
+	{ "sebum", "mua", K_NUM, SKIN_SEBUM, LOFF(mu_a), 0, 1000, "1/cm", "0", "absorption coefficient" },
+	{ "sebum", "mus", K_NUM, SKIN_SEBUM, LOFF(mu_s), 0, 10000, "1/cm", "0", "scattering coefficient" },
+	{ "sebum", "g", K_NUM, SKIN_SEBUM, LOFF(g), -0.99, 0.99, "", "0", "HG anisotropy" },
+
+	{ "epidermis", "thickness", K_NUM, SKIN_EPIDERMIS, LOFF(d), 0.001, 0.05, "cm", "0.006", "thickness" },
+	{ "epidermis", "n", K_IOR, SKIN_EPIDERMIS, LOFF(n), 1, 2, "", "ding2006",
+	  "refractive index, or ding2006 = 1.4134 + 7907.96/wl^2" },
+	{ "epidermis", "g", K_ANISO, SKIN_EPIDERMIS, LOFF(g), -0.99, 0.99, "", "vangemert1989",
+	  "HG anisotropy, or vangemert1989 = 0.62 + 0.29e-3 wl" },
+	{ "epidermis", "melanin", K_NUM, SKIN_EPIDERMIS, LOFF(melanin), 0, 0.5, "", "0.025",
+	  "melanosome volume fraction" },
+	{ "epidermis", "eumelanin", K_NUM, SKIN_EPIDERMIS, LOFF(eumelanin), 0, 1, "", "0.7",
+	  "eumelanin share of the melanin (rest pheomelanin)" },
+	{ "epidermis", "musp500", K_NUM, SKIN_EPIDERMIS, LOFF(musp_500), 0, 1000, "1/cm", "69.0",
+	  "reduced scattering mu_s' at 500 nm" },
+	{ "epidermis", "musp_power", K_NUM, SKIN_EPIDERMIS, LOFF(musp_power), 0, 4, "", "0.58",
+	  "mu_s' exponent (Mie part when musp_rayleigh > 0)" },
+	{ "epidermis", "musp_rayleigh", K_NUM, SKIN_EPIDERMIS, LOFF(musp_rayleigh), 0, 1, "", "0.37",
+	  "Rayleigh share f of mu_s' at 500 nm (mu_s' = musp500 [f (wl/500)^-4 + (1-f) (wl/500)^-musp_power])" },
+
+	{ "dermis", "thickness", K_LEN, SKIN_DERMIS, LOFF(d), 0.005, 2, "cm", "0.2",
+	  "thickness, or inf (semi-infinite)" },
+	{ "dermis", "n", K_IOR, SKIN_DERMIS, LOFF(n), 1, 2, "", "ding2006",
+	  "refractive index, or ding2006 = 1.3696 + 3916.80/wl^2" },
+	{ "dermis", "g", K_ANISO, SKIN_DERMIS, LOFF(g), -0.99, 0.99, "", "vangemert1989",
+	  "HG anisotropy, or vangemert1989" },
+	{ "dermis", "blood", K_NUM, SKIN_DERMIS, LOFF(blood), 0, 0.2, "", "0.02", "blood volume fraction" },
+	{ "dermis", "so2", K_NUM, SKIN_DERMIS, LOFF(so2), 0, 1, "", "0.75", "blood oxygen saturation" },
+	{ "dermis", "musp500", K_NUM, SKIN_DERMIS, LOFF(musp_500), 0, 1000, "1/cm", "45.6",
+	  "reduced scattering mu_s' at 500 nm" },
+	{ "dermis", "musp_power", K_NUM, SKIN_DERMIS, LOFF(musp_power), 0, 4, "", "0.52",
+	  "mu_s' exponent (Mie part when musp_rayleigh > 0)" },
+	{ "dermis", "musp_rayleigh", K_NUM, SKIN_DERMIS, LOFF(musp_rayleigh), 0, 1, "", "0.46",
+	  "Rayleigh share f of mu_s' at 500 nm (mu_s' = musp500 [f (wl/500)^-4 + (1-f) (wl/500)^-musp_power])" },
+
+	{ "subcutis", "thickness", K_LEN, SKIN_SUBCUTIS, LOFF(d), 0, 10, "cm", "0",
+	  "thickness, or inf (semi-infinite); 0 = no subcutis" },
+	{ "subcutis", "n", K_IOR, SKIN_SUBCUTIS, LOFF(n), 1, 2, "", "1.44", "refractive index" },
+	{ "subcutis", "g", K_ANISO, SKIN_SUBCUTIS, LOFF(g), -0.99, 0.99, "", "0.75", "HG anisotropy" },
+	{ "subcutis", "blood", K_NUM, SKIN_SUBCUTIS, LOFF(blood), 0, 0.2, "", "0.05", "blood volume fraction" },
+	{ "subcutis", "so2", K_NUM, SKIN_SUBCUTIS, LOFF(so2), 0, 1, "", "0.75", "blood oxygen saturation" },
+	{ "subcutis", "musp500", K_NUM, SKIN_SUBCUTIS, LOFF(musp_500), 0, 1000, "1/cm", "35.0",
+	  "reduced scattering mu_s' at 500 nm" },
+	{ "subcutis", "musp_power", K_NUM, SKIN_SUBCUTIS, LOFF(musp_power), 0, 4, "", "1.136",
+	  "mu_s' exponent (Mie part when musp_rayleigh > 0)" },
+	{ "subcutis", "musp_rayleigh", K_NUM, SKIN_SUBCUTIS, LOFF(musp_rayleigh), 0, 1, "", "0",
+	  "Rayleigh share f of mu_s' at 500 nm (mu_s' = musp500 [f (wl/500)^-4 + (1-f) (wl/500)^-musp_power])" },
+
+	{ "surface", "roughness_skin", K_NUM, NONE, POFF(roughness_skin), 0.01, 1, "", "0.35",
+	  "GGX alpha of bare skin" },
+	{ "surface", "roughness_sebum", K_NUM, NONE, POFF(roughness_sebum), 0.01, 1, "", "0.25",
+	  "GGX alpha of the sebum-covered surface" },
+};
+#define N_KEYS ((int)(sizeof keys / sizeof keys[0]))
+_Static_assert(sizeof keys / sizeof keys[0] <= PRESET_MAX_KEYS, "struct preset_ctx.seen is too small");
+
+/* Keys of [override.WL] sections: LAYER.PROP. */
+enum { OV_MUA, OV_MUS, OV_G, OV_N, OV_N_PROPS };
+static const struct {
+	const char *name;
+	double lo, hi;
+	const char *unit;
+	const char *doc;
+} ov_props[OV_N_PROPS] = {
+	{ "mua", 0, 1e5, "1/cm", "absorption coefficient" },
+	{ "mus", 0, 1e6, "1/cm", "scattering coefficient (not reduced)" },
+	{ "g", -0.99, 0.99, "", "HG anisotropy" },
+	{ "n", 1, 2, "", "refractive index" },
+};
+
+void preset_ctx_err(struct preset_ctx *c, const char *fmt, ...)
+{
+	if (c->err)
+		return;
+	va_list ap;
+	va_start(ap, fmt);
+	c->err = inifile_vmsg(c->origin, c->in.line, fmt, ap);
+	va_end(ap);
+	c->err_line = c->in.line;
+}
+
+int preset_key_find(const char *section, const char *name)
+{
+	int known_section = 0;
+	for (int i = 0; i < N_KEYS; i++) {
+		if (strcmp(keys[i].section, section) != 0)
+			continue;
+		known_section = 1;
+		if (strcmp(keys[i].name, name) == 0)
+			return i;
+	}
+	return known_section ? -1 : -2;
+}
+
+char *preset_key_names(const char *section)
+{
+	char *list = xstrdup("");
+	for (int i = 0; i < N_KEYS; i++) {
+		if (strcmp(keys[i].section, section) != 0)
+			continue;
+		char *t = xasprintf("%s%s%s", list, *list ? ", " : "", keys[i].name);
+		free(list);
+		list = t;
+	}
+	return list;
+}
+
+static int parse_number(const char *v, double *x)
+{
+	return util_parse_double(v, x) != 0 || !isfinite(*x) ? -1 : 0;
+}
+
+/* "400:700:10, 720, 750" -> ascending list; -1 with a message on error. */
+int preset_wavelengths_parse(const char *v, double *wl, int *n, char **why)
+{
+	char *s = xstrdup(v), *save = NULL;
+	int k = 0, rc = -1;
+	for (char *tok = strtok_r(s, ",", &save); tok; tok = strtok_r(NULL, ",", &save)) {
+		while (*tok == ' ' || *tok == '\t')
+			tok++;
+		char *end = tok + strlen(tok);
+		while (end > tok && (end[-1] == ' ' || end[-1] == '\t'))
+			*--end = '\0';
+		double a, b, st;
+		char *c1 = strchr(tok, ':');
+		if (c1) {
+			char *c2 = strchr(c1 + 1, ':');
+			if (!c2) {
+				*why = xasprintf("'%s' is not START:STOP:STEP", tok);
+				goto out;
+			}
+			*c1 = *c2 = '\0';
+			if (parse_number(tok, &a) || parse_number(c1 + 1, &b) || parse_number(c2 + 1, &st)) {
+				*why = xasprintf("'%s:%s:%s' is not START:STOP:STEP with numbers", tok, c1 + 1, c2 + 1);
+				goto out;
+			}
+			if (!(st > 0.0) || b < a) {
+				*why = xasprintf("range %g:%g:%g needs STOP >= START and STEP > 0", a, b, st);
+				goto out;
+			}
+			long cnt = (long)floor((b - a) / st + 1e-9) + 1;
+			if (cnt > SKIN_MAX_WL - k) {
+				*why = xasprintf("more than %d wavelengths", SKIN_MAX_WL);
+				goto out;
+			}
+			for (long i = 0; i < cnt; i++)
+				wl[k++] = a + st * (double)i;
+		} else {
+			if (parse_number(tok, &a)) {
+				*why = xasprintf("'%s' is not a number", tok);
+				goto out;
+			}
+			if (k >= SKIN_MAX_WL) {
+				*why = xasprintf("more than %d wavelengths", SKIN_MAX_WL);
+				goto out;
+			}
+			wl[k++] = a;
+		}
+	}
+	if (k == 0) {
+		*why = xasprintf("no wavelengths given");
+		goto out;
+	}
+	for (int i = 0; i < k; i++) {
+		if (!(wl[i] >= SPECTRA_WL_MIN && wl[i] <= SPECTRA_WL_MAX)) {
+			*why = xasprintf("%g nm is out of range [%g, %g] nm", wl[i], SPECTRA_WL_MIN, SPECTRA_WL_MAX);
+			goto out;
+		}
+		if (i > 0 && !(wl[i] > wl[i - 1])) {
+			*why = xasprintf("%g nm after %g nm: wavelengths must be strictly ascending", wl[i], wl[i - 1]);
+			goto out;
+		}
+	}
+	*n = k;
+	rc = 0;
+out:
+	free(s);
+	return rc;
+}
+
+static int valid_name(const char *s)
+{
+	if (*s == '\0')
+		return 0;
+	for (; *s; s++)
+		if (!((*s >= 'a' && *s <= 'z') || (*s >= 'A' && *s <= 'Z') || (*s >= '0' && *s <= '9')
+		    || *s == '.' || *s == '_' || *s == '-'))
+			return 0;
+	return 1;
+}
+
+static void range_text(char *buf, size_t sz, double lo, double hi, const char *unit)
+{
+	snprintf(buf, sz, "[%g, %g]%s%s", lo, hi, *unit ? " " : "", unit);
+}
+
+void preset_free_contents(struct skin_params *p)
+{
+	free(p->name);
+	free(p->description);
+	free(p->origin);
+	free(p->override);
+	memset(p, 0, sizeof *p);
+}
+
+/* Set one key of the table; 0 or -1 (message in c). */
+int preset_key_set(struct preset_ctx *c, int ki, const char *v)
+{
+	const struct key *k = &keys[ki];
+	struct skin_params *p = c->p;
+	char *base = k->layer == NONE ? (char *)p : (char *)&p->layer[k->layer];
+	double *dp = (double *)(base + k->off), x;
+	char rng[96];
+	range_text(rng, sizeof rng, k->lo, k->hi, k->unit);
+
+	switch (k->kind) {
+	case K_NUM:
+	case K_LEN:
+	case K_IOR:
+	case K_ANISO:
+		if (k->kind == K_LEN && strcmp(v, "inf") == 0) {
+			*dp = INFINITY;
+			return 0;
+		}
+		if (k->kind == K_IOR && strcmp(v, "ding2006") == 0) {
+			if (k->layer != SKIN_EPIDERMIS && k->layer != SKIN_DERMIS) {
+				preset_ctx_err(c, "%s.%s = %s: the Ding 2006 fit exists only for epidermis and dermis; "
+				    "give a number in %s", k->section, k->name, v, rng);
+				return -1;
+			}
+			*dp = NAN;
+			return 0;
+		}
+		if (k->kind == K_ANISO && strcmp(v, "vangemert1989") == 0) {
+			*dp = NAN;
+			return 0;
+		}
+		if (parse_number(v, &x) != 0) {
+			preset_ctx_err(c, "%s.%s = %s: not a number%s (range %s)", k->section, k->name, v,
+			    k->kind == K_LEN ? " or inf" : k->kind == K_IOR ? " or ding2006"
+			    : k->kind == K_ANISO ? " or vangemert1989" : "", rng);
+			return -1;
+		}
+		if (!(x >= k->lo && x <= k->hi)) {
+			preset_ctx_err(c, "%s.%s = %s: out of range %s", k->section, k->name, v, rng);
+			return -1;
+		}
+		*dp = x;
+		return 0;
+	case K_TEXT:
+		if (strlen(v) > (size_t)k->hi) {
+			preset_ctx_err(c, "%s.%s: longer than %g characters", k->section, k->name, k->hi);
+			return -1;
+		}
+		if (strcmp(k->name, "name") == 0 && !valid_name(v)) {
+			preset_ctx_err(c, "%s.%s = %s: use letters, digits, '.', '_' and '-' only", k->section, k->name, v);
+			return -1;
+		}
+		if (strcmp(k->name, "name") == 0)
+			c->name_set = 1;
+		else
+			c->desc_set = 1;
+		free(*(char **)(base + k->off));
+		*(char **)(base + k->off) = xstrdup(v);
+		return 0;
+	case K_MODEL:
+		if (strcmp(v, "chromophores") == 0)
+			p->model = SKIN_MODEL_CHROMOPHORES;
+		else if (strcmp(v, "tables") == 0)
+			p->model = SKIN_MODEL_TABLES;
+		else {
+			preset_ctx_err(c, "%s.%s = %s: not one of chromophores, tables", k->section, k->name, v);
+			return -1;
+		}
+		return 0;
+	case K_WL: {
+		char *why = NULL;
+		if (preset_wavelengths_parse(v, p->wl, &p->n_wl, &why) != 0) {
+			preset_ctx_err(c, "%s.%s = %s: %s", k->section, k->name, v, why);
+			free(why);
+			return -1;
+		}
+		c->wl_set = 1;
+		return 0;
+	}
+	case K_BASE: {
+		if (c->n_calls != 1) {
+			preset_ctx_err(c, "skin.base = %s: base must be the first key of the file", v);
+			return -1;
+		}
+		if (c->depth >= PRESET_MAX_BASE_DEPTH) {
+			preset_ctx_err(c, "skin.base = %s: presets nest deeper than %d bases", v, PRESET_MAX_BASE_DEPTH);
+			return -1;
+		}
+		char *cause = NULL;
+		struct skin_params *b = preset_load_base(v, c->depth + 1, &cause);
+		if (b == NULL) {
+			preset_ctx_err(c, "skin.base = %s: %s", v, cause);
+			free(cause);
+			return -1;
+		}
+		preset_free_contents(p);
+		*p = *b;
+		free(b);
+		free(c->ov_seen);
+		c->ov_seen = xcalloc((size_t)p->n_override * SKIN_N_LAYERS * OV_N_PROPS + 1, 1);
+		return 0;
+	}
+	}
+	return -1;
+}
+
+static int find_layer(const char *s, size_t len)
+{
+	for (int l = 0; l < SKIN_N_LAYERS; l++)
+		if (strlen(tissue_layer_name(l)) == len && strncmp(s, tissue_layer_name(l), len) == 0)
+			return l;
+	return -1;
+}
+
+/* [override.WL] LAYER.PROP = value */
+int preset_override_set(struct preset_ctx *c, const char *section, const char *name, const char *v)
+{
+	struct skin_params *p = c->p;
+	double wl, x;
+	if (parse_number(section + 9, &wl) != 0) {
+		preset_ctx_err(c, "[%s]: '%s' is not a wavelength in nm (e.g. [override.550])", section, section + 9);
+		return -1;
+	}
+	if (!(wl >= SPECTRA_WL_MIN && wl <= SPECTRA_WL_MAX)) {
+		preset_ctx_err(c, "[%s]: wavelength %g nm is out of range [%g, %g] nm", section, wl, SPECTRA_WL_MIN,
+		    SPECTRA_WL_MAX);
+		return -1;
+	}
+	const char *dot = strchr(name, '.');
+	int l = dot ? find_layer(name, (size_t)(dot - name)) : -1, prop = -1;
+	for (int i = 0; dot && i < OV_N_PROPS; i++)
+		if (strcmp(dot + 1, ov_props[i].name) == 0)
+			prop = i;
+	if (l < 0 || prop < 0) {
+		preset_ctx_err(c, "unknown key '%s' in [%s] (keys: LAYER.mua, LAYER.mus, LAYER.g, LAYER.n with LAYER "
+		    "one of sebum, epidermis, dermis, subcutis)", name, section);
+		return -1;
+	}
+	char rng[96];
+	range_text(rng, sizeof rng, ov_props[prop].lo, ov_props[prop].hi, ov_props[prop].unit);
+	if (parse_number(v, &x) != 0) {
+		preset_ctx_err(c, "%s: %s = %s: not a number (range %s)", section, name, v, rng);
+		return -1;
+	}
+	if (!(x >= ov_props[prop].lo && x <= ov_props[prop].hi)) {
+		preset_ctx_err(c, "%s: %s = %s: out of range %s", section, name, v, rng);
+		return -1;
+	}
+	/* Find or insert the override, keeping them sorted by wavelength. */
+	int i = 0;
+	while (i < p->n_override && p->override[i].wl < wl - 1e-6)
+		i++;
+	if (i == p->n_override || fabs(p->override[i].wl - wl) >= 1e-6) {
+		size_t per = SKIN_N_LAYERS * OV_N_PROPS;
+		p->override = xreallocarray(p->override, (size_t)p->n_override + 1, sizeof *p->override);
+		c->ov_seen = xreallocarray(c->ov_seen, ((size_t)p->n_override + 1) * per + 1, 1);
+		memmove(&p->override[i + 1], &p->override[i], sizeof *p->override * (size_t)(p->n_override - i));
+		memmove(&c->ov_seen[(i + 1) * per], &c->ov_seen[i * per], per * (size_t)(p->n_override - i));
+		memset(&c->ov_seen[i * per], 0, per);
+		struct skin_override *o = &p->override[i];
+		o->wl = wl;
+		for (int j = 0; j < SKIN_N_LAYERS; j++)
+			o->mu_a[j] = o->mu_s[j] = o->g[j] = o->n[j] = NAN;
+		p->n_override++;
+	}
+	unsigned char *seen = &c->ov_seen[((size_t)i * SKIN_N_LAYERS + (size_t)l) * OV_N_PROPS + (size_t)prop];
+	if (*seen) {
+		preset_ctx_err(c, "%s: %s is given twice", section, name);
+		return -1;
+	}
+	*seen = 1;
+	struct skin_override *o = &p->override[i];
+	double *dst = prop == OV_MUA ? o->mu_a : prop == OV_MUS ? o->mu_s : prop == OV_G ? o->g : o->n;
+	dst[l] = x;
+	return 0;
+}
+
+void preset_apply_defaults(struct skin_params *p)
+{
+	struct preset_ctx c = { .origin = "defaults", .p = p };
+	memset(p, 0, sizeof *p);
+	for (int i = 0; i < N_KEYS; i++) {
+		if (keys[i].dflt[0] == '\0')
+			continue;
+		if (preset_key_set(&c, i, keys[i].dflt) != 0)
+			fatalx("preset defaults: %s", c.err);
+	}
+	free(c.ov_seen);
+}
+
+/* Append printf output to *s. */
+static void cat(char **s, const char *fmt, ...) __attribute__((format(printf, 2, 3)));
+static void cat(char **s, const char *fmt, ...)
+{
+	va_list ap;
+	char *m;
+	va_start(ap, fmt);
+	if (vasprintf(&m, fmt, ap) < 0)
+		fatalx("out of memory");
+	va_end(ap);
+	char *t = xasprintf("%s%s", *s, m);
+	free(*s);
+	free(m);
+	*s = t;
+}
+
+/* Wavelength list with uniform runs of 3 or more written as ranges. */
+static void cat_wavelengths(char **s, const double *wl, int n)
+{
+	for (int i = 0; i < n;) {
+		int j = i + 1;
+		double st = j < n ? wl[j] - wl[i] : 0.0;
+		while (j + 1 < n && fabs((wl[j + 1] - wl[j]) - st) < 1e-9)
+			j++;
+		if (j - i >= 2) {
+			cat(s, "%s%.15g:%.15g:%.15g", i ? ", " : "", wl[i], wl[j], st);
+			i = j + 1;
+		} else {
+			cat(s, "%s%.15g", i ? ", " : "", wl[i]);
+			i++;
+		}
+	}
+}
+
+char *preset_to_ini(const struct skin_params *p)
+{
+	char *s = xasprintf("; skinbake preset (resolved)\n");
+	const char *sec = "";
+	for (int i = 0; i < N_KEYS; i++) {
+		const struct key *k = &keys[i];
+		if (k->kind == K_BASE)
+			continue;
+		if (strcmp(sec, k->section) != 0) {
+			cat(&s, "%s[%s]\n", *sec ? "\n" : "", k->section);
+			sec = k->section;
+		}
+		const char *base = k->layer == NONE ? (const char *)p : (const char *)&p->layer[k->layer];
+		double x = *(const double *)(base + k->off);
+		switch (k->kind) {
+		case K_TEXT:
+			cat(&s, "%s = %s\n", k->name, *(char *const *)(base + k->off));
+			break;
+		case K_MODEL:
+			cat(&s, "%s = %s\n", k->name, p->model == SKIN_MODEL_TABLES ? "tables" : "chromophores");
+			break;
+		case K_WL:
+			cat(&s, "%s = ", k->name);
+			cat_wavelengths(&s, p->wl, p->n_wl);
+			cat(&s, "\n");
+			break;
+		default:
+			if (isinf(x))
+				cat(&s, "%s = inf\n", k->name);
+			else if (isnan(x))
+				cat(&s, "%s = %s\n", k->name, k->kind == K_IOR ? "ding2006" : "vangemert1989");
+			else
+				cat(&s, "%s = %.15g\n", k->name, x);
+			break;
+		}
+	}
+	for (int i = 0; i < p->n_override; i++) {
+		const struct skin_override *o = &p->override[i];
+		cat(&s, "\n[override.%.15g]\n", o->wl);
+		for (int l = 0; l < SKIN_N_LAYERS; l++) {
+			const double *v[OV_N_PROPS] = { o->mu_a, o->mu_s, o->g, o->n };
+			for (int j = 0; j < OV_N_PROPS; j++)
+				if (!isnan(v[j][l]))
+					cat(&s, "%s.%s = %.15g\n", tissue_layer_name(l), ov_props[j].name, v[j][l]);
+		}
+	}
+	return s;
+}
+
+int preset_parse_wavelengths(const char *s, double *wl, char **cause)
+{
+	int n = 0;
+	return preset_wavelengths_parse(s, wl, &n, cause) == 0 ? n : -1;
+}
+
+void preset_print_keys(FILE *fp)
+{
+	fprintf(fp, "%-28s %-6s %-14s %-20s %s\n", "key", "unit", "default", "range", "meaning");
+	for (int i = 0; i < N_KEYS; i++) {
+		const struct key *k = &keys[i];
+		char full[64], rng[64];
+		snprintf(full, sizeof full, "%s.%s", k->section, k->name);
+		if (k->kind == K_NUM || k->kind == K_LEN || k->kind == K_IOR || k->kind == K_ANISO)
+			snprintf(rng, sizeof rng, "[%g, %g]%s", k->lo, k->hi, k->kind == K_LEN ? " | inf" : "");
+		else if (k->kind == K_WL)
+			snprintf(rng, sizeof rng, "[%g, %g]", k->lo, k->hi);
+		else if (k->kind == K_MODEL)
+			snprintf(rng, sizeof rng, "chromophores|tables");
+		else if (k->kind == K_BASE)
+			snprintf(rng, sizeof rng, "built-in name");
+		else
+			snprintf(rng, sizeof rng, "<= %g chars", k->hi);
+		fprintf(fp, "%-28s %-6s %-14s %-20s %s\n", full, *k->unit ? k->unit : "-", *k->dflt ? k->dflt : "-",
+		    rng, k->doc);
+	}
+	for (int j = 0; j < OV_N_PROPS; j++) {
+		char full[64], rng[64];
+		snprintf(full, sizeof full, "override.WL:LAYER.%s", ov_props[j].name);
+		snprintf(rng, sizeof rng, "[%g, %g]", ov_props[j].lo, ov_props[j].hi);
+		fprintf(fp, "%-28s %-6s %-14s %-20s %s at wavelength WL [nm] (replaces the computed value)\n", full,
+		    *ov_props[j].unit ? ov_props[j].unit : "-", "-", rng, ov_props[j].doc);
+	}
+}
