@@ -10,21 +10,25 @@ the CUReT points at incidence 11.25 and 33.75 deg (20 of 205, in and out of
 the plane of incidence); scripts/validate-brdf.sh reports the error on the
 other points.
 
-Model evaluation is one call, model_brdf(params): a bake of the preset at the
-training incidence angles (`skinbake bake`, Monte Carlo by default;
---solver ad adds `--solver ad` when the adding-doubling solver is on main)
-and tests/brdf_points at the training geometries.  CUReT's values are the
+Model evaluation is one call, Model.model_brdf(params), with two solvers:
+--solver mc (default) bakes the preset at the training incidence angles
+(`skinbake bake`, Monte Carlo) and evaluates the bake with tests/brdf_points;
+--solver ad evaluates it with tests/brdf_model, the adding-doubling solver
+(src/engine/ad.h) at the points themselves, deterministic and without a bake.  CUReT's values are the
 mean of a camera's R, G and B; the model's are the mean over 470, 550 and
 656 nm (docs/presets.md, "Colour and RGB").
 
 The sebum film is clear, so its thickness does not change a plane-parallel
 model (only its two interfaces count): it is fitted as on or off.  Roughness
-enters only the analytic specular lobe, so for each bake the best roughness
-is found by a 1-D search over brdf_points --alpha without baking again; the
-Monte Carlo parameters (melanin, blood, scattering scale) are searched by
-Nelder-Mead in their logarithms, once with and once without sebum.
+enters only the analytic specular lobe, so with Monte Carlo the best
+roughness is found for each bake by a 1-D search over brdf_points --alpha
+without baking again, and melanin, blood and the scattering scale are
+searched by Nelder-Mead in their logarithms; with adding-doubling (no bake to
+save) all four are in one Nelder-Mead.  Each is run once with and once
+without sebum.
 
-Monte Carlo noise: the objective is the mean over the points of
+Monte Carlo noise (with --solver ad the errors are the solver's estimates,
+about 1e-4 relative, and the same formulas hold): the objective is the mean over the points of
 r_i^2 - e_i^2, with r_i = (f_i - y_i) / y_i the relative error and e_i the
 relative standard error of f_i (from the bake's batches); E[r_i^2] = true
 r_i^2 + e_i^2, so the objective is an unbiased estimate of the squared RMS
@@ -44,12 +48,17 @@ import math
 import os
 import subprocess
 import sys
+import time
 
 TRAIN_THETA_I = (11.25, 33.75)
 SEBUM_ON_CM = 0.0005            # the physiological presets' oily film (5 um)
 BASE_EPI_MUSP500 = 69.0         # base presets' musp500 (docs/presets.md)
 BASE_DERM_MUSP500 = 45.6
-BOUNDS = {"melanin": (0.0005, 0.5), "blood": (0.001, 0.2), "scatter": (0.3, 4.0)}
+# Bounds: melanosome fraction up to Jacques 1998's darkest skin (43 %); dermal
+# blood 0.2-7 % (Jacques 2013 Table 3, skin-optics.md A2.9; --blood-max 0.2,
+# the preset key's limit, lifts it); the scattering scale within a factor 2 of
+# the Salomatina 2006 means (our bound); GGX alpha as the preset keys.
+BOUNDS = {"melanin": (0.0005, 0.43), "blood": (0.002, 0.07), "scatter": (0.5, 2.0), "alpha": (0.02, 1.0)}
 
 
 def read_curet(path):
@@ -106,8 +115,6 @@ class Model:
                "--theta-in", ",".join("%g" % t for t in TRAIN_THETA_I), "--wavelengths", "470,550,656",
                "--target-error", str(self.a.target_error), "--batch-photons", str(self.a.batch_photons),
                "--seed", "1", "--threads", str(self.a.threads), "--quiet"]
-        if self.a.solver != "mc":
-            cmd += ["--solver", self.a.solver]
         subprocess.run(cmd, check=True)
         with open(os.path.join(d, "manifest.json")) as f:
             self.seconds += json.load(f)["result"]["seconds"]
@@ -119,19 +126,36 @@ class Model:
         with open(self.pts_file) as f:
             out = subprocess.run([self.a.brdf_points, d, "--alpha", "%.6g" % alpha], stdin=f,
                                  check=True, capture_output=True, text=True).stdout
-        tot, err = [], []
-        for line in out.split("\n"):
-            if line:
-                c = line.split("\t")
-                tot.append(float(c[0]))
-                err.append(float(c[3]))
-        return tot, err
+        return parse_columns(out)
+
+    def eval_ad(self, q):
+        ini = os.path.join(self.a.out, "ad.ini")
+        with open(ini, "w") as f:
+            f.write(self.preset_ini(q, q["alpha"]))
+        with open(self.pts_file) as f:
+            out = subprocess.run([self.a.brdf_model, "--preset-file", ini, "--tol", "1e-4"], stdin=f,
+                                 check=True, capture_output=True, text=True).stdout
+        self.n_bakes += 1
+        return parse_columns(out)
 
     def model_brdf(self, q):
         """THE evaluation: BRDF [1/sr] (mean of 470/550/656 nm) and its standard
         error at the training points for parameters q (melanin, blood, scatter,
-        sebum, alpha)."""
+        sebum, alpha), by Monte Carlo (a cached bake; alpha enters only the
+        analytic lobe) or by adding-doubling."""
+        if self.a.solver == "ad":
+            return self.eval_ad(q)
         return self.eval_bake(self.bake(q), q["alpha"])
+
+
+def parse_columns(out):
+    tot, err = [], []
+    for line in out.split("\n"):
+        if line:
+            c = line.split("\t")
+            tot.append(float(c[0]))
+            err.append(float(c[3]))
+    return tot, err
 
 
 def objective(points, f, e):
@@ -145,31 +169,31 @@ def objective(points, f, e):
     return s / n, math.sqrt(v) / n
 
 
-def best_alpha(model, d, points, lo=0.02, hi=1.0):
-    """Golden-section search for the roughness (analytic part, no new bake)."""
+def best_alpha(model, q, points, lo=0.02, hi=1.0):
+    """Golden-section search for the roughness (with Monte Carlo, no new bake)."""
     g = (math.sqrt(5) - 1) / 2
     memo = {}
 
     def j(a):
         if a not in memo:
-            memo[a] = objective(points, *model.eval_bake(d, a))
-        return memo[a][0]
+            memo[a] = objective(points, *model.model_brdf(dict(q, alpha=a)))
+        return memo[a]
     a, b = lo, hi
     c1, c2 = b - g * (b - a), a + g * (b - a)
     while b - a > 0.005:
-        if j(c1) < j(c2):
+        if j(c1)[0] < j(c2)[0]:
             b, c2 = c2, c1
             c1 = b - g * (b - a)
         else:
             a, c1 = c1, c2
             c2 = a + g * (b - a)
     al = (a + b) / 2
-    return al, objective(points, *model.eval_bake(d, al))
+    return al, j(al)
 
 
 def to_params(x, sebum):
     q = {"sebum": sebum}
-    for k, xi in zip(("melanin", "blood", "scatter"), x):
+    for k, xi in zip(("melanin", "blood", "scatter", "alpha"), x):
         lo, hi = BOUNDS[k]
         q[k] = min(max(math.exp(xi), lo), hi)
     return q
@@ -225,13 +249,20 @@ def main():
     ap.add_argument("--brdf-points", default="./tests/brdf_points")
     ap.add_argument("--curet", default=None, help="curet_sample39_brdf_205.tsv")
     ap.add_argument("--out", default="fit-curet-work", help="scratch directory")
-    ap.add_argument("--solver", default="mc", help="mc (default) or ad once `skinbake bake --solver ad` exists")
+    ap.add_argument("--brdf-model", default="./tests/brdf_model")
+    ap.add_argument("--solver", default="mc", choices=("mc", "ad"),
+                    help="mc: skinbake bake + brdf_points; ad: brdf_model (adding-doubling)")
     ap.add_argument("--target-error", type=float, default=0.02, help="bake target RMS relative error")
     ap.add_argument("--batch-photons", type=int, default=2000)
     ap.add_argument("--threads", type=int, default=0)
-    ap.add_argument("--max-evals", type=int, default=60, help="bakes per simplex")
+    ap.add_argument("--max-evals", type=int, default=None, help="evaluations per simplex (default 60 mc, 400 ad)")
     ap.add_argument("--log", default=None, help="also write the evaluation log here (TSV)")
+    ap.add_argument("--blood-max", type=float, default=None, help="upper bound of the blood fraction (default 0.07)")
     a = ap.parse_args()
+    if a.blood_max is not None:
+        BOUNDS["blood"] = (BOUNDS["blood"][0], a.blood_max)
+    if a.max_evals is None:
+        a.max_evals = 400 if a.solver == "ad" else 60
     if a.curet is None:
         for d in (os.path.join(here, "..", "..", "shared", "skin_data"), "/work/shared/skin_data"):
             if os.path.exists(os.path.join(d, "curet_sample39_brdf_205.tsv")):
@@ -239,21 +270,25 @@ def main():
                 break
     if a.curet is None:
         sys.exit("fit-curet: give --curet PATH/curet_sample39_brdf_205.tsv")
+    t_start = time.time()
     points = [r for r in read_curet(a.curet) if r[1] in TRAIN_THETA_I]
     model = Model(a, points)
     log = open(a.log, "w") if a.log else None
     hdr = "eval\tsebum\tmelanin\tblood\tscatter\talpha\tJ\tJ_sd\trms_rel_pct"
     print(hdr)
     if log:
-        log.write("# scripts/fit-curet.py: %d training points (CUReT theta_i %s), solver %s, bake target %g\n"
-                  % (len(points), "/".join("%g" % t for t in TRAIN_THETA_I), a.solver, a.target_error))
+        log.write("# scripts/fit-curet.py: %d training points (CUReT theta_i %s), solver %s, bake target %g, bounds %s\n"
+                  % (len(points), "/".join("%g" % t for t in TRAIN_THETA_I), a.solver, a.target_error,
+                     ", ".join("%s %g-%g" % (k, v[0], v[1]) for k, v in BOUNDS.items())))
         log.write(hdr + "\n")
     k = [0]
 
     def f(x, sebum):
         q = to_params(x, sebum)
-        d = model.bake(q)
-        q["alpha"], (j, sd) = best_alpha(model, d, points)
+        if len(x) == 4:     # adding-doubling: the roughness in the simplex too
+            j, sd = objective(points, *model.model_brdf(q))
+        else:               # Monte Carlo: a 1-D search per (cached) bake
+            q["alpha"], (j, sd) = best_alpha(model, q, points)
         k[0] += 1
         line = "%d\t%d\t%.5f\t%.5f\t%.4f\t%.3f\t%.6f\t%.6f\t%.2f" % (
             k[0], sebum, q["melanin"], q["blood"], q["scatter"], q["alpha"], j, sd, 100 * math.sqrt(max(j, 0)))
@@ -263,24 +298,31 @@ def main():
             log.flush()
         # Out of bounds: the clamped value plus a penalty keeps the simplex inside.
         pen = sum(max(0.0, abs(xi - math.log(min(max(math.exp(xi), BOUNDS[kk][0]), BOUNDS[kk][1]))))
-                  for xi, kk in zip(x, ("melanin", "blood", "scatter")))
+                  for xi, kk in zip(x, ("melanin", "blood", "scatter", "alpha")))
         return j + pen, sd
     x0 = [math.log(0.025), math.log(0.02), math.log(1.0)]     # medium skin, scattering as measured
     steps = [math.log(3.0), math.log(3.0), math.log(1.5)]
+    if a.solver == "ad":
+        x0.append(math.log(0.35))
+        steps.append(math.log(1.5))
     best = None
     for sebum in (1, 0):
         x, (j, sd), n = nelder_mead(lambda xx: f(xx, sebum), x0, steps, 3.0, a.max_evals)
         q = to_params(x, sebum)
-        q["alpha"], (j, sd) = best_alpha(model, model.bake(q), points)
+        if a.solver == "ad":
+            j, sd = objective(points, *model.model_brdf(q))
+        else:
+            q["alpha"], (j, sd) = best_alpha(model, q, points)
         print("# sebum %s: J %.6f +- %.6f (RMS relative %.2f %%) after %d evaluations"
               % ("on" if sebum else "off", j, sd, 100 * math.sqrt(max(j, 0)), n), flush=True)
         if best is None or j < best[0]:
             best = (j, sd, q)
     j, sd, q = best
     summary = ("# best: sebum %s, melanin %.4g, blood %.4g, scatter %.3g, alpha %.3g: RMS relative %.2f %% "
-               "(J %.6f +- %.6f) on %d training points; %d bakes, %.0f s of bake time"
+               "(J %.6f +- %.6f) on %d training points; solver %s: %d bakes or solves (%.0f s of bake time), %.0f s in all"
                % ("on" if q["sebum"] else "off", q["melanin"], q["blood"], q["scatter"], q["alpha"],
-                  100 * math.sqrt(max(j, 0)), j, sd, len(points), model.n_bakes, model.seconds))
+                  100 * math.sqrt(max(j, 0)), j, sd, len(points), a.solver, model.n_bakes, model.seconds,
+                  time.time() - t_start))
     print(summary)
     print(model.preset_ini(q, q["alpha"]))
     if log:

@@ -506,11 +506,14 @@ if [ "$fit_ok" = 1 ]; then
 \`scripts/fit-curet.py\` to the $n_train CUReT points at θi = 11.25° and 33.75°: melanin
 fraction, blood fraction, a common scale on the epidermal and dermal μs′, the sebum film (on,
 5 µm, or off: a clear film's thickness does not change a plane-parallel model, only whether it
-is there) and the GGX roughness of the top surface. Its preset text: \`$ini\`. The fit minimises
-the mean of r² − e² over the points (r the relative error, e the relative Monte Carlo standard
-error of the simulated value: an unbiased estimate of the squared RMS relative error), with the
-same seed for every bake (common random numbers), and stops when the simplex's spread is below
-three Monte Carlo standard deviations of the objective. docs/presets.md has the fit's record.
+is there) and the GGX roughness of the top surface, each within physiological bounds. Its preset
+text: \`$ini\`. The fit minimises the mean of r² − e² over the points (r the relative error, e
+the relative standard error of the simulated value: an unbiased estimate of the squared RMS
+relative error), with the adding-doubling solver (deterministic; \`--solver mc\` does the same
+with Monte Carlo bakes and common random numbers). docs/presets.md has the method, the bounds,
+the record of every evaluation and the other runs. The table's \`$fitted\` row is the Monte
+Carlo bake of this section, so its error on the fitted points differs a little from the fit's
+own (point values of the solver there, bin means of the bake here).
 
 | preset | RMS rel., fitted points [%] | held out [%] | held out, in-plane 78.75° [%] | k on the fitted points | held out after that k [%] | vs Marschner fit [%] | back-side fall | forward rise | worst held-out point |
 |---|---|---|---|---|---|---|---|---|---|
