@@ -1,6 +1,7 @@
 #!/bin/sh
 # Render every scene in scenes/ with POV-Ray into docs/img/pov-NAME.png
-# (8-bit sRGB previews for docs/pov.md).
+# (8-bit sRGB previews for docs/pov.md), but the MakeHuman ones: their
+# images come from scripts/demo.sh, with the bake the demo plans.
 #
 #   scripts/render-scenes.sh [WORKDIR]
 #
@@ -31,6 +32,7 @@ done
 
 for f in "$top"/scenes/*.scene; do
 	n=$(basename "$f" .scene)
+	case $n in human-*) continue ;; esac
 	site=$(sed -n 's/^site *= *//p' "$f" | head -1)
 	out="$work/$n"
 	dry=""

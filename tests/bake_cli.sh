@@ -1,11 +1,12 @@
 #!/bin/sh
 # skinbake bake and eval from the command line: documented files, readable by
 # exrheader, eval answers in JSON; bad input exits 2 and writes nothing.
+# (tests/solver_cli.sh has the adding-doubling bakes.)
 . "$top_srcdir/tests/tap.sh"
 B="$SKINBAKE"
 out="$tmpd/bake"
-check "bake paper (small)" "$B" bake --preset paper --out "$out" --theta-in 0,30.0,60 --resolution 6x6 \
-	--target-error 0.1 --batch-photons 500 --quiet
+check "bake paper (small, Monte Carlo)" "$B" bake --preset paper --solver mc --out "$out" --theta-in 0,30.0,60 \
+	--resolution 6x6 --target-error 0.1 --batch-photons 500 --quiet
 for f in brdf.exr brdf_rgb.exr albedo.exr albedo.png manifest.json; do
 	check "bake wrote $f" [ -s "$out/$f" ]
 done
@@ -51,5 +52,5 @@ bad "eval on a missing bake" "No such file or directory" eval --bake "$tmpd/bad"
 bad "eval angle out of range" "\[0, 90\]" eval --bake "$out" --theta-in 95 --theta-out 1 --phi 1
 echo "{" > "$tmpd/corrupt.json"; mkdir -p "$tmpd/corrupt"; cp "$tmpd/corrupt.json" "$tmpd/corrupt/manifest.json"
 bad "eval on a corrupt manifest" "corrupt" eval --bake "$tmpd/corrupt" --theta-in 1 --theta-out 1 --phi 1
-check "bake --help lists every option" sh -c "for o in preset preset-file out wavelengths spectral theta-in resolution target-error max-photons batch-photons r-step r-bins fresnel estimator seed threads quiet; do '$B' bake --help | grep -q -- \"--\$o\" || exit 1; done"
+check "bake --help lists every option" sh -c "for o in preset preset-file out wavelengths spectral theta-in resolution solver ad-tol ad-quad radial-photons target-error max-photons batch-photons r-step r-bins fresnel estimator seed threads quiet; do '$B' bake --help | grep -q -- \"--\$o\" || exit 1; done"
 tap_done

@@ -1,6 +1,6 @@
 # Test helper, run inside Blender on a saved .blend:
-#   blender -b FILE.blend --python-exit-code 1 --python blender_measure.py -- OUT.exr [REF.exr]
-# renders the loaded scene to OUT.exr, prints "SKINBAKE_CENTER r g b" (mean of the centre
+#   blender -b FILE.blend --python-exit-code 1 --python blender_measure.py -- OUT.exr [REF.exr] [--small]
+# renders the loaded scene to OUT.exr (--small: 32 px, 4 samples), prints "SKINBAKE_CENTER r g b" (mean of the centre
 # quarter, read back from the file) and, with REF, "SKINBAKE_MAXDIFF d": the largest per-pixel
 # difference from REF relative to REF's mean.
 import os
@@ -13,6 +13,12 @@ sys.path.insert(0, os.path.join(os.path.dirname(os.path.abspath(__file__)), ".."
 import import_skin  # noqa: E402
 
 args = sys.argv[sys.argv.index("--") + 1:]
+if "--small" in args:
+    args.remove("--small")
+    sc = bpy.context.scene
+    sc.render.resolution_x = sc.render.resolution_y = 32
+    sc.render.resolution_percentage = 100
+    sc.cycles.samples = 4
 out = os.path.abspath(args[0])
 mean = import_skin.render(bpy.context.scene, out)
 print("SKINBAKE_CENTER " + " ".join(f"{x:.6f}" for x in mean))

@@ -11,7 +11,7 @@
 BM=$top_builddir/tests/brdf_model
 BP=$top_builddir/tests/brdf_points
 B=$tmpd/bake
-"$SKINBAKE" bake --preset fair-oily --wavelengths 550 --theta-in 10,40 --target-error 0.02 \
+"$SKINBAKE" bake --preset fair-oily --solver mc --wavelengths 550 --theta-in 10,40 --target-error 0.02 \
 	--batch-photons 2000 --threads 1 --out "$B" --quiet && ok "small bake" || fail "small bake"
 printf '10 32.5 5\n10 52.5 95\n40 32.5 175\n40 52.5 5\n40 12.5 135\n' >"$tmpd/pts"
 "$BP" "$B" <"$tmpd/pts" >"$tmpd/mc" && "$BM" --preset fair-oily --wavelengths 550 <"$tmpd/pts" >"$tmpd/ad" \

@@ -2,7 +2,8 @@
 # tests/brdf_points (the validation report's and the CUReT fit's evaluator)
 # against `skinbake eval` on one small bake: the same numbers at a few
 # geometries, --alpha changes only the specular part, bad input is rejected.
-# Cost: one bake of 2 angles x 3 wavelengths x 6 x 4 bins, 48000 photons (about 1 s).
+# Cost: one bake of 2 angles x 3 wavelengths x 6 x 4 bins (adding-doubling by
+# default since the solver merge; about 1 s).
 . "$top_srcdir/tests/tap.sh"
 BP=$top_builddir/tests/brdf_points
 B=$tmpd/bake

@@ -122,6 +122,9 @@ rules simulate -- --photons 100 "[1, 1e12]" 0 --json -- --layer d=0.1,mua=1,mus=
 rules bake -- --r-bins 10 "[1, 100000]" 0 --quiet -- --preset paper --out "$tmpd/new"
 rules bake -- --target-error 0.5 "[0, 1]" 2 --quiet -- --preset paper --out "$tmpd/new"
 rules eval -- --phi 10 "[0, 360] deg" 400 --json -- --bake "$tmpd/bake" --theta-in 10 --theta-out 10
+rules verify -- --cells 4 "[1, 100000]" 0 --json -- --bake "$tmpd/bake" --photons 1000
+rules bake -- --ad-tol 0.01 "[1e-6, 0.1]" 0.5 --quiet -- --preset paper --out "$tmpd/new"
+rules simulate -- --ad-tol 0.01 "[1e-6, 0.1]" 0.5 --json -- --layer d=0.1,mua=1,mus=10 --solver ad
 rules texture -- --tile-mm 4 "[0.5, 500] mm" 0.1 --quiet -- --size 16 --out "$tmpd/new"
 rules texture -- --size 32 "[16, 16384] px" 8 --quiet -- --out "$tmpd/new"
 rules export blender -- --sun-elevation 30 "(0, 90] deg" 0 - -- --bake "$tmpd/bake" --out "$tmpd/new"
@@ -134,6 +137,7 @@ out_rules export blender -- --bake "$tmpd/bake"
 
 in_rules bake -- --preset-file file --out "$tmpd/new"
 in_rules eval -- --bake dir --theta-in 1 --theta-out 1 --phi 1
+in_rules verify -- --bake dir
 in_rules texture -- --preset-file file --out "$tmpd/new"
 in_rules export blender -- --bake dir --out "$tmpd/new"
 in_rules export blender -- --textures dir --bake "$tmpd/bake" --out "$tmpd/new"
@@ -163,6 +167,8 @@ bad "bake without a preset" "give one of --preset, --preset-file" bake --out "$t
 bad "bake without --out" "--out is required" bake --preset paper
 bad "bake --seed beyond 2^63-1" "--seed = 9223372036854775808 is out of range [0, 2^63-1]" bake --preset paper --seed 9223372036854775808 --out "$tmpd/new"
 bad "bake --fresnel unknown" "--fresnel = 'fast' is not one of exact, schlick" bake --preset paper --fresnel fast --out "$tmpd/new"
+bad "bake --solver unknown" "--solver = 'dom' is not one of auto, ad, mc" bake --preset paper --solver dom --out "$tmpd/new"
+bad "simulate --solver ad with an mc option" "--photons applies to --solver mc only" simulate --layer d=1,mua=1,mus=1 --solver ad --photons 100
 bad "texture --size 0x40" "--size = '0x40' is not a whole decimal number in [16, 16384] px" texture --size 0x40 --out "$tmpd/new"
 bad "texture --seed hex" "--seed = '0x7' is not a whole decimal number" texture --seed 0x7 --out "$tmpd/new"
 bad "texture --orientation inf" "--orientation = 'inf' is not a decimal number in [-180, 180] deg" texture --orientation inf --out "$tmpd/new"
@@ -227,7 +233,7 @@ check "bake: $(echo "$defs" | wc -w) default words found" [ "$(echo "$defs" | wc
 # Each table entry in src/cli/cmd_*.c (export pov is not yet a table) must be
 # in its command's --help with its placeholder, range, unit, default and
 # requirement; texture's parameters (from geom/sites.c) with theirs.
-for c in simulate bake eval "export blender" "preset show" texture presets "preset cat" "preset keys"; do
+for c in simulate bake eval verify "export blender" "preset show" texture presets "preset cat" "preset keys"; do
 	f=$(echo "$c" | tr ' ' _)
 	"$S" $c --help >"$tmpd/help_$f.txt"
 done
@@ -235,7 +241,8 @@ python3 - "$top_srcdir/src/cli" "$tmpd" <<'EOF' >"$tmpd/table.tap"
 import re, sys
 src, tmp = sys.argv[1], sys.argv[2]
 files = {"cmd_simulate.c": "simulate", "cmd_bake.c": "bake", "cmd_eval.c": "eval",
-         "cmd_export_blender.c": "export_blender", "cmd_preset.c": "preset_show", "cmd_texture.c": "texture"}
+         "cmd_export_blender.c": "export_blender", "cmd_preset.c": "preset_show", "cmd_texture.c": "texture",
+         "cmd_verify.c": "verify"}
 n = 0
 def say(good, what):
     global n
@@ -316,13 +323,15 @@ hand() {
 	tr '\n' '~' <"$tmpd/help_$f.txt" | sed 's/~  *\([^- ]\)/ \1/g' | tr '~' '\n' | grep -qxF -- "$want" &&
 		ok "help_$f has: $want" || fail "help_$f lacks: $want"
 }
-hand simulate "  --photons N            photons in [1, 1e12] (default 1e6)"
+hand simulate "  --photons N            mc: photons in [1, 1e12] (default 1e6)"
 hand simulate "  --theta-in DEG         incidence angle in [0, 90) deg (default 0)"
-hand simulate "  --roulette-chance P    roulette survival probability in (0, 1] (default 0.3)"
+hand simulate "  --roulette-chance P    mc: roulette survival probability in (0, 1] (default 0.3)"
 hand bake "  --theta-nodes N        incidence angles 90*k/N deg (k = 0 .. N-1), N in [1, 90] (not with --theta-in; default 10)"
 hand bake "  --theta-in LIST        incidence angles, comma-separated, each in [0, 90) deg, at most 90 (not with --theta-nodes)"
 hand bake "  --r-step CM            radial bin of Rd(r) in [1e-6, 10] cm (default 0.002)"
-hand bake "  --seed N               random seed in [0, 2^63-1] (default 1)"
+hand bake "  --seed N               mc: random seed in [0, 2^63-1] (default 1)"
+hand bake "  --solver auto|ad|mc    adding-doubling (ad), Monte Carlo (mc), or ad with mc, said on stderr, for the wavelengths where ad cannot meet --ad-tol (auto) (default auto)"
+hand verify "  --cells N              table cells to recompute, 4 per (wavelength, angle) pair re-run in [1, 100000] (default 32)"
 hand eval "  --phi DEG              azimuth difference: 0 back toward the light, 180 the mirror side in [0, 360] deg (required)"
 hand export_blender "  --sun-strength E       sun irradiance for the importer's demo scene, in (0, 1e6] W/m^2 (default 3)"
 hand export_blender "  --lut-cos N            cosine nodes per axis of brdf_lut.exr, in [8, 1024] (default 64)"

@@ -10,9 +10,11 @@
  *       1 % of the image maximum, not clipped.  Prints the mean relative error
  *       and the shadow check; fails if the error exceeds T (default 0.005) or
  *       a shadowed pixel is lit (or a lit pixel dark).
- *   pov_compare sum --render R.png --parts A.png B.png [...] [--tol T]
+ *   pov_compare sum --render R.png --parts A.png B.png [...] [--tol T] [--interior]
  *       Mean relative difference of R against the sum of the parts over
- *       pixels above 1 % of the maximum.
+ *       pixels above 1 % of the maximum; with --interior only where every
+ *       part is smooth over 3x3 pixels (no silhouette or shadow edge, as in
+ *       `expect`), printing the all-pixel figure too.
  *   pov_compare differ --render A.png --other B.png --min D
  *       Fails unless the images differ by a mean relative D or more.
  *   pov_compare seam --render R.png --column X [--max RATIO]
@@ -30,9 +32,10 @@
 #include <stdlib.h>
 #include <string.h>
 
-#include "bake/bakefile.h"
+#include "export/source.h"
 #include "io/pngio.h"
-#include "export/pov/pov.h"
+#include "export/pov/littable.h"
+#include "export/pov/placement.h"
 #include "export/pov/scene.h"
 #include "base/util.h"
 
@@ -138,7 +141,7 @@ static void shade(const struct scene *s, const struct pov_brdf *f, int only, con
 			continue;
 		const struct scene_light *l = &s->lights[k];
 		double L[3], ts, lim = INFINITY;
-		scene_light_dir(l, p, L);
+		placement_light_dir(l, p, L);
 		double ci = dot(n, L);
 		if (ci <= 0)
 			continue;
@@ -166,11 +169,6 @@ static void shade(const struct scene *s, const struct pov_brdf *f, int only, con
 		for (int c = 0; c < 3; c++)
 			px->v[c] += l->color[c] * ci * M_PI * rgb[c];
 	}
-}
-
-static void bake_fn(void *ctx, double ti, double to, double dphi, double rgb[3])
-{
-	bake_eval_rgb(ctx, ti, to, dphi, rgb);
 }
 
 static int cmd_expect(int argc, char **argv)
@@ -204,13 +202,13 @@ static int cmd_expect(int argc, char **argv)
 		for (int k = 0; k < s->n_lights; k++)
 			if (!strcmp(s->lights[k].name, only_name))
 				only = k;
-	struct bake *b = NULL;
-	struct pov_brdf f = { .f_rgb = pov_brdf_analytic };
+	struct brdf_source *b = NULL;
+	struct pov_brdf f = { .f_rgb = littable_brdf_analytic };
 	if (!analytic) {
-		b = bake_load(bake_dir, &cause);
+		b = brdf_source_open(bake_dir, &cause);
 		if (b == NULL)
 			return fprintf(stderr, "pov_compare: %s\n", cause), 2;
-		f = (struct pov_brdf){ .f_rgb = bake_fn, .ctx = b };
+		f = (struct pov_brdf){ .f_rgb = b->f_rgb, .ctx = b->ctx };
 	}
 	int w, h;
 	float *img = load(render, &w, &h);
@@ -289,21 +287,37 @@ static int cmd_expect(int argc, char **argv)
 	    mre, sum_ref > 0 ? sum_abs / sum_ref : INFINITY, n_px, n_shadow, shadow_bad, n_clip, vmax);
 	free(px);
 	free(img);
-	bake_free(b);
+	brdf_source_free(b);
 	scene_free(s);
 	return mre <= tol && shadow_bad == 0 && n_px > 100 ? 0 : 1;
+}
+
+/* Whether pixel (x, y) channel c of image p sits inside a smooth region:
+ * its 3x3 neighbours within 20 % (of it, or of 1 % of vmax when darker). */
+static int smooth_at(const float *p, int w, int h, int x, int y, int c, double vmax)
+{
+	if (x < 1 || y < 1 || x >= w - 1 || y >= h - 1)
+		return 0;
+	double v = p[3 * (y * w + x) + c], tol = 0.2 * fmax(v, 0.01 * vmax);
+	for (int j = -1; j <= 1; j++)
+		for (int i = -1; i <= 1; i++)
+			if (fabs(p[3 * ((y + j) * w + x + i) + c] - v) > tol)
+				return 0;
+	return 1;
 }
 
 static int cmd_sum(int argc, char **argv)
 {
 	const char *render = NULL, *parts[16];
-	int np = 0;
+	int np = 0, interior = 0;
 	double tol = 0.01;
 	for (int i = 2; i < argc; i++) {
 		if (!strcmp(argv[i], "--render") && i + 1 < argc)
 			render = argv[++i];
 		else if (!strcmp(argv[i], "--tol") && i + 1 < argc)
 			tol = atof(argv[++i]);
+		else if (!strcmp(argv[i], "--interior"))
+			interior = 1;
 		else if (!strcmp(argv[i], "--parts"))
 			while (i + 1 < argc && argv[i + 1][0] != '-' && np < 16)
 				parts[np++] = argv[++i];
@@ -313,31 +327,43 @@ static int cmd_sum(int argc, char **argv)
 	if (!render || np == 0)
 		return fprintf(stderr, "pov_compare sum: need --render and --parts\n"), 2;
 	int w, h, w2, h2;
-	float *r = load(render, &w, &h);
+	float *r = load(render, &w, &h), *p[16];
 	double *sum = xcalloc(3 * (size_t)w * h, sizeof(double)), vmax = 0;
 	char *clip = xcalloc((size_t)w * h, 1);
 	for (int k = 0; k < np; k++) {
-		float *p = load(parts[k], &w2, &h2);
+		p[k] = load(parts[k], &w2, &h2);
 		if (w2 != w || h2 != h)
 			return fprintf(stderr, "pov_compare sum: %s has another size\n", parts[k]), 2;
 		for (int i = 0; i < 3 * w * h; i++) {
-			if (p[i] < 0)
+			if (p[k][i] < 0)
 				clip[i / 3] = 1;
-			sum[i] += p[i];
+			sum[i] += p[k][i];
 			vmax = fmax(vmax, sum[i]);
 		}
-		free(p);
 	}
-	double acc = 0;
-	long n = 0;
+	double acc = 0, acc_all = 0;
+	long n = 0, n_all = 0;
 	for (int i = 0; i < 3 * w * h; i++) {
 		if (clip[i / 3] || r[i] < 0 || sum[i] < 0.01 * vmax)
 			continue;
-		acc += fabs(r[i] - sum[i]) / sum[i];
+		double e = fabs(r[i] - sum[i]) / sum[i];
+		acc_all += e;
+		n_all++;
+		int in = 1;
+		for (int k = 0; interior && k < np && in; k++)
+			in = smooth_at(p[k], w, h, (i / 3) % w, (i / 3) / w, i % 3, vmax);
+		if (!in)
+			continue;
+		acc += e;
 		n++;
 	}
 	double mre = n ? acc / n : INFINITY;
-	printf("mean_rel_err %.5f  samples %ld  max %.4f\n", mre, n, vmax);
+	printf("mean_rel_err %.5f  samples %ld  max %.4f", mre, n, vmax);
+	if (interior)
+		printf("  (all pixels, edges too: %.5f over %ld)", n_all ? acc_all / n_all : INFINITY, n_all);
+	printf("\n");
+	for (int k = 0; k < np; k++)
+		free(p[k]);
 	free(r);
 	free(sum);
 	free(clip);

@@ -74,25 +74,41 @@ else
 	fail "point scene export/render: $(cat "$tmpd/point.stderr")"
 fi
 
-# 3. Two lights: the one-pass mixture against the sum of single-light
-#    renders (the passes scene, frames 1 and 2, each with its own table);
-#    then POV-Ray's own sum of the .hdr passes.
+# 3. Two lights against the sum of single-light renders (the scene with
+#    one of its lights removed, each with its own table): the one-pass
+#    mixture (auto picks it here: parallel lights, orthographic camera) and
+#    the passes (one POV-Ray run, one light layer of the skin per light).
+#    The background is in the key-only render alone.
+sed '/^\[light fill\]/,/^$/d' "$SC/two-lights.scene" >"$tmpd/key-only.scene"
+sed '/^\[light key\]/,/^$/d; s/^background.*/background = 0 0 0/' "$SC/two-lights.scene" >"$tmpd/fill-only.scene"
 if export_pov two --scene "$SC/two-lights.scene" --bake "$B" && render "$tmpd/two" two-lights 128 128 &&
-	export_pov twop --scene "$SC/two-lights.scene" --bake "$B" --lights passes &&
-	render "$tmpd/twop" two-lights 128 128 +KFI1 +KFF2; then
-	r=$("$CMP" sum --render "$tmpd/two/r.png" --parts "$tmpd/twop/r1.png" "$tmpd/twop/r2.png" --tol 0.01)
+	export_pov k1 --scene "$tmpd/key-only.scene" --bake "$B" && render "$tmpd/k1" key-only 128 128 &&
+	export_pov k2 --scene "$tmpd/fill-only.scene" --bake "$B" && render "$tmpd/k2" fill-only 128 128 &&
+	export_pov twop --scene "$SC/two-lights.scene" --bake "$B" --lights passes && render "$tmpd/twop" two-lights 128 128; then
+	grep -q "mixture table would be 0.00 % off.*so mixture" "$tmpd/two.stderr"
+	check "two parallel lights, orthographic camera: auto estimates the mixture exact and picks it" test $? -eq 0
+	r=$("$CMP" sum --render "$tmpd/two/r.png" --parts "$tmpd/k1/r.png" "$tmpd/k2/r.png" --tol 0.01)
 	check "two lights, mixture table vs sum of single-light renders: $r (<= 1 %)" test $? -eq 0
-	r=$("$CMP" expect --scene "$SC/two-lights.scene" --bake "$B" --render "$tmpd/twop/r1.png" --only key --tol 0.005)
-	check "two lights, pass 1 (key only): $r" test $? -eq 0
-	if (cd "$tmpd/twop" && "$POVRAY" two-lights.ini +W128 +H128 >hdr.log 2>&1 &&
-		"$POVRAY" two-lights_combine.ini +W128 +H128 +FN16 File_Gamma=1.0 +Oc.png >c.log 2>&1); then
-		r=$("$CMP" sum --render "$tmpd/twop/c.png" --parts "$tmpd/twop/r1.png" "$tmpd/twop/r2.png" --tol 0.01)
-		check "passes summed by POV-Ray from .hdr: $r (<= 1 %)" test $? -eq 0
-	else
-		fail "passes: povray two-lights.ini / two-lights_combine.ini failed"
-	fi
+	r=$("$CMP" expect --scene "$tmpd/key-only.scene" --bake "$B" --render "$tmpd/k1/r.png" --tol 0.005)
+	check "two lights, key light alone: $r" test $? -eq 0
+	r=$("$CMP" sum --render "$tmpd/twop/r.png" --parts "$tmpd/k1/r.png" "$tmpd/k2/r.png" --tol 0.005)
+	check "two lights, passes as light layers in one run vs sum of single-light renders: $r (<= 0.5 %)" test $? -eq 0
+	check "passes in one run: no combining files" test ! -e "$tmpd/twop/two-lights_combine.pov"
 else
-	fail "two-light export/render: $(cat "$tmpd/two.stderr" "$tmpd/twop.stderr")"
+	fail "two-light export/render: $(cat "$tmpd/two.stderr" "$tmpd/twop.stderr" "$tmpd/k1.stderr")"
+fi
+
+# 3b. Passes where the skin cannot be layered (the hand): animation frames
+#     to .hdr summed by POV-Ray; BASE.sh does both steps.
+if export_pov frames --scene "$TD/frames.scene" --bake "$B" --lights passes &&
+	render "$tmpd/frames" frames 64 64 +KFI1 +KFF2 &&
+	(cd "$tmpd/frames" && sh frames.sh +W64 +H64 -A >sh.log 2>&1 &&
+		"$POVRAY" frames_combine.ini +W64 +H64 +FN16 File_Gamma=1.0 +Oc.png >c.log 2>&1); then
+	check "frames: frames.sh writes frames.png" test -s "$tmpd/frames/frames.png"
+	r=$("$CMP" sum --render "$tmpd/frames/c.png" --parts "$tmpd/frames/r1.png" "$tmpd/frames/r2.png" --tol 0.01)
+	check "frames summed by POV-Ray from .hdr: $r (<= 1 %)" test $? -eq 0
+else
+	fail "frames: $(cat "$tmpd/frames.stderr" "$tmpd/frames/sh.log" 2>/dev/null | tail -5)"
 fi
 
 # 4. Shadows: an occluder darkens exactly the pixels the C-side shadow rays
@@ -137,15 +153,14 @@ for f in "$SC"/*.scene; do
 		fail "scene $n: $(cat "$tmpd/s-$n.stderr")"
 	fi
 done
-if export_pov s-passes --scene "$SC/area-light.scene" --bake "$B" --lights passes &&
-	render "$tmpd/s-passes" area-light 64 48 &&
-	render "$tmpd/s-passes" area-light 64 48 +KFI1 +KFF1; then
-	ok "passes scene renders (frame 0: separable fallback; frame 1)"
+if export_pov s-sep --scene "$SC/two-lights.scene" --bake "$B" --lights separable &&
+	render "$tmpd/s-sep" two-lights 64 48; then
+	ok "separable scene renders"
 else
-	fail "passes scene: $(cat "$tmpd/s-passes.stderr")"
+	fail "separable scene: $(cat "$tmpd/s-sep.stderr")"
 fi
-grep -q "separable fit.*rms error" "$tmpd/s-passes.stderr"
-check "passes export prints the separable fit error" test $? -eq 0
+grep -q "separable fit.*rms error" "$tmpd/s-sep.stderr"
+check "separable export prints the fit error" test $? -eq 0
 
 grep -q "height map box-filtered 64 -> [1-3][0-9] px" "$tmpd/s-hand.stderr"
 check "bump map box-filtered to the pixel footprint (hand scene)" test $? -eq 0

@@ -18,6 +18,9 @@
 
 #include "export/blender/blender.h"
 #include "geom/texdir.h"
+#include "export/blender/blender_detail.h"
+#include "export/blender/blender_fit.h"
+#include "engine/specular.h"
 #include "blender_analytic.h"
 #include "io/exrio.h"
 #include "io/pngio.h"
@@ -247,6 +250,17 @@ static void test_export_flat(void **state)
 	assert_float_equal(jget(j, "exact.reference.radiance_rgb[0]"), 3.0 * cl * f[0], 1e-12);
 	/* 30 deg delta_phi steps here: linear interpolation of cos(dphi) is off by a few 1e-3. */
 	assert_true(fabs(jget(j, "exact.reference.pi_fr_lut_rgb[1]") / (M_PI * f[1]) - 1) < 5e-3);
+	/* The general-mode fit and the detail values. */
+	assert_true(jget(j, "general_fit.rms_error") > 0);
+	assert_true(jget(j, "general_fit.furnace_bake_rgb[0]") > 0.59);
+	assert_float_equal(jget(j, "detail.mean_normal_z"), 1.0, 1e-9);
+	for (int c = 0; c < 3; c++) {
+		char key[64];
+		snprintf(key, sizeof key, "exact.reference.radiance_detail_rgb[%d]", c);
+		double rd = jget(j, key);
+		snprintf(key, sizeof key, "exact.reference.radiance_rgb[%d]", c);
+		assert_true(fabs(rd / jget(j, key) - 1) < 5e-3);	/* flat map: the table's interpolation only */
+	}
 	json_object_put(j);
 	free(out);
 	rmtree(d);
@@ -380,6 +394,104 @@ static void test_export_bad_input(void **state)
 	free(d);
 }
 
+/* A BRDF that is exactly the general mode's mixture: subsurface weights s,
+ * Ashikhmin-Shirley weights g (exponent 4, view-independent here) and the
+ * GGX lobe of the model's index and alpha. */
+static const double mix_s[3] = { 0.5, 0.3, 0.2 }, mix_g[3] = { 0.04, 0.03, 0.02 };
+
+static void mix_f(void *ctx, double ti, double to, double dphi, double rgb[3])
+{
+	const struct brdf_source *m = ctx;
+	struct specular_stack st = { .n = 2, .n_list = { 1.0, m->ior }, .model = OPTICS_FRESNEL_EXACT };
+	double cl = cos(ti), cv = cos(to), sl = sin(ti), sv = sin(to), x = 1 - cl;
+	double h[3] = { sl + sv * cos(dphi), sv * sin(dphi), cl + cv }, hn = sqrt(h[0] * h[0] + h[1] * h[1] + h[2] * h[2]);
+	double hz = h[2] / hn, hl = (sl * h[0] + cl * h[2]) / hn;
+	double as = 5.0 / 8.0 * pow(hz, 4) / (hl * (cl > cv ? cl : cv));
+	double fl = pow(x, 5), fv = pow(1 - cv, 5), rr = BLENDER_FIT_SSS_ROUGHNESS * (1 + cl * cv + sl * sv * cos(dphi));
+	double d = 1 - 0.5 * fl + rr * (fl + fv + fl * fv * (rr - 1)), sp = specular_ggx(&st, m->roughness, ti, to, dphi);
+	for (int c = 0; c < 3; c++)
+		rgb[c] = (mix_s[c] * d + mix_g[c] * as) / M_PI + sp;
+}
+
+static void test_fit_recovers_mixture(void **state)
+{
+	(void)state;
+	struct brdf_source m;
+	struct blender_fit f;
+	char *cause = NULL;
+	analytic_model(&m);
+	m.f_rgb = mix_f;
+	m.ctx = &m;
+	assert_int_equal(blender_fit_general(&m, &f, &cause), 0);
+	assert_true(f.specular);
+	assert_float_equal(f.glossy_exponent, 4.0, 0);
+	assert_float_equal(f.glossy_roughness, sqrt(sqrt(2.0 / 6.0)), 1e-12);
+	assert_float_equal(f.cos_min, 0.1, 1e-12);	/* albedo nodes reach 90 deg */
+	for (int j = 0; j < f.n_view; j++)
+		for (int c = 0; c < 3; c++) {
+			assert_float_equal(f.sss_rgb[j][c], mix_s[c], 1e-9);
+			assert_float_equal(f.glossy_rgb[j][c], mix_g[c], 1e-9);
+		}
+	for (int c = 0; c < 3; c++) {
+		assert_true(f.rms_weighted[c] < 1e-9);
+		assert_true(f.max_rel[c] < 1e-8);
+	}
+	double a[3], b[3];
+	blender_fit_eval(&f, 0.3, 0.7, 2.0, a);
+	mix_f(&m, acos(0.3), acos(0.7), 2.0, b);
+	for (int c = 0; c < 3; c++)
+		assert_float_equal(a[c], M_PI * b[c], 1e-9);
+}
+
+/* The analytic test BRDF has a back-scatter term the mixture cannot follow
+ * and no specular lobe: the fit drops the lobe and states its error. */
+static void test_fit_analytic(void **state)
+{
+	(void)state;
+	struct brdf_source m;
+	struct blender_fit f;
+	char *cause = NULL;
+	analytic_model(&m);
+	assert_int_equal(blender_fit_general(&m, &f, &cause), 0);
+	assert_false(f.specular);
+	for (int c = 0; c < 3; c++) {
+		assert_true(f.rms_weighted[c] > 0.01 && f.rms_weighted[c] < 0.2);
+		assert_true(f.rms_uniform[c] >= f.rms_weighted[c] * 0.5);
+		for (int j = 0; j < f.n_view; j++)
+			assert_true(f.sss_rgb[j][c] >= 0 && f.glossy_rgb[j][c] >= 0);
+	}
+	assert_true(f.n_checked > 1000);
+}
+
+static void test_detail(void **state)
+{
+	(void)state;
+	/* Normals (0, 0, 1) and (0.6, 0, 0.8): mean z 0.9. */
+	uint16_t nm[6];
+	double n2[3] = { 0.6, 0, 0.8 };
+	nm[0] = nm[1] = 32768;
+	nm[2] = 65535;
+	for (int c = 0; c < 3; c++)
+		nm[3 + c] = (uint16_t)lround((n2[c] + 1) / 2 * 65535);
+	assert_float_equal(blender_detail_mean_nz(nm, 2), 0.9, 1e-4);
+	/* One tilted facet under a Lambert atlas (pi f = 0.5): E cos_l 0.5/pi / n_z. */
+	struct brdf_source m;
+	linear_model(&m);
+	m.f_rgb = analytic_f;
+	float *lut = blender_lut(&m, 16, 5);
+	size_t plane = (size_t)16 * 5 * 16;
+	for (size_t i = 0; i < 3 * plane; i++)
+		lut[i] = 0.5f;
+	double sun[3] = { 0, 0, 1 }, view[3] = { 0, 0, 1 }, rgb[3];
+	blender_detail_radiance(nm + 3, 1, 1, sun, view, 2.0, lut, 16, 5, rgb);
+	for (int c = 0; c < 3; c++)
+		assert_float_equal(rgb[c], 2.0 * 0.8 * 0.5 / M_PI / 0.8, 2e-4);
+	/* The area factor keeps the plane's mean irradiance: flat and tilted facets alike. */
+	blender_detail_radiance(nm, 2, 1, sun, view, 2.0, lut, 16, 5, rgb);
+	assert_float_equal(rgb[0], 2.0 * 0.5 / M_PI, 2e-4);
+	free(lut);
+}
+
 int main(void)
 {
 	const struct CMUnitTest tests[] = {
@@ -389,6 +501,9 @@ int main(void)
 		cmocka_unit_test(test_export_flat),
 		cmocka_unit_test(test_export_textures),
 		cmocka_unit_test(test_export_bad_input),
+		cmocka_unit_test(test_fit_recovers_mixture),
+		cmocka_unit_test(test_fit_analytic),
+		cmocka_unit_test(test_detail),
 	};
 	return cmocka_run_group_tests(tests, NULL, NULL);
 }

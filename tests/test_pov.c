@@ -15,7 +15,12 @@
 #include <string.h>
 #include <unistd.h>
 
-#include "export/pov/pov.h"
+#include "export/pov/littable.h"
+#include "export/pov/bumpmap.h"
+#include "export/pov/povfiles.h"
+#include "export/pov/separable.h"
+#include "export/pov/strategy.h"
+#include "export/pov/placement.h"
 #include "export/pov/scene.h"
 #include "base/util.h"
 
@@ -64,14 +69,14 @@ static void test_dphi(void **state)
 		for (double to = 0.1; to < 1.5; to += 0.2)
 			for (double dp = 0.0; dp <= M_PI; dp += 0.25) {
 				double cg = cos(ti) * cos(to) + sin(ti) * sin(to) * cos(dp);
-				assert_float_equal(pov_dphi(ti, to, cg), dp, 1e-6);
+				assert_float_equal(littable_dphi(ti, to, cg), dp, 1e-6);
 			}
 	/* Back toward the light: gamma = |ti - to|; mirror side: ti + to. */
-	assert_float_equal(pov_dphi(0.5, 0.3, cos(0.2)), 0.0, 1e-6);
-	assert_float_equal(pov_dphi(0.5, 0.3, cos(0.8)), M_PI, 1e-6);
+	assert_float_equal(littable_dphi(0.5, 0.3, cos(0.2)), 0.0, 1e-6);
+	assert_float_equal(littable_dphi(0.5, 0.3, cos(0.8)), M_PI, 1e-6);
 	/* Impossible combinations clamp instead of producing NaN. */
-	assert_float_equal(pov_dphi(0.5, 0.3, cos(1.5)), M_PI, 1e-12);
-	assert_true(pov_dphi(0.0, 0.3, 0.2) == 0.0);
+	assert_float_equal(littable_dphi(0.5, 0.3, cos(1.5)), M_PI, 1e-12);
+	assert_true(littable_dphi(0.0, 0.3, 0.2) == 0.0);
 }
 
 static void test_cos_gamma(void **state)
@@ -80,33 +85,33 @@ static void test_cos_gamma(void **state)
 	struct pov_light l = { .parallel = 1, .dir = { 0, 0, -1 } };
 	struct pov_view v = { .ortho = 1, .dir = { 0, 0, -1 } };
 	double p[3] = { 0.3, 0.2, 0 }, lo[3] = { -1, -1, -1 }, hi[3] = { 1, 1, 1 }, a, b;
-	assert_float_equal(pov_cos_gamma(&l, &v, p), 1.0, 1e-12);
-	pov_cos_gamma_range(&l, &v, lo, hi, &a, &b);
+	assert_float_equal(littable_cos_gamma(&l, &v, p), 1.0, 1e-12);
+	littable_cos_gamma_range(&l, &v, lo, hi, &a, &b);
 	assert_float_equal(a, b, 1e-12);
 	/* A point light: gamma varies over the box. */
 	struct pov_light pl = { .parallel = 0, .pos = { 3, 0, -3 } };
-	pov_cos_gamma_range(&pl, &v, lo, hi, &a, &b);
+	littable_cos_gamma_range(&pl, &v, lo, hi, &a, &b);
 	assert_true(b - a > 0.1);
 	double q[3] = { 3, 0, 0 };
-	assert_float_equal(pov_cos_gamma(&pl, &v, q), 1.0, 1e-12);
+	assert_float_equal(littable_cos_gamma(&pl, &v, q), 1.0, 1e-12);
 }
 
 static void test_axis(void **state)
 {
 	(void)state;
-	double out[POV_MAX_NODES], hint[4] = { 0.1, 0.4, 0.41, 1.2 };
-	for (int n = 2; n <= POV_MAX_NODES; n += 31) {
-		assert_int_equal(pov_axis(NULL, 0, n, out), n);
+	double out[LITTABLE_MAX_NODES], hint[4] = { 0.1, 0.4, 0.41, 1.2 };
+	for (int n = 2; n <= LITTABLE_MAX_NODES; n += 31) {
+		assert_int_equal(littable_axis(NULL, 0, n, out), n);
 		assert_true(out[0] == 0.0 && out[n - 1] == M_PI / 2);
 		for (int i = 1; i < n; i++)
 			assert_true(out[i] > out[i - 1]);
 	}
 	/* Uniform without hints when n - 1 is a power of two. */
-	pov_axis(NULL, 0, 65, out);
+	littable_axis(NULL, 0, 65, out);
 	for (int i = 0; i < 65; i++)
 		assert_float_equal(out[i], (M_PI / 2) * i / 64, 1e-12);
 	/* Hints are nodes. */
-	assert_int_equal(pov_axis(hint, 4, 20, out), 20);
+	assert_int_equal(littable_axis(hint, 4, 20, out), 20);
 	for (int h = 0; h < 4; h++) {
 		int found = 0;
 		for (int i = 0; i < 20; i++)
@@ -126,7 +131,7 @@ static void write_key(FILE *fp, void *arg)
 	struct pov_light l = { .parallel = k->parallel, .pos = { 2, 1.5, -2.5 }, .dir = { 0.6, 0.48, -0.64 } };
 	struct pov_view v = { .ortho = k->ortho, .pos = { 0, 0, -3 }, .dir = { 0, 0, -1 } };
 	double lo[3] = { -1, -1, -1 }, hi[3] = { 1, 1, 1 };
-	k->used = pov_write_key_pigment(fp, "T", &f, &l, &v, lo, hi, k->n, k->ng);
+	k->used = littable_write_key(fp, "T", &f, &l, &v, lo, hi, k->n, k->ng);
 }
 
 static void test_key_table(void **state)
@@ -164,11 +169,11 @@ static void test_key_table(void **state)
 	free(t);
 
 	/* The largest table keeps every blend map within 256 entries. */
-	k = (struct keyarg){ 1, 1, POV_MAX_NODES, 1, 0 };
+	k = (struct keyarg){ 1, 1, LITTABLE_MAX_NODES, 1, 0 };
 	t = memtext(write_key, &k);
-	assert_int_equal(count(t, "aoi color_map"), POV_MAX_NODES);
-	assert_int_equal(count(t, "rgb <"), POV_MAX_NODES * (POV_MAX_NODES + 1));
-	assert_true(POV_MAX_NODES + 1 <= 256);
+	assert_int_equal(count(t, "aoi color_map"), LITTABLE_MAX_NODES);
+	assert_int_equal(count(t, "rgb <"), LITTABLE_MAX_NODES * (LITTABLE_MAX_NODES + 1));
+	assert_true(LITTABLE_MAX_NODES + 1 <= 256);
 	free(t);
 }
 
@@ -180,7 +185,7 @@ static void write_mix(FILE *fp, void *arg)
 		{ .parallel = 1, .dir = { -0.8, 0, -0.6 }, .rgb = { 0.5, 0.5, 0.5 } } };
 	struct pov_view v = { .ortho = 1, .dir = { 0, 0, -1 } };
 	double lo[3] = { -1, -1, -1 }, hi[3] = { 1, 1, 1 };
-	pov_write_mixture_pigment(fp, "M", &f, l, &v, lo, hi, 9, spread);
+	littable_write_mixture(fp, "M", &f, l, &v, lo, hi, 9, spread);
 }
 
 static void test_mixture(void **state)
@@ -202,16 +207,16 @@ static void test_separable(void **state)
 	(void)state;
 	struct pov_brdf f = { .f_rgb = lambert };
 	struct pov_separable sep;
-	pov_fit_separable(&f, &sep);
+	separable_fit(&f, &sep);
 	assert_float_equal(sep.brilliance, 1.0, 1e-3);
 	assert_true(sep.rms < 1e-3);
-	for (int k = 0; k < POV_SEP_NODES; k++) {
+	for (int k = 0; k < SEPARABLE_NODES; k++) {
 		assert_float_equal(sep.a[k][0], 0.6, 1e-3);
 		assert_float_equal(sep.a[k][2], 0.3, 1e-3);
 	}
 	/* A delta_phi-dependent BRDF is not separable: the error says so. */
-	f.f_rgb = pov_brdf_analytic;
-	pov_fit_separable(&f, &sep);
+	f.f_rgb = littable_brdf_analytic;
+	separable_fit(&f, &sep);
 	assert_true(sep.rms > 0.01);
 }
 
@@ -219,8 +224,8 @@ static void test_bump_size(void **state)
 {
 	(void)state;
 	/* 50 um of relief over a 5 mm, 512 px tile (pov.md section 4). */
-	assert_float_equal(pov_bump_size(50, 512, 5), 5.12, 1e-12);
-	assert_float_equal(pov_bump_size(0, 512, 5), 0.0, 1e-12);
+	assert_float_equal(bumpmap_size(50, 512, 5), 5.12, 1e-12);
+	assert_float_equal(bumpmap_size(0, 512, 5), 0.0, 1e-12);
 }
 
 static void test_filter_height(void **state)
@@ -235,18 +240,18 @@ static void test_filter_height(void **state)
 		for (int x = 0; x < N; x++)
 			px[y * N + x] = x == 5 ? 65535 : 0;
 	double lo, hi;
-	uint16_t *f = pov_filter_height(px, N, -10, 30, 4, &lo, &hi);
+	uint16_t *f = bumpmap_filter(px, N, -10, 30, 4, &lo, &hi);
 	assert_float_equal(lo, -10, 1e-9);
 	assert_float_equal(hi, -10 + 40.0 / 4, 1e-9);
 	for (int y = 0; y < N / 4; y++)
 		for (int x = 0; x < N / 4; x++)
 			assert_int_equal(f[y * (N / 4) + x], x == 1 ? 65535 : 0);
 	free(f);
-	assert_int_equal(pov_filter_factor(512, 0.01, 0.005), 1);
-	assert_int_equal(pov_filter_factor(512, 0.01, 0.04), 2);
-	assert_int_equal(pov_filter_factor(512, 0.01, 0.5), 16);	/* texel 0.16 <= half a pixel */
-	assert_int_equal(pov_filter_factor(64, 0.01, 10), 4);	/* stops at 16 px */
-	assert_int_equal(pov_filter_factor(48, 0.01, 0.5), 2);		/* 48 = 3 * 16 */
+	assert_int_equal(bumpmap_filter_factor(512, 0.01, 0.005), 1);
+	assert_int_equal(bumpmap_filter_factor(512, 0.01, 0.04), 2);
+	assert_int_equal(bumpmap_filter_factor(512, 0.01, 0.5), 16);	/* texel 0.16 <= half a pixel */
+	assert_int_equal(bumpmap_filter_factor(64, 0.01, 10), 4);	/* stops at 16 px */
+	assert_int_equal(bumpmap_filter_factor(48, 0.01, 0.5), 2);		/* 48 = 3 * 16 */
 }
 
 static char *write_tmp(const char *dir, const char *name, const char *text)
@@ -275,18 +280,18 @@ static void test_scene(void **state)
 	assert_true(s->lights[0].type == SCENE_LIGHT_PARALLEL && s->lights[1].type == SCENE_LIGHT_POINT);
 	assert_string_equal(s->lights[1].name, "fill");
 	assert_int_equal(s->objects[0].skin, 0);
-	assert_int_equal(pov_strategy(s), SCENE_LIGHTS_MIXTURE);
+	assert_int_equal(strategy_resolve(s, NULL, NULL), SCENE_LIGHTS_MIXTURE);
 	double d[3], o[3] = { 0, 0, 0 };
-	scene_light_dir(&s->lights[0], o, d);
+	placement_light_dir(&s->lights[0], o, d);
 	assert_float_equal(d[0], 1 / sqrt(3), 1e-12);
 
 	/* The include: guard, version, restore; the scene file. */
 	struct pov_skin ps = { .brdf = { .f_rgb = test_brdf }, .albedo_rgb = { 0.5, 0.4, 0.3 }, .ior = 1.5 };
 	struct pov_options po = { .base = "t", .n_theta = 9, .n_gamma = 3, .n_mix = 5, .write_scene = 1 };
 	struct pov_report r;
-	assert_int_equal(pov_export(s, &ps, &po, dir, &r, &cause), 0);
+	assert_int_equal(povfiles_write(s, &ps, &po, dir, &r, &cause), 0);
 	assert_int_equal(r.n_files, 3);
-	pov_report_free(&r);
+	povfiles_report_free(&r);
 	char *inc = xasprintf("%s/t.inc", dir);
 	FILE *fp = fopen(inc, "r");
 	char buf[4096];

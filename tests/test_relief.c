@@ -7,7 +7,9 @@
 #include <setjmp.h>
 #include <cmocka.h>
 #include <math.h>
+#ifdef _OPENMP
 #include <omp.h>
+#endif
 #include <stdlib.h>
 #include <string.h>
 
@@ -119,6 +121,16 @@ static void test_wrap_derivatives(void **state)
 	}
 }
 
+/* Without OpenMP (./configure --disable-openmp) there is one thread only. */
+static void set_threads(int n)
+{
+#ifdef _OPENMP
+	omp_set_num_threads(n);
+#else
+	(void)n;
+#endif
+}
+
 static void test_deterministic(void **state)
 {
 	(void)state;
@@ -127,9 +139,9 @@ static void test_deterministic(void **state)
 	struct relief *a = relief_new(&p, 5, &cause), *b = relief_new(&p, 5, &cause);
 	struct relief *c = relief_new(&p, 6, &cause);
 	int n = 200;
-	omp_set_num_threads(1);
+	set_threads(1);
 	float *ha = render(a, n, 0, 0, 2);
-	omp_set_num_threads(3);
+	set_threads(3);
 	float *hb = render(b, n, 0, 0, 2);
 	float *hc = render(c, n, 0, 0, 2);
 	assert_memory_equal(ha, hb, sizeof(float) * (size_t)n * n);

@@ -1,25 +1,29 @@
 # import_skin.py: import a skinbake image set (`skinbake export blender`) into Blender.
 #
-# Works as an add-on (File > Import > skinbake image set) and from the command line:
+# Works as an add-on (File > Import > skinbake image set) and from the command line, on a new
+# demo scene or on your own .blend file:
 #
-#   blender -b --factory-startup --python-exit-code 1 --python import_skin.py -- DIR \
-#       [--mode general|exact] [--scene sphere|plane|box|none] [--render OUT.exr|OUT.png]
-#       [--save OUT.blend] [--res PX] [--samples N] [--world W] [--sun-strength E]
-#       [--uv-size M] [--no-detail] [--no-specular] [--pack]
+#   blender -b my.blend --python-exit-code 1 --python exporters/blender/import_skin.py -- SET \
+#       --objects Head,Body --mode exact --save out.blend
+#   blender -b --factory-startup --python-exit-code 1 --python exporters/blender/import_skin.py -- SET \
+#       --mode general --render sphere.png                   # demo sphere, camera and sun
 #
 # Two material modes:
-#   general  Principled BSDF: albedo, random-walk subsurface radius, index, roughness map and
-#            normal map.  Works under any lights; Cycles' own random walk re-creates the
-#            subsurface transport, so it is faithful but not the baked BRDF itself.
-#   exact    Diffuse BSDF whose colour is pi * f_r looked up in brdf_lut.exr at the shading
-#            point's cos(view) (Geometry > Incoming), cos(light) and delta_phi for ONE sun whose
-#            direction is a constant in the node tree.  Cycles' diffuse closure returns
-#            colour/pi * E * cos_l, so that sun gives exactly E cos_l f_r, for any geometry and
-#            camera.  Other lamps and the world are shaded as if they came from that sun.
+#   general  Principled BSDF (random-walk subsurface, index, roughness, normal map); with a fit in
+#            the manifest (format 1, "general_fit"), a mixture of closures whose view-dependent
+#            weights reproduce the baked BRDF.  Any lights, Cycles and EEVEE.
+#   exact    The baked BRDF itself for every sun, point and spot lamp: one view layer per lamp
+#            (the other lamps excluded), the lamp's direction or position stored in the layer and
+#            read with an Attribute node (type View Layer), a Diffuse BSDF whose colour is pi * f_r
+#            from brdf_lut.exr at that layer's cos(light), cos(view) and delta_phi per shading
+#            point, and the compositor summing the layers.  Cycles' diffuse closure returns
+#            colour/pi * E * cos_l, so each lamp gives exactly E cos_l f_r; its falloff, cone and
+#            shadows stay Cycles' job.  World light and area lamps are shaded by the general
+#            material in one more view layer.
 # Blender's SVM shader nodes see no light direction (and this Debian build has no OSL), which is
-# why the exact mode needs the sun direction baked in.  Node inputs are looked up by their
-# Blender 3.x and 4.x names.  Errors in the image set raise ImageSetError; on the command line
-# they print "import_skin.py: error: ..." and exit with status 2.
+# why the exact mode needs a view layer per lamp.  Node inputs are looked up by their Blender 3.x
+# and 4.x names.  Errors in the image set, a missing object or an object without UVs raise
+# SkinbakeError; on the command line they print "import_skin.py: error: ..." and exit with status 2.
 import json
 import math
 import os
@@ -30,20 +34,29 @@ import bpy
 bl_info = {
     "name": "skinbake image set",
     "author": "skinbake",
-    "version": (1, 0, 0),
+    "version": (1, 1, 0),
     "blender": (3, 4, 0),
     "location": "File > Import > skinbake image set (manifest.json)",
-    "description": "Skin materials from a skinbake image set (general Principled or exact one-sun)",
+    "description": "Skin materials from a skinbake image set (general Principled fit, or exact per lamp)",
     "category": "Import-Export",
 }
-__version__ = "1.0.0"
+__version__ = "1.1.0"
 FORMAT = "skinbake-blender-image-set"
 FORMAT_VERSIONS = (1,)          # manifest "format_version" values this importer understands
 FILES = ("albedo", "brdf_lut", "roughness", "height", "normal")
+PREFIX = "skinbake"             # names of everything the importer adds to a scene start with it
 
 
-class ImageSetError(Exception):
+class SkinbakeError(Exception):
+    """Bad input: an image set, an object name, a mesh without UVs, a scene EEVEE cannot do."""
+
+
+class ImageSetError(SkinbakeError):
     """The image set is missing, incomplete, corrupt or of an unknown version."""
+
+
+def say(msg):
+    print(f"import_skin.py: {msg}")
 
 
 # ------------------------------------------------------------------ reading the image set
@@ -229,7 +242,6 @@ class _Tree:
         mat.use_nodes = True
         self.nt = mat.node_tree
         self.nt.nodes.clear()
-        self.x = 0
 
     def node(self, kind, loc, label=None, **props):
         n = self.nt.nodes.new(kind)
@@ -264,7 +276,7 @@ class _Tree:
             self._in(n, 1, b)
         if scale is not None:
             self._in(n, n.inputs.find("Scale"), scale)
-        return n.outputs["Value" if op == "DOT_PRODUCT" else "Vector"]
+        return n.outputs["Value" if op in ("DOT_PRODUCT", "LENGTH") else "Vector"]
 
     def xyz(self, x, y, z, loc, label=None):
         n = self.node("ShaderNodeCombineXYZ", loc, label)
@@ -272,37 +284,68 @@ class _Tree:
             self._in(n, i, v)
         return n.outputs["Vector"]
 
-    def tex(self, img, vector, loc, extension="REPEAT", label=None):
-        t = self.node("ShaderNodeTexImage", loc, label, image=img, interpolation="Linear",
+    def mix(self, a, b, f, loc):
+        """(1 - f) a + f b on colours (f in [0, 1]; values are not clamped)."""
+        n = self.node("ShaderNodeMix", loc, data_type="RGBA", blend_type="MIX")
+        self._in(n, 0, f)
+        self._in(n, 6, a)
+        self._in(n, 7, b)
+        return n.outputs[2]
+
+    def attr(self, kind, name, loc, label=None):
+        return self.node("ShaderNodeAttribute", loc, label or name, attribute_type=kind, attribute_name=name)
+
+    def tex(self, img, vector, loc, extension="REPEAT", label=None, interpolation="Linear"):
+        t = self.node("ShaderNodeTexImage", loc, label, image=img, interpolation=interpolation,
                       extension=extension)
         if vector is not None:
             self.link(vector, t.inputs["Vector"])
         return t
 
 
-def _detail_normal(tr, m, uv_size_m, no_detail):
-    """Normal Map node output from normal.png tiled at its physical size, or None when flat."""
+# ------------------------------------------------------------------ detail maps
+
+UV_SIZE_PROP = PREFIX + "_uv_size"     # object property: metres per UV unit (Attribute, type Object)
+
+
+def _detail_normal(tr, m, no_detail, geo):
+    """(normal, area) sockets from normal.png tiled at its physical size, or (None, None).
+
+    The tiling is per object: tiles per UV unit = object["skinbake_uv_size"] [m] / tile size,
+    read with an Attribute node, so one material serves meshes of any UV scale.  normal.png
+    holds the slopes of the physical heights, so strength 1 at the true tile size is physical.
+    area = 1 / (n . N_smooth), the micro-surface area per unit of macro surface: a normal map
+    alone loses the light that falls on the extra area of tilted facets (a Lambert surface under
+    the face maps, mean n_z 0.87, rendered 13 % dark); with it the mean irradiance is exact."""
     d = m["detail"]
     if no_detail or d.get("flat") or not d.get("tile_mm"):
-        return None
+        return None, None
     img = load_image(m, "normal")
-    uv = tr.node("ShaderNodeTexCoord", (-1500, -500))
-    mp = tr.node("ShaderNodeMapping", (-1300, -500), "tile: UV unit / tile size")
-    rep = uv_size_m * 1000.0 / float(d["tile_mm"])        # tiles per UV unit
-    mp.inputs["Scale"].default_value = (rep, rep, 1.0)
-    tr.link(uv.outputs["UV"], mp.inputs["Vector"])
-    t = tr.tex(img, mp.outputs["Vector"], (-1100, -500), label="normal.png (OpenGL +Y)")
-    nm = tr.node("ShaderNodeNormalMap", (-800, -500), space="TANGENT")
+    uv = tr.node("ShaderNodeTexCoord", (-2300, -700))
+    a = tr.attr("OBJECT", UV_SIZE_PROP, (-2300, -900), "metres per UV unit (object property)")
+    unset = tr.math("COMPARE", a.outputs["Fac"], 0.0, 1e-12, loc=(-2100, -950))
+    size = tr.math("MULTIPLY_ADD", unset, 0.1, a.outputs["Fac"], loc=(-1950, -900))   # 0.1 m if unset
+    rep = tr.math("MULTIPLY", size, 1000.0 / float(d["tile_mm"]), loc=(-1800, -900))
+    rep.node.label = f"tiles per UV unit (tile {float(d['tile_mm']):g} mm)"
+    co = tr.vmath("MULTIPLY", uv.outputs["UV"], tr.xyz(rep, rep, 1.0, (-1650, -900)), loc=(-1500, -750))
+    t = tr.tex(img, co, (-1300, -700), label="normal.png (OpenGL +Y)")
+    nm = tr.node("ShaderNodeNormalMap", (-1000, -700), space="TANGENT")
     tr.link(t.outputs["Color"], nm.inputs["Color"])
-    print(f"import_skin.py: detail normal map, {rep:.4g} tiles per UV unit")
-    return nm.outputs["Normal"]
+    nz = tr.math("MAXIMUM", tr.vmath("DOT_PRODUCT", nm.outputs["Normal"], geo.outputs["Normal"], (-800, -850)),
+                 0.2, loc=(-650, -850))
+    area = tr.math("DIVIDE", 1.0, nz, loc=(-500, -850))
+    area.node.label = "micro-surface area 1 / n_z"
+    return nm.outputs["Normal"], area
 
 
 def _stamp(mat, m, mode):
     mat["skinbake_importer"] = __version__
     mat["skinbake_format_version"] = m["format_version"]
     mat["skinbake_mode"] = mode
+    mat["skinbake_image_set"] = m["_dir"]
 
+
+# ------------------------------------------------------------------ general mode
 
 # Diffuse albedo that Cycles 3.x renders per unit Principled Base Color with RANDOM_WALK
 # subsurface, under uniform white light, view along the normal, roughness 0 (measured with
@@ -312,6 +355,15 @@ _K0 = (0.995, 0.991, 0.983, 0.981, 0.987)
 _K_PER_ROUGHNESS = 0.0607       # the Principled diffuse retro-reflection term, same measurements
 
 
+def _interp(xs, ys, x):
+    if x <= xs[0]:
+        return ys[0]
+    if x >= xs[-1]:
+        return ys[-1]
+    i = max(j for j in range(len(xs) - 1) if xs[j] <= x)
+    return ys[i] + (ys[i + 1] - ys[i]) * (x - xs[i]) / (xs[i + 1] - xs[i])
+
+
 def albedo_calibration(albedo, roughness):
     """Rendered / requested diffuse albedo for Blender 3.x, per channel: k0(albedo) + 0.0607 *
     roughness.  It rises further toward grazing views (+2 % at 60 deg).  Blender 4 has a
@@ -319,37 +371,21 @@ def albedo_calibration(albedo, roughness):
     if bpy.app.version >= (4, 0, 0):
         return [1.0] * len(albedo)
     r = min(max(roughness, 0.0), 1.0)
-    out = []
-    for a in albedo:
-        xs, ys = _K0_ALBEDO, _K0
-        if a <= xs[0]:
-            k0 = ys[0]
-        elif a >= xs[-1]:
-            k0 = ys[-1]
-        else:
-            i = max(j for j in range(len(xs) - 1) if xs[j] <= a)
-            k0 = ys[i] + (ys[i + 1] - ys[i]) * (a - xs[i]) / (xs[i + 1] - xs[i])
-        out.append(k0 + _K_PER_ROUGHNESS * r)
-    return out
+    return [_interp(_K0_ALBEDO, _K0, a) + _K_PER_ROUGHNESS * r for a in albedo]
 
 
-def build_general(m, name="skinbake general", uv_size_m=0.1, no_detail=False, no_specular=False,
-                  unit_scale=1.0, calibrate=True):
-    """Principled BSDF material for any lights.  Base Color = the set's albedo divided by
-    albedo_calibration(albedo, roughness) (unless calibrate is False), so the rendered diffuse albedo
-    matches the baked one."""
-    mat = bpy.data.materials.new(name)
-    tr = _Tree(mat)
-    out = tr.node("ShaderNodeOutputMaterial", (600, 0))
-    bsdf = tr.node("ShaderNodeBsdfPrincipled", (200, 0))
+def _general_principled(tr, m, nrm, unit_scale, no_specular, calibrate, area_mean):
+    """One Principled BSDF: albedo (calibrated), random-walk radius, index, roughness map."""
+    bsdf = tr.node("ShaderNodeBsdfPrincipled", (200, 300))
     bsdf.subsurface_method = "RANDOM_WALK"
-    uv = tr.node("ShaderNodeTexCoord", (-1500, 200))
-    alb = tr.tex(load_image(m, "albedo", data=False), uv.outputs["UV"], (-600, 300), label="albedo.exr")
+    uv = tr.node("ShaderNodeTexCoord", (-1500, 600))
+    alb = tr.tex(load_image(m, "albedo", data=False), uv.outputs["UV"], (-600, 700), label="albedo.exr")
     base = alb.outputs["Color"]
     k = albedo_calibration(m["albedo_rgb"], float(m["roughness"])) if calibrate else [1.0] * 3
+    k = [x / area_mean for x in k]
     if k != [1.0] * 3:
-        base = tr.vmath("MULTIPLY", base, [1.0 / x for x in k], loc=(-300, 300))
-        base.node.label = "albedo / (" + ", ".join(f"{x:.4f}" for x in k) + ") Cycles 3.x calibration"
+        base = tr.vmath("MULTIPLY", base, [1.0 / x for x in k], loc=(-300, 700))
+        base.node.label = "albedo / (" + ", ".join(f"{x:.4f}" for x in k) + ") calibration"
     tr.link(base, bsdf.inputs["Base Color"])
     if sock(bsdf.inputs, "Subsurface Color"):                      # 3.x only
         tr.link(base, sock(bsdf.inputs, "Subsurface Color"))
@@ -357,8 +393,7 @@ def build_general(m, name="skinbake general", uv_size_m=0.1, no_detail=False, no
     sock(bsdf.inputs, "Subsurface Weight", "Subsurface").default_value = 1.0
     if sock(bsdf.inputs, "Subsurface Scale"):
         sock(bsdf.inputs, "Subsurface Scale").default_value = 1.0
-    r = [x / unit_scale for x in m["sss_radius_m"]]                # metres -> scene units
-    bsdf.inputs["Subsurface Radius"].default_value = r
+    bsdf.inputs["Subsurface Radius"].default_value = [x / unit_scale for x in m["sss_radius_m"]]
     n = float(m["ior"])
     bsdf.inputs["IOR"].default_value = n
     spec = sock(bsdf.inputs, "Specular")                           # 3.x: 0.5 <-> F0 = 0.04
@@ -366,76 +401,537 @@ def build_general(m, name="skinbake general", uv_size_m=0.1, no_detail=False, no
         spec.default_value = 0.0 if no_specular else ((n - 1) / (n + 1)) ** 2 / 0.08
     elif sock(bsdf.inputs, "Specular IOR Level") is not None:      # 4.x: 0.5 = as the IOR says
         sock(bsdf.inputs, "Specular IOR Level").default_value = 0.0 if no_specular else 0.5
-    rough = tr.tex(load_image(m, "roughness"), uv.outputs["UV"], (-600, 0), label="roughness.png")
+    rough = tr.tex(load_image(m, "roughness"), uv.outputs["UV"], (-600, 400), label="roughness.png")
     tr.link(rough.outputs["Color"], bsdf.inputs["Roughness"])
-    nrm = _detail_normal(tr, m, uv_size_m, no_detail)
     if nrm is not None:
         tr.link(nrm, bsdf.inputs["Normal"])
-    tr.link(bsdf.outputs["BSDF"], out.inputs["Surface"])
+    return bsdf.outputs["BSDF"]
+
+
+# Rendered / requested albedo of the Principled random-walk subsurface closure in Blender 3.4
+# (roughness 0) under a sun, from the same measurements as _K0: _K0 is its white-furnace value,
+# which includes the exit's Disney light falloff, whose cosine-weighted mean is 1 - 1/42.
+_K_SSS = tuple(k / (1.0 - 1.0 / 42.0) for k in _K0)
+
+
+def _ramp(tr, cos_v, nodes, values, scale, loc, label):
+    """ColorRamp (linear) of RGB VALUES at positions NODES, read at cos_v; values times SCALE
+    (a number per channel or a function of the value)."""
+    r = tr.node("ShaderNodeValToRGB", loc, label)
+    cr = r.color_ramp
+    cr.interpolation = "LINEAR"
+    cr.color_mode = "RGB"
+    els = cr.elements
+    els[0].position, els[1].position = nodes[0], nodes[-1]
+    for x in nodes[1:-1]:
+        els.new(x)
+    for e in els:
+        j = min(range(len(nodes)), key=lambda i: abs(nodes[i] - e.position))
+        v = values[j]
+        e.color = [scale(c, v[c]) for c in range(3)] + [1.0]
+    tr.link(cos_v, r.inputs["Fac"])
+    return r.outputs["Color"]
+
+
+def _general_fit(tr, m, nrm, area, geo, unit_scale, no_specular, calibrate, area_mean):
+    """The closure mixture fitted at export time (manifest general_fit, blender_fit.h)."""
+    f = m["general_fit"]
+    N = nrm if nrm is not None else geo.outputs["Normal"]
+    cos_v = tr.math("ADD", tr.vmath("DOT_PRODUCT", N, geo.outputs["Incoming"], (-1500, 1300)), 0.0,
+                    loc=(-1300, 1300), clamp=True)
+    nodes = [float(x) for x in f["cos_view_nodes"]]
+
+    def sss_scale(c, v):
+        k = _interp(_K0_ALBEDO, _K_SSS, v) if calibrate and bpy.app.version < (4, 0, 0) else 1.0
+        return v / k * area_mean
+    col_s = _ramp(tr, cos_v, nodes, f["subsurface_rgb"], sss_scale, (-1000, 1500), "subsurface colour s(cos_view)")
+    col_g = _ramp(tr, cos_v, nodes, f["glossy_rgb"], lambda c, v: v, (-1000, 1100), "glossy colour g(cos_view)")
+    if area is not None:
+        col_g = tr.vmath("SCALE", col_g, loc=(-700, 1100), scale=area)
+    sss = tr.node("ShaderNodeBsdfPrincipled", (-400, 1700), "subsurface: s(v) (1 - F_L / 2)")
+    sss.subsurface_method = "RANDOM_WALK"
+    tr.link(col_s, sss.inputs["Base Color"])
+    if sock(sss.inputs, "Subsurface Color"):
+        tr.link(col_s, sock(sss.inputs, "Subsurface Color"))
+    sock(sss.inputs, "Subsurface Weight", "Subsurface").default_value = 1.0
+    sss.inputs["Subsurface Radius"].default_value = [x / unit_scale for x in m["sss_radius_m"]]
+    # Its retro-reflection term is in the fit; roughness 0 would give NaN pixels in EEVEE.
+    sss.inputs["Roughness"].default_value = float(f.get("subsurface_roughness", 0.0))
+    sock(sss.inputs, "Specular", "Specular IOR Level").default_value = 0.0
+    gl = tr.node("ShaderNodeBsdfGlossy", (-400, 1100), "forward lobe g(v) f_AS", distribution="ASHIKHMIN_SHIRLEY")
+    tr.link(col_g, gl.inputs["Color"])
+    gl.inputs["Roughness"].default_value = float(f["glossy_roughness"])
+    shader = tr.node("ShaderNodeAddShader", (-100, 1400))
+    tr.link(sss.outputs["BSDF"], shader.inputs[0])
+    tr.link(gl.outputs["BSDF"], shader.inputs[1])
+    out = shader.outputs["Shader"]
+    closures = [sss, gl]
+    if not no_specular and f.get("specular", True):
+        sp = tr.node("ShaderNodeBsdfPrincipled", (-400, 600), "surface specular (GGX, bake's index)",
+                     distribution="GGX")
+        sp.inputs["Base Color"].default_value = (0.0, 0.0, 0.0, 1.0)
+        sock(sp.inputs, "Subsurface Weight", "Subsurface").default_value = 0.0
+        n = float(f["specular_ior"])
+        sp.inputs["IOR"].default_value = n
+        if sock(sp.inputs, "Specular") is not None:
+            sp.inputs["Specular"].default_value = ((n - 1) / (n + 1)) ** 2 / 0.08
+        sp.inputs["Roughness"].default_value = math.sqrt(float(f["specular_alpha"]))
+        add = tr.node("ShaderNodeAddShader", (100, 1200))
+        tr.link(out, add.inputs[0])
+        tr.link(sp.outputs["BSDF"], add.inputs[1])
+        out = add.outputs["Shader"]
+        closures.append(sp)
+    if nrm is not None:
+        for c in closures:
+            tr.link(nrm, c.inputs["Normal"])
+    return out
+
+
+def _general_shader(tr, m, nrm, area, geo, unit_scale, no_specular, calibrate):
+    """The fitted mixture when the manifest has one (Blender 3.x), else one Principled BSDF."""
+    # Subsurface light is averaged over many facets, so its micro-area correction is the mean one.
+    area_mean = 1.0
+    if nrm is not None and m["detail"].get("mean_normal_z"):
+        area_mean = 1.0 / float(m["detail"]["mean_normal_z"])
+    if isinstance(m.get("general_fit"), dict) and bpy.app.version < (4, 0, 0):
+        return _general_fit(tr, m, nrm, area, geo, unit_scale, no_specular, calibrate, area_mean)
+    return _general_principled(tr, m, nrm, unit_scale, no_specular, calibrate, area_mean)
+
+
+def build_general(m, name="skinbake general", no_detail=False, no_specular=False, unit_scale=1.0,
+                  calibrate=True):
+    """A material for any lights and engines (see _general_shader)."""
+    mat = bpy.data.materials.new(name)
+    tr = _Tree(mat)
+    out = tr.node("ShaderNodeOutputMaterial", (1600, 0))
+    geo = tr.node("ShaderNodeNewGeometry", (-2300, 300))
+    nrm, area = _detail_normal(tr, m, no_detail, geo)
+    tr.link(_general_shader(tr, m, nrm, area, geo, unit_scale, no_specular, calibrate), out.inputs["Surface"])
     _stamp(mat, m, "general")
     return mat
 
 
-def build_exact(m, sun_dir=None, name="skinbake exact", uv_size_m=0.1, no_detail=False):
-    """Diffuse BSDF with colour pi * f_r(cos_v, cos_l, delta_phi) for one sun.
+# ------------------------------------------------------------------ exact mode
 
-    sun_dir points toward the sun in world space (default: the manifest's)."""
-    lutimg = load_image(m, "brdf_lut")
-    nc, nphi = m["brdf_lut"]["cos_nodes"], m["brdf_lut"]["phi_nodes"]
+VL_EXACT = PREFIX + "_exact"            # view-layer properties the exact material reads
+VL_DIR = PREFIX + "_light_dir"          # unit vector toward a sun (0 for point and spot lamps)
+VL_POS = PREFIX + "_light_pos"          # lamp position (point and spot)
+VL_POINT = PREFIX + "_light_point"      # 1 for point and spot lamps, 0 for suns
+
+
+def _lut_sample(tr, img, nc, nphi, cl, cv, dphi, x0, y0):
+    """pi f_r from the atlas at cos_light, cos_view in [0, 1] and dphi in [0, pi]: bilinear in the
+    two neighbouring delta_phi tiles, then linear between them (blender_lut_sample in C).
+
+    Eight texel fetches with Closest interpolation at texel centres, blended here: no GPU
+    filtering and no mip-mapping, so EEVEE shows no seams where the tiles meet (its Linear
+    textures pick a coarse mip level where the tile index jumps between neighbouring pixels)."""
     width = nc * nphi
-    s = sun_dir if sun_dir is not None else m["exact"]["sun_direction"]
-    ln = math.sqrt(sum(x * x for x in s))
-    s = [x / ln for x in s]
+    sc = tr.math("MULTIPLY", dphi, (nphi - 1) / math.pi, loc=(x0, y0 + 300))
+    s0 = tr.math("MINIMUM", tr.math("FLOOR", sc, loc=(x0 + 150, y0 + 350)), nphi - 2, loc=(x0 + 300, y0 + 350))
+    t = tr.math("SUBTRACT", sc, s0, loc=(x0 + 450, y0 + 300))
+    x = tr.math("MULTIPLY", cv, nc - 1, loc=(x0, y0 + 100))
+    j0 = tr.math("MINIMUM", tr.math("FLOOR", x, loc=(x0 + 150, y0 + 150)), nc - 2, loc=(x0 + 300, y0 + 150))
+    tx = tr.math("SUBTRACT", x, j0, loc=(x0 + 450, y0 + 100))
+    y = tr.math("MULTIPLY", cl, nc - 1, loc=(x0, y0 - 100))
+    i0 = tr.math("MINIMUM", tr.math("FLOOR", y, loc=(x0 + 150, y0 - 50)), nc - 2, loc=(x0 + 300, y0 - 50))
+    ty = tr.math("SUBTRACT", y, i0, loc=(x0 + 450, y0 - 100))
+    # u of texel (tile s0, column j0) and v of row i0 (v = 0 is the bottom row, cos_light = 0).
+    u00 = tr.math("DIVIDE", tr.math("ADD", tr.math("MULTIPLY_ADD", s0, nc, 0.5, loc=(x0 + 600, y0 + 250)), j0,
+                                    loc=(x0 + 750, y0 + 250)), width, loc=(x0 + 900, y0 + 250))
+    v00 = tr.math("DIVIDE", tr.math("ADD", i0, 0.5, loc=(x0 + 600, y0 - 50)), nc, loc=(x0 + 750, y0 - 50))
+    tiles = []
+    for ds in (0, 1):
+        rows = []
+        for di in (0, 1):
+            cols = []
+            for dj in (0, 1):
+                k = 4 * ds + 2 * di + dj
+                u = tr.math("ADD", u00, (ds * nc + dj) / width, loc=(x0 + 1050, y0 + 400 - 150 * k))
+                v = tr.math("ADD", v00, di / nc, loc=(x0 + 1050, y0 + 330 - 150 * k))
+                te = tr.tex(img, tr.xyz(u, v, 0.0, (x0 + 1200, y0 + 400 - 150 * k)), (x0 + 1350, y0 + 400 - 150 * k),
+                            "EXTEND", f"brdf_lut.exr {'s0+1' if ds else 's0'} i{'+1' if di else ''} j{'+1' if dj else ''}",
+                            interpolation="Closest")
+                cols.append(te.outputs["Color"])
+            rows.append(tr.mix(cols[0], cols[1], tx, (x0 + 1650, y0 + 350 - 300 * (2 * ds + di))))
+        tiles.append(tr.mix(rows[0], rows[1], ty, (x0 + 1850, y0 + 200 - 600 * ds)))
+    return tr.mix(tiles[0], tiles[1], t, (x0 + 2050, y0 - 100))
+
+
+def build_exact(m, name="skinbake exact", no_detail=False, no_specular=False, unit_scale=1.0,
+                calibrate=True):
+    """Mix of the general shader and a Diffuse BSDF of colour pi * f_r: the view-layer property
+    skinbake_exact (0 when missing) picks the exact part in the per-lamp layers that
+    setup_exact_layers makes; there skinbake_light_dir / _pos / _point give the lamp."""
+    lutimg = load_image(m, "brdf_lut")
+    if hasattr(lutimg, "use_half_precision"):
+        lutimg.use_half_precision = False                        # EEVEE: full float texture
+    nc, nphi = m["brdf_lut"]["cos_nodes"], m["brdf_lut"]["phi_nodes"]
     mat = bpy.data.materials.new(name)
     tr = _Tree(mat)
-    out = tr.node("ShaderNodeOutputMaterial", (1400, 0))
-    geo = tr.node("ShaderNodeNewGeometry", (-1500, 300))
-    nrm = _detail_normal(tr, m, uv_size_m, no_detail)
+    out = tr.node("ShaderNodeOutputMaterial", (2400, 0))
+    geo = tr.node("ShaderNodeNewGeometry", (-2300, 300))
+    nrm, area = _detail_normal(tr, m, no_detail, geo)
     N = nrm if nrm is not None else geo.outputs["Normal"]
     I = geo.outputs["Incoming"]                                   # unit vector toward the viewer
-    L = tr.xyz(s[0], s[1], s[2], (-1500, 0), label="sun direction (toward the sun)")
-    cv_raw = tr.vmath("DOT_PRODUCT", N, I, (-1200, 400))
-    cl_raw = tr.vmath("DOT_PRODUCT", N, L, (-1200, 0))
-    cv = tr.math("ADD", cv_raw, 0.0, loc=(-1000, 400), clamp=True)   # clamp to [0, 1]
-    cl = tr.math("ADD", cl_raw, 0.0, loc=(-1000, 0), clamp=True)
+    fexact = tr.attr("VIEW_LAYER", VL_EXACT, (-2300, 0), "1 in a per-lamp layer").outputs["Fac"]
+    ldir = tr.attr("VIEW_LAYER", VL_DIR, (-2300, -150), "toward the sun").outputs["Vector"]
+    lpos = tr.attr("VIEW_LAYER", VL_POS, (-2300, -300), "lamp position").outputs["Vector"]
+    lpt = tr.attr("VIEW_LAYER", VL_POINT, (-2300, -450), "1 for point and spot").outputs["Fac"]
+    topos = tr.vmath("SCALE", tr.vmath("SUBTRACT", lpos, geo.outputs["Position"], loc=(-2100, -300)),
+                     loc=(-1950, -300), scale=lpt)
+    L = tr.vmath("NORMALIZE", tr.vmath("ADD", ldir, topos, loc=(-1800, -200)), loc=(-1650, -200))
+    L.node.label = "L: toward the lamp"
+    cv_raw = tr.vmath("DOT_PRODUCT", N, I, (-1500, 400))
+    cl_raw = tr.vmath("DOT_PRODUCT", N, L, (-1500, 0))
+    cv = tr.math("ADD", cv_raw, 0.0, loc=(-1300, 400), clamp=True)   # clamp to [0, 1]
+    cl = tr.math("ADD", cl_raw, 0.0, loc=(-1300, 0), clamp=True)
     # delta_phi: angle between the tangent-plane projections of I and L (0 = back toward the
-    # light).  A zero projection (view or light along N) gives 90 deg, where f_r has no azimuth.
-    vp = tr.vmath("NORMALIZE", tr.vmath("SUBTRACT", I, tr.vmath("SCALE", N, loc=(-1200, 250), scale=cv_raw),
-                                       loc=(-1050, 250)), loc=(-900, 250))
-    lp = tr.vmath("NORMALIZE", tr.vmath("SUBTRACT", L, tr.vmath("SCALE", N, loc=(-1200, 150), scale=cl_raw),
-                                       loc=(-1050, 150)), loc=(-900, 150))
-    dphi = tr.math("ARCCOSINE", tr.vmath("DOT_PRODUCT", vp, lp, (-750, 200)), loc=(-600, 200))
-    # Tile index s0 and blend t between tiles s0 and s0 + 1 (layout in manifest "brdf_lut").
-    sc = tr.math("MULTIPLY", dphi, (nphi - 1) / math.pi, loc=(-450, 200))
-    s0 = tr.math("MINIMUM", tr.math("FLOOR", sc, loc=(-300, 250)), nphi - 2, loc=(-150, 250))
-    t = tr.math("SUBTRACT", sc, s0, loc=(0, 150))
-    # u = (s0 * nc + cos_v * (nc - 1) + 0.5) / width: texel centres, never across a tile edge.
-    x = tr.math("MULTIPLY_ADD", cv, nc - 1, 0.5, loc=(-600, 400))
-    u0 = tr.math("DIVIDE", tr.math("MULTIPLY_ADD", s0, nc, x, loc=(0, 400)), width, loc=(150, 400))
-    u1 = tr.math("ADD", u0, nc / width, loc=(300, 450))
-    v = tr.math("MULTIPLY_ADD", cl, (nc - 1) / nc, 0.5 / nc, loc=(-600, 0))   # v = 0 is the bottom row
-    ta = tr.tex(lutimg, tr.xyz(u0, v, 0.0, (300, 300)), (450, 300), "EXTEND", "brdf_lut.exr tile s0")
-    tb = tr.tex(lutimg, tr.xyz(u1, v, 0.0, (450, 500)), (600, 500), "EXTEND", "brdf_lut.exr tile s0+1")
-    one_minus_t = tr.math("SUBTRACT", 1.0, t, loc=(300, 100))
-    col = tr.vmath("ADD", tr.vmath("SCALE", ta.outputs["Color"], loc=(800, 300), scale=one_minus_t),
-                   tr.vmath("SCALE", tb.outputs["Color"], loc=(800, 450), scale=t), loc=(950, 350))
-    dif = tr.node("ShaderNodeBsdfDiffuse", (1150, 0))
+    # lamp).  A zero projection (view or light along N) gives 90 deg, where f_r has no azimuth.
+    vp = tr.vmath("NORMALIZE", tr.vmath("SUBTRACT", I, tr.vmath("SCALE", N, loc=(-1500, 250), scale=cv_raw),
+                                       loc=(-1350, 250)), loc=(-1200, 250))
+    lp = tr.vmath("NORMALIZE", tr.vmath("SUBTRACT", L, tr.vmath("SCALE", N, loc=(-1500, 150), scale=cl_raw),
+                                       loc=(-1350, 150)), loc=(-1200, 150))
+    dphi = tr.math("ARCCOSINE", tr.math("MINIMUM", tr.math("MAXIMUM", tr.vmath("DOT_PRODUCT", vp, lp, (-1050, 200)),
+                                                           -1.0, loc=(-900, 200)), 1.0, loc=(-750, 200)),
+                   loc=(-600, 200))
+    col = _lut_sample(tr, lutimg, nc, nphi, cl, cv, dphi, -450, 0)
+    if area is not None:
+        col = tr.vmath("SCALE", col, loc=(1800, 0), scale=area)
+    dif = tr.node("ShaderNodeBsdfDiffuse", (2000, 0))
     tr.link(col, dif.inputs["Color"])
     if nrm is not None:
         tr.link(nrm, dif.inputs["Normal"])
-    tr.link(dif.outputs["BSDF"], out.inputs["Surface"])
+    gen = _general_shader(tr, m, nrm, area, geo, unit_scale, no_specular, calibrate)
+    mix = tr.node("ShaderNodeMixShader", (2200, 0), "general (world, area lamps) | exact (one lamp)")
+    tr.link(fexact, mix.inputs["Fac"])
+    tr.link(gen, mix.inputs[1])
+    tr.link(dif.outputs["BSDF"], mix.inputs[2])
+    tr.link(mix.outputs["Shader"], out.inputs["Surface"])
     _stamp(mat, m, "exact")
-    mat["skinbake_sun_direction"] = s
     return mat
 
 
-def scene_sun_direction(scene):
-    """Direction toward the first sun lamp of SCENE, or None (a sun shines along its local -Z)."""
-    from mathutils import Vector
-    for ob in scene.objects:
-        if ob.type == "LIGHT" and ob.data.type == "SUN":
-            return list(ob.matrix_world.to_quaternion() @ Vector((0.0, 0.0, 1.0)))
+# ------------------------------------------------------------------ objects
+
+def find_objects(names):
+    """The mesh objects called NAMES, or SkinbakeError naming the missing ones."""
+    obs, missing = [], []
+    for n in names:
+        ob = bpy.data.objects.get(n)
+        if ob is None:
+            missing.append(n)
+        elif ob.type != "MESH":
+            raise SkinbakeError(f"--objects: '{n}' is a {ob.type.lower()} object, not a mesh")
+        else:
+            obs.append(ob)
+    if missing:
+        have = sorted(o.name for o in bpy.data.objects if o.type == "MESH")
+        shown = ", ".join(have[:20]) + (" ..." if len(have) > 20 else "")
+        raise SkinbakeError(f"--objects: no object named {', '.join(repr(x) for x in missing)} "
+                            f"(mesh objects in the file: {shown or 'none'})")
+    return obs
+
+
+def generate_uvs(ob):
+    """Smart UV Project on OB (object mode afterwards)."""
+    vl = bpy.context.view_layer
+    prev = vl.objects.active
+    if bpy.context.object is not None and bpy.context.object.mode != "OBJECT":
+        bpy.ops.object.mode_set(mode="OBJECT")
+    vl.objects.active = ob
+    for o in vl.objects:
+        o.select_set(o == ob)
+    bpy.ops.object.mode_set(mode="EDIT")
+    bpy.ops.mesh.select_all(action="SELECT")
+    bpy.ops.uv.smart_project(island_margin=0.002)
+    bpy.ops.object.mode_set(mode="OBJECT")
+    vl.objects.active = prev
+
+
+def measure_uv_size(ob, unit_scale=1.0):
+    """(metres per UV unit, 10th and 90th percentile over the surface) of OB's render UV map:
+    sqrt(world surface area / UV area) over all faces, and per face weighted by area; None when
+    the UV area is zero."""
+    me = ob.data
+    uvl = next((u for u in me.uv_layers if u.active_render), me.uv_layers.active)
+    if uvl is None:
+        return None
+    mw = ob.matrix_world
+    co = [mw @ v.co for v in me.vertices]
+    uv = uvl.data
+    a3 = a2 = 0.0
+    faces = []
+    for p in me.polygons:
+        idx = list(p.loop_indices)
+        v0 = co[me.loops[idx[0]].vertex_index]
+        u0 = uv[idx[0]].uv
+        f3 = f2 = 0.0
+        for k in range(1, len(idx) - 1):          # fan triangles
+            v1, v2 = co[me.loops[idx[k]].vertex_index], co[me.loops[idx[k + 1]].vertex_index]
+            f3 += (v1 - v0).cross(v2 - v0).length / 2
+            u1, u2 = uv[idx[k]].uv, uv[idx[k + 1]].uv
+            f2 += abs((u1.x - u0.x) * (u2.y - u0.y) - (u2.x - u0.x) * (u1.y - u0.y)) / 2
+        a3 += f3
+        a2 += f2
+        if f2 > 0 and f3 > 0:
+            faces.append((math.sqrt(f3 / f2), f3))
+    if a2 <= 0 or not faces:
+        return None
+    faces.sort()
+    total, acc, q = sum(f[1] for f in faces), 0.0, {}
+    for d, w in faces:
+        acc += w
+        for p in (0.1, 0.9):
+            if p not in q and acc >= p * total:
+                q[p] = d
+    k = unit_scale
+    return math.sqrt(a3 / a2) * k, q[0.1] * k, q[0.9] * k
+
+
+def prepare_objects(obs, m, mode, no_detail, uv_size=None, gen_uvs=False, unit_scale=1.0):
+    """Check UVs where the detail map needs them (or generate them) and store each object's UV
+    size [m per UV unit] in its skinbake_uv_size property."""
+    detail = not (no_detail or m["detail"].get("flat") or not m["detail"].get("tile_mm"))
+    for ob in obs:
+        if detail and not ob.data.uv_layers:
+            if not gen_uvs:
+                raise SkinbakeError(f"object '{ob.name}' has no UV map: the detail normal map needs one "
+                                    "(add UVs, or pass --generate-uvs for a Smart UV Project, or --no-detail)")
+            generate_uvs(ob)
+            say(f"'{ob.name}' had no UV map: generated one with Smart UV Project (the detail map has seams "
+                "at the island borders)")
+        if not detail:
+            continue
+        if uv_size is not None:
+            ob[UV_SIZE_PROP] = float(uv_size)
+            say(f"'{ob.name}': UV size {uv_size:.4g} m per UV unit (--uv-size)")
+            continue
+        r = measure_uv_size(ob, unit_scale)
+        if r is None:
+            raise SkinbakeError(f"object '{ob.name}': its UV map has zero area; fix the UVs or give --uv-size")
+        s, lo, hi = r
+        ob[UV_SIZE_PROP] = s
+        say(f"'{ob.name}': UV size {s:.4g} m per UV unit (measured: sqrt(surface area / UV area)); "
+            f"detail tile {float(m['detail']['tile_mm']):g} mm")
+        if hi > 1.25 * lo:
+            say(f"note: the UV density of '{ob.name}' varies: {lo:.3g} to {hi:.3g} m per UV unit over 80% of "
+                "its surface, so the detail maps are at their true size only where it is "
+                f"{s:.3g}; give --uv-size for the part that matters (e.g. the face)")
+
+
+def assign(obs, mat):
+    """MAT into every material slot of each object (one slot if it has none).  The materials it
+    replaces get a fake user, so that saving the file keeps them."""
+    for ob in obs:
+        if not ob.material_slots:
+            ob.data.materials.append(mat)
+        for s in ob.material_slots:
+            old = s.material
+            if old is not None and old != mat and not old.name.startswith(PREFIX):
+                if not old.use_fake_user:
+                    old.use_fake_user = True
+                    say(f"material '{old.name}' of '{ob.name}' kept in the file (fake user)")
+            s.material = mat
+
+
+# ------------------------------------------------------------------ exact mode: view layers
+
+EXACT_TYPES = ("SUN", "POINT", "SPOT")
+AMBIENT_LAYER = PREFIX + ": world and area lights"
+
+
+def _renders_in(ob, vl):
+    return ob.name in vl.objects and not ob.hide_render
+
+
+def world_is_dark(world):
+    """True when WORLD adds no light: none, or a plain black background."""
+    if world is None:
+        return True
+    if not world.use_nodes:
+        return max(world.color) <= 0.0
+    out = next((n for n in world.node_tree.nodes if n.type == "OUTPUT_WORLD" and n.is_active_output), None)
+    if out is None or not out.inputs["Surface"].is_linked:
+        return True
+    n = out.inputs["Surface"].links[0].from_node
+    if n.type != "BACKGROUND" or n.inputs["Color"].is_linked or n.inputs["Strength"].is_linked:
+        return False
+    return n.inputs["Strength"].default_value <= 0 or max(n.inputs["Color"].default_value[:3]) <= 0
+
+
+def _copy_layer_flags(src, dst):
+    """dst's collection flags (exclude, holdout, indirect only, hide) as in src, by name."""
+    for a, b in zip(src.children, dst.children):
+        if a.name == b.name:
+            b.exclude, b.holdout, b.indirect_only = a.exclude, a.holdout, a.indirect_only
+            b.hide_viewport = a.hide_viewport
+            _copy_layer_flags(a, b)
+
+
+def _find_layer_collection(lc, name):
+    if lc.name == name:
+        return lc
+    for c in lc.children:
+        r = _find_layer_collection(c, name)
+        if r is not None:
+            return r
     return None
+
+
+def _light_collection(scene, ob):
+    """A collection of its own for lamp OB (so a view layer can exclude just this lamp)."""
+    parent = bpy.data.collections.get(PREFIX + " lamps")
+    if parent is None:
+        parent = bpy.data.collections.new(PREFIX + " lamps")
+    if parent.name not in scene.collection.children:
+        scene.collection.children.link(parent)
+    name = f"{PREFIX} lamp: {ob.name}"
+    c = bpy.data.collections.get(name)
+    if c is None:
+        c = bpy.data.collections.new(name)
+    if c.name not in parent.children:
+        parent.children.link(c)
+    if list(ob.users_collection) != [c]:
+        for u in list(ob.users_collection):
+            u.objects.unlink(ob)
+        c.objects.link(ob)
+    return c
+
+
+def _remove_layers(scene):
+    for vl in [v for v in scene.view_layers if v.name.startswith(PREFIX + ":")]:
+        scene.view_layers.remove(vl)
+
+
+def setup_exact_layers(scene, source=None, engine=None):
+    """One view layer per sun, point and spot lamp that renders in SOURCE (the other lamps
+    excluded, the world switched off, the lamp stored in the layer's properties), one layer for
+    the world and area lamps (general material) when there is such light, and a compositor that
+    sums them.  SOURCE is switched off for rendering.  Returns the list of new layer names."""
+    from mathutils import Vector
+    engine = engine or scene.render.engine
+    source = source or bpy.context.view_layer
+    if source.name.startswith(PREFIX + ":"):
+        source = next((v for v in scene.view_layers if not v.name.startswith(PREFIX + ":")), source)
+    _remove_layers(scene)
+    source.update()                          # matrix_world of lamps moved by a script
+    lamps = [o for o in scene.objects if o.type == "LIGHT" and _renders_in(o, source)]
+    exact = [o for o in lamps if o.data.type in EXACT_TYPES]
+    areas = [o for o in lamps if o.data.type not in EXACT_TYPES]
+    lit_world = not world_is_dark(scene.world)
+    if engine == "BLENDER_EEVEE" and lit_world and exact:
+        raise SkinbakeError("exact mode in EEVEE needs a black world: EEVEE cannot switch the world off "
+                            "in the per-lamp view layers, so its light would be counted once per lamp "
+                            "(render with Cycles, or set the world colour to black)")
+    if not exact:
+        say("exact mode: no sun, point or spot lamp renders in this scene: everything is shaded by the "
+            "general material")
+    colls = {o.name: _light_collection(scene, o) for o in exact}
+    made = []
+
+    def new_layer(name):
+        vl = scene.view_layers.new(name)
+        _copy_layer_flags(source.layer_collection, vl.layer_collection)
+        for c in colls.values():
+            lc = _find_layer_collection(vl.layer_collection, c.name)
+            if lc is not None:
+                lc.exclude = True
+        vl.use = True
+        made.append(vl.name)
+        return vl
+
+    for o in exact:
+        vl = new_layer(f"{PREFIX}: {o.name}")
+        _find_layer_collection(vl.layer_collection, colls[o.name].name).exclude = False
+        vl.use_sky = False                   # Cycles: no world light in a per-lamp layer
+        mw = o.matrix_world
+        vl[VL_EXACT] = 1.0
+        if o.data.type == "SUN":              # a sun shines along its local -Z
+            vl[VL_DIR] = list((mw.to_quaternion() @ Vector((0.0, 0.0, 1.0))).normalized())
+            vl[VL_POS] = [0.0, 0.0, 0.0]
+            vl[VL_POINT] = 0.0
+        else:
+            vl[VL_DIR] = [0.0, 0.0, 0.0]
+            vl[VL_POS] = list(mw.translation)
+            vl[VL_POINT] = 1.0
+        soft = o.data.angle if o.data.type == "SUN" else o.data.shadow_soft_size
+        note = ""
+        if soft > 0:
+            note = (f"; its {'angle' if o.data.type == 'SUN' else 'radius'} "
+                    f"{math.degrees(soft) if o.data.type == 'SUN' else soft:.3g}"
+                    f"{' deg' if o.data.type == 'SUN' else ' m'} softens shadows, the table uses its centre")
+        say(f"exact mode: view layer '{vl.name}' for {o.data.type.lower()} lamp '{o.name}'{note}")
+    if lit_world or areas:
+        vl = new_layer(AMBIENT_LAYER)
+        vl[VL_EXACT] = 0.0
+        what = (["the world"] if lit_world else []) + [f"area lamp '{o.name}'" for o in areas]
+        say(f"exact mode: {' and '.join(what)} shaded by the general material (view layer '{vl.name}')")
+    source.use = False
+    for v in scene.view_layers:
+        if v.use and v.name not in made:
+            say(f"note: view layer '{v.name}' also renders and is not part of the exact sum")
+    _compositor_sum(scene, source, made)
+    scene[PREFIX + "_exact_layers"] = made
+    say(f"exact mode: the compositor sums {len(made)} view layer(s); view layer '{source.name}' is "
+        "switched off for rendering (run the importer again after adding, removing or moving lamps)")
+    return made
+
+
+def _compositor_sum(scene, source, layers):
+    scene.use_nodes = True
+    scene.render.use_compositing = True
+    nt = scene.node_tree
+    for n in [n for n in nt.nodes if n.name.startswith(PREFIX)]:
+        nt.nodes.remove(n)
+    comp = next((n for n in nt.nodes if n.type == "COMPOSITE"), None)
+    if comp is None:
+        comp = nt.nodes.new("CompositorNodeComposite")
+        comp.location = (600, 0)
+    if not layers:
+        return
+    total = None
+    for i, name in enumerate(layers):
+        rl = nt.nodes.new("CompositorNodeRLayers")
+        rl.name = f"{PREFIX} layer {i}"
+        rl.label = name
+        rl.layer = name
+        rl.location = (-600, -300 * i)
+        if total is None:
+            total = rl.outputs["Image"]
+            continue
+        add = nt.nodes.new("CompositorNodeMixRGB")
+        add.name = f"{PREFIX} sum {i}"
+        add.blend_type = "ADD"
+        add.use_alpha = False
+        add.inputs[0].default_value = 1.0
+        add.location = (-300 + 150 * i, -300 * i)
+        nt.links.new(total, add.inputs[1])
+        nt.links.new(rl.outputs["Image"], add.inputs[2])
+        total = add.outputs["Image"]
+    relinked = False
+    for link in list(nt.links):
+        fn = link.from_node
+        if fn.type == "R_LAYERS" and not fn.name.startswith(PREFIX) and fn.layer == source.name \
+                and link.from_socket.name == "Image":
+            nt.links.new(total, link.to_socket)
+            relinked = True
+    if not relinked:
+        nt.links.new(total, comp.inputs["Image"])
+
+
+def fix_denoiser(scene):
+    """Debian's Cycles has no OpenImageDenoise (nor a GPU denoiser): a render with denoising on
+    fails ('Build without OpenImageDenoiser'), so switch it off and say so."""
+    try:
+        import _cycles
+        if getattr(_cycles, "with_openimagedenoise", True):
+            return
+    except ImportError:
+        return
+    if scene.cycles.use_denoising:
+        scene.cycles.use_denoising = False
+        say("this Blender has no OpenImageDenoise: Cycles denoising switched off (it would fail the render)")
 
 
 # ------------------------------------------------------------------ demo scene and render
@@ -445,48 +941,55 @@ def _direction(elev_deg, azim_deg):
     return (math.cos(e) * math.cos(a), math.cos(e) * math.sin(a), math.sin(e))
 
 
-def build_scene(m, kind, res, samples, world, sun_strength, view=None):
+def render_settings(scene, res=None, samples=None, engine=None):
+    """Cycles CPU (or EEVEE), fixed seed, denoiser off, Standard view transform."""
+    if engine:
+        scene.render.engine = engine
+    cy = scene.cycles
+    cy.device = "CPU"
+    if samples:
+        cy.samples = samples
+        scene.eevee.taa_render_samples = samples
+    cy.use_adaptive_sampling = False
+    cy.use_denoising = False
+    cy.seed = 0
+    cy.use_animated_seed = False
+    if res:
+        scene.render.resolution_x = scene.render.resolution_y = res
+        scene.render.resolution_percentage = 100
+    scene.view_settings.view_transform = "Standard"
+    scene.view_settings.look = "None"
+
+
+def build_scene(m, kind, res, samples, world, sun_strength, view=None, engine="CYCLES"):
     """A fresh scene: object at the origin, orthographic camera along the manifest's reference
-    view direction, the manifest's sun; Cycles CPU, denoiser off, Standard view transform."""
+    view direction, the manifest's sun."""
     from mathutils import Vector
     bpy.ops.wm.read_factory_settings(use_empty=True)
     scene = bpy.context.scene
-    scene.render.engine = "CYCLES"
-    cy = scene.cycles
-    cy.device = "CPU"
-    cy.samples = samples
-    cy.use_adaptive_sampling = False
-    cy.use_denoising = False          # Debian's Cycles has no OpenImageDenoise
-    cy.seed = 0
-    cy.use_animated_seed = False
-    scene.render.resolution_x = scene.render.resolution_y = res
-    scene.render.resolution_percentage = 100
-    scene.view_settings.view_transform = "Standard"
-    scene.view_settings.look = "None"
+    render_settings(scene, res, samples, engine)
     wd = bpy.data.worlds.new("World")
     scene.world = wd
     wd.use_nodes = True
     wd.node_tree.nodes["Background"].inputs["Color"].default_value = (world, world, world, 1.0)
-
-    obj = None
     if kind == "plane":
         bpy.ops.mesh.primitive_plane_add(size=0.2)
-        scale, uv_size = 0.05, 0.2
+        scale = 0.05
     elif kind == "box":               # closed, so random-walk subsurface has an inside
         bpy.ops.mesh.primitive_cube_add(size=1.0)
         obj = bpy.context.active_object
         obj.scale = (0.2, 0.2, 0.05)
         obj.location = (0, 0, -0.025)
         bpy.ops.object.transform_apply(location=True, rotation=True, scale=True)
-        scale, uv_size = 0.04, 0.2
+        scale = 0.04
     elif kind == "sphere":
         bpy.ops.mesh.primitive_uv_sphere_add(segments=96, ring_count=48, radius=0.1)
         bpy.ops.object.shade_smooth()
-        scale, uv_size = 0.23, 0.63
+        scale = 0.23
     else:
         raise ValueError(kind)
     obj = bpy.context.active_object
-
+    obj.name = "skin"
     ref = m["exact"].get("reference", {})
     vdir = Vector(_direction(*view) if view else ref.get("view_direction", _direction(60, -90))).normalized()
     cd = bpy.data.cameras.new("Camera")
@@ -503,7 +1006,7 @@ def build_scene(m, kind, res, samples, world, sun_strength, view=None):
         sun = bpy.data.objects.new("Sun", sd)
         scene.collection.objects.link(sun)
         sun.rotation_euler = Vector(m["exact"]["sun_direction"]).normalized().to_track_quat("Z", "Y").to_euler()
-    return scene, obj, uv_size
+    return scene, obj
 
 
 def render(scene, out):
@@ -539,54 +1042,94 @@ def centre_mean(path):
     return [a / n for a in acc]
 
 
+def import_set(m, scene, obs, mode, no_detail=False, no_specular=False, calibrate=True, uv_size=None,
+               gen_uvs=False, engine=None):
+    """Everything the command line and the add-on do: materials onto OBS, and for the exact mode
+    the per-lamp view layers.  Returns the material."""
+    unit = scene.unit_settings.scale_length or 1.0
+    prepare_objects(obs, m, mode, no_detail, uv_size, gen_uvs, unit)
+    kw = dict(no_detail=no_detail, no_specular=no_specular, unit_scale=unit, calibrate=calibrate)
+    mat = build_exact(m, **kw) if mode == "exact" else build_general(m, **kw)
+    assign(obs, mat)
+    say(f"material '{mat.name}'" + (f" on {', '.join(repr(o.name) for o in obs)}" if obs else
+                                     " (not assigned: no --objects)"))
+    if mode == "exact":
+        setup_exact_layers(scene, bpy.context.view_layer, engine)
+    fix_denoiser(scene)
+    return mat
+
+
 # ------------------------------------------------------------------ command line
 
 def main(argv):
     import argparse
-    ap = argparse.ArgumentParser(prog="import_skin.py",
-                                 description=f"Import a skinbake image set (importer {__version__}).")
-    ap.add_argument("dir", help="image-set directory (holds manifest.json)")
+
+    class Parser(argparse.ArgumentParser):
+        def error(self, message):
+            raise SkinbakeError(message)
+
+    ap = Parser(prog="import_skin.py", description=f"Import a skinbake image set (importer {__version__}).")
+    ap.add_argument("dir", help="image-set directory (holds manifest.json), or its manifest.json")
     ap.add_argument("--mode", choices=("general", "exact"), default="general",
                     help="material mode (default general)")
+    ap.add_argument("--objects", metavar="A,B", help="mesh objects that get the material (default: the demo object)")
     ap.add_argument("--scene", choices=("sphere", "plane", "box", "none"), default=None,
-                    help="demo scene to build (default sphere with --render or --save, else none)")
+                    help="demo scene to build (default sphere with --render or --save and no .blend "
+                         "file or --objects, else none)")
     ap.add_argument("--render", metavar="FILE", help="render to FILE (.exr: linear float for measuring; else 8-bit sRGB PNG)")
     ap.add_argument("--save", metavar="FILE", help="save the result as a .blend (image paths relative)")
     ap.add_argument("--pack", action="store_true", help="pack the images into the .blend")
-    ap.add_argument("--res", type=int, default=64, help="render size [px] (default 64)")
-    ap.add_argument("--samples", type=int, default=16, help="Cycles samples (default 16)")
-    ap.add_argument("--world", type=float, default=0.0, help="uniform world radiance (default 0)")
+    ap.add_argument("--engine", choices=("CYCLES", "BLENDER_EEVEE"), default=None,
+                    help="render engine (default: the file's; Cycles for the demo scene)")
+    ap.add_argument("--res", type=int, default=None, help="render size [px] (demo default 64)")
+    ap.add_argument("--samples", type=int, default=None, help="samples (demo default 16)")
+    ap.add_argument("--world", type=float, default=0.0, help="demo world radiance (default 0)")
     ap.add_argument("--sun-strength", type=float, default=None,
-                    help="sun irradiance [W/m^2], 0 = no sun (default: the manifest's)")
+                    help="demo sun irradiance [W/m^2], 0 = no sun (default: the manifest's)")
     ap.add_argument("--view", nargs=2, type=float, metavar=("ELEV", "AZIM"), default=None,
-                    help="camera elevation and azimuth [deg] (default: the manifest's reference view)")
+                    help="demo camera elevation and azimuth [deg] (default: the manifest's reference view)")
     ap.add_argument("--uv-size", type=float, default=None,
-                    help="metres per UV unit for tiling the detail maps (default: the demo object's, else 0.1)")
+                    help="metres per UV unit for tiling the detail maps (default: measured per object)")
+    ap.add_argument("--generate-uvs", action="store_true", help="give objects without UVs a Smart UV Project")
     ap.add_argument("--no-detail", action="store_true", help="leave out the normal map")
     ap.add_argument("--no-specular", action="store_true", help="general mode without the specular layer")
     ap.add_argument("--no-calibration", action="store_true",
                     help="general mode: Base Color = albedo, without the Cycles 3.x correction")
     a = ap.parse_args(argv)
-
-    m = read_manifest(a.dir)
-    print(f"import_skin.py {__version__}: {m['_dir']} (format {m['format_version']}, "
-          f"{'flat' if m['detail']['flat'] else 'textured'} detail)")
-    kind = a.scene or ("sphere" if (a.render or a.save) else "none")
-    scene, obj, uv_size = bpy.context.scene, None, 0.1
+    if a.uv_size is not None and not (a.uv_size > 0):
+        raise SkinbakeError(f"--uv-size = {a.uv_size} must be > 0 metres per UV unit")
+    for k in ("res", "samples"):
+        v = getattr(a, k)
+        if v is not None and not 1 <= v <= 16384:
+            raise SkinbakeError(f"--{k} = {v} is out of range [1, 16384]")
+    d = a.dir[:-len("manifest.json")] if a.dir.endswith("manifest.json") else a.dir
+    m = read_manifest(d or ".")
+    say(f"{__version__}: {m['_dir']} (format {m['format_version']}, "
+        f"{'flat' if m['detail']['flat'] else 'textured'} detail)")
+    have_file = bool(bpy.data.filepath)
+    kind = a.scene or ("sphere" if (a.render or a.save) and not have_file and not a.objects else "none")
+    if kind != "none" and have_file:
+        raise SkinbakeError(f"--scene {kind} builds a new scene and would discard {bpy.data.filepath}; "
+                            "use --objects to put the material on the file's own meshes")
+    obs = []
+    if a.objects:
+        obs = find_objects([x.strip() for x in a.objects.split(",") if x.strip()])
+    scene = bpy.context.scene
     if kind != "none":
         strength = m["exact"].get("sun_strength_w_m2", 3.0) if a.sun_strength is None else a.sun_strength
-        scene, obj, uv_size = build_scene(m, kind, a.res, a.samples, a.world, strength, a.view)
-    if a.uv_size is not None:
-        uv_size = a.uv_size
-    unit = scene.unit_settings.scale_length or 1.0
-    if a.mode == "exact":
-        mat = build_exact(m, uv_size_m=uv_size, no_detail=a.no_detail)
+        scene, obj = build_scene(m, kind, a.res or 64, a.samples or 16, a.world, strength, a.view,
+                                 a.engine or "CYCLES")
+        obs = obs or [obj]
     else:
-        mat = build_general(m, uv_size_m=uv_size, no_detail=a.no_detail, no_specular=a.no_specular,
-                            unit_scale=unit, calibrate=not a.no_calibration)
-    print(f"import_skin.py: material '{mat.name}'")
-    if obj is not None:
-        obj.data.materials.append(mat)
+        if a.engine:
+            scene.render.engine = a.engine
+        if a.res:
+            scene.render.resolution_x = scene.render.resolution_y = a.res
+            scene.render.resolution_percentage = 100
+        if a.samples:
+            scene.cycles.samples = scene.eevee.taa_render_samples = a.samples
+    import_set(m, scene, obs, a.mode, a.no_detail, a.no_specular, not a.no_calibration, a.uv_size,
+               a.generate_uvs, a.engine or scene.render.engine)
     if a.save:
         path = os.path.abspath(a.save)
         bpy.ops.wm.save_as_mainfile(filepath=path)
@@ -595,8 +1138,10 @@ def main(argv):
         else:
             bpy.ops.file.make_paths_relative()
         bpy.ops.wm.save_as_mainfile(filepath=path)
-        print(f"import_skin.py: saved {path}")
+        say(f"saved {path}")
     if a.render:
+        if scene.camera is None:
+            raise SkinbakeError("--render: the scene has no camera")
         mean = render(scene, os.path.abspath(a.render))
         print("SKINBAKE_CENTER " + " ".join(f"{x:.6f}" for x in mean))
 
@@ -610,7 +1155,7 @@ except ImportError:             # pragma: no cover - outside Blender
 
 
 class IMPORT_OT_skinbake(bpy.types.Operator, ImportHelper):
-    """Import a skinbake image set (select its manifest.json)"""
+    """Import a skinbake image set (select its manifest.json); the material goes to the selected meshes"""
     bl_idname = "import_scene.skinbake"
     bl_label = "Import skinbake image set"
     bl_options = {"REGISTER", "UNDO"}
@@ -618,34 +1163,26 @@ class IMPORT_OT_skinbake(bpy.types.Operator, ImportHelper):
     filter_glob: bpy.props.StringProperty(default="manifest.json", options={"HIDDEN"})
     mode: bpy.props.EnumProperty(
         name="Mode",
-        items=(("GENERAL", "General", "Principled BSDF with subsurface: any lights"),
-               ("EXACT", "Exact (one sun)", "Baked BRDF table for the scene's sun (or the manifest's)"),
-               ("BOTH", "Both", "Create both materials")),
+        items=(("GENERAL", "General", "Principled BSDF fitted to the bake: any lights, Cycles and EEVEE"),
+               ("EXACT", "Exact", "The baked BRDF for every sun, point and spot lamp (one view layer per "
+                                  "lamp, summed in the compositor)")),
         default="GENERAL")
-    uv_size: bpy.props.FloatProperty(name="UV size [m]", default=0.1, min=1e-4,
-                                     description="Metres covered by one UV unit (tiles the detail maps)")
+    uv_size: bpy.props.FloatProperty(name="UV size [m]", default=0.0, min=0.0,
+                                     description="Metres covered by one UV unit (0: measured per object)")
     detail: bpy.props.BoolProperty(name="Detail normal map", default=True)
+    generate_uvs: bpy.props.BoolProperty(name="Generate missing UVs", default=False,
+                                         description="Smart UV Project on meshes without UVs")
 
     def execute(self, context):
+        obs = [o for o in context.selected_objects if o.type == "MESH"]
         try:
             m = read_manifest(os.path.dirname(self.filepath))
-            mats = []
-            if self.mode in ("GENERAL", "BOTH"):
-                mats.append(build_general(m, uv_size_m=self.uv_size, no_detail=not self.detail,
-                                          unit_scale=context.scene.unit_settings.scale_length or 1.0))
-            if self.mode in ("EXACT", "BOTH"):
-                mats.append(build_exact(m, sun_dir=scene_sun_direction(context.scene),
-                                        uv_size_m=self.uv_size, no_detail=not self.detail))
-        except ImageSetError as e:
+            mat = import_set(m, context.scene, obs, self.mode.lower(), no_detail=not self.detail,
+                             uv_size=self.uv_size or None, gen_uvs=self.generate_uvs)
+        except SkinbakeError as e:
             self.report({"ERROR"}, str(e))
             return {"CANCELLED"}
-        for ob in context.selected_objects:
-            if ob.type == "MESH":
-                if ob.data.materials:
-                    ob.data.materials[0] = mats[0]
-                else:
-                    ob.data.materials.append(mats[0])
-        self.report({"INFO"}, "skinbake: " + ", ".join(x.name for x in mats))
+        self.report({"INFO"}, f"skinbake: {mat.name} on {len(obs)} object(s)")
         return {"FINISHED"}
 
 
@@ -667,6 +1204,8 @@ if __name__ == "__main__":
     args = sys.argv[sys.argv.index("--") + 1:] if "--" in sys.argv else []
     try:
         main(args)
-    except ImageSetError as e:
+    except SkinbakeError as e:
         print(f"import_skin.py: error: {e}", file=sys.stderr)
+        sys.stdout.flush()
+        sys.stderr.flush()
         sys.exit(2)

@@ -1,21 +1,22 @@
-/* bake: the driver from a bake spec to a solver's table plus the specular
- * stacks and subsurface radii the bake directory records (see bake.h). */
+/* bake: the driver from a bake spec to a solver's table (the method chosen
+ * here, with its fallback and its radial run) plus the specular stacks and
+ * subsurface radii the bake directory records (see bake.h). */
 #include "config.h"
 #include "bake/bake.h"
 
+#include <math.h>
 #include <stdlib.h>
 #include <string.h>
 
 #include "base/check.h"
 #include "base/util.h"
+#include "engine/ad_solver.h"
 #include "engine/mc.h"
 #include "skin/colour.h"
+#include "skin/preset.h"
 
-/* The method for a spec.  Monte Carlo is the only one today; a later
- * `--solver ad|mc|auto` chooses here (and asks Monte Carlo for the parts,
- * e.g. Rd(r), that the chosen method does not provide). */
-static const struct solver_ops *bake_solver(const struct bake_spec *s, const void **settings,
-    struct mc_settings *mc)
+/* Monte Carlo's settings from the spec. */
+static void mc_from_spec(const struct bake_spec *s, struct mc_settings *mc)
 {
 	mc_settings_default(mc);
 	mc->seed = s->seed;
@@ -26,8 +27,168 @@ static const struct solver_ops *bake_solver(const struct bake_spec *s, const voi
 	mc->roulette_w = s->opts.roulette_w;
 	mc->roulette_chance = s->opts.roulette_chance;
 	mc->max_steps = s->opts.max_steps;
-	*settings = mc;
-	return &mc_solver;
+}
+
+/* The wavelengths (indices) of a table whose entry at angle 0 passes keep(). */
+static int pick(const struct bake_spec *s, const struct brdf_table *t, int (*keep)(const struct brdf_entry *),
+    int *w_out)
+{
+	int n = 0;
+	for (int w = 0; w < s->n_wl; w++)
+		if (keep(&t->entry[w * s->n_ti]))
+			w_out[n++] = w;
+	return n;
+}
+
+static int not_solved(const struct brdf_entry *e)
+{
+	return e->method == NULL;
+}
+
+static int no_radial(const struct brdf_entry *e)
+{
+	return e->method != NULL && strcmp(e->method, "mc") != 0;
+}
+
+/* Solve p restricted to the n wavelengths w[] (all angles) with ops into t. */
+static int solve_part(const struct solver_ops *ops, const void *settings, const struct solver_problem *p,
+    const struct solver_run *run, const int *w, int n, struct brdf_table *t, char **cause)
+{
+	double wl[BAKE_MAX_WL];
+	struct slab *sl = xcalloc((size_t)n, sizeof *sl);
+	for (int i = 0; i < n; i++) {
+		wl[i] = p->wl_nm[w[i]];
+		sl[i] = p->slab[w[i]];
+	}
+	struct solver_problem q = *p;
+	q.n_wl = n;
+	q.wl_nm = wl;
+	q.slab = sl;
+	int rc = solver_solve(ops, settings, &q, run, t, cause);
+	free(sl);
+	return rc;
+}
+
+/* Monte Carlo for the n wavelengths w[] that adding-doubling refused. */
+static int fallback_mc(const struct bake_spec *s, const struct solver_problem *p, const struct solver_run *run,
+    const int *w, int n, struct bake_result *r, char **cause)
+{
+	struct mc_settings mc;
+	mc_from_spec(s, &mc);
+	struct brdf_table t;
+	if (solve_part(&mc_solver, &mc, p, run, w, n, &t, cause) != 0)
+		return -1;
+	for (int i = 0; i < n; i++) {
+		struct brdf_entry *dst = &r->table.entry[w[i] * s->n_ti];
+		char *line = xasprintf("%sadding-doubling cannot solve %g nm (%s); Monte Carlo instead (target error %g)\n",
+		    r->notes ? r->notes : "", s->wl_nm[w[i]], dst->refused ? dst->refused : "not solved", s->target_error);
+		free(r->notes);
+		r->notes = line;
+		if (r->fallback_cause == NULL)
+			r->fallback_cause = xcalloc((size_t)s->n_wl, sizeof *r->fallback_cause);
+		r->fallback_cause[w[i]] = xstrdup(dst->refused ? dst->refused : "not solved");
+		for (int k = 0; k < s->n_ti; k++) {
+			struct brdf_entry tmp = r->table.entry[w[i] * s->n_ti + k];
+			r->table.entry[w[i] * s->n_ti + k] = t.entry[i * s->n_ti + k];
+			t.entry[i * s->n_ti + k] = tmp;
+		}
+	}
+	r->table.photons += t.photons;
+	r->table.pilot_photons += t.pilot_photons;
+	r->table.seconds += t.seconds;
+	r->table.target_met &= t.target_met;
+	brdf_table_free(&t);
+	r->solver = n == s->n_wl ? "mc" : "ad+mc";
+	return 0;
+}
+
+/* Rd(r) at theta_i[0] by Monte Carlo with `photons` per wavelength, for
+ * the n wavelengths w[] (random streams stream0 + i); into r's entries. */
+static int radial_run(const struct bake_spec *s, const struct solver_problem *p, const struct solver_run *run,
+    const int *w, int n, long photons, uint32_t stream0, struct bake_result *r, char **cause)
+{
+	enum { BATCHES = 16 };
+	struct mc_settings mc;
+	mc_from_spec(s, &mc);
+	mc.nee = 0;
+	mc.batch_photons = (photons + BATCHES - 1) / BATCHES;
+	mc.min_batches = BATCHES;
+	mc.max_photons = (long)n * BATCHES * mc.batch_photons;
+	mc.stream0 = stream0;
+	struct solver_problem q = *p;
+	q.n_ti = 1;
+	q.grid.n_theta = q.grid.n_phi = 1;
+	q.target_error = 0.0;
+	struct brdf_table t;
+	if (solve_part(&mc_solver, &mc, &q, run, w, n, &t, cause) != 0)
+		return -1;
+	for (int i = 0; i < n; i++) {
+		struct brdf_entry *e = &r->table.entry[w[i] * s->n_ti];
+		memcpy(e->rd_r, t.entry[i].rd_r, sizeof(double) * (size_t)s->n_r);
+		memcpy(e->rd_r_err, t.entry[i].rd_r_err, sizeof(double) * (size_t)s->n_r);
+	}
+	r->radial_photons += t.photons;
+	r->radial_seconds += t.seconds;
+	brdf_table_free(&t);
+	return 0;
+}
+
+/* Rd(r) for the wavelengths whose method gave none: a pilot, then the
+ * wavelengths whose mean radius is not yet within radial_error (bake.h). */
+static int radial_mc(const struct bake_spec *s, const struct solver_problem *p, const struct solver_run *run,
+    struct bake_result *r, char **cause)
+{
+	int w[BAKE_MAX_WL], n = pick(s, &r->table, no_radial, w);
+	if (n == 0 || s->n_r <= 0)
+		return 0;
+	double target = s->radial_error > 0.0 ? s->radial_error : BAKE_RADIAL_ERROR;
+	long cap = s->radial_photons > 0 ? s->radial_photons : BAKE_RADIAL_PHOTONS;
+	long pilot = cap < BAKE_RADIAL_PILOT ? cap : BAKE_RADIAL_PILOT;
+	if (radial_run(s, p, run, w, n, pilot, 0, r, cause) != 0)
+		return -1;
+	for (int i = 0; i < n; i++) {
+		const struct brdf_entry *e = &r->table.entry[w[i] * s->n_ti];
+		double m = tally_mean_radius(e->rd_r, s->n_r, s->dr);
+		double rel = m > 0.0 ? tally_mean_radius_err(e->rd_r, e->rd_r_err, s->n_r, s->dr) / m : 0.0;
+		double want = (double)pilot * (rel / target) * (rel / target) * 1.2;
+		if (rel > target && pilot < cap &&
+		    radial_run(s, p, run, &w[i], 1, want < (double)cap ? (long)ceil(want) : cap, (uint32_t)(n + i), r, cause))
+			return -1;
+	}
+	return 0;
+}
+
+/* Adding-doubling, with Monte Carlo where it refuses (auto), and Monte
+ * Carlo's Rd(r). */
+static int bake_ad(const struct bake_spec *s, const struct solver_problem *p, const struct solver_run *run,
+    struct bake_result *r, char **cause)
+{
+	struct ad_solver_settings ad;
+	ad_solver_settings_default(&ad);
+	if (s->ad_tol > 0.0)
+		ad.ad.tol = s->ad_tol;
+	ad.ad.n_quad = s->ad_quad;
+	ad.strict = s->method == BAKE_SOLVER_AD;
+	r->ad_tol = ad_solver_tol(&ad, p);
+	if (solver_solve(&ad_solver, &ad, p, run, &r->table, cause) != 0)
+		return -1;
+	r->solver = "ad";
+	int w[BAKE_MAX_WL], n = pick(s, &r->table, not_solved, w);
+	if (n > 0 && ad.strict) {
+		for (int j = 0; j < s->n_wl * s->n_ti; j++)
+			if (r->table.entry[j].refused) {
+				*cause = xasprintf("--solver ad at %g nm: %s (--solver auto or mc bakes it by Monte Carlo)",
+				    r->table.entry[j].wl_nm, r->table.entry[j].refused);
+				break;
+			}
+		return -1;
+	}
+	if (n > 0 && fallback_mc(s, p, run, w, n, r, cause) != 0)
+		return -1;
+	if (radial_mc(s, p, run, r, cause) != 0)
+		return -1;
+	r->table.rms_rel_err = brdf_table_rms(&r->table);
+	return 0;
 }
 
 int bake_run(const struct bake_spec *s, struct bake_result *r, char **cause)
@@ -43,27 +204,39 @@ int bake_run(const struct bake_spec *s, struct bake_result *r, char **cause)
 		.threads = s->threads, .rank = s->rank, .n_ranks = s->n_ranks > 0 ? s->n_ranks : 1,
 		.allreduce = s->allreduce, .progress = s->progress, .progress_user = s->progress_user,
 	};
-	struct mc_settings mc;
-	const void *settings;
-	const struct solver_ops *ops = bake_solver(s, &settings, &mc);
-	if (solver_solve(ops, settings, &p, &run, &r->table, cause) != 0)
+	if (s->method == BAKE_SOLVER_MC) {
+		struct mc_settings mc;
+		mc_from_spec(s, &mc);
+		if (solver_solve(&mc_solver, &mc, &p, &run, &r->table, cause) != 0)
+			return -1;
+		r->solver = mc_solver.name;
+	} else if (bake_ad(s, &p, &run, r, cause) != 0) {
+		bake_result_free(r);
 		return -1;
-	r->solver = ops->name;
+	}
 	r->stack = xcalloc((size_t)s->n_wl, sizeof *r->stack);
 	r->mean_radius_cm = xcalloc((size_t)s->n_wl, sizeof *r->mean_radius_cm);
+	r->mean_radius_err_cm = xcalloc((size_t)s->n_wl, sizeof *r->mean_radius_err_cm);
 	for (int w = 0; w < s->n_wl; w++) {
 		specular_stack_of_slab(&s->slab[w], s->opts.fresnel, &r->stack[w]);
 		const struct brdf_entry *e = &r->table.entry[w * s->n_ti];
 		r->mean_radius_cm[w] = tally_mean_radius(e->rd_r, s->n_r, s->dr);
+		r->mean_radius_err_cm[w] = tally_mean_radius_err(e->rd_r, e->rd_r_err, s->n_r, s->dr);
 	}
 	return 0;
 }
 
 void bake_result_free(struct bake_result *r)
 {
+	if (r->fallback_cause)
+		for (int w = 0; w < r->table.n_wl; w++)
+			free(r->fallback_cause[w]);
+	free(r->fallback_cause);
 	brdf_table_free(&r->table);
 	free(r->stack);
 	free(r->mean_radius_cm);
+	free(r->mean_radius_err_cm);
+	free(r->notes);
 	memset(r, 0, sizeof *r);
 }
 
@@ -86,4 +259,40 @@ const char *bake_rgb_weights(const struct bake_spec *s, double *rgb_from_wl)
 	int three = s->n_wl == 3 && s->wl_nm[0] == 470 && s->wl_nm[1] == 550 && s->wl_nm[2] == 656;
 	return three ? "the paper's three wavelengths map directly: 656 nm -> R, 550 nm -> G, 470 nm -> B"
 		     : "CIE 1931 2-degree colour matching under D65, reflectance normalised to the perfect white";
+}
+
+struct skin_params *bake_spec_preset(struct bake_spec *s, const char *name, const char *pfile, char **cause)
+{
+	const char *label = name ? name : pfile;
+	struct skin_params *p = name ? preset_load_builtin(name, cause) : preset_load_file(pfile, cause);
+	if (p == NULL)
+		return NULL;
+	if (s->n_wl == 0 && p->n_wl > BAKE_MAX_WL)
+		*cause = xasprintf("preset %s lists %d wavelengths; a bake takes at most %d (choose with --wavelengths "
+		    "or --spectral)", label, p->n_wl, BAKE_MAX_WL);
+	else {
+		if (s->n_wl == 0)
+			s->n_wl = preset_default_wavelengths(p, s->wl_nm, BAKE_MAX_WL);
+		/* Monte Carlo's first round (the pilot's size without batch_photons, mc.h). */
+		long bp = s->batch_photons > 0 ? s->batch_photons : s->target_error > 0 ? 250 : MC_BATCH_PHOTONS;
+		if (s->method == BAKE_SOLVER_MC && (long)s->n_wl * s->n_ti * s->min_batches * bp > s->max_photons)
+			*cause = xasprintf("--max-photons = %ld is below the first round of the bake (%d wavelengths x %d "
+			    "angles x %d batches x %ld photons)", s->max_photons, s->n_wl, s->n_ti, s->min_batches, bp);
+		else if (bake_spec_layers(s, p, label, cause) == 0)
+			return p;
+	}
+	preset_free(p);
+	return NULL;
+}
+
+void bake_spec_axes(struct bake_spec *s, const double *wl_nm, int n_wl, const double *theta_deg, int n_theta,
+    int nodes)
+{
+	CHECK(n_wl >= 0 && n_wl <= BAKE_MAX_WL && n_theta >= 0 && n_theta <= BAKE_MAX_TI && nodes <= BAKE_MAX_TI);
+	s->n_wl = n_wl;
+	if (n_wl > 0)
+		memcpy(s->wl_nm, wl_nm, sizeof(double) * (size_t)n_wl);
+	s->n_ti = n_theta > 0 ? n_theta : nodes;
+	for (int k = 0; k < s->n_ti; k++)
+		s->theta_i[k] = n_theta > 0 ? theta_deg[k] * M_PI / 180.0 : 0.5 * M_PI * k / s->n_ti;
 }

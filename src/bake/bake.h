@@ -1,17 +1,29 @@
 /* bake: the BRDF bake driver.  It turns a bake spec (the layer stack per
  * wavelength, the incidence angles and exit grid, the accuracy and the
- * method's settings) into a solver problem, asks a solver for the table
- * (engine/solver.h; Monte Carlo, engine/mc.h, is the method today) and adds
- * what the bake directory needs besides the table: the clear top stack for
- * the analytic specular and the mean exit radius per wavelength.  No files
- * are written here (bake/bakefile.h writes them).
+ * methods' settings) into a solver problem, asks a solver for the table
+ * (engine/solver.h) and adds what the bake directory needs besides the
+ * table: the clear top stack for the analytic specular and the mean exit
+ * radius per wavelength.  No files are written here (bake/bakefile.h
+ * writes them).
  *
- * Seams for what is to come: the method is chosen in one place
- * (bake_solver in bake.c) and named in bake_result.solver, for a
- * `--solver` option and the manifest's record of it; a solver runs in
- * steps whose state can be saved between them (engine/solver.h), for
- * checkpoints; a family of bakes (one preset varied over parameters) is a
- * loop of bake_spec_layers and bake_run over the members. */
+ * The method (bake_spec.method): Monte Carlo (engine/mc.h), adding-doubling
+ * (engine/ad_solver.h), or auto: adding-doubling, and Monte Carlo for the
+ * wavelengths where adding-doubling cannot meet its tolerance (each such
+ * fallback is stated in bake_result.notes for the caller to show).  With
+ * adding-doubling alone a wavelength it refuses fails the bake with its
+ * cause.  Adding-doubling has no radial profile: Rd(r) (and the mean exit
+ * radius behind a renderer's subsurface radius) then comes from a separate
+ * Monte Carlo run per wavelength at theta_i[0] (exit bins by escapes on a
+ * 1 x 1 grid): a pilot of BAKE_RADIAL_PILOT photons per wavelength gives
+ * each mean radius with its standard error e_p; where e_p is above
+ * radial_error (relative), that wavelength runs again with BAKE_RADIAL_PILOT
+ * (e_p / radial_error)^2 x 1.2 photons (other random streams; at most
+ * radial_photons) and those replace the pilot's.  The result carries the
+ * standard errors reached.
+ *
+ * A solver runs in steps whose state can be saved between them
+ * (engine/solver.h), for checkpoints; a family of bakes (one preset varied
+ * over parameters) is a loop of bake_spec_layers and bake_run over the members. */
 #ifndef SKINBAKE_BAKE_H
 #define SKINBAKE_BAKE_H
 #include <stdint.h>
@@ -23,6 +35,12 @@
 
 #define BAKE_MAX_WL 128
 #define BAKE_MAX_TI 90
+#define BAKE_RADIAL_PILOT 2000		/* photons per wavelength of the Rd(r) pilot */
+#define BAKE_RADIAL_ERROR 0.02		/* default radial_error */
+#define BAKE_RADIAL_PHOTONS 1000000	/* default radial_photons */
+
+/* The method of a bake (0 = Monte Carlo, as before there was a choice). */
+enum bake_method { BAKE_SOLVER_MC = 0, BAKE_SOLVER_AD, BAKE_SOLVER_AUTO };
 
 struct bake_spec {
 	int n_wl;				/* wavelengths, 1..BAKE_MAX_WL */
@@ -34,9 +52,18 @@ struct bake_spec {
 	int n_r;				/* radial bins of Rd(r) */
 	double dr;				/* radial bin width [cm] */
 	struct transport_opts opts;		/* boundary model and the kernel's roulette and step cap */
+	int method;				/* enum bake_method */
+	double ad_tol;				/* adding-doubling tolerance (table RMS relative error);
+					 * 0 = 1e-3; the target error when that is smaller */
+	int ad_quad;				/* its quadrature nodes per unit cosine; 0 = automatic */
+	double radial_error;			/* relative standard error of the mean exit radius that
+					 * the Rd(r) run of an adding-doubling table aims at;
+					 * 0 = BAKE_RADIAL_ERROR */
+	long radial_photons;			/* its photons per wavelength at most; 0 = BAKE_RADIAL_PHOTONS */
+	/* Monte Carlo. */
 	uint64_t seed;
-	long batch_photons;			/* photons per batch, >= 1 */
-	int min_batches;			/* batches per job in the first round, >= 4 */
+	long batch_photons;			/* photons per batch; 0 = sized from the target (mc.h) */
+	int min_batches;			/* batches per job in the first round or pilot, >= 4 */
 	double target_error;			/* RMS relative error to reach; 0 = run max_photons */
 	long max_photons;			/* total photon budget of the bake */
 	int nee;				/* exit bins by next-event estimation (nee.h) instead of escapes */
@@ -52,10 +79,18 @@ struct bake_spec {
  * needs besides it, so that its writer calls nothing back. */
 struct bake_result {
 	struct brdf_table table;	/* entries [n_wl * n_ti], entry = wavelength * n_ti + angle */
-	const char *solver;		/* name of the method that made the table (static) */
+	const char *solver;		/* the methods that made the table: "mc", "ad", or "ad+mc"
+					 * (static; each entry's method says which) */
+	double ad_tol;			/* tolerance adding-doubling worked to (0 when it did not run) [-] */
+	char *notes;			/* lines for the user (the fallbacks, with causes); NULL: none */
+	char **fallback_cause;		/* [n_wl] why adding-doubling refused the wavelength (Monte Carlo
+					 * made it); NULL entries where it did not, NULL array without any */
 	struct specular_stack *stack;	/* [n_wl] clear top stack per wavelength, for the analytic specular */
 	double *mean_radius_cm;		/* [n_wl] mean exit radius of the diffuse light at theta_i[0] [cm]
 					 * (tally_mean_radius; 0 without radial bins) */
+	double *mean_radius_err_cm;	/* [n_wl] its standard error [cm] (tally_mean_radius_err) */
+	long radial_photons;		/* photons of the separate Rd(r) run (0 when the table's method gave it) */
+	double radial_seconds;		/* its wall time [s] */
 };
 
 /* Run the bake: 0, or -1 and *cause (caller frees) when the solver refuses
@@ -71,4 +106,14 @@ void bake_result_free(struct bake_result *r);
  * the sentence that says how they map, for the manifest. */
 int bake_spec_layers(struct bake_spec *s, const struct skin_params *p, const char *label, char **cause);
 const char *bake_rgb_weights(const struct bake_spec *s, double *rgb_from_wl);
+/* s's wavelengths wl_nm[n_wl] (0: the preset's, set later) and incidence
+ * angles: theta_deg[n_theta] [deg], or when n_theta is 0 the nodes
+ * 90 k / nodes deg, k = 0 .. nodes - 1. */
+void bake_spec_axes(struct bake_spec *s, const double *wl_nm, int n_wl, const double *theta_deg, int n_theta,
+    int nodes);
+/* Load preset NAME, or the preset file PFILE when NAME is NULL, and fill
+ * s's wavelengths (the preset's default ones when s->n_wl is 0) and layer
+ * stacks; for Monte Carlo, check that the photon budget covers the first
+ * round.  The preset (caller frees with preset_free), or NULL and *cause. */
+struct skin_params *bake_spec_preset(struct bake_spec *s, const char *name, const char *pfile, char **cause);
 #endif

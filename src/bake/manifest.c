@@ -11,6 +11,7 @@
 
 #include "base/check.h"
 #include "base/util.h"
+#include "engine/ad_solver.h"
 
 /* ---- writer ---- */
 
@@ -62,7 +63,7 @@ static void add_axes(json_object *o, const struct bake_spec *s)
 	free(e);
 }
 
-static json_object *table_info(const struct bake_spec *s)
+static json_object *table_info(const struct bake_spec *s, const struct bake_result *r)
 {
 	json_object *t = json_object_new_object();
 	add(t, "file", jstr("brdf.exr"));
@@ -72,7 +73,8 @@ static json_object *table_info(const struct bake_spec *s)
 	add(t, "column", jstr("delta_phi bin index"));
 	add(t, "value", jstr("diffuse (subsurface) BRDF [1/sr]: mean over the (theta_o, delta_phi) bin at the theta_i node; "
 	    "delta_phi = 0 back toward the light, 180 the mirror side"));
-	add(t, "channels", jstr("fr.<WL>nm and fr_err.<WL>nm (standard error)"));
+	add(t, "channels", jstr(strcmp(r->solver, "mc") == 0 ? "fr.<WL>nm and fr_err.<WL>nm (standard error)"
+	    : "fr.<WL>nm and fr_err.<WL>nm (its error estimate: see solver.error)"));
 	return t;
 }
 
@@ -146,6 +148,14 @@ static json_object *radial_info(const struct bake_spec *s, const struct bake_res
 	add(rad, "rd_r", prof);
 	add(rad, "rd_r_err", prof_e);
 	add(rad, "mean_radius_cm", jarr(r->mean_radius_cm, s->n_wl));
+	add(rad, "mean_radius_err_cm", jarr(r->mean_radius_err_cm, s->n_wl));
+	add(rad, "method", jstr(r->radial_photons > 0 ? "Monte Carlo at theta_i_deg, exit bins by escapes, apart from the "
+	    "table (its method gives no Rd(r)): a pilot of 2000 photons per wavelength, then more where the mean radius's "
+	    "relative error is above target_rel_err" : "Monte Carlo, the table's jobs at theta_i_deg"));
+	add(rad, "photons", json_object_new_int64(r->radial_photons > 0 ? r->radial_photons : r->table.entry[0].photons));
+	if (r->radial_photons > 0)
+		add(rad, "target_rel_err", json_object_new_double(s->radial_error > 0.0 ? s->radial_error : BAKE_RADIAL_ERROR));
+	add(rad, "seconds", json_object_new_double(r->radial_seconds));
 	/* Per RGB channel: the wavelengths' radii weighted by |rgb_from_wl|. */
 	double rr[3];
 	for (int c = 0; c < 3; c++) {
@@ -164,11 +174,50 @@ static json_object *radial_info(const struct bake_spec *s, const struct bake_res
 	return rad;
 }
 
-static json_object *settings_info(const struct bake_spec *s)
+/* Which method made the table, how, and what its errors mean. */
+static json_object *solver_info(const struct bake_spec *s, const struct bake_result *r)
+{
+	static const char *requested[] = { "mc", "ad", "auto" };
+	json_object *so = json_object_new_object();
+	add(so, "name", jstr(r->solver));
+	add(so, "requested", jstr(requested[s->method]));
+	add(so, "rms_rel_err", json_object_new_double(r->table.rms_rel_err));
+	add(so, "error", jstr("fr_err, albedo_err and rms_rel_err of entries made by mc: standard errors (batch means); "
+	    "by ad: the adding-doubling error estimates (|X_N - X_N/2| from a solve at half the quadrature nodes, scaled up "
+	    "where convergence is slow, plus the Fourier series' tail: bounds, not standard errors; src/engine/ad.h); "
+	    "rms_rel_err: solid-angle-weighted RMS relative error of the table"));
+	if (r->ad_tol > 0.0) {
+		struct ad_solver_settings d;
+		ad_solver_settings_default(&d);
+		json_object *ad = json_object_new_object();
+		add(ad, "method", jstr("adding-doubling, Fourier series in delta_phi (src/engine/ad.h)"));
+		add(ad, "tol", json_object_new_double(r->ad_tol));
+		add(ad, "n_quad", s->ad_quad > 0 ? json_object_new_int(s->ad_quad) : jstr("auto"));
+		add(ad, "n_quad_max", json_object_new_int(d.ad.n_quad_max));
+		add(ad, "dtau_frac", json_object_new_double(d.ad.dtau_frac));
+		add(ad, "dm_terms", json_object_new_double(d.ad.dm_terms));
+		add(ad, "max_orders", json_object_new_int(d.ad.max_orders));
+		add(so, "ad", ad);
+	}
+	json_object *fb = json_object_new_array();
+	for (int w = 0; r->fallback_cause && w < s->n_wl; w++)
+		if (r->fallback_cause[w]) {
+			json_object *f = json_object_new_object();
+			add(f, "wavelength_nm", json_object_new_double(s->wl_nm[w]));
+			add(f, "cause", jstr(r->fallback_cause[w]));
+			json_object_array_add(fb, f);
+		}
+	add(so, "fallback_to_mc", fb);
+	return so;
+}
+
+static json_object *settings_info(const struct bake_spec *s, const struct bake_result *r)
 {
 	json_object *st = json_object_new_object();
 	add(st, "seed", json_object_new_int64((int64_t)s->seed));
-	add(st, "batch_photons", json_object_new_int64(s->batch_photons));
+	const struct brdf_entry *e = &r->table.entry[0];
+	long bp = s->batch_photons > 0 || e->batches == 0 ? s->batch_photons : e->photons / e->batches;
+	add(st, "batch_photons", json_object_new_int64(bp));
 	add(st, "min_batches", json_object_new_int(s->min_batches));
 	add(st, "target_error", json_object_new_double(s->target_error));
 	add(st, "max_photons", json_object_new_int64(s->max_photons));
@@ -182,6 +231,7 @@ static json_object *result_info(const struct bake_result *r)
 {
 	json_object *res = json_object_new_object();
 	add(res, "photons", json_object_new_int64(r->table.photons));
+	add(res, "pilot_photons", json_object_new_int64(r->table.pilot_photons));
 	add(res, "seconds", json_object_new_double(r->table.seconds));
 	add(res, "rms_rel_err", json_object_new_double(r->table.rms_rel_err));
 	add(res, "target_met", json_object_new_boolean(r->table.target_met));
@@ -196,7 +246,13 @@ static json_object *entries_info(const struct bake_result *r)
 		json_object *jo = json_object_new_object();
 		add(jo, "wavelength_nm", json_object_new_double(b->wl_nm));
 		add(jo, "theta_i_deg", json_object_new_double(b->theta_i * 180.0 / M_PI));
+		add(jo, "solver", jstr(b->method ? b->method : ""));
 		add(jo, "photons", json_object_new_int64(b->photons));
+		add(jo, "batches", json_object_new_int64(b->batches));
+		if (b->n_quad > 0) {
+			add(jo, "n_quad", json_object_new_int(b->n_quad));
+			add(jo, "fourier_orders", json_object_new_int(b->n_orders));
+		}
 		add(jo, "Rsp", json_object_new_double(b->rsp));
 		add(jo, "albedo", json_object_new_double(b->albedo.v));
 		add(jo, "albedo_err", json_object_new_double(b->albedo.err));
@@ -221,12 +277,13 @@ char *bake_manifest_text(const struct bake_spec *s, const struct bake_result *r,
 	if (m->command)
 		add(o, "command", jstr(m->command));
 	add_axes(o, s);
-	add(o, "table", table_info(s));
+	add(o, "table", table_info(s, r));
+	add(o, "solver", solver_info(s, r));
 	add(o, "rgb", rgb_info(s, m));
 	add(o, "specular", specular_info(s, r, m));
 	add(o, "layers", layers_info(s));
 	add(o, "radial", radial_info(s, r, m));
-	add(o, "settings", settings_info(s));
+	add(o, "settings", settings_info(s, r));
 	add(o, "result", result_info(r));
 	add(o, "jobs", entries_info(r));
 	char *text = xstrdup(json_object_to_json_string_ext(o, JSON_C_TO_STRING_PRETTY | JSON_C_TO_STRING_NOSLASHESCAPE));
@@ -313,7 +370,8 @@ static int read_specular(json_object *o, struct bake *b, const char *mpath, char
 	b->roughness = jnum(sp, "alpha", 0.3);
 	b->stack = xcalloc((size_t)b->n_wl, sizeof *b->stack);
 	enum optics_fresnel model = OPTICS_FRESNEL_EXACT;
-	if (json_object_object_get_ex(sp, "fresnel", &fr) && strcmp(json_object_get_string(fr), "schlick") == 0)
+	if (json_object_object_get_ex(sp, "fresnel", &fr) && json_object_is_type(fr, json_type_string) &&
+	    strcmp(json_object_get_string(fr), "schlick") == 0)
 		model = OPTICS_FRESNEL_SCHLICK;
 	if (!json_object_object_get_ex(sp, "stack_n", &v) || (int)json_object_array_length(v) != b->n_wl) {
 		*cause = xasprintf("%s: missing specular.stack_n", mpath);
@@ -369,15 +427,16 @@ int bake_manifest_read(const char *dir, struct bake *b, char **cause)
 		goto out;
 	}
 	o = json_object_from_file(mpath);
-	if (o == NULL || !json_object_object_get_ex(o, "format", &v) || strcmp(json_object_get_string(v), "skinbake-bake") != 0) {
+	if (o == NULL || !json_object_object_get_ex(o, "format", &v) || !json_object_is_type(v, json_type_string) ||
+	    strcmp(json_object_get_string(v), "skinbake-bake") != 0) {
 		*cause = xasprintf("%s: not a skinbake bake manifest (corrupt JSON or wrong format)", mpath);
 		goto out;
 	}
-	if ((int)jnum(o, "format_version", 0) != BAKE_FORMAT_VERSION) {
+	if (jnum(o, "format_version", 0) != BAKE_FORMAT_VERSION) {	/* a double: (int)1e999 is undefined */
 		*cause = xasprintf("%s: format_version %g is not %d", mpath, jnum(o, "format_version", 0), BAKE_FORMAT_VERSION);
 		goto out;
 	}
-	if (json_object_object_get_ex(o, "preset", &v))
+	if (json_object_object_get_ex(o, "preset", &v) && json_object_is_type(v, json_type_string))
 		b->preset = xstrdup(json_object_get_string(v));
 	if (read_axes(o, b, mpath, cause) || read_rgb(o, b, mpath, cause) || read_specular(o, b, mpath, cause))
 		goto out;
@@ -388,4 +447,107 @@ out:
 		json_object_put(o);
 	free(mpath);
 	return rc;
+}
+
+/* ---- provenance (for verify) ---- */
+
+static int read_stack(json_object *lw, struct slab *s, int w, const char *mpath, char **cause)
+{
+	json_object *ls;
+	slab_init(s, jnum(lw, "n_above", 1.0), jnum(lw, "n_below", 1.0));
+	if (!json_object_object_get_ex(lw, "layers", &ls) || !json_object_is_type(ls, json_type_array)) {
+		*cause = xasprintf("%s: layers[%d] has no layer list", mpath, w);
+		return -1;
+	}
+	for (size_t i = 0; i < json_object_array_length(ls); i++) {
+		json_object *lo = json_object_array_get_idx(ls, i), *d;
+		struct layer l = { INFINITY, jnum(lo, "n", 1.0), jnum(lo, "mua_per_cm", 0.0), jnum(lo, "mus_per_cm", 0.0),
+			jnum(lo, "g", 0.0) };
+		if (json_object_object_get_ex(lo, "d_cm", &d) && !json_object_is_type(d, json_type_string))
+			l.d = json_object_get_double(d);
+		char *why = NULL;
+		if (slab_add(s, &l, &why) != 0) {
+			*cause = xasprintf("%s: layers[%d]: %s", mpath, w, why);
+			free(why);
+			return -1;
+		}
+	}
+	char *why = NULL;
+	if (slab_check(s, &why) != 0) {
+		*cause = xasprintf("%s: layers[%d]: %s", mpath, w, why);
+		free(why);
+		return -1;
+	}
+	slab_prepare(s);
+	return 0;
+}
+
+/* Per entry: its method and batches (manifests from before the solver
+ * choice are Monte Carlo with batches = photons / settings.batch_photons). */
+static void read_entries(json_object *o, struct bake_provenance *p)
+{
+	json_object *jobs, *st, *v;
+	long bp = 0;
+	if (json_object_object_get_ex(o, "settings", &st))
+		bp = (long)jnum(st, "batch_photons", 0.0);
+	if (!json_object_object_get_ex(o, "jobs", &jobs))
+		return;
+	for (int j = 0; j < p->n_wl * p->n_ti && j < (int)json_object_array_length(jobs); j++) {
+		json_object *jo = json_object_array_get_idx(jobs, (size_t)j);
+		int mc = !json_object_object_get_ex(jo, "solver", &v) || strcmp(json_object_get_string(v), "mc") == 0;
+		long photons = (long)jnum(jo, "photons", 0.0);
+		p->entry_mc[j] = mc;
+		p->entry_batches[j] = !mc ? 0 : json_object_object_get_ex(jo, "batches", &v) ? json_object_get_int64(v)
+				    : bp > 0 ? photons / bp : 0;
+	}
+}
+
+int bake_provenance_read(const char *dir, struct bake_provenance *p, char **cause)
+{
+	memset(p, 0, sizeof *p);
+	struct bake *b = xcalloc(1, sizeof *b);
+	char *mpath = xasprintf("%s/manifest.json", dir);
+	json_object *o = NULL, *v, *so, *sp, *layers;
+	int rc = -1;
+	if (bake_manifest_read(dir, b, cause) != 0 || (o = json_object_from_file(mpath)) == NULL)
+		goto out;
+	p->n_wl = b->n_wl;
+	p->n_ti = b->n_ti;
+	snprintf(p->solver, sizeof p->solver, "mc");
+	if (json_object_object_get_ex(o, "solver", &so) && json_object_object_get_ex(so, "name", &v))
+		snprintf(p->solver, sizeof p->solver, "%s", json_object_get_string(v));
+	p->fresnel = OPTICS_FRESNEL_EXACT;
+	if (json_object_object_get_ex(o, "specular", &sp) && json_object_object_get_ex(sp, "fresnel", &v) &&
+	    strcmp(json_object_get_string(v), "schlick") == 0)
+		p->fresnel = OPTICS_FRESNEL_SCHLICK;
+	if (json_object_object_get_ex(o, "settings", &v))
+		p->seed = (uint64_t)jnum(v, "seed", 1.0);
+	if (!json_object_object_get_ex(o, "layers", &layers) || (int)json_object_array_length(layers) != p->n_wl) {
+		*cause = xasprintf("%s: layers do not match the wavelengths", mpath);
+		goto out;
+	}
+	p->slab = xcalloc((size_t)p->n_wl, sizeof *p->slab);
+	p->entry_mc = xcalloc((size_t)(p->n_wl * p->n_ti), sizeof *p->entry_mc);
+	p->entry_batches = xcalloc((size_t)(p->n_wl * p->n_ti), sizeof *p->entry_batches);
+	for (int w = 0; w < p->n_wl; w++)
+		if (read_stack(json_object_array_get_idx(layers, (size_t)w), &p->slab[w], w, mpath, cause) != 0)
+			goto out;
+	read_entries(o, p);
+	rc = 0;
+out:
+	if (o)
+		json_object_put(o);
+	bake_free(b);
+	free(mpath);
+	if (rc != 0)
+		bake_provenance_free(p);
+	return rc;
+}
+
+void bake_provenance_free(struct bake_provenance *p)
+{
+	free(p->slab);
+	free(p->entry_mc);
+	free(p->entry_batches);
+	memset(p, 0, sizeof *p);
 }

@@ -133,6 +133,10 @@ void outfile_abort(struct outfile *o)
 
 int util_mkdirs(const char *dir, char **cause)
 {
+	if (*dir == '\0') {	/* the loop below starts after the first character */
+		*cause = xstrdup("the directory name is empty");
+		return -1;
+	}
 	char *p = xstrdup(dir);
 	for (char *s = p + 1; ; s++) {
 		char c = *s;

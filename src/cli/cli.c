@@ -24,6 +24,7 @@ static const struct opt_sub commands[] = {
 	{ "preset", "preset show NAME: print a preset's layers per wavelength", cmd_preset },
 	{ "bake", "bake a skin preset's BRDF into OpenEXR lookup tables", cmd_bake },
 	{ "eval", "evaluate a baked BRDF at given angles", cmd_eval },
+	{ "verify", "check a bake's table against an independent Monte Carlo run", cmd_verify },
 	{ "texture", "grow pores and furrows as seamless height and normal maps", cmd_texture },
 	{ "export", "export pov|blender: scenes and image sets for renderers", cmd_export },
 	{ NULL, NULL, NULL },
@@ -67,6 +68,16 @@ static int cli_main(int argc, char **argv)
 }
 
 #ifdef SKINBAKE_MPI
+/* Read by AddressSanitizer, when linked in (./configure --enable-asan): Open
+ * MPI never frees its own allocations, partly in plug-ins it unloads (beyond
+ * suppression by name), so skinbake-mpi runs without LeakSanitizer; the same
+ * code is leak-checked in skinbake. */
+const char *__asan_default_options(void);
+const char *__asan_default_options(void)
+{
+	return "detect_leaks=0";
+}
+
 /* Every value belongs to one rank and is zero on the others, so the sum is
  * exact whatever order MPI adds in. */
 static void mpi_allreduce(double *v, long n)
@@ -101,6 +112,10 @@ int main(int argc, char **argv)
 
 static void vmsg(const char *cmd, const char *fmt, va_list ap)
 {
+	/* Under MPI every rank parses the same input and meets the same error:
+	 * rank 0 speaks for all (main's MPI_Allreduce gives the exit status). */
+	if (cli_par.rank != 0)
+		return;
 	fprintf(stderr, "skinbake %s: ", cmd);
 	vfprintf(stderr, fmt, ap);
 	fputc('\n', stderr);
@@ -150,7 +165,7 @@ void cli_progress_start(struct cli_progress *p, const char *label)
 	p->label = label;
 	p->t0 = util_now();
 	p->shown = -1;
-	p->tty = isatty(2);
+	p->tty = isatty(2) && cli_par.rank == 0;	/* under MPI rank 0 shows it */
 }
 
 void cli_progress_update(void *user, long done, long total)
@@ -177,4 +192,15 @@ void cli_progress_end(struct cli_progress *p)
 {
 	if (p->tty && p->shown >= 0)
 		fputc('\n', stderr);
+}
+
+char *cli_command_line(int argc, char **argv)
+{
+	char *line = xstrdup("skinbake");
+	for (int i = 0; i < argc; i++) {
+		char *t = xasprintf("%s %s", line, argv[i]);
+		free(line);
+		line = t;
+	}
+	return line;
 }

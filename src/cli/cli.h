@@ -17,7 +17,7 @@ int cli_vusage_error(const char *cmd, const char *fmt, va_list ap) __attribute__
 /* Print "skinbake CMD: message" to stderr; returns CLI_EXIT_FAIL. */
 int cli_fail(const char *cmd, const char *fmt, ...) __attribute__((format(printf, 2, 3)));
 
-/* Progress bar on stderr, shown only when stderr is a terminal. */
+/* Progress bar on stderr, shown only when stderr is a terminal (and on MPI rank 0). */
 struct cli_progress {
 	const char *label;
 	double t0;	/* start [s] */
@@ -28,6 +28,9 @@ void cli_progress_start(struct cli_progress *p, const char *label);
 /* Usable as a sim_run progress callback: user = struct cli_progress *. */
 void cli_progress_update(void *user, long done, long total);
 void cli_progress_end(struct cli_progress *p);
+
+/* "skinbake ARGV[0] ARGV[1] ...", for a manifest.  Caller frees. */
+char *cli_command_line(int argc, char **argv);
 
 /* Option values by the rules of opt.h (decimal only, message with the
  * range); -1 after reporting.  For commands not yet described by an opt
@@ -54,4 +57,5 @@ int cmd_texture(int argc, char **argv);
 int cmd_export(int argc, char **argv);
 int cmd_export_pov(int argc, char **argv);
 int cmd_export_blender(int argc, char **argv);
+int cmd_verify(int argc, char **argv);
 #endif

@@ -28,6 +28,10 @@ struct mc_state {
 	double *events;			/* [nj] scattering events */
 	struct launch *ln;		/* [nj] entry state of each job */
 	long *want;			/* [nj] batches wanted so far */
+	long bp;			/* photons per batch now */
+	long offset;			/* photon index of batch 0 in every job (after a pilot) */
+	int pilot;			/* 1 while the round is the pilot */
+	long pilot_photons;		/* photons of the pilot set aside */
 	long job_cap;			/* batches per job the budget allows */
 	long done_photons, budget;	/* for progress */
 };
@@ -36,7 +40,7 @@ struct mc_state {
 static void batch_values(const struct mc_state *m, const struct tally *t, double *q)
 {
 	const struct tally_grid *g = &m->p.grid;
-	double inv = 1.0 / (double)m->st.batch_photons;
+	double inv = 1.0 / (double)m->bp;
 	q[Q_RD] = t->rd * inv;
 	q[Q_RDU] = t->rd_unscat * inv;
 	q[Q_TT] = t->tt * inv;
@@ -54,18 +58,28 @@ static void batch_values(const struct mc_state *m, const struct tally *t, double
 		q[Q_NSCAL + ne + i] = t->radial[i] * inv;
 }
 
-/* Solid-angle-weighted RMS relative error of one job's exit bins. */
-static double job_rms(const struct tally_grid *g, const struct batchstat *a)
+/* Solid-angle-weighted RMS relative error of one job's exit bins: num and
+ * den of its square.  An empty bin counts as 100%, or not at all with skip_empty. */
+static void job_rms_parts(const struct tally_grid *g, const struct batchstat *a, int skip_empty, double *num,
+    double *den)
 {
-	double num = 0.0, den = 0.0;
+	*num = *den = 0.0;
 	for (int it = 0; it < g->n_theta; it++)
 		for (int ip = 0; ip < g->n_phi; ip++) {
 			int k = Q_NSCAL + it * g->n_phi + ip;
 			double m = batchstat_mean(a, k), e = batchstat_err(a, k), w = tally_bin_omega(g, it);
-			double rel = m > 0.0 ? e / m : 1.0;	/* an empty bin counts as 100% */
-			num += w * rel * rel;
-			den += w;
+			if (m <= 0.0 && skip_empty)
+				continue;
+			double rel = m > 0.0 ? e / m : 1.0;
+			*num += w * rel * rel;
+			*den += w;
 		}
+}
+
+static double job_rms(const struct tally_grid *g, const struct batchstat *a)
+{
+	double num, den;
+	job_rms_parts(g, a, 0, &num, &den);
 	return sqrt(num / den);
 }
 
@@ -73,7 +87,8 @@ void mc_settings_default(struct mc_settings *s)
 {
 	struct transport_opts o;
 	transport_opts_default(&o);
-	*s = (struct mc_settings){ .seed = 1, .batch_photons = 4000, .min_batches = 8, .max_photons = 200000000L,
+	*s = (struct mc_settings){ .seed = 1, .batch_photons = MC_BATCH_PHOTONS, .min_batches = 8, .pilot_photons = 250,
+		.sized_batches = 32, .max_photons = 200000000L,
 		.nee = 1, .roulette_w = o.roulette_w, .roulette_chance = o.roulette_chance, .max_steps = o.max_steps };
 }
 
@@ -81,7 +96,7 @@ static void *mc_begin(const struct solver_problem *p, const void *settings, char
 {
 	const struct mc_settings *st = settings;
 	(void)cause;
-	CHECK(st->batch_photons >= 1 && st->min_batches >= 2);
+	CHECK(st->batch_photons >= 0 && st->min_batches >= 2);
 	struct mc_state *m = xcalloc(1, sizeof *m);
 	m->p = *p;
 	m->st = *st;
@@ -93,7 +108,13 @@ static void *mc_begin(const struct solver_problem *p, const void *settings, char
 	m->events = xcalloc((size_t)m->nj, sizeof *m->events);
 	m->ln = xcalloc((size_t)m->nj, sizeof *m->ln);
 	m->want = xcalloc((size_t)m->nj, sizeof *m->want);
-	m->job_cap = st->max_photons / m->nj / st->batch_photons;
+	m->bp = st->batch_photons;
+	if (m->bp == 0) {
+		CHECK(st->pilot_photons >= 1 && st->sized_batches >= 2);
+		m->pilot = p->target_error > 0.0;
+		m->bp = m->pilot ? st->pilot_photons : MC_BATCH_PHOTONS;
+	}
+	m->job_cap = st->max_photons / m->nj / m->bp;
 	if (m->job_cap < st->min_batches)
 		m->job_cap = st->min_batches;
 	for (int j = 0; j < m->nj; j++) {
@@ -103,7 +124,7 @@ static void *mc_begin(const struct solver_problem *p, const void *settings, char
 		transport_launch(&p->slab[j / p->n_ti], p->theta_i[j % p->n_ti], p->fresnel, &m->ln[j]);
 		m->want[j] = p->target_error > 0.0 ? st->min_batches : m->job_cap;
 	}
-	m->budget = (long)m->nj * m->job_cap * st->batch_photons;
+	m->budget = (long)m->nj * (m->pilot ? st->min_batches : m->job_cap) * m->bp;
 	return m;
 }
 
@@ -114,7 +135,7 @@ static void run_units(struct mc_state *m, const struct solver_run *run, long nu,
 {
 	const struct solver_problem *p = &m->p;
 	const struct tally_grid *g = &p->grid;
-	const long bp = m->st.batch_photons;
+	const long bp = m->bp;
 	const int nq = m->nq;
 #ifdef _OPENMP
 	int nthreads = run->threads > 0 ? run->threads : omp_get_max_threads();
@@ -133,7 +154,7 @@ static void run_units(struct mc_state *m, const struct solver_run *run, long nu,
 			int j = uj[u];
 			tally_zero(&t, g);
 			transport_run(&p->slab[j / p->n_ti], &m->ln[j], &m->opts, g, m->st.nee ? &ne : NULL, m->st.seed,
-			    (uint32_t)j, (uint64_t)ub[u] * (uint64_t)bp, (uint64_t)bp, &t);
+			    m->st.stream0 + (uint32_t)j, (uint64_t)m->offset + (uint64_t)ub[u] * (uint64_t)bp, (uint64_t)bp, &t);
 			batch_values(m, &t, vals + (size_t)u * (size_t)(nq + 1));
 			vals[(size_t)u * (size_t)(nq + 1) + nq] = t.events;
 			if (run->progress) {
@@ -148,6 +169,52 @@ static void run_units(struct mc_state *m, const struct solver_run *run, long nu,
 		if (m->st.nee)
 			nee_free(&ne);
 	}
+}
+
+/* The table's RMS error over the jobs (skip_empty: over the bins with light). */
+static double table_rms(const struct mc_state *m, int skip_empty)
+{
+	double num = 0.0, den = 0.0;
+	for (int j = 0; j < m->nj; j++) {
+		double a, b;
+		job_rms_parts(&m->p.grid, &m->acc[j], skip_empty, &a, &b);
+		num += a;
+		den += b;
+	}
+	return den > 0.0 ? sqrt(num / den) : 1.0;
+}
+
+/* After the pilot: set it aside and size the first round from it (see
+ * mc.h).  1 when that round is wanted, 0 when the pilot met the target. */
+static int size_from_pilot(struct mc_state *m, double E)
+{
+	m->pilot = 0;
+	if (E <= m->p.target_error)
+		return 0;
+	/* Empty bins say nothing about the variance per photon: leave them out
+	 * here (the later rounds count them again). */
+	double Es = table_rms(m, 1), target = m->p.target_error;
+	long per_job = m->acc[0].batches * m->bp, nb = m->st.sized_batches;
+	double n = (double)per_job * (Es / target) * (Es / target) * 1.1;
+	long left = m->st.max_photons / m->nj - per_job;
+	if (n > (double)left)
+		n = (double)left;
+	m->pilot_photons = per_job * m->nj;
+	m->offset = per_job;
+	m->bp = (long)ceil(n / (double)nb);
+	if (m->bp < 1)
+		m->bp = 1;
+	m->job_cap = left / m->bp;
+	if (m->job_cap < 2)
+		m->job_cap = 2;
+	for (int j = 0; j < m->nj; j++) {
+		batchstat_free(&m->acc[j]);
+		batchstat_init(&m->acc[j], m->nq);
+		m->events[j] = 0.0;
+		m->want[j] = nb < m->job_cap ? nb : m->job_cap;
+	}
+	m->budget = m->done_photons + (long)m->nj * m->want[0] * m->bp;
+	return 1;
 }
 
 /* After a round: more batches per job where the table's error is above the
@@ -167,6 +234,8 @@ static int plan_round(struct mc_state *m)
 		e2 += e * e;
 	}
 	double E = sqrt(e2 / m->nj);
+	if (m->pilot)
+		return size_from_pilot(m, E);
 	if (E <= target)
 		return 0;
 	double f = (E / target) * (E / target) * 1.05;
@@ -184,7 +253,7 @@ static int plan_round(struct mc_state *m)
 		return 0;
 	long left = 0;
 	for (int j = 0; j < m->nj; j++)
-		left += (m->want[j] - m->acc[j].batches) * m->st.batch_photons;
+		left += (m->want[j] - m->acc[j].batches) * m->bp;
 	m->budget = m->done_photons + left;
 	return 1;
 }
@@ -234,7 +303,7 @@ static void fill_entry(const struct mc_state *m, int j, struct brdf_entry *o)
 	const struct batchstat *a = &m->acc[j];
 	int ne = g->n_theta * g->n_phi;
 	o->batches = a->batches;
-	o->photons = a->batches * m->st.batch_photons;
+	o->photons = a->batches * m->bp;
 	o->events = m->events[j];
 	o->rsp = m->ln[j].rsp;
 	o->albedo = (struct estimate){ batchstat_mean(a, Q_RD) - batchstat_mean(a, Q_RDU), batchstat_err(a, Q_RD) };
@@ -254,6 +323,7 @@ static void fill_entry(const struct mc_state *m, int j, struct brdf_entry *o)
 		}
 	}
 	o->rms_rel_err = job_rms(g, a);
+	o->method = "mc";
 	for (int i = 0; i < g->n_r; i++) {
 		double area = tally_annulus_area(g->dr, i);
 		o->rd_r[i] = batchstat_mean(a, Q_NSCAL + ne + i) / area;
@@ -270,6 +340,7 @@ static void mc_finish(void *state, struct brdf_table *out)
 		out->photons += out->entry[j].photons;
 		batchstat_free(&m->acc[j]);
 	}
+	out->pilot_photons = m->pilot_photons;
 	out->rms_rel_err = brdf_table_rms(out);
 	out->target_met = m->p.target_error <= 0.0 || out->rms_rel_err <= m->p.target_error;
 	free(m->acc);

@@ -73,6 +73,7 @@ void brdf_table_free(struct brdf_table *t)
 		free(t->entry[j].fr_err);
 		free(t->entry[j].rd_r);
 		free(t->entry[j].rd_r_err);
+		free(t->entry[j].refused);
 	}
 	free(t->entry);
 	memset(t, 0, sizeof *t);

@@ -14,7 +14,9 @@
  * between steps.  Monte Carlo is engine/mc.h.  A method that cannot give
  * some part of the table (e.g. adding-doubling has no Rd(r)) says so in
  * `provides` and leaves that part at 0; the driver then asks another
- * method for it. */
+ * method for it.  A method whose settings let it refuse entries it cannot
+ * solve to its accuracy leaves them empty with `refused` set, for the
+ * driver to ask another method (engine/ad_solver.h). */
 #ifndef SKINBAKE_SOLVER_H
 #define SKINBAKE_SOLVER_H
 #include "engine/batchstat.h"
@@ -61,10 +63,15 @@ struct brdf_entry {
 				 * row-major [theta_o][delta_phi] */
 	double *rd_r, *rd_r_err;	/* [n_r] radial profile Rd(r) [1/cm^2], NULL without radial bins */
 	double rms_rel_err;	/* solid-angle-weighted RMS relative error of this entry's fr [-] */
-	/* Cost. */
+	const char *method;	/* name of the method that filled the entry (static); NULL: none did */
+	char *refused;		/* why the method left the entry empty (all values 0), when its
+				 * settings let it refuse parts of a problem; NULL otherwise */
+	/* Cost and resolution. */
 	long batches;		/* Monte Carlo batches (0 for other methods) */
 	long photons;		/* Monte Carlo photons (0 for other methods) */
 	double events;		/* scattering events, or the method's own unit of work */
+	int n_quad;		/* adding-doubling: quadrature nodes per unit cosine (0 for other methods) */
+	int n_orders;		/* adding-doubling: Fourier orders kept (0 for other methods) */
 };
 
 struct brdf_table {
@@ -73,7 +80,8 @@ struct brdf_table {
 	struct brdf_entry *entry;	/* [n_wl * n_ti], entry = wavelength * n_ti + angle */
 	double rms_rel_err;	/* over the whole table [-] */
 	int target_met;		/* 1 when target_error was 0 or is met */
-	long photons;		/* total (Monte Carlo) */
+	long photons;		/* total (Monte Carlo) in the table's values */
+	long pilot_photons;	/* Monte Carlo photons traced to size the rounds, not in the values */
 	double seconds;		/* wall time of the steps [s] */
 };
 

@@ -78,3 +78,18 @@ double tally_mean_radius(const double *rd_r, int n_r, double dr)
 	}
 	return den > 0.0 ? num / den : 0.0;
 }
+
+double tally_mean_radius_err(const double *rd_r, const double *rd_r_err, int n_r, double dr)
+{
+	double den = 0.0, rm = tally_mean_radius(rd_r, n_r, dr), v = 0.0;
+	for (int i = 0; i < n_r; i++)
+		den += rd_r[i] * tally_annulus_area(dr, i);
+	if (den <= 0.0)
+		return 0.0;
+	/* R = sum r_i x_i / sum x_i: dR/dx_i = (r_i - R) / sum x. */
+	for (int i = 0; i < n_r; i++) {
+		double d = ((i + 0.5) * dr - rm) / den * rd_r_err[i] * tally_annulus_area(dr, i);
+		v += d * d;
+	}
+	return sqrt(v);
+}

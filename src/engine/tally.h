@@ -46,4 +46,9 @@ double tally_annulus_area(double dr, int i);
  * with bins of width dr [cm]: the first moment of Rd(r) over the bins [cm]
  * (light beyond the last bin is not counted); 0 for an empty profile. */
 double tally_mean_radius(const double *rd_r, int n_r, double dr);
+/* Its standard error from the bins' errors rd_r_err[n_r] [cm]: first-order
+ * propagation through the ratio, bins taken as independent (their
+ * covariance through the shared photons is of the order of the squared
+ * bin fractions, negligible with many bins); 0 for an empty profile. */
+double tally_mean_radius_err(const double *rd_r, const double *rd_r_err, int n_r, double dr);
 #endif

@@ -141,7 +141,7 @@ int exrio_read_channel(const char *path, const char *name, int w, int h, float *
 	exr_context_t f;
 	if (open_read(path, &f, cause))
 		return -1;
-	int rc = -1, found = 0, dec_init = 0;
+	int rc = -1, found = 0, dec_init = 0, routines = 0;
 	exr_attr_box2i_t dw;
 	int32_t spc;
 	exr_decode_pipeline_t dec = EXR_DECODE_PIPELINE_INITIALIZER;
@@ -154,7 +154,12 @@ int exrio_read_channel(const char *path, const char *name, int w, int h, float *
 		exr_chunk_info_t ci;
 		if (exr_read_scanline_chunk_info(f, 0, y, &ci))
 			goto corrupt;
-		if (!dec_init ? exr_decoding_initialize(f, 0, &ci, &dec) : exr_decoding_update(f, 0, &ci, &dec))
+		/* dec owns memory from a successful initialize on: every exit below frees it. */
+		if (!dec_init) {
+			if (exr_decoding_initialize(f, 0, &ci, &dec))
+				goto corrupt;
+			dec_init = 1;
+		} else if (exr_decoding_update(f, 0, &ci, &dec))
 			goto corrupt;
 		for (int k = 0; k < dec.channel_count; k++) {
 			exr_coding_channel_info_t *ch = &dec.channels[k];
@@ -173,8 +178,8 @@ int exrio_read_channel(const char *path, const char *name, int w, int h, float *
 			*cause = xasprintf("%s: no channel '%s'", path, name);
 			goto out;
 		}
-		if (!dec_init) {
-			dec_init = 1;
+		if (!routines) {
+			routines = 1;
 			if (exr_decoding_choose_default_routines(f, 0, &dec))
 				goto corrupt;
 		}

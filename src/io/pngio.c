@@ -7,9 +7,70 @@
 #include <stdio.h>
 #include <stdlib.h>
 #include <string.h>
+#include <sys/stat.h>
 #include <unistd.h>
 
 #include "base/util.h"
+
+/* libpng's messages become the *cause text instead of going to stderr. */
+struct png_msg {
+	char text[128];	/* libpng's error message, or ours */
+	int ours;	/* text is ours: keep it */
+};
+
+static void on_error(png_structp png, png_const_charp msg)
+{
+	struct png_msg *m = png_get_error_ptr(png);
+	if (m != NULL && !m->ours)
+		snprintf(m->text, sizeof m->text, "%s", msg);
+	png_longjmp(png, 1);
+}
+
+static void on_warning(png_structp png, png_const_charp msg)
+{
+	(void)png;
+	(void)msg;
+}
+
+/* libpng 1.6.39 allocates whatever a chunk's length field says before it
+ * reads the chunk (1.6 GB for a 1 kB file, found by fuzzing), and
+ * png_set_chunk_malloc_max only limits decompressed text.  Its own
+ * allocations for a real image are rows (at most 8 MB for libpng's widest,
+ * 1e6 pixels of 64 bits) and zlib state, so anything over 64 MB is refused. */
+#define PNG_MAX_ALLOC ((png_alloc_size_t)64 << 20)
+
+static png_voidp limited_malloc(png_structp png, png_alloc_size_t size)
+{
+	if (size <= PNG_MAX_ALLOC)
+		return malloc(size);
+	struct png_msg *m = png_get_error_ptr(png);
+	if (m != NULL && !m->ours) {
+		snprintf(m->text, sizeof m->text, "a chunk asks for %.0f bytes", (double)size);
+		m->ours = 1;
+	}
+	return NULL;
+}
+
+static void plain_free(png_structp png, png_voidp p)
+{
+	(void)png;
+	free(p);
+}
+
+static png_structp create_reader(struct png_msg *m)
+{
+	png_structp png = png_create_read_struct_2(PNG_LIBPNG_VER_STRING, m, on_error, on_warning, NULL,
+	    limited_malloc, plain_free);
+	if (png == NULL)
+		return NULL;
+	png_set_chunk_malloc_max(png, 1 << 20);	/* decompressed text */
+	png_set_chunk_cache_max(png, 256);
+#ifdef FUZZING_BUILD_MODE_UNSAFE_FOR_PRODUCTION
+	/* Fuzzers cannot forge checksums; let their mutations reach the decoder. */
+	png_set_crc_action(png, PNG_CRC_QUIET_USE, PNG_CRC_QUIET_USE);
+#endif
+	return png;
+}
 
 int pngio_write(const char *path, int w, int h, int channels, int bits, const uint16_t *px,
     int srgb, int ntext, const struct png_text_kv *text, char **cause)
@@ -29,7 +90,7 @@ int pngio_write(const char *path, int w, int h, int channels, int bits, const ui
 	}
 	size_t rowlen = (size_t)w * (size_t)channels * (size_t)(bits / 8);
 	unsigned char *volatile row = xmalloc(rowlen);
-	png_structp png = png_create_write_struct(PNG_LIBPNG_VER_STRING, NULL, NULL, NULL);
+	png_structp png = png_create_write_struct(PNG_LIBPNG_VER_STRING, NULL, on_error, on_warning);
 	png_infop info = png ? png_create_info_struct(png) : NULL;
 	if (!info || setjmp(png_jmpbuf(png))) {
 		png_destroy_write_struct(&png, &info);
@@ -87,6 +148,11 @@ int pngio_write(const char *path, int w, int h, int channels, int bits, const ui
 	return rc;
 }
 
+/* Deflate expands at most 1032-fold (258-byte matches in 2 bits), so a file
+ * of S bytes holds at most about 1032 S bytes of image: a header promising
+ * more is corrupt, and is refused before anything is allocated. */
+#define PNG_MAX_INFLATE 1032.0
+
 uint16_t *pngio_read(const char *path, int *w, int *h, int *channels, int *bits, char **cause)
 {
 	FILE *fp = fopen(path, "rb");
@@ -94,44 +160,66 @@ uint16_t *pngio_read(const char *path, int *w, int *h, int *channels, int *bits,
 		*cause = xasprintf("%s: cannot read: %s", path, strerror(errno));
 		return NULL;
 	}
-	png_structp png = png_create_read_struct(PNG_LIBPNG_VER_STRING, NULL, NULL, NULL);
+	struct stat st;
+	double file_bytes = fstat(fileno(fp), &st) == 0 ? (double)st.st_size : 0.0;
+	struct png_msg msg = { "", 0 };
+	png_structp png = create_reader(&msg);
 	png_infop info = png ? png_create_info_struct(png) : NULL;
 	uint16_t *volatile px = NULL;
-	unsigned char *volatile row = NULL;
+	png_bytep *volatile rows = NULL;
 	if (!info || setjmp(png_jmpbuf(png))) {
 		png_destroy_read_struct(&png, &info, NULL);
 		fclose(fp);
 		free(px);
-		free(row);
-		*cause = xasprintf("%s: not a readable PNG file", path);
+		free(rows);
+		*cause = msg.text[0] ? xasprintf("%s: not a readable PNG file (%s)", path, msg.text)
+				     : xasprintf("%s: not a readable PNG file", path);
 		return NULL;
 	}
 	png_init_io(png, fp);
 	png_read_info(png, info);
+	png_uint_32 pw = png_get_image_width(png, info), ph = png_get_image_height(png, info);
+	if ((double)png_get_rowbytes(png, info) * (double)ph > PNG_MAX_INFLATE * file_bytes + 65536.0) {
+		snprintf(msg.text, sizeof msg.text, "%lu x %lu pixels cannot be held in %.0f bytes",
+		    (unsigned long)pw, (unsigned long)ph, file_bytes);
+		png_longjmp(png, 1);
+	}
 	int bd = png_get_bit_depth(png, info), ct = png_get_color_type(png, info);
 	if (ct == PNG_COLOR_TYPE_PALETTE)
 		png_set_palette_to_rgb(png);
 	if (bd < 8)
 		png_set_expand(png);
+	png_set_interlace_handling(png);	/* Adam7 files are read whole */
 	png_read_update_info(png, info);
-	*w = (int)png_get_image_width(png, info);
-	*h = (int)png_get_image_height(png, info);
+	*w = (int)pw;
+	*h = (int)ph;
 	*channels = png_get_channels(png, info);
 	*bits = bd < 8 ? 8 : bd;
 	int b = png_get_bit_depth(png, info);
-	size_t n = (size_t)*w * (size_t)*channels;
-	px = xmalloc(n * (size_t)*h * sizeof(uint16_t));
-	row = xmalloc(png_get_rowbytes(png, info));
-	for (int y = 0; y < *h; y++) {
-		png_read_row(png, row, NULL);
-		uint16_t *dst = px + (size_t)y * n;
-		for (size_t i = 0; i < n; i++)
-			dst[i] = b == 16 ? (uint16_t)((row[2 * i] << 8) | row[2 * i + 1]) : (uint16_t)(row[i] * 257);
+	size_t n = (size_t)*w * (size_t)*channels, rowbytes = png_get_rowbytes(png, info);
+	if (rowbytes != n * (size_t)(b / 8)) {
+		snprintf(msg.text, sizeof msg.text, "unexpected row layout");
+		png_longjmp(png, 1);
 	}
+	/* Decode the bytes packed at the start of px, then widen them in place
+	 * from the end (sample i moves from byte i or 2i to bytes 2i, 2i+1). */
+	px = xmalloc(n * (size_t)*h * sizeof(uint16_t));
+	rows = xmalloc(sizeof(png_bytep) * (size_t)*h);
+	for (int y = 0; y < *h; y++)
+		rows[y] = (png_bytep)px + (size_t)y * rowbytes;
+	png_read_image(png, rows);
 	png_read_end(png, NULL);
 	png_destroy_read_struct(&png, &info, NULL);
 	fclose(fp);
-	free(row);
+	free(rows);
+	unsigned char *raw = (unsigned char *)px;
+	size_t total = n * (size_t)*h;
+	if (b == 16)
+		for (size_t i = 0; i < total; i++)
+			px[i] = (uint16_t)((raw[2 * i] << 8) | raw[2 * i + 1]);	/* PNG is big-endian */
+	else
+		for (size_t i = total; i-- > 0;)
+			px[i] = (uint16_t)(raw[i] * 257);
 	return px;
 }
 
@@ -140,7 +228,8 @@ char *pngio_read_text(const char *path, const char *key)
 	FILE *fp = fopen(path, "rb");
 	if (!fp)
 		return NULL;
-	png_structp png = png_create_read_struct(PNG_LIBPNG_VER_STRING, NULL, NULL, NULL);
+	struct png_msg msg = { "", 0 };
+	png_structp png = create_reader(&msg);
 	png_infop info = png ? png_create_info_struct(png) : NULL;
 	char *volatile res = NULL;
 	if (!info || setjmp(png_jmpbuf(png))) {

@@ -98,6 +98,27 @@ static int parse_text(struct preset_ctx *c, const char *text)
 	return c->err ? -1 : 0;
 }
 
+/* A name or description made from a file name must obey the rules of one
+ * given in the file (preset_to_ini writes it out): at most max characters,
+ * no comment or control characters, no white space at the ends (the reader
+ * strips it), and for a name only [A-Za-z0-9._-]. */
+static void fit_text(char *s, size_t max, int name)
+{
+	if (strlen(s) > max)
+		s[max] = '\0';
+	for (char *q = s; *q; q++) {
+		int ok_name = (*q >= 'a' && *q <= 'z') || (*q >= 'A' && *q <= 'Z') || (*q >= '0' && *q <= '9') ||
+		    *q == '.' || *q == '_' || *q == '-';
+		if (*q == ';' || *q == '#' || (unsigned char)*q < 0x20 || *q == 0x7f || (name && !ok_name))
+			*q = '_';
+	}
+	size_t n = strlen(s), lead = strspn(s, " ");
+	while (n > lead && s[n - 1] == ' ')
+		n--;
+	memmove(s, s + lead, n - lead);
+	s[n - lead] = '\0';
+}
+
 static const char *base_name(const char *path)
 {
 	const char *s = strrchr(path, '/');
@@ -129,12 +150,22 @@ static struct skin_params *load_text(const char *text, const char *origin, int b
 			size_t len = strlen(n);
 			if (len > 4 && strcmp(n + len - 4, ".ini") == 0)
 				n[len - 4] = '\0';
+			fit_text(n, 64, 1);
+			if (*n == '\0') {
+				free(n);
+				n = xstrdup("preset");
+			}
 			p->name = n;
 		}
 	}
 	if (!c.desc_set) {
 		free(p->description);
-		p->description = builtin >= 0 ? xstrdup(preset_summary(builtin)) : xasprintf("preset file %s", origin);
+		if (builtin >= 0)
+			p->description = xstrdup(preset_summary(builtin));
+		else {
+			p->description = xasprintf("preset file %s", origin);
+			fit_text(p->description, 160, 0);
+		}
 	}
 	free(p->origin);
 	p->origin = xstrdup(builtin >= 0 ? "built-in" : origin);

@@ -312,6 +312,13 @@ int preset_key_set(struct preset_ctx *c, int ki, const char *v)
 			preset_ctx_err(c, "%s.%s: longer than %g characters", k->section, k->name, k->hi);
 			return -1;
 		}
+		/* preset_to_ini writes the text back: a comment character in it
+		 * would cut the value when that text is read again. */
+		if (strpbrk(v, ";#") != NULL) {
+			preset_ctx_err(c, "%s.%s = %s: ';' and '#' start comments in preset files; leave them out",
+			    k->section, k->name, v);
+			return -1;
+		}
 		if (strcmp(k->name, "name") == 0 && !valid_name(v)) {
 			preset_ctx_err(c, "%s.%s = %s: use letters, digits, '.', '_' and '-' only", k->section, k->name, v);
 			return -1;

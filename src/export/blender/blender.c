@@ -6,6 +6,7 @@
 #include "config.h"
 
 #include "export/blender/blender.h"
+#include "export/blender/blender_fit.h"
 
 #include <errno.h>
 #include <json-c/json.h>
@@ -394,9 +395,9 @@ static json_object *manifest_build(const struct brdf_source *m, const struct ble
 	json_object_object_add(x, "convention", json_object_new_string(
 	    "world +Z up; sun_direction points toward the sun; azimuth from +X toward +Y"));
 	json_object_object_add(x, "exact_for", json_object_new_string(
-	    "one sun light (this direction, or the scene's sun at import time), any geometry and any "
-	    "camera: the node tree computes cos_view, cos_light and delta_phi per shading point. World "
-	    "light and other lamps are shaded as if they came from this sun."));
+	    "every sun, point and spot lamp, one view layer each (import_skin.py), any geometry and camera: "
+	    "the node tree computes cos_view, cos_light and delta_phi per shading point; sun_direction is the "
+	    "demo scene's sun. World light and area lamps are shaded by the general material."));
 	json_object *ref = json_object_new_object();
 	json_object_object_add(ref, "geometry", json_object_new_string(
 	    "plane with normal +Z, orthographic camera looking along -view_direction, black world"));
@@ -497,6 +498,7 @@ struct blender_set *blender_prepare(const struct brdf_source *m, const struct bl
 		s->roughness[i] = quantise16(sqrt(m->roughness));
 	}
 	s->manifest = manifest_build(m, o, &s->d, albedo, &ref);
+	blender_fit_manifest(s->manifest, m, o, s->lut, s->d.normal, s->d.w, s->d.h);
 	return s;
 }
 

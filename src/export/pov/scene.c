@@ -14,8 +14,10 @@
 #include <string.h>
 #include <strings.h>
 
-#include "io/inifile.h"
 #include "base/util.h"
+#include "geom/mesh.h"
+#include "io/inifile.h"
+#include "export/pov/placement.h"
 
 struct parse {
 	struct scene *s;
@@ -30,7 +32,8 @@ struct parse {
 	int cam_line;
 };
 
-enum { OBJ_CENTER = 1, OBJ_RADIUS = 2, OBJ_SIZE = 4, OBJ_NORMAL = 8, OBJ_SHAPE = 16, OBJ_COLOR = 32 };
+enum { OBJ_CENTER = 1, OBJ_RADIUS = 2, OBJ_SIZE = 4, OBJ_NORMAL = 8, OBJ_SHAPE = 16, OBJ_COLOR = 32, OBJ_FILE = 64,
+	OBJ_MESH = 128 };
 enum { CAM_ANGLE = 1, CAM_WIDTH = 2, CAM_TYPE = 4 };
 
 static int fail(struct parse *p, const char *fmt, ...) __attribute__((format(printf, 2, 3)));
@@ -116,7 +119,7 @@ static char *resolve(const struct scene *s, const char *v)
 	return xasprintf("%.*s/%s", (int)(slash - s->path), s->path, v);
 }
 
-static int valid_name(const char *n)
+int scene_valid_name(const char *n)
 {
 	size_t len = strlen(n);
 	if (len == 0 || len >= SCENE_NAME_MAX)
@@ -127,7 +130,7 @@ static int valid_name(const char *n)
 	return 1;
 }
 
-static const char *shape_names[] = { "sphere", "box", "plane", "patch", "hand", "head" };
+static const char *shape_names[] = { "sphere", "box", "plane", "patch", "hand", "head", "mesh" };
 static const char *strategy_names[] = { "auto", "key", "mixture", "passes", "separable" };
 
 const char *scene_shape_name(enum scene_shape sh)
@@ -246,7 +249,7 @@ static int key_skin(struct parse *p, struct scene_skin *sk, const char *k, const
 		free(sk->preset);
 		sk->preset = xstrdup(v);
 	} else if (!strcmp(k, "site")) {
-		if (!valid_name(v))
+		if (!scene_valid_name(v))
 			return fail(p, "site = '%s' is not a site name (skinbake texture --list-sites) or none", v);
 		free(sk->site);
 		sk->site = strcmp(v, "none") ? xstrdup(v) : NULL;
@@ -278,7 +281,7 @@ static int key_object(struct parse *p, int idx, const char *k, const char *v)
 			if (!strcmp(v, shape_names[i]))
 				break;
 		if (i == sizeof shape_names / sizeof shape_names[0])
-			return fail(p, "shape = '%s' is not one of sphere, box, plane, patch, hand, head", v);
+			return fail(p, "shape = '%s' is not one of sphere, box, plane, patch, hand, head, mesh", v);
 		o->shape = (enum scene_shape)i;
 		p->obj_has[idx] |= OBJ_SHAPE;
 	} else if (!strcmp(k, "material")) {
@@ -290,10 +293,12 @@ static int key_object(struct parse *p, int idx, const char *k, const char *v)
 			o->material = SCENE_MAT_PHONG;
 		else if (!strcmp(v, "plain"))
 			o->material = SCENE_MAT_PLAIN;
+		else if (!strcmp(v, "model"))
+			o->material = SCENE_MAT_MODEL;
 		else
-			return fail(p, "material = '%s' is not skin, lambert, phong or plain", v);
+			return fail(p, "material = '%s' is not skin, lambert, phong, plain or model", v);
 	} else if (!strcmp(k, "skin")) {
-		if (!valid_name(v))
+		if (!scene_valid_name(v))
 			return fail(p, "skin = '%s' is not a name", v);
 		snprintf(p->obj_skin[idx], SCENE_NAME_MAX, "%s", v);
 	} else if (!strcmp(k, "color")) {
@@ -338,9 +343,25 @@ static int key_object(struct parse *p, int idx, const char *k, const char *v)
 	} else if (!strcmp(k, "translate")) {
 		if (vec(p, k, v, o->translate) != 0)
 			return 0;
+	} else if (!strcmp(k, "file")) {
+		free(o->file);
+		o->file = resolve(p->s, v);
+		p->obj_has[idx] |= OBJ_FILE;
+	} else if (!strcmp(k, "mesh")) {
+		free(o->mesh_name);
+		o->mesh_name = xstrdup(v);
+		p->obj_has[idx] |= OBJ_MESH;
+	} else if (!strcmp(k, "subdivide")) {
+		double x;
+		if (num(p, k, v, 0, 3, &x) != 0)
+			return 0;
+		if (x != floor(x))
+			return fail(p, "subdivide = %s is not a whole number of levels", v);
+		o->subdivide = (int)x;
+		p->obj_has[idx] |= OBJ_MESH;
 	} else
 		return fail(p, "[object %s]: unknown key '%s' (keys shape, material, skin, color, center, radius, "
-		    "size, normal, offset, scale, rotate, translate)", o->name, k);
+		    "size, normal, offset, scale, rotate, translate, file, mesh, subdivide)", o->name, k);
 	return 1;
 }
 
@@ -378,7 +399,7 @@ static int handler(void *user, const char *section, const char *k, const char *v
 			if (!strcmp(s->lights[i].name, name))
 				break;
 		if (i == s->n_lights) {
-			if (!valid_name(name))
+			if (!scene_valid_name(name))
 				return fail(p, "[%s]: '%s' is not a name (letters, digits, _; at most %d)", section,
 				    name, SCENE_NAME_MAX - 1);
 			if (s->n_lights == SCENE_MAX_LIGHTS)
@@ -393,7 +414,7 @@ static int handler(void *user, const char *section, const char *k, const char *v
 	if (split_section(section, "skin", name)) {
 		int i = scene_find_skin(s, name);
 		if (i < 0) {
-			if (!valid_name(name))
+			if (!scene_valid_name(name))
 				return fail(p, "[%s]: '%s' is not a name (letters, digits, _; at most %d)", section,
 				    name, SCENE_NAME_MAX - 1);
 			if (s->n_skins == SCENE_MAX_SKINS)
@@ -410,7 +431,7 @@ static int handler(void *user, const char *section, const char *k, const char *v
 			if (!strcmp(s->objects[i].name, name))
 				break;
 		if (i == s->n_objects) {
-			if (!valid_name(name))
+			if (!scene_valid_name(name))
 				return fail(p, "[%s]: '%s' is not a name (letters, digits, _; at most %d)", section,
 				    name, SCENE_NAME_MAX - 1);
 			if (s->n_objects == SCENE_MAX_OBJECTS)
@@ -430,6 +451,17 @@ static int handler(void *user, const char *section, const char *k, const char *v
 static double dist3(const double a[3], const double b[3])
 {
 	return sqrt((a[0] - b[0]) * (a[0] - b[0]) + (a[1] - b[1]) * (a[1] - b[1]) + (a[2] - b[2]) * (a[2] - b[2]));
+}
+
+/* Read a mesh object's model and place it in POV-Ray's world. */
+static int load_mesh(struct parse *p, struct scene_object *o)
+{
+	char *cause = NULL;
+	if (placement_load_mesh(o, &cause) == 0)
+		return 0;
+	fail(p, "[object %s]: %s", o->name, cause);
+	free(cause);
+	return -1;
 }
 
 /* Checks that need the whole file; errors point at the section's first line. */
@@ -469,7 +501,16 @@ static int validate(struct parse *p)
 			return fail(p, "[object %s]: a sphere needs radius", o->name), -1;
 		if (o->shape == SCENE_PLANE && !(p->obj_has[i] & OBJ_NORMAL))
 			return fail(p, "[object %s]: a plane needs normal", o->name), -1;
-		if (o->material == SCENE_MAT_PLAIN) {
+		if (o->shape == SCENE_MESH && !(p->obj_has[i] & OBJ_FILE))
+			return fail(p, "[object %s]: a mesh needs file = PATH (a model libassimp reads)", o->name), -1;
+		if (o->shape != SCENE_MESH && (p->obj_has[i] & (OBJ_FILE | OBJ_MESH)))
+			return fail(p, "[object %s]: file, mesh and subdivide are only for shape = mesh", o->name), -1;
+		if (o->shape == SCENE_MESH && load_mesh(p, o) != 0)
+			return -1;
+		if (o->material == SCENE_MAT_MODEL && o->shape != SCENE_MESH)
+			return fail(p, "[object %s]: material = model (the model file's own) is only for shape = mesh", o->name),
+			       -1;
+		if (o->material == SCENE_MAT_PLAIN || o->material == SCENE_MAT_MODEL) {
 			if (p->obj_skin[i][0])
 				return fail(p, "[object %s]: skin is only for skin, lambert and phong materials",
 				    o->name), -1;
@@ -537,6 +578,11 @@ void scene_free(struct scene *s)
 		free(s->skins[i].bake);
 		free(s->skins[i].textures);
 	}
+	for (int i = 0; i < s->n_objects; i++) {
+		free(s->objects[i].file);
+		free(s->objects[i].mesh_name);
+		mesh_free(s->objects[i].mesh);
+	}
 	free(s->title);
 	free(s->path);
 	free(s);
@@ -548,44 +594,4 @@ int scene_find_skin(const struct scene *s, const char *name)
 		if (!strcmp(s->skins[i].name, name))
 			return i;
 	return -1;
-}
-
-void scene_light_dir(const struct scene_light *l, const double p[3], double out[3])
-{
-	const double *from = l->position, *to = l->type == SCENE_LIGHT_PARALLEL ? l->point_at : p;
-	double n = dist3(from, to);
-	for (int i = 0; i < 3; i++)
-		out[i] = n > 0 ? (from[i] - to[i]) / n : (i == 2 ? -1 : 0);
-}
-
-void scene_object_bounds(const struct scene_object *o, double lo[3], double hi[3])
-{
-	double r;
-	switch (o->shape) {
-	case SCENE_SPHERE:
-		for (int i = 0; i < 3; i++)
-			lo[i] = o->center[i] - o->radius, hi[i] = o->center[i] + o->radius;
-		return;
-	case SCENE_BOX:
-	case SCENE_PATCH:
-		r = 0.5 * sqrt(o->size[0] * o->size[0] + o->size[1] * o->size[1] + o->size[2] * o->size[2]);
-		break;
-	case SCENE_PLANE:
-		for (int i = 0; i < 3; i++)
-			lo[i] = -1e3, hi[i] = 1e3;
-		return;
-	case SCENE_HAND:
-	case SCENE_HEAD:
-	default:
-		/* The shape macros fit in a sphere of radius 1.5 about the origin
-		 * before scale (exporters/pov/skinbake_shapes.inc). */
-		r = 1.5;
-		break;
-	}
-	r *= o->scale;
-	const double *c = o->shape == SCENE_BOX || o->shape == SCENE_PATCH ? o->center : o->translate;
-	for (int i = 0; i < 3; i++) {
-		double ci = c[i] + (o->shape == SCENE_BOX || o->shape == SCENE_PATCH ? o->translate[i] : 0);
-		lo[i] = ci - r, hi[i] = ci + r;
-	}
 }

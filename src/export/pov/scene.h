@@ -11,11 +11,13 @@
 #define SCENE_MAX_OBJECTS 64
 #define SCENE_NAME_MAX 32
 
+struct mesh;
+
 enum scene_light_type { SCENE_LIGHT_PARALLEL, SCENE_LIGHT_POINT };
 enum scene_strategy { SCENE_LIGHTS_AUTO, SCENE_LIGHTS_KEY, SCENE_LIGHTS_MIXTURE, SCENE_LIGHTS_PASSES,
 	SCENE_LIGHTS_SEPARABLE };
-enum scene_shape { SCENE_SPHERE, SCENE_BOX, SCENE_PLANE, SCENE_PATCH, SCENE_HAND, SCENE_HEAD };
-enum scene_material { SCENE_MAT_SKIN, SCENE_MAT_LAMBERT, SCENE_MAT_PHONG, SCENE_MAT_PLAIN };
+enum scene_shape { SCENE_SPHERE, SCENE_BOX, SCENE_PLANE, SCENE_PATCH, SCENE_HAND, SCENE_HEAD, SCENE_MESH };
+enum scene_material { SCENE_MAT_SKIN, SCENE_MAT_LAMBERT, SCENE_MAT_PHONG, SCENE_MAT_PLAIN, SCENE_MAT_MODEL };
 
 struct scene_camera {
 	int ortho;		/* 1 orthographic, 0 perspective */
@@ -56,9 +58,14 @@ struct scene_object {
 	double size[3];		/* box/patch edge lengths [units] */
 	double normal[3];	/* plane normal (unit) */
 	double offset;		/* plane: distance from origin along normal [units] */
-	double scale;		/* uniform scale (hand, head) [-] */
+	double scale;		/* uniform scale (hand, head, mesh) [-] */
 	double rotate[3];	/* rotation about x, then y, then z [rad] */
 	double translate[3];	/* [units] */
+	char *file;		/* mesh: model file (resolved against the scene file) */
+	char *mesh_name;	/* mesh: the mesh or node of the file, NULL = all of them */
+	int subdivide;		/* mesh: levels of smooth subdivision (mesh_subdivide), 0 to 3 */
+	struct mesh *mesh;	/* mesh: loaded and placed: POV-Ray world coordinates [units] */
+	double mesh_lo[3], mesh_hi[3];	/* mesh: world bounds [units] */
 };
 
 struct scene {
@@ -84,10 +91,8 @@ struct scene *scene_load(const char *path, char **cause);
 void scene_free(struct scene *s);
 /* The skin index named NAME, or -1. */
 int scene_find_skin(const struct scene *s, const char *name);
-/* Unit direction from a point toward the light (parallel: constant). */
-void scene_light_dir(const struct scene_light *l, const double p[3], double out[3]);
-/* Axis-aligned world bounds of object o (conservative for hand/head). */
-void scene_object_bounds(const struct scene_object *o, double lo[3], double hi[3]);
+/* Whether n is a section name: 1 to 31 of [A-Za-z0-9_]. */
+int scene_valid_name(const char *n);
 /* Names of enum values, as written in scene files. */
 const char *scene_shape_name(enum scene_shape sh);
 const char *scene_strategy_name(enum scene_strategy st);

@@ -1,0 +1,487 @@
+/* povexport: run a POV-Ray export: build the scene, bind bakes and texture
+ * directories to its skins, load and check every input, then write. */
+#include "config.h"
+
+#include "export/pov/povexport.h"
+
+#include <math.h>
+#include <stdarg.h>
+#include <stdlib.h>
+#include <string.h>
+#include <unistd.h>
+
+#include "base/util.h"
+#include "export/source.h"
+#include "export/pov/bumpmap.h"
+#include "export/pov/povfiles.h"
+#include "export/pov/placement.h"
+#include "export/pov/povscene.h"
+#include "geom/mesh.h"
+#include "export/pov/strategy.h"
+
+static void msg(struct povexport_result *r, const char *fmt, ...) __attribute__((format(printf, 2, 3)));
+static void msg(struct povexport_result *r, const char *fmt, ...)
+{
+	va_list ap;
+	if (r->n_msgs == POVEXPORT_MAX_MSGS)
+		return;
+	va_start(ap, fmt);
+	if (vasprintf(&r->msgs[r->n_msgs], fmt, ap) >= 0)
+		r->n_msgs++;
+	va_end(ap);
+}
+
+void povexport_result_free(struct povexport_result *r)
+{
+	for (int i = 0; i < r->n_msgs; i++)
+		free(r->msgs[i]);
+	for (int i = 0; i < r->n_files; i++)
+		free(r->files[i]);
+	r->n_msgs = r->n_files = 0;
+}
+
+/* "SKIN=DIR" binds DIR to one skin, "DIR" to every skin without its own. */
+static const char *bind_find(const char *const *b, int n, const char *skin)
+{
+	const char *any = NULL;
+	for (int i = 0; i < n; i++) {
+		const char *eq = strchr(b[i], '=');
+		int named = eq != NULL && eq != b[i] && strcspn(b[i], "/") > (size_t)(eq - b[i]);
+		if (named && strlen(skin) == (size_t)(eq - b[i]) && !strncmp(b[i], skin, strlen(skin)))
+			return eq + 1;
+		if (!named && any == NULL)
+			any = b[i];
+	}
+	return any;
+}
+
+/* The skin a binding names ("" for a bare DIR), in buf. */
+static const char *bind_skin(const char *b, char *buf, size_t len)
+{
+	const char *eq = strchr(b, '=');
+	if (eq == NULL || eq == b || strcspn(b, "/") <= (size_t)(eq - b))
+		return "";
+	snprintf(buf, len, "%.*s", (int)(eq - b), b);
+	return buf;
+}
+
+static char *find_shapes(const char *data_dir, const char *scene_path)
+{
+	const char *env = getenv("SKINBAKE_DATADIR");
+	char *cand[4] = { 0 };
+	int n = 0;
+	if (data_dir)
+		cand[n++] = xasprintf("%s/skinbake_shapes.inc", data_dir);
+	if (env && *env)
+		cand[n++] = xasprintf("%s/skinbake_shapes.inc", env);
+	cand[n++] = xasprintf("%s/skinbake_shapes.inc", PKGDATADIR);
+	if (scene_path) {
+		const char *sl = strrchr(scene_path, '/');
+		cand[n++] = sl ? xasprintf("%.*s/../exporters/pov/skinbake_shapes.inc", (int)(sl - scene_path), scene_path)
+			       : xstrdup("../exporters/pov/skinbake_shapes.inc");
+	}
+	char *found = NULL;
+	for (int i = 0; i < n; i++) {
+		if (found == NULL && access(cand[i], R_OK) == 0)
+			found = cand[i];
+		else
+			free(cand[i]);
+	}
+	return found;
+}
+
+/* The face normal -z of a patch or box rotated (x, then y, then z). */
+static void rotated_face_normal(const struct scene_object *o, double n[3])
+{
+	double a = o->rotate[0], b = o->rotate[1], c = o->rotate[2], t[3];
+	n[0] = 0, n[1] = 0, n[2] = -1;
+	t[0] = n[0], t[1] = n[1] * cos(a) - n[2] * sin(a), t[2] = n[1] * sin(a) + n[2] * cos(a);
+	n[0] = t[0] * cos(b) + t[2] * sin(b), n[1] = t[1], n[2] = -t[0] * sin(b) + t[2] * cos(b);
+	t[0] = n[0] * cos(c) - n[1] * sin(c), t[1] = n[0] * sin(c) + n[1] * cos(c), t[2] = n[2];
+	memcpy(n, t, sizeof t);
+}
+
+/* --plan: which incidence angles the scene's lights meet on skin.  Curved
+ * shapes see every angle; flat ones (patch, box, plane) only the angles
+ * between their face normals and the lights. */
+static void print_plan(FILE *fp, const struct scene *s)
+{
+	int curved = 0, n_ang = 0;
+	double ang[SCENE_MAX_OBJECTS * SCENE_MAX_LIGHTS];
+	fprintf(fp, "scene %s: lights strategy %s\n", s->path, scene_strategy_name(strategy_resolve(s, NULL, NULL)));
+	for (int i = 0; i < s->n_objects; i++) {
+		const struct scene_object *o = &s->objects[i];
+		if (o->material == SCENE_MAT_PLAIN)
+			continue;
+		if (o->shape == SCENE_SPHERE || o->shape == SCENE_HAND || o->shape == SCENE_HEAD || o->shape == SCENE_MESH) {
+			curved = 1;
+			continue;
+		}
+		for (int l = 0; l < s->n_lights; l++) {
+			double n[3], d[3], p[3] = { o->center[0] + o->translate[0], o->center[1] + o->translate[1],
+				o->center[2] + o->translate[2] };
+			if (o->shape == SCENE_PLANE)
+				memcpy(n, o->normal, sizeof n);
+			else
+				rotated_face_normal(o, n);
+			placement_light_dir(&s->lights[l], p, d);
+			double ct = n[0] * d[0] + n[1] * d[1] + n[2] * d[2];
+			double a = acos(fmax(-1, fmin(1, ct))) * 180 / M_PI;
+			fprintf(fp, "object %s, light %s: theta_in %.2f deg%s\n", o->name, s->lights[l].name, a,
+			    a >= 90 ? " (unlit)" : "");
+			if (a < 90)
+				ang[n_ang++] = a;
+		}
+	}
+	if (curved)
+		fprintf(fp, "curved skin objects: theta_in over [0, 90] deg (the table nodes are uniform in angle)\n");
+	fprintf(fp, "wavelengths: the visible range (the tables are linear sRGB from the spectral bake)\n");
+	for (int k = 0; k < s->n_skins; k++) {
+		fprintf(fp, "skin %s: skinbake bake --preset %s ", s->skins[k].name, s->skins[k].preset);
+		if (curved || n_ang == 0)
+			fprintf(fp, "--theta-nodes 10");
+		else
+			for (int i = 0; i < n_ang; i++)
+				fprintf(fp, "%s%.2f", i ? "," : "--theta-in ", ang[i]);
+		fprintf(fp, " --out %s\n", s->skins[k].bake ? s->skins[k].bake : "DIR");
+	}
+	if (!curved && n_ang > 0)
+		fprintf(fp, "(bump maps tilt the normal: add neighbouring angles if the skin has relief)\n");
+}
+
+/* Size of one image pixel [units] on the nearest object of skin k. */
+static double pixel_footprint(const struct scene *s, int k)
+{
+	const struct scene_camera *c = &s->camera;
+	if (c->ortho)
+		return c->width / s->width;
+	double dmin = INFINITY;
+	for (int i = 0; i < s->n_objects; i++) {
+		const struct scene_object *o = &s->objects[i];
+		double lo[3], hi[3], d2 = 0, r;
+		if (o->skin != k || o->material != SCENE_MAT_SKIN)
+			continue;
+		if (o->shape == SCENE_MESH) {
+			/* The nearest vertex in view. */
+			for (int v = 0; v < o->mesh->n_vertices; v++)
+				if (strategy_in_view(s, o->mesh->position[v], 0)) {
+					double q[3] = { o->mesh->position[v][0] - c->location[0],
+						o->mesh->position[v][1] - c->location[1], o->mesh->position[v][2] - c->location[2] };
+					dmin = fmin(dmin, sqrt(q[0] * q[0] + q[1] * q[1] + q[2] * q[2]));
+				}
+			continue;
+		}
+		placement_bounds(o, lo, hi);
+		for (int j = 0; j < 3; j++) {
+			double m = 0.5 * (lo[j] + hi[j]) - c->location[j];
+			d2 += m * m;
+		}
+		/* How far the visible surface may come toward the camera from the
+		 * centre: the radius, half the thinnest box edge, or for the shape
+		 * macros their front (palm at z ~ 0.25, face at z ~ -0.8). */
+		r = o->shape == SCENE_SPHERE ? o->radius
+		    : o->shape == SCENE_HAND ? 0.3 * o->scale
+		    : o->shape == SCENE_HEAD ? 0.8 * o->scale
+		    : o->shape == SCENE_PLANE ? 0
+		    : 0.5 * fmin(o->size[0], fmin(o->size[1], o->size[2])) * o->scale;
+		dmin = fmin(dmin, fmax(sqrt(d2) - r, 0.1 * sqrt(d2)));
+	}
+	if (!isfinite(dmin)) { /* include-only: the look_at distance */
+		double d2 = 0;
+		for (int j = 0; j < 3; j++)
+			d2 += (c->look_at[j] - c->location[j]) * (c->look_at[j] - c->location[j]);
+		dmin = sqrt(d2);
+	}
+	return dmin * 2 * tan(0.5 * c->angle) / s->width;
+}
+
+static char *base_from_scene(const char *path)
+{
+	const char *sl = strrchr(path, '/');
+	const char *b = sl ? sl + 1 : path;
+	size_t n = strlen(b);
+	if (n > 6 && !strcmp(b + n - 6, ".scene"))
+		n -= 6;
+	char *r = xasprintf("%.*s", (int)n, b);
+	for (char *c = r; *c; c++)
+		if (!((*c >= 'a' && *c <= 'z') || (*c >= 'A' && *c <= 'Z') || (*c >= '0' && *c <= '9') || *c == '_'
+		    || *c == '-'))
+			*c = '_';
+	return r;
+}
+
+/* The scene: from the file, or synthetic from --light/--camera; then the
+ * strategy override and the checks that need the scene. */
+static struct scene *make_scene(const struct povexport_options *o, char **cause)
+{
+	struct scene *s;
+	if (o->scene_path != NULL) {
+		if (o->cmdline->n_lights > 0 || o->have_camera)
+			return *cause = xstrdup("--scene and --light/--camera exclude each other"), NULL;
+		if ((s = scene_load(o->scene_path, cause)) == NULL)
+			return NULL;
+	} else {
+		if (o->cmdline->n_lights == 0 || !o->have_camera)
+			return *cause = xstrdup("give --scene FILE, or --light SPEC and --camera SPEC (see --help)"), NULL;
+		s = xcalloc(1, sizeof *s);
+		*s = *o->cmdline;
+		s->path = xstrdup("the command line");
+		s->width = 320, s->height = 240, s->unit_mm = 10;
+		if (o->unit_mm > 0)
+			s->unit_mm = o->unit_mm;
+		s->n_skins = 1;
+		snprintf(s->skins[0].name, sizeof s->skins[0].name, "skin");
+		s->skins[0].preset = xstrdup("(from the bake)");
+		s->skins[0].bumps = 1;
+	}
+	if (o->width > 0)
+		s->width = o->width, s->height = o->height;
+	if (o->scene_path != NULL && o->unit_mm > 0) {
+		*cause = xstrdup("--unit-mm is for --light/--camera: a scene file sets unit_mm in [scene]");
+		goto bad;
+	}
+	if (o->lights != NULL) {
+		int i;
+		for (i = 0; i < 5 && strcmp(o->lights, scene_strategy_name((enum scene_strategy)i)); i++)
+			;
+		if (i == 5) {
+			*cause = xasprintf("--lights = '%s' is not one of auto, key, mixture, passes, separable", o->lights);
+			goto bad;
+		}
+		s->lights_strategy = (enum scene_strategy)i;
+	}
+	if (s->lights_strategy == SCENE_LIGHTS_MIXTURE && s->n_lights != 2) {
+		*cause = xasprintf("lights = mixture needs exactly 2 lights, %s has %d", s->path, s->n_lights);
+		goto bad;
+	}
+	for (int t = 0; t < 2; t++) {
+		const char *const *b = t == 0 ? o->bakes : o->texs;
+		for (int i = 0; i < (t == 0 ? o->n_bakes : o->n_texs); i++) {
+			char buf[64];
+			const char *sk = bind_skin(b[i], buf, sizeof buf);
+			if (*sk && scene_find_skin(s, sk) < 0) {
+				*cause = xasprintf("--%s %s=...: the scene has no skin '%s'", t == 0 ? "bake" : "textures", sk, sk);
+				goto bad;
+			}
+		}
+	}
+	return s;
+bad:
+	scene_free(s);
+	return NULL;
+}
+
+/* Everything read for the skins before writing. */
+struct inputs {
+	struct brdf_source *src[SCENE_MAX_SKINS];
+	struct bumpmap hm[SCENE_MAX_SKINS];
+	struct pov_skin ps[SCENE_MAX_SKINS];
+	char *heights[SCENE_MAX_SKINS];
+	char *shapes;
+};
+
+static void inputs_free(struct inputs *in)
+{
+	for (int k = 0; k < SCENE_MAX_SKINS; k++) {
+		brdf_source_free(in->src[k]);
+		bumpmap_free(&in->hm[k]);
+		free(in->heights[k]);
+	}
+	free(in->shapes);
+}
+
+static int load_brdf(const struct povexport_options *o, struct scene *s, int k, struct inputs *in,
+    struct povexport_result *r, char **cause)
+{
+	struct scene_skin *sk = &s->skins[k];
+	struct pov_skin *ps = &in->ps[k];
+	char *err = NULL;
+	*ps = (struct pov_skin){ .ior = 1.5, .albedo_rgb = { 0.62, 0.42, 0.33 } };
+	if (o->analytic) {
+		ps->brdf = (struct pov_brdf){ .f_rgb = littable_brdf_analytic };
+		return 0;
+	}
+	const char *dir = bind_find(o->bakes, o->n_bakes, sk->name);
+	if (dir == NULL)
+		dir = sk->bake;
+	if (dir == NULL)
+		return *cause = xasprintf("skin '%s': no bake (give --bake DIR or bake = DIR in [skin %s])", sk->name,
+			   sk->name),
+		       -1;
+	struct brdf_source *b = in->src[k] = brdf_source_open(dir, &err);
+	if (b == NULL) {
+		*cause = xasprintf("skin '%s': bake %s: %s", sk->name, dir, err);
+		free(err);
+		return -1;
+	}
+	if (o->scene_path && b->preset && strcmp(b->preset, sk->preset))
+		msg(r, "note: skin '%s' asks for preset '%s', the bake %s has '%s'", sk->name, sk->preset, dir, b->preset);
+	if (o->scene_path == NULL && b->preset) {
+		free(sk->preset);
+		sk->preset = xstrdup(b->preset);
+	}
+	ps->brdf = (struct pov_brdf){ b->f_rgb, b->ctx, b->n_ti, b->n_to, b->theta_i, b->theta_o };
+	ps->ior = b->ior;
+	for (int ch = 0; ch < 3; ch++)
+		ps->albedo_rgb[ch] = b->albedo_rgb[ch * b->n_albedo];
+	return 0;
+}
+
+static int load_bumps(const struct povexport_options *o, const struct scene *s, const char *base, int k,
+    struct inputs *in, struct povexport_result *r, char **cause)
+{
+	const struct scene_skin *sk = &s->skins[k];
+	struct bumpmap *h = &in->hm[k];
+	const char *tdir = bind_find(o->texs, o->n_texs, sk->name);
+	if (tdir == NULL)
+		tdir = sk->textures;
+	if (tdir == NULL || !sk->bumps)
+		return 0;
+	for (int i = 0; i < s->n_objects; i++) {
+		const struct scene_object *ob = &s->objects[i];
+		if (ob->shape == SCENE_MESH && ob->material == SCENE_MAT_SKIN && ob->skin == k && ob->mesh->uv == NULL)
+			return *cause = xasprintf("[object %s]: the mesh (%s) has no UV coordinates, so the bump map of skin "
+						  "'%s' cannot follow it: give the model UVs, or set bumps = off in [skin %s]",
+				   ob->name, ob->mesh->source, sk->name, sk->name),
+			       -1;
+	}
+	if (bumpmap_load(tdir, h, cause) != 0)
+		return -1;
+	in->heights[k] = xasprintf("%s_%s_height.png", base, sk->name);
+	in->ps[k].height_png = in->heights[k];
+	in->ps[k].tile_units = h->tile_mm / s->unit_mm;
+	int f = o->bump_filter ? bumpmap_filter_factor(h->size_px, in->ps[k].tile_units / h->size_px, pixel_footprint(s, k))
+			       : 1;
+	if (f > 1) {
+		msg(r, "skin '%s': height map box-filtered %d -> %d px (texel %.3g mm, image pixel %.3g mm on the nearest "
+		       "object; --bump-filter off keeps it)",
+		    sk->name, h->size_px, h->size_px / f, h->tile_mm / h->size_px, pixel_footprint(s, k) * s->unit_mm);
+		bumpmap_reduce(h, f);
+	}
+	in->ps[k].bump_size = bumpmap_size(h->h_range_um, h->size_px, h->tile_mm);
+	return 0;
+}
+
+/* The height maps and the shape macros next to the written scene. */
+static int write_extras(const struct scene *s, const char *out, const char *base, const struct inputs *in, char **cause)
+{
+	for (int k = 0; k < s->n_skins; k++)
+		if (in->heights[k]) {
+			char *dst = xasprintf("%s/%s", out, in->heights[k]);
+			int e = in->hm[k].filter > 1 ? bumpmap_write_png(&in->hm[k], dst, cause)
+						     : povfiles_copy(in->hm[k].src, dst, cause);
+			free(dst);
+			if (e != 0)
+				return -1;
+		}
+	for (int i = 0; i < s->n_objects; i++) {
+		const struct scene_object *ob = &s->objects[i];
+		char *name = ob->material == SCENE_MAT_MODEL ? povscene_model_texture(ob, base) : NULL;
+		if (name == NULL)
+			continue;
+		char *dst = xasprintf("%s/%s", out, name);
+		int e = ob->mesh->texture ? povfiles_write_bytes(dst, ob->mesh->texture, ob->mesh->texture_size, cause)
+					  : povfiles_copy(ob->mesh->texture_file, dst, cause);
+		free(dst);
+		free(name);
+		if (e != 0)
+			return -1;
+	}
+	if (in->shapes) {
+		char *dst = xasprintf("%s/skinbake_shapes.inc", out);
+		int e = povfiles_copy(in->shapes, dst, cause);
+		free(dst);
+		if (e != 0)
+			return -1;
+	}
+	return 0;
+}
+
+static void report(const struct povexport_options *o, const struct scene *s, const struct pov_report *rep,
+    double seconds, struct povexport_result *r)
+{
+	char tab[64] = "", gam[64] = "", mix[64] = "";
+	if (rep->strategy == SCENE_LIGHTS_KEY || rep->strategy == SCENE_LIGHTS_PASSES)
+		snprintf(tab, sizeof tab, ", %dx%d table", o->n_theta, o->n_theta);
+	if (rep->n_gamma_used > 1)
+		snprintf(gam, sizeof gam, " x %d light-view angles", rep->n_gamma_used);
+	if (rep->strategy == SCENE_LIGHTS_MIXTURE)
+		snprintf(mix, sizeof mix, ", %d^3 mixture table", o->n_mix);
+	msg(r, "%s: lights %s%s%s%s (%.2f s)", o->out, scene_strategy_name(rep->strategy), tab, gam, mix, seconds);
+	if (rep->strategy == SCENE_LIGHTS_KEY && s->n_lights > 1)
+		msg(r, "warning: lights = key with %d lights: the table is exact only for light '%s'", s->n_lights,
+		    s->lights[0].name);
+	if (rep->mix_error >= 0)
+		msg(r, "lights auto: the one-pass mixture table would be %.2f %% off for these lights and camera "
+		       "(estimated; the limit is %.1f %%), so %s",
+		    100 * rep->mix_error, 100 * STRATEGY_MIX_MAX,
+		    rep->strategy == SCENE_LIGHTS_MIXTURE ? "mixture" : "passes (exact: one table per light)");
+	else if (rep->strategy == SCENE_LIGHTS_MIXTURE && rep->mix_gamma_spread > 0.05 * M_PI / 180)
+		msg(r, "note: the mixture table takes each light-view angle at the objects' centre; it varies by %.1f deg "
+		       "over them (use --lights passes to be exact)",
+		    rep->mix_gamma_spread * 180 / M_PI);
+	if (rep->strategy == SCENE_LIGHTS_SEPARABLE || (rep->strategy == SCENE_LIGHTS_PASSES && !rep->layered))
+		msg(r, "separable fit%s: mean error %.1f %%, rms error %.1f %% of pi*f*cos(theta_i) for angles up to 80 deg",
+		    rep->strategy == SCENE_LIGHTS_PASSES ? " (used without animation)" : "", 100 * rep->sep_mean,
+		    100 * rep->sep_rms);
+	for (int i = 0; i < rep->n_files && r->n_files < 16; i++)
+		r->files[r->n_files++] = xasprintf("%s/%s", o->out, rep->files[i]);
+}
+
+static int write_all(const struct povexport_options *o, const struct scene *s, const char *base, struct inputs *in,
+    struct povexport_result *r, char **cause)
+{
+	struct pov_report rep = { 0 };
+	if (util_mkdirs(o->out, cause) != 0)
+		return -2;
+	struct pov_options po = { .base = base, .n_theta = o->n_theta, .n_gamma = o->n_gamma, .n_mix = o->n_mix,
+		.write_scene = o->scene_path != NULL, .shapes_inc = in->shapes ? "skinbake_shapes.inc" : NULL };
+	double t0 = util_now();
+	if (povfiles_write(s, in->ps, &po, o->out, &rep, cause) != 0 || write_extras(s, o->out, base, in, cause) != 0) {
+		povfiles_report_free(&rep);
+		return -2;
+	}
+	report(o, s, &rep, util_now() - t0, r);
+	povfiles_report_free(&rep);
+	return 0;
+}
+
+int povexport_run(const struct povexport_options *o, struct povexport_result *r, char **cause)
+{
+	struct inputs in = { 0 };
+	char *base = NULL;
+	int rc = -1;
+	struct scene *s = make_scene(o, cause);
+	if (s == NULL)
+		return -1;
+	if (o->plan) {
+		print_plan(o->plan_out, s);
+		scene_free(s);
+		return 0;
+	}
+	if (o->out == NULL) {
+		*cause = xstrdup("--out DIR is required");
+		goto done;
+	}
+	base = o->name ? xstrdup(o->name) : o->scene_path ? base_from_scene(o->scene_path) : xstrdup("skin");
+	if (!*base || strspn(base, "abcdefghijklmnopqrstuvwxyzABCDEFGHIJKLMNOPQRSTUVWXYZ0123456789_.-") != strlen(base)) {
+		*cause = xasprintf("--name = '%s' must be letters, digits, '_', '.' or '-'", base);
+		goto done;
+	}
+	for (int k = 0; k < s->n_skins; k++)
+		if (load_brdf(o, s, k, &in, r, cause) != 0 || load_bumps(o, s, base, k, &in, r, cause) != 0)
+			goto done;
+	int need_shapes = 0;
+	for (int i = 0; i < s->n_objects; i++)
+		need_shapes |= s->objects[i].shape == SCENE_HAND || s->objects[i].shape == SCENE_HEAD;
+	if (need_shapes && (in.shapes = find_shapes(o->data_dir, o->scene_path)) == NULL) {
+		*cause = xstrdup("skinbake_shapes.inc not found (give --data-dir DIR)");
+		goto done;
+	}
+	rc = write_all(o, s, base, &in, r, cause);
+done:
+	inputs_free(&in);
+	free(base);
+	scene_free(s);
+	return rc;
+}

@@ -1,0 +1,434 @@
+/* povscene: write BASE.pov (camera, lights, objects, per-light layers or
+ * frames) and the scene that sums .hdr passes. */
+#include "config.h"
+
+#include "export/pov/povscene.h"
+
+#include <math.h>
+#include <stdlib.h>
+#include <string.h>
+#include <strings.h>
+
+#include "base/util.h"
+#include "export/pov/sdl.h"
+#include "geom/mesh.h"
+#include "export/pov/vec3.h"
+
+static int bumped(const struct scene *s, const struct pov_skin *skins, const struct scene_object *o)
+{
+	return o->material == SCENE_MAT_SKIN && skins[o->skin].height_png != NULL && s->skins[o->skin].bumps;
+}
+
+int povscene_layers_ok(const struct scene *s)
+{
+	for (int i = 0; i < s->n_objects; i++)
+		if (s->objects[i].material == SCENE_MAT_SKIN
+		    && (s->objects[i].shape == SCENE_HAND || s->objects[i].shape == SCENE_HEAD))
+			return 0;
+	return 1;
+}
+
+double povscene_inset(const struct scene *s, int k)
+{
+	/* A twentieth of an image pixel at the look_at distance, but at least
+	 * 2e-4 units: POV-Ray 3.7 skips a transmitted ray's next hit closer
+	 * than about 1e-4 units (on a head in metres an inset of 0.043 mm
+	 * showed the inner layer through the outer one, 0.12 mm did not).
+	 * Scenes in millimetres keep this far below a pixel. */
+	const struct scene_camera *c = &s->camera;
+	double d[3] = { c->location[0] - c->look_at[0], c->location[1] - c->look_at[1], c->location[2] - c->look_at[2] };
+	double px = (c->ortho ? c->width : 2 * tan(0.5 * c->angle) * sqrt(vec3_dot(d, d))) / s->width;
+	return k * fmax(0.05 * px, 2e-4);
+}
+
+int povscene_layer_light(const struct scene *s, int k)
+{
+	/* Stable sort of the lights by colour, weakest first (outermost). */
+	int order[SCENE_MAX_LIGHTS];
+	for (int i = 0; i < s->n_lights; i++) {
+		const double *c = s->lights[i].color;
+		int j = i;
+		for (; j > 0; j--) {
+			const double *d = s->lights[order[j - 1]].color;
+			if (d[0] + d[1] + d[2] <= c[0] + c[1] + c[2])
+				break;
+			order[j] = order[j - 1];
+		}
+		order[j] = i;
+	}
+	return order[k];
+}
+
+static void write_camera(FILE *fp, const struct scene *s)
+{
+	const struct scene_camera *c = &s->camera;
+	double aspect = (double)s->width / s->height;
+	if (c->ortho)
+		fprintf(fp, "camera { orthographic location ");
+	else
+		fprintf(fp, "camera { perspective location ");
+	sdl_vec(fp, c->location);
+	fputs(" look_at ", fp);
+	sdl_vec(fp, c->look_at);
+	if (c->ortho)
+		fprintf(fp, " right x*" SDL_G " up y*" SDL_G " }\n", c->width, c->width / aspect);
+	else
+		fprintf(fp, " right x*" SDL_G " up y angle " SDL_G " }\n", aspect, c->angle * 180 / M_PI);
+}
+
+static void write_xform(FILE *fp, const struct scene_object *o)
+{
+	if (o->scale != 1)
+		fprintf(fp, " scale " SDL_G, o->scale);
+	if (o->rotate[0] != 0 || o->rotate[1] != 0 || o->rotate[2] != 0)
+		fprintf(fp, " rotate <" SDL_G "," SDL_G "," SDL_G ">", o->rotate[0] * 180 / M_PI, o->rotate[1] * 180 / M_PI,
+		    o->rotate[2] * 180 / M_PI);
+	if (o->translate[0] != 0 || o->translate[1] != 0 || o->translate[2] != 0) {
+		fputs(" translate ", fp);
+		sdl_vec(fp, o->translate);
+	}
+}
+
+/* The shape, moved inward by `inset` world units (layer copies); a mesh is
+ * the mesh2 declared for layer `layer` (-1: the only one), already placed. */
+static void write_shape(FILE *fp, const struct scene_object *o, double inset, int layer)
+{
+	double h[3] = { 0.5 * o->size[0], 0.5 * o->size[1], 0.5 * o->size[2] }, e = inset / o->scale;
+	switch (o->shape) {
+	case SCENE_SPHERE:
+		fputs("sphere { ", fp);
+		sdl_vec(fp, o->center);
+		fprintf(fp, ", " SDL_G, o->radius - e);
+		break;
+	case SCENE_BOX:
+		fprintf(fp, "box { <" SDL_G "," SDL_G "," SDL_G ">, <" SDL_G "," SDL_G "," SDL_G "> translate ", -h[0] + e,
+		    -h[1] + e, -h[2] + e, h[0] - e, h[1] - e, h[2] - e);
+		sdl_vec(fp, o->center);
+		break;
+	case SCENE_PATCH:
+		/* Front face at z = 0 facing -z (toward a default camera). */
+		if (e > 0)
+			fprintf(fp, "box { <" SDL_G "," SDL_G "," SDL_G ">, <" SDL_G "," SDL_G "," SDL_G "> translate ", -h[0] + e,
+			    -h[1] + e, e, h[0] - e, h[1] - e, fmin(h[0], h[1]) * 0.02 - e);
+		else
+			fprintf(fp, "box { <" SDL_G "," SDL_G ",0>, <" SDL_G "," SDL_G "," SDL_G "> translate ", -h[0], -h[1],
+			    h[0], h[1], fmin(h[0], h[1]) * 0.02);
+		sdl_vec(fp, o->center);
+		break;
+	case SCENE_PLANE:
+		fputs("plane { ", fp);
+		sdl_vec(fp, o->normal);
+		fprintf(fp, ", " SDL_G, o->offset - e);
+		break;
+	case SCENE_HAND:
+		fputs("object { SkinbakeHand()", fp);
+		break;
+	case SCENE_HEAD:
+		fputs("object { SkinbakeHead()", fp);
+		break;
+	case SCENE_MESH:
+		/* Placed in world coordinates already (textures use world x, y, z). */
+		if (layer >= 0)
+			fprintf(fp, "object { SKIN_Mesh_%s_L%d", o->name, layer + 1);
+		else
+			fprintf(fp, "object { SKIN_Mesh_%s", o->name);
+		return;
+	}
+	write_xform(fp, o);
+}
+
+/* The bump map of a non-mesh skin object: patches and boxes carry it with
+ * their own orientation, curved shapes get it projected along the view. */
+static void write_bump(FILE *fp, const struct scene *s, const struct scene_object *o)
+{
+	fprintf(fp, "\n    normal { SKIN_%s_Normal", s->skins[o->skin].name);
+	if (o->shape == SCENE_PATCH || o->shape == SCENE_BOX) {
+		fputs(" translate ", fp);
+		sdl_vec(fp, o->center);
+		write_xform(fp, o);
+	} else {
+		double d[3];
+		vec3_unit_toward(s->camera.location, s->camera.look_at, d);
+		sdl_align(fp, d);
+	}
+	fputs(" }", fp);
+}
+
+/* The texture of a skin object; pigment/finish names depend on the pass,
+ * rest > 0 averages it with `rest` parts of the clear texture (layers). */
+static void write_skin_texture(FILE *fp, const struct scene *s, const struct scene_object *o,
+    const struct pov_skin *skins, const char *pigment, const char *finish, int rest)
+{
+	const struct scene_skin *sk = &s->skins[o->skin];
+	if (o->shape == SCENE_MESH && bumped(s, skins, o)) {
+		/* The per-triangle textures are in the mesh2. */
+	} else if (rest > 0) {
+		fprintf(fp, "\n  texture { average texture_map { [1 pigment { %s }", pigment);
+		if (bumped(s, skins, o))
+			write_bump(fp, s, o);
+		fprintf(fp, "\n    finish { %s }] [%d SKIN_Clear] } }", finish, rest);
+	} else {
+		fprintf(fp, "\n  texture { pigment { %s }", pigment);
+		if (bumped(s, skins, o))
+			write_bump(fp, s, o);
+		fprintf(fp, "\n    finish { %s } }", finish);
+	}
+	if (sk->reflection)
+		fprintf(fp, "\n  interior { SKIN_%s_Interior }", sk->name);
+}
+
+/* Pigment and finish of skin SN for pass `pass` (0: the frame without
+ * animation, k: light k) or layer. */
+static void skin_names(const struct scene *s, const char *sn, enum scene_strategy st, int pass, int layered, char **pig,
+    char **fin)
+{
+	if (st == SCENE_LIGHTS_PASSES && pass > 0) {
+		*pig = xasprintf("SKIN_%s_Pigment_%s", sn, s->lights[pass - 1].name);
+		*fin = xasprintf("SKIN_%s_Finish", sn);
+	} else if (st == SCENE_LIGHTS_PASSES && !layered) {
+		*pig = xasprintf("SKIN_%s_Pigment_Separable", sn);
+		*fin = xasprintf("SKIN_%s_Finish_Separable", sn);
+	} else {
+		*pig = xasprintf("SKIN_%s_Pigment", sn);
+		*fin = xasprintf(st == SCENE_LIGHTS_SEPARABLE ? "SKIN_%s_Finish_Separable" : "SKIN_%s_Finish", sn);
+	}
+}
+
+void povscene_mesh_texture(const struct scene *s, const struct scene_object *o, enum scene_strategy st, int layer,
+    char **pre, char **post, char **plain)
+{
+	const char *sn = s->skins[o->skin].name;
+	char *pig, *fin;
+	if (layer >= 0)
+		skin_names(s, sn, st, povscene_layer_light(s, layer) + 1, 1, &pig, &fin);
+	else if (st == SCENE_LIGHTS_PASSES) /* frames: declared per frame in BASE.pov */
+		pig = xasprintf("SKIN_%s_PassPigment", sn), fin = xasprintf("SKIN_%s_PassFinish", sn);
+	else
+		skin_names(s, sn, st, 0, 0, &pig, &fin);
+	int rest = layer >= 0 ? s->n_lights - 1 - layer : 0;
+	if (rest > 0) {
+		*pre = xasprintf("texture { average texture_map { [1 pigment { %s } normal { SKIN_%s_NormalMesh", pig, sn);
+		*post = xasprintf(" } finish { %s }] [%d SKIN_Clear] } }", fin, rest);
+		*plain = xasprintf("texture { average texture_map { [1 pigment { %s } finish { %s }] [%d SKIN_Clear] } }", pig,
+		    fin, rest);
+	} else {
+		*pre = xasprintf("texture { pigment { %s } normal { SKIN_%s_NormalMesh", pig, sn);
+		*post = xasprintf(" } finish { %s } }", fin);
+		*plain = xasprintf("texture { pigment { %s } finish { %s } }", pig, fin);
+	}
+	free(pig);
+	free(fin);
+}
+
+/* Image types POV-Ray reads: file type, SDL keyword. */
+static const char *image_types[][2] = { { "png", "png" }, { "jpg", "jpeg" }, { "jpeg", "jpeg" }, { "tga", "tga" },
+	{ "tif", "tiff" }, { "tiff", "tiff" }, { "ppm", "ppm" }, { "exr", "exr" }, { "hdr", "hdr" } };
+
+char *povscene_model_texture(const struct scene_object *o, const char *base)
+{
+	const struct mesh *m = o->mesh;
+	if (m == NULL || m->uv == NULL || (m->texture == NULL && m->texture_file == NULL))
+		return NULL;
+	for (size_t i = 0; i < sizeof image_types / sizeof image_types[0]; i++)
+		if (!strcasecmp(m->texture_type, image_types[i][0]))
+			return xasprintf("%s_%s_texture.%s", base, o->name, image_types[i][0]);
+	return NULL;
+}
+
+/* The model file's own material: its diffuse texture through the UVs (POV
+ * 3.7 maps uv pigments right; only uv bumps are wrong) or colour, and its
+ * specular as a Phong highlight. */
+static void write_model_texture(FILE *fp, const struct scene_object *o, const char *base)
+{
+	const struct mesh *m = o->mesh;
+	char *tex = povscene_model_texture(o, base);
+	fputs("\n  texture { pigment { ", fp);
+	if (tex != NULL) {
+		const char *kw = "png";
+		for (size_t i = 0; i < sizeof image_types / sizeof image_types[0]; i++)
+			if (!strcasecmp(m->texture_type, image_types[i][0]))
+				kw = image_types[i][1];
+		fprintf(fp, "uv_mapping image_map { %s \"%s\" interpolate 2 }", kw, tex);
+	} else
+		sdl_rgb(fp, m->diffuse_rgb);
+	fputs(" } finish { " POVSCENE_FINISH_LIT, fp);
+	if (m->specular > 0)
+		fprintf(fp, " phong " SDL_G " phong_size " SDL_G, fmin(m->specular, 1), fmin(fmax(m->shininess, 1), 1000));
+	fputs(" } }", fp);
+	free(tex);
+}
+
+/* One object; for a skin object pass/layer select the table. */
+static void write_object(FILE *fp, const struct scene *s, const struct pov_skin *skins, const struct scene_object *o,
+    enum scene_strategy st, int pass, int layer, const char *base)
+{
+	const char *sn = o->skin >= 0 ? s->skins[o->skin].name : "";
+	int layered = layer >= 0;
+	fprintf(fp, "// object %s\n", o->name);
+	write_shape(fp, o, layered ? povscene_inset(s, layer) : 0, layered && o->material == SCENE_MAT_SKIN ? layer : -1);
+	/* Textures attach after the object's transforms, so texture space is
+	 * world space (the gamma function uses x, y, z). */
+	if (o->material == SCENE_MAT_PLAIN) {
+		fputs("\n  texture { pigment { ", fp);
+		sdl_rgb(fp, o->color);
+		fputs(" } finish { " POVSCENE_FINISH_LIT " } }", fp);
+	} else if (o->material == SCENE_MAT_MODEL)
+		write_model_texture(fp, o, base);
+	else if (o->material == SCENE_MAT_LAMBERT)
+		fprintf(fp, "\n  texture { SKIN_%s_Lambert }", sn);
+	else if (o->material == SCENE_MAT_PHONG)
+		fprintf(fp, "\n  texture { SKIN_%s_Phong }", sn);
+	else {
+		char *pig, *fin;
+		skin_names(s, sn, st, layered ? povscene_layer_light(s, layer) + 1 : pass, layered, &pig, &fin);
+		write_skin_texture(fp, s, o, skins, pig, fin, layered ? s->n_lights - 1 - layer : 0);
+		free(pig);
+		free(fin);
+		if (layered && layer < s->n_lights - 1)
+			fputs(" no_shadow", fp);
+	}
+	fputs(" }\n", fp);
+}
+
+static void write_objects(FILE *fp, const struct scene *s, const struct pov_skin *skins, const struct pov_options *o,
+    enum scene_strategy st, int pass)
+{
+	for (int i = 0; i < s->n_objects; i++)
+		write_object(fp, s, skins, &s->objects[i], st, pass, -1, o->base);
+}
+
+static int n_meshes(const struct scene *s)
+{
+	int n = 0;
+	for (int i = 0; i < s->n_objects; i++)
+		n += s->objects[i].shape == SCENE_MESH;
+	return n;
+}
+
+static void write_mesh_includes(FILE *fp, const struct scene *s, const struct pov_options *o)
+{
+	for (int i = 0; i < s->n_objects; i++)
+		if (s->objects[i].shape == SCENE_MESH)
+			fprintf(fp, "#include \"%s_mesh_%s.inc\"\n", o->base, s->objects[i].name);
+}
+
+/* Frames: light k and its tables in frame k, all lights with the separable
+ * fit without animation. */
+static void write_frames(FILE *fp, const struct scene *s, const struct pov_skin *skins, const struct pov_options *o,
+    enum scene_strategy st)
+{
+	fputs("#switch (frame_number)\n", fp);
+	for (int i = 0; i < s->n_lights; i++) {
+		fprintf(fp, "#case (%d)\nlight_source { SKIN_Light_%s }\n", i + 1, s->lights[i].name);
+		for (int k = 0; k < s->n_skins; k++)
+			if (n_meshes(s) > 0)
+				fprintf(fp, "#declare SKIN_%s_PassPigment = SKIN_%s_Pigment_%s;\n"
+				    "#declare SKIN_%s_PassFinish = SKIN_%s_Finish;\n", s->skins[k].name, s->skins[k].name,
+				    s->lights[i].name, s->skins[k].name, s->skins[k].name);
+		write_mesh_includes(fp, s, o);
+		write_objects(fp, s, skins, o, st, i + 1);
+		fputs("#break\n", fp);
+	}
+	fputs("#else\n", fp);
+	for (int i = 0; i < s->n_lights; i++)
+		fprintf(fp, "light_source { SKIN_Light_%s }\n", s->lights[i].name);
+	for (int k = 0; k < s->n_skins; k++)
+		if (n_meshes(s) > 0)
+			fprintf(fp, "#declare SKIN_%s_PassPigment = SKIN_%s_Pigment_Separable;\n"
+			    "#declare SKIN_%s_PassFinish = SKIN_%s_Finish_Separable;\n", s->skins[k].name, s->skins[k].name,
+			    s->skins[k].name, s->skins[k].name);
+	write_mesh_includes(fp, s, o);
+	write_objects(fp, s, skins, o, st, 0);
+	fputs("#end\n", fp);
+}
+
+/* Layers: every light for the other objects; one light group per light
+ * with its copy of the skin objects. */
+static void write_layers(FILE *fp, const struct scene *s, const struct pov_skin *skins, const struct pov_options *o,
+    enum scene_strategy st)
+{
+	fputs("#declare SKIN_Clear = texture { pigment { rgbt 1 } finish { diffuse 0 ambient 0 emission 0 specular 0 } }\n",
+	    fp);
+	write_mesh_includes(fp, s, o);
+	for (int i = 0; i < s->n_lights; i++)
+		fprintf(fp, "light_source { SKIN_Light_%s }\n", s->lights[i].name);
+	for (int i = 0; i < s->n_objects; i++)
+		if (s->objects[i].material != SCENE_MAT_SKIN)
+			write_object(fp, s, skins, &s->objects[i], st, 0, -1, o->base);
+	for (int k = 0; k < s->n_lights; k++) {
+		const char *ln = s->lights[povscene_layer_light(s, k)].name;
+		fprintf(fp, "// light %s shades layer %d of %d of the skin (weight 1/%d, light x %d)\n"
+		    "light_group {\n  light_source { SKIN_Light_%s_Layer }\n", ln, k + 1, s->n_lights, s->n_lights,
+		    s->n_lights, ln);
+		for (int i = 0; i < s->n_objects; i++)
+			if (s->objects[i].material == SCENE_MAT_SKIN)
+				write_object(fp, s, skins, &s->objects[i], st, 0, k, o->base);
+		fputs("  global_lights off\n}\n", fp);
+	}
+}
+
+void povscene_write(FILE *fp, const struct scene *s, const struct pov_skin *skins, const struct pov_options *o,
+    enum scene_strategy st, int layered)
+{
+	fprintf(fp, "#version 3.7;\n// %s\n// Generated by skinbake " PACKAGE_VERSION " from %s.\n", s->title ? s->title : o->base,
+	    s->path);
+	if (st == SCENE_LIGHTS_PASSES && layered)
+		fprintf(fp, "// Per-light passes summed in one run (one light group and skin layer per light):\n"
+		    "// povray %s.ini  ->  %s.png\n", o->base, o->base);
+	else if (st == SCENE_LIGHTS_PASSES)
+		fprintf(fp, "// Per-light passes: `povray %s.ini` renders frame k with light k only and its\n"
+		    "// own table to %s_passK.hdr; then `povray %s_combine.ini` sums them into %s.png.\n"
+		    "// Rendered without animation (frame 0) it shows all lights with the separable fit.\n",
+		    o->base, o->base, o->base, o->base);
+	else
+		fprintf(fp, "// Render: povray %s.ini   (or povray +I%s.pov +W%d +H%d)\n", o->base, o->base, s->width,
+		    s->height);
+	fprintf(fp, "global_settings { assumed_gamma 1.0 ambient_light 0 max_trace_level %d }\n",
+	    layered ? 5 + s->n_lights : 5);
+	if (o->shapes_inc)
+		fprintf(fp, "#include \"%s\"\n", o->shapes_inc);
+	fprintf(fp, "#include \"%s.inc\"\n", o->base);
+	fputs("background { ", fp);
+	int frames = st == SCENE_LIGHTS_PASSES && !layered;
+	if (frames) /* passes are summed: background in pass 1 only */
+		fputs("#if (frame_number < 2) ", fp);
+	sdl_rgb(fp, s->background);
+	if (frames)
+		fputs(" #else rgb 0 #end", fp);
+	fputs(" }\n", fp);
+	write_camera(fp, s);
+	if (frames)
+		write_frames(fp, s, skins, o, st);
+	else if (layered)
+		write_layers(fp, s, skins, o, st);
+	else {
+		write_mesh_includes(fp, s, o);
+		for (int i = 0; i < s->n_lights; i++)
+			fprintf(fp, "light_source { SKIN_Light_%s }\n", s->lights[i].name);
+		write_objects(fp, s, skins, o, st, 0);
+	}
+}
+
+char *povscene_pass_name(const char *base, int k, int n)
+{
+	int digits = n >= 100 ? 3 : n >= 10 ? 2 : 1;
+	return xasprintf("%s_pass%0*d.hdr", base, digits, k);
+}
+
+void povscene_write_combine(FILE *fp, const struct scene *s, const char *base, const char *scene_name)
+{
+	fprintf(fp, "#version 3.7;\n// Sum of the per-light passes of %s (POV-Ray does the sum: each .hdr is\n"
+	    "// shown 1:1 on a unit square, averaged, times the number of passes).\n"
+	    "// Render without antialiasing: povray %s_combine.ini\n", scene_name, base);
+	fputs("global_settings { assumed_gamma 1.0 ambient_light 0 }\n"
+	    "camera { orthographic location <0.5,0.5,-1> look_at <0.5,0.5,0> right x up y }\n", fp);
+	for (int i = 0; i < s->n_lights; i++) {
+		char *p = povscene_pass_name(base, i + 1, s->n_lights);
+		fprintf(fp, "#declare Skinbake_Pass%d = pigment { image_map { hdr \"%s\" } }\n", i + 1, p);
+		free(p);
+	}
+	fputs("plane { z, 0 texture { pigment { average pigment_map {", fp);
+	for (int i = 0; i < s->n_lights; i++)
+		fprintf(fp, " [1 Skinbake_Pass%d]", i + 1);
+	fprintf(fp, " } }\n  finish { emission %d diffuse 0 ambient 0 specular 0 } } }\n", s->n_lights);
+}

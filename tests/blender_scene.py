@@ -1,0 +1,319 @@
+# Test helper, run inside Blender (pure Python, no numpy):
+#   blender -b --factory-startup --python blender_scene.py -- make-lights OUT.blend
+#       a user's file: an ellipsoid mesh "Head" (UVs, its own material), a perspective camera,
+#       two suns, a point lamp and a spot lamp whose cone holds the head, black world
+#   blender -b --factory-startup --python blender_scene.py -- make-keep OUT.blend SNAPSHOT.json
+#       a richer user's file (meshes with materials, an empty in a collection, area lamp, hidden
+#       lamp, world colour, a fake-user material, a scene property) and a snapshot of it
+#   blender -b FILE.blend --python blender_scene.py -- check-keep SNAPSHOT.json
+#       everything in the snapshot is still there and unchanged (Head's material and the lamps'
+#       collections excepted); prints SKINBAKE_KEEP_OK or the differences
+#   blender -b FILE.blend --python blender_scene.py -- measure-lights BRDF_HELPER BAKE OUT_STEM RES SAMPLES
+#       renders the imported file (direct light only, point-sampled pixels) with normal and
+#       position passes and compares each pixel with sum over lamps of E cos_l f_r, f_r from
+#       BRDF_HELPER (bake_eval_rgb, as `skinbake eval`); prints SKINBAKE_LIGHTS n mean p95 max
+#   blender -b FILE.blend --python blender_scene.py -- addon IMPORTER SET/manifest.json MESH
+#       the add-on's File > Import operator (registered from IMPORTER) on the selected MESH in exact
+#       mode; prints SKINBAKE_ADDON result material view-layers
+#   blender -b --factory-startup --python blender_scene.py -- mean A.exr
+#       prints SKINBAKE_MEAN r g b, the mean of the whole image
+#   blender -b --factory-startup --python blender_scene.py -- blocks A.exr B.exr K THR
+#       mean (over blocks and RGB) and largest relative difference of A from B over K x K pixel
+#       blocks that lie, with the pixels within 2 px of them, where B is brighter than THR times
+#       its maximum; prints SKINBAKE_BLOCKS n mean max
+import json
+import math
+import os
+import subprocess
+import sys
+
+import bpy
+from mathutils import Vector
+
+
+def direction(elev, azim):
+    e, a = math.radians(elev), math.radians(azim)
+    return Vector((math.cos(e) * math.cos(a), math.cos(e) * math.sin(a), math.sin(e)))
+
+
+def add_lamp(name, kind, energy, where):
+    d = bpy.data.lights.new(name, kind)
+    d.energy = energy
+    if kind == "SUN":
+        d.angle = 0.0
+    else:
+        d.shadow_soft_size = 0.0
+    o = bpy.data.objects.new(name, d)
+    bpy.context.scene.collection.objects.link(o)
+    if kind == "SUN":
+        o.rotation_euler = where.to_track_quat("Z", "Y").to_euler()
+    else:
+        o.location = where
+    return o
+
+
+def material(name, rgb):
+    m = bpy.data.materials.new(name)
+    m.use_nodes = True
+    m.node_tree.nodes["Principled BSDF"].inputs["Base Color"].default_value = rgb + (1.0,)
+    return m
+
+
+def camera(loc, target, lens=50.0):
+    cd = bpy.data.cameras.new("Camera")
+    cd.lens = lens
+    cam = bpy.data.objects.new("Camera", cd)
+    bpy.context.scene.collection.objects.link(cam)
+    cam.location = loc
+    cam.rotation_euler = (Vector(target) - Vector(loc)).to_track_quat("-Z", "Y").to_euler()
+    bpy.context.scene.camera = cam
+    return cam
+
+
+def head():
+    bpy.ops.mesh.primitive_uv_sphere_add(segments=64, ring_count=32, radius=0.1)
+    o = bpy.context.active_object
+    o.name = "Head"
+    o.scale = (1.0, 0.85, 1.15)
+    bpy.ops.object.transform_apply(scale=True)
+    bpy.ops.object.shade_smooth()
+    o.data.materials.append(material("HeadOld", (0.8, 0.6, 0.5)))
+    return o
+
+
+def make_lights(out):
+    bpy.ops.wm.read_factory_settings(use_empty=True)
+    sc = bpy.context.scene
+    sc.render.engine = "CYCLES"
+    sc.world = bpy.data.worlds.new("World")
+    sc.world.color = (0.0, 0.0, 0.0)
+    head()
+    camera((0.12, -0.38, 0.07), (0, 0, 0))
+    add_lamp("Key", "SUN", 3.0, direction(40, -60))
+    add_lamp("Rim", "SUN", 2.0, direction(25, 110))
+    add_lamp("Fill", "POINT", 4.0, Vector((-0.35, -0.3, 0.05)))
+    top = add_lamp("Top", "SPOT", 3.0, Vector((0.05, -0.2, 0.45)))
+    top.data.spot_size, top.data.spot_blend = math.radians(100), 0.0    # the head is well inside
+    top.rotation_euler = (-top.location).to_track_quat("-Z", "Y").to_euler()
+    bpy.ops.wm.save_as_mainfile(filepath=os.path.abspath(out))
+
+
+def snapshot():
+    sc = bpy.context.scene
+    s = {"objects": {}, "materials": sorted(m.name for m in bpy.data.materials if not m.name.startswith("skinbake")),
+         "world": [sc.world.name, list(sc.world.color)], "camera": sc.camera.name, "prop": sc.get("my_prop"),
+         "collections": {c.name: sorted(o.name for o in c.objects if o.type != "LIGHT")
+                         for c in bpy.data.collections if not c.name.startswith("skinbake")}}
+    for o in bpy.data.objects:
+        e = {"type": o.type, "location": [round(x, 6) for x in o.matrix_world.translation],
+             "hide_render": o.hide_render, "in_scene": o.name in sc.objects}
+        if o.type == "MESH":
+            e["materials"] = [s.material.name if s.material else None for s in o.material_slots]
+        if o.type == "LIGHT":
+            e["light"] = [o.data.type, round(o.data.energy, 6), list(o.data.color)]
+        s["objects"][o.name] = e
+    return s
+
+
+def make_keep(out, snap):
+    bpy.ops.wm.read_factory_settings(use_empty=True)
+    sc = bpy.context.scene
+    sc.render.engine = "CYCLES"
+    w = bpy.data.worlds.new("Sky")
+    w.color = (0.05, 0.06, 0.08)
+    sc.world = w
+    sc["my_prop"] = 42
+    head()
+    bpy.ops.mesh.primitive_cube_add(size=0.2, location=(0, 0, -0.25))
+    body = bpy.context.active_object
+    body.name = "Body"
+    body.data.materials.append(material("BodyMat", (0.2, 0.3, 0.4)))
+    bpy.ops.mesh.primitive_plane_add(size=2, location=(0, 0, -0.4))
+    floor = bpy.context.active_object
+    floor.name = "Floor"
+    floor.data.materials.append(material("FloorMat", (0.5, 0.5, 0.5)))
+    props = bpy.data.collections.new("Props")
+    sc.collection.children.link(props)
+    e = bpy.data.objects.new("Marker", None)
+    props.objects.link(e)
+    spare = material("Spare", (0.1, 0.9, 0.1))
+    spare.use_fake_user = True
+    camera((0.2, -0.8, 0.1), (0, 0, -0.1))
+    add_lamp("Key", "SUN", 3.0, direction(40, -60))
+    add_lamp("Panel", "AREA", 20.0, Vector((0.5, -0.5, 0.5)))
+    add_lamp("Bulb", "POINT", 10.0, Vector((0.0, 0.5, 0.5))).hide_render = True
+    bpy.ops.wm.save_as_mainfile(filepath=os.path.abspath(out))
+    with open(snap, "w") as f:
+        json.dump(snapshot(), f, indent=1, sort_keys=True)
+
+
+def check_keep(snap):
+    with open(snap) as f:
+        old = json.load(f)
+    new = snapshot()
+    bad = []
+    for k in ("materials", "world", "camera", "prop", "collections"):
+        if old[k] != new[k]:
+            bad.append(f"{k}: {old[k]} -> {new[k]}")
+    for name, e in old["objects"].items():
+        n = new["objects"].get(name)
+        if n is None:
+            bad.append(f"object {name} missing")
+            continue
+        for k, v in e.items():
+            if name == "Head" and k == "materials":
+                continue
+            if n.get(k) != v:
+                bad.append(f"object {name}.{k}: {v} -> {n.get(k)}")
+    print("SKINBAKE_KEEP_OK" if not bad else "SKINBAKE_KEEP_DIFF " + "; ".join(bad))
+
+
+def read(path):
+    img = bpy.data.images.load(os.path.abspath(path), check_existing=False)
+    img.colorspace_settings.name = "Non-Color"
+    w, h, ch = img.size[0], img.size[1], img.channels
+    px = list(img.pixels)
+    bpy.data.images.remove(img)
+    return w, h, [px[i:i + 3] for i in range(0, len(px), ch)]
+
+
+def lamp_light(o, p):
+    """(unit vector toward the lamp, irradiance on a surface facing it) at point p."""
+    if o.data.type == "SUN":
+        return (o.matrix_world.to_quaternion() @ Vector((0.0, 0.0, 1.0))).normalized(), o.data.energy
+    d = o.matrix_world.translation - p
+    r2 = d.length_squared
+    e = o.data.energy / (4.0 * math.pi * r2)       # Cycles: radiant intensity P / 4 pi (measured)
+    if o.data.type == "SPOT":                      # inside the cone (blend 0) a spot is a point lamp
+        axis = o.matrix_world.to_quaternion() @ Vector((0.0, 0.0, -1.0))
+        if o.data.spot_blend != 0 or math.acos(max(-1.0, min(1.0, axis.dot(-d.normalized())))) > o.data.spot_size / 2:
+            raise SystemExit("blender_scene.py: only points inside a hard-edged spot cone are modelled")
+    return d.normalized(), e
+
+
+def measure_lights(helper, bake, stem, res, samples):
+    sc = bpy.context.scene
+    sc.render.resolution_x = sc.render.resolution_y = res
+    sc.render.resolution_percentage = 100
+    cy = sc.cycles
+    cy.samples, cy.use_denoising, cy.use_adaptive_sampling, cy.seed = samples, False, False, 0
+    cy.max_bounces = 0                 # direct light only: the reference has no interreflection
+    cy.filter_width = 0.01             # every sample at the pixel centre, as the passes
+    sc.view_settings.view_transform = "Standard"
+    layers = list(sc["skinbake_exact_layers"])
+    vl = sc.view_layers[layers[0]]
+    vl.use_pass_normal = vl.use_pass_position = True
+    nt = sc.node_tree
+    rl = nt.nodes.new("CompositorNodeRLayers")
+    rl.layer = vl.name
+    fo = nt.nodes.new("CompositorNodeOutputFile")
+    fo.base_path = os.path.dirname(os.path.abspath(stem))
+    fo.format.file_format, fo.format.color_depth = "OPEN_EXR", "32"
+    fo.file_slots.clear()
+    base = os.path.basename(stem)
+    for p in ("Normal", "Position"):
+        fo.file_slots.new(f"{base}_{p}_")
+        nt.links.new(rl.outputs[p], fo.inputs[-1])
+    fmt = sc.render.image_settings
+    fmt.file_format, fmt.color_depth, fmt.color_mode = "OPEN_EXR", "32", "RGB"
+    sc.render.filepath = os.path.abspath(stem + ".exr")
+    bpy.ops.render.render(write_still=True)
+    w, h, col = read(stem + ".exr")
+    _, _, nrm = read(os.path.join(fo.base_path, f"{base}_Normal_{sc.frame_current:04d}.exr"))
+    _, _, pos = read(os.path.join(fo.base_path, f"{base}_Position_{sc.frame_current:04d}.exr"))
+    cam = sc.camera.matrix_world.translation
+    lamps = [o for o in sc.objects if o.type == "LIGHT" and not o.hide_render]
+    on = [Vector(n).length > 0.5 for n in nrm]
+    jobs = []                          # (pixel, irradiance * cos_l, "ti to phi")
+    for y in range(1, h - 1):
+        for x in range(1, w - 1):
+            i = y * w + x
+            if not all(on[i + dy * w + dx] for dy in (-1, 0, 1) for dx in (-1, 0, 1)):
+                continue               # silhouette pixels mix object and background
+            n = Vector(nrm[i]).normalized()
+            p = Vector(pos[i])
+            v = (cam - p).normalized()
+            cv = n.dot(v)
+            if cv <= 0.02:
+                continue
+            for o in lamps:
+                lv, e = lamp_light(o, p)
+                cl = n.dot(lv)
+                if cl <= 0:
+                    continue
+                vp, lp = v - n * cv, lv - n * cl
+                c = vp.normalized().dot(lp.normalized()) if vp.length > 1e-9 and lp.length > 1e-9 else 0.0
+                ph = math.degrees(math.acos(max(-1.0, min(1.0, c))))
+                jobs.append((i, e * cl, f"{math.degrees(math.acos(min(cl, 1.0)))} "
+                                        f"{math.degrees(math.acos(min(cv, 1.0)))} {ph}"))
+    r = subprocess.run([helper, bake], input="\n".join(j[2] for j in jobs) + "\n", capture_output=True,
+                       text=True, check=True)
+    vals = [[float(t) for t in line.split()] for line in r.stdout.splitlines()]
+    ref = {}
+    for (i, ecl, _), f in zip(jobs, vals):
+        acc = ref.setdefault(i, [0.0, 0.0, 0.0])
+        for c in range(3):
+            acc[c] += ecl * f[c]
+    top = max(sum(v) for v in ref.values())
+    errs = []
+    for i, v in ref.items():
+        if sum(v) < 0.02 * top:
+            continue
+        errs.append(max(abs(col[i][c] / v[c] - 1.0) for c in range(3)))
+    errs.sort()
+    n = len(errs)
+    print(f"SKINBAKE_LIGHTS {n} {sum(errs) / n:.6f} {errs[int(0.95 * n)]:.6f} {errs[-1]:.6f}")
+
+
+def blocks(a, b, k, thr):
+    w, h, pa = read(a)
+    w2, h2, pb = read(b)
+    if (w, h) != (w2, h2):
+        raise SystemExit(f"{a} and {b} differ in size")
+    lum = [sum(p) for p in pb]
+    top = max(lum)
+    errs = []
+    for by in range(0, h - k + 1, k):
+        for bx in range(0, w - k + 1, k):
+            idx = [(by + dy) * w + bx + dx for dy in range(k) for dx in range(k)]
+            ring = [(y * w + x) for y in range(max(by - 2, 0), min(by + k + 2, h))
+                    for x in range(max(bx - 2, 0), min(bx + k + 2, w))]
+            if min(lum[i] for i in ring) <= thr * top:
+                continue               # background, or within 2 px of it: the pixel filters
+                                       # (1.5 px wide) mix the silhouette in differently
+            sa = [sum(pa[i][c] for i in idx) for c in range(3)]
+            sb = [sum(pb[i][c] for i in idx) for c in range(3)]
+            errs.append([abs(sa[c] / sb[c] - 1.0) for c in range(3)])
+    n = len(errs)
+    mean = sum(sum(e) for e in errs) / (3 * n)
+    print(f"SKINBAKE_BLOCKS {n} {mean:.6f} {max(max(e) for e in errs):.6f}")
+
+
+args = sys.argv[sys.argv.index("--") + 1:]
+cmd = args[0]
+if cmd == "make-lights":
+    make_lights(args[1])
+elif cmd == "make-keep":
+    make_keep(args[1], args[2])
+elif cmd == "check-keep":
+    check_keep(args[1])
+elif cmd == "measure-lights":
+    measure_lights(os.path.abspath(args[1]), os.path.abspath(args[2]), args[3], int(args[4]), int(args[5]))
+elif cmd == "addon":
+    sys.path.insert(0, os.path.dirname(os.path.abspath(args[1])))
+    sys.dont_write_bytecode = True
+    import import_skin
+    import_skin.register()
+    for o in bpy.context.view_layer.objects:
+        o.select_set(o.name == args[3])
+    r = bpy.ops.import_scene.skinbake(filepath=os.path.abspath(args[2]), mode="EXACT")
+    sc = bpy.context.scene
+    print("SKINBAKE_ADDON", ",".join(sorted(r)), bpy.data.objects[args[3]].active_material.name.replace(" ", "_"),
+          len([v for v in sc.view_layers if v.name.startswith("skinbake:")]))
+elif cmd == "mean":
+    w, h, px = read(args[1])
+    print("SKINBAKE_MEAN " + " ".join(f"{sum(p[c] for p in px) / len(px):.6f}" for c in range(3)))
+elif cmd == "blocks":
+    blocks(args[1], args[2], int(args[3]), float(args[4]))
+else:
+    raise SystemExit(f"blender_scene.py: unknown command {cmd}")
