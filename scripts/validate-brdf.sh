@@ -27,6 +27,9 @@ GNUPLOT=${GNUPLOT:-gnuplot}
 THREADS=${THREADS:-0}
 BAKE_TARGET=${BAKE_TARGET:-0.02}
 BAKE_BATCH=${BAKE_BATCH:-2000}
+# auto: adding-doubling (deterministic, seconds per preset), Monte Carlo only
+# for a wavelength it refuses; mc: the Monte Carlo bakes of the first reports.
+BAKE_SOLVER=${BAKE_SOLVER:-auto}
 if [ "${VALIDATE_QUICK:-0}" = 1 ]; then BAKE_TARGET=0.2 BAKE_BATCH=200; fi
 work=${VALIDATE_WORK:-validate-work}
 if [ -z "${SKIN_DATA:-}" ]; then
@@ -67,12 +70,22 @@ for p in $presets; do
 	t0=$(date +%s)
 	# VALIDATE_REUSE=1 keeps the bakes of an earlier run (for developing the script).
 	[ "${VALIDATE_REUSE:-0}" = 1 ] && [ -f "$br/bake-$p/manifest.json" ] && continue
-	"$SKINBAKE" bake --preset "$p" --theta-nodes 8 --wavelengths 470,550,656 --out "$br/bake-$p" \
-		--batch-photons "$BAKE_BATCH" --target-error "$BAKE_TARGET" --threads "$THREADS" --quiet
+	"$SKINBAKE" bake --preset "$p" --solver "$BAKE_SOLVER" --theta-nodes 8 --wavelengths 470,550,656 \
+		--out "$br/bake-$p" --batch-photons "$BAKE_BATCH" --target-error "$BAKE_TARGET" --threads "$THREADS" --quiet
 	dt=$(($(date +%s) - t0))
 	bake_time=$((bake_time + dt))
 	say "bake $p: $dt s"
 done
+
+###########################################################################
+# What solved the bakes, from their manifests: solver names and the largest
+# estimated RMS relative error of a table.
+solver_note=$(for p in $presets; do jq -r '[.solver.name, (.solver.rms_rel_err // 0), (.solver.fallback_to_mc // [] | length)] | @tsv' \
+	"$br/bake-$p/manifest.json"; done | awk -F'\t' '{ n[$1]++; if ($2 > m) m = $2; f += $3 }
+	END { for (k in n) { l = l (l == "" ? "" : ", ") n[k] " by " (k == "ad" ? "adding-doubling" : k == "mc" ? "Monte Carlo" : k) }
+		printf "%s; largest estimated RMS relative error of a table %.2g %%%s", l, 100 * m,
+			f ? sprintf(", %d wavelengths by Monte Carlo where adding-doubling refused", f) : "" }')
+say "bakes: $solver_note"
 
 ###########################################################################
 # Points.  All 205 CUReT geometries: idx, theta_i, theta_v, delta_phi (0 back
@@ -251,7 +264,7 @@ fig5_plot paper-literal "$png/fig5-paper-literal.png"
 
 ###########################################################################
 # The fitted preset (curet39): where it misses, and a diagnostic for why.
-# The Monte Carlo crosses a smooth top boundary (exact Fresnel), while the
+# The subsurface solvers cross a smooth top boundary (exact Fresnel), while the
 # surface lobe is a rough (GGX) one.  Diagnostic, not a model that is
 # shipped: replace the smooth boundary's transmittance T_s(theta) = 1 -
 # R_stack(theta) by the rough surface's T_r(theta) = 1 - E(theta), E the
@@ -375,12 +388,13 @@ evaluated at the same geometries and averaged over R, G, B.
 
 **Simulation.** Every preset is baked at the 8 incidence nodes 0, 11.25, ..., 78.75° (CUReT's
 in-plane incidences; the out-of-plane ones are interpolated between nodes) and at 470, 550 and
-656 nm (\`skinbake bake --preset P --theta-nodes 8 --wavelengths 470,550,656 --batch-photons
-$BAKE_BATCH --target-error $BAKE_TARGET\`; $bake_time s for all $(echo $presets | wc -w) bakes) and
+656 nm (\`skinbake bake --preset P --solver $BAKE_SOLVER --theta-nodes 8 --wavelengths 470,550,656
+--batch-photons $BAKE_BATCH --target-error $BAKE_TARGET\`; $bake_time s for all $(echo $presets | wc -w) bakes;
+$solver_note) and
 evaluated with \`tests/brdf_points\` (the interpolation of \`skinbake eval\`, many points per
 process) at CUReT's geometries. The value compared is the mean over the three wavelengths,
 which map directly to B, G and R (docs/presets.md) and stand for the camera's R, G, B mean:
-the *subsurface* BRDF (the Monte Carlo table; what the paper's Figure 5 plots) or the *total*
+the *subsurface* BRDF (the baked table; what the paper's Figure 5 plots) or the *total*
 (subsurface plus the analytic GGX surface lobe, which is what a camera sees).
 
 **How compared.** RMS of simulated − measured, and RMS of the relative difference
@@ -446,8 +460,8 @@ Possible reasons for the level (not tested here): the paper's plot may not be in
 axes are not described in the text); Table 1's epidermal absorption, 50 /cm at 550 nm over
 the 0.1 mm chosen here, leaves exp(−2 · 0.5) = 37 % of the light after one straight pass in and
 out, and a thinner epidermis (the paper gives only "at maximum 1 mm") would be brighter;
-CUReT's sample and calibration are unknown. The values at the 21 Figure 5 points (mean of 470/550/656 nm; ± the table's standard
-error):
+CUReT's sample and calibration are unknown. The values at the 21 Figure 5 points (mean of 470/550/656 nm; ± the table's error
+estimate: a standard error for Monte Carlo entries, a bound for adding-doubling ones):
 
 | θi | θv (signed) | CUReT | Marschner fit | paper subsurface | ± | paper total | paper-literal subsurface | paper-literal total |
 |---|---|---|---|---|---|---|---|---|
@@ -511,9 +525,9 @@ text: \`$ini\`. The fit minimises the mean of r² − e² over the points (r the
 the relative standard error of the simulated value: an unbiased estimate of the squared RMS
 relative error), with the adding-doubling solver (deterministic; \`--solver mc\` does the same
 with Monte Carlo bakes and common random numbers). docs/presets.md has the method, the bounds,
-the record of every evaluation and the other runs. The table's \`$fitted\` row is the Monte
-Carlo bake of this section, so its error on the fitted points differs a little from the fit's
-own (point values of the solver there, bin means of the bake here).
+the record of every evaluation and the other runs. The table's \`$fitted\` row is the bake
+of this section, interpolated between its bins and incidence nodes, so its error on the fitted
+points differs a little from the fit's own (point values of the solver there).
 
 | preset | RMS rel., fitted points [%] | held out [%] | held out, in-plane 78.75° [%] | k on the fitted points | held out after that k [%] | vs Marschner fit [%] | back-side fall | forward rise | worst held-out point |
 |---|---|---|---|---|---|---|---|---|---|
@@ -546,7 +560,7 @@ the surface lobe is small, measured/simulated rises with θi (panel b) as the fa
 does: the light a rough surface lets through over what the smooth boundary of the simulation lets
 through ($(awk -F'\t' '$1 == 0 || $1 == 60 || $1 == 77.5 { printf "%sc(%g°) = %.2f", (n++ ? ", " : ""), $1, $4 }' "$br/coupling.tsv");
 T_s from exact Fresnel at the preset's top stack, T_r = 1 − the directional albedo of its GGX
-lobe). The Monte Carlo enters and leaves the skin through a smooth plane: at 77.5° exact Fresnel
+lobe). The subsurface simulation (either solver) enters and leaves the skin through a smooth plane: at 77.5° exact Fresnel
 reflects $(awk -F'\t' '$1 == 77.5 { printf "%.0f", 100 * $3 }' "$br/coupling.tsv") % of the light, all of which the simulation takes from the subsurface
 part, while the rough lobe that stands in for that reflection returns only
 $(awk -F'\t' '$1 == 77.5 { printf "%.0f", 100 * $2 }' "$br/coupling.tsv") %: the difference, $(awk -F'\t' '$1 == 77.5 { printf "%.0f", 100 * ($3 - $2) }' "$br/coupling.tsv") % of the incident light, is returned by neither part. Real skin is
@@ -587,5 +601,15 @@ fi
 		echo "whatif_held=$(hs whatif 3)"
 	fi
 	echo "bake_time=$bake_time"
+	echo "solver_note='$solver_note'"
+	echo "best_held=$best_held"
+	echo "best_held_err=$(hs "$best_held" 3)"
+	echo "best_held_mar=$(hs "$best_held" 7)"
+	echo "best_held_back=$(f5 "$best_held" total 9)"
+	echo "best_held_fwd=$(f5 "$best_held" total 10)"
+	echo "paper_held=$(hs paper 3)"
+	echo "paper_mar_all=$(hs paper 7)"
+	echo "n_held=$n_held"
+	echo "n_train=$n_train"
 } >"$br/summary.sh"
 say "section 3 written ($br/section.md)"
