@@ -467,7 +467,7 @@ estimate: a standard error for Monte Carlo entries, a bound for adding-doubling 
 |---|---|---|---|---|---|---|---|---|
 EOF
 	paste "$br/pts-paper.tsv" "$br/pts-paper-literal.tsv" | awk -F'\t' '$7 != "-" && ($2 == 11.25 || $2 == 33.75 || $2 == 78.75) {
-		printf "| %s | %s | %.3f | %.3f | %.4f | %.4f | %.4f | %.4f | %.4f |\n", $2, $7, $5, $9, $11, $13, $10, $24, $23 }'
+		printf "| %s | %s | %.3f | %.3f | %.4f | %.1e | %.4f | %.4f | %.4f |\n", $2, $7, $5, $9, $11, $13, $10, $24, $23 }'
 	cat <<EOF
 
 ### 3.2 Every preset against CUReT and Marschner

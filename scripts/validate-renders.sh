@@ -237,7 +237,9 @@ row() { # name figure text
 	f=render-$1.png
 	[ "$1" = furrow-net ] && f=furrow-net.png
 	if [ -f "$png/$f" ]; then
-		echo "| $2 | $3 | $(awk -F'\t' -v n="$1" '$1 == n { print $3 }' "$rn/times.tsv") | ![$1](validation/$f) |"
+		sz=$(awk -F'\t' -v n="$1" '$1 == n { print $3 }' "$rn/times.tsv")
+		[ "$1" = furrow-net ] && sz="$fn x $fn"
+		echo "| $2 | $3 | $sz | ![$1](validation/$f) |"
 	else
 		echo "| $2 | $3 | - | **failed** (see below) |"
 	fi
@@ -300,9 +302,9 @@ EOF
 	if [ "$human" = 1 ]; then
 		cat <<'EOF'
 - *Figure 8, head.* The MakeHuman head reads as a person: nose, lips, eyes and an ear. It is
-  bald (the model has no hair), the lips are the colour of the rest of the skin, the eyes are
-  dark red-brown discs without a highlight, and the forehead's broad sheen looks waxy. Pores and
-  furrows are not visible at this size (about 0.3 mm per pixel at the cheek).
+  bald (the model has no hair), the lips are the colour of the rest of the skin, the irises are
+  red-brown without a catch-light, and the forehead's broad sheen looks waxy. Pores and
+  furrows are not visible at this size (about 0.45 mm per pixel at the face).
 - *Figure 8, cheek at 0.04 mm per pixel.* The furrow net dominates: a dense crackle of fine
   triangles over the whole frame, with the pores as scattered small dark dots. Real cheek skin
   shows its pores first and its furrows faintly; this reads as crackled leather. The frame is
@@ -313,7 +315,7 @@ EOF
 - *Figure 10, hand.* The MakeHuman hand beside the thigh reads as a hand (fingers, knuckles,
   nails in the geometry), but the nails have the skin's colour and sheen, the dark gaps
   between the fingers have no translucency, and the furrows show only as a faint grain at
-  this size (about 0.4 mm per pixel).
+  this size (about 0.47 mm per pixel).
 EOF
 	else
 		cat <<'EOF'
