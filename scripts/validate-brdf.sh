@@ -223,7 +223,7 @@ say "Figure 5, RMS relative % (total / subsurface): $(for p in $paperset; do pri
 fig5_plot() { # preset, output
 	{
 		gp_head 1020,380 "$2"
-		echo "set multiplot layout 1,3 title \"Figure 5 with the paper's parameters: preset $1 (mean of 470/550/656 nm) against measured skin, in the plane of incidence (view angle < 0: toward the light)\""
+		echo "set multiplot layout 1,3 title \"Figure 5, the paper's parameters: preset $1 (mean of 470/550/656 nm) and measured skin, plane of incidence (view < 0: toward the light)\""
 		echo 'set xrange [-90:90]; set xtics 30; set xlabel "viewing angle [deg]"'
 		for ti in 11.25 33.75 78.75; do
 			case $ti in
@@ -318,7 +318,7 @@ if [ -n "$fitted" ]; then
 			echo "set title \"incidence $ti deg\""
 			[ "$i" = 0 ] || [ "$i" = 4 ] && echo 'set ylabel "BRDF [1/sr]"' || echo 'unset ylabel'
 			[ "$i" -ge 4 ] && echo 'set xlabel "view angle [deg]"' || echo 'unset xlabel'
-			[ "$i" = 7 ] && echo 'set key left center font ",7"' || echo 'set key off'
+			[ "$i" = 7 ] && echo 'set key left top reverse Left font ",7"' || echo 'set key off'
 			printf 'plot "%s" using ($1 == %s && (strcol(4) eq "train") ? $2 : 1/0):3 with points pt 7 ps 1.1 lc rgb "#2040c0" title "CUReT, used by the fit", ' "$br/curet-inplane.tsv" "$ti"
 			printf '"" using ($1 == %s && (strcol(4) ne "train") ? $2 : 1/0):3 with points pt 6 ps 1.1 lc rgb "#2040c0" title "CUReT, held out", ' "$ti"
 			printf '"%s" using ($1 == %s ? $2 : 1/0):3 with lines lw 2 lc rgb "#d02020" title "%s total", ' "$br/dense-$fitted.tsv" "$ti" "$fitted"
