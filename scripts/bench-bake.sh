@@ -162,50 +162,50 @@ echo "\"wall\" is the whole command (start-up and writing included); \"CPU\" is 
 echo "\"RMS error\" is the bake's solid-angle-weighted RMS relative standard error of the table."
 
 # The reference for every error comparison: another seed, many photons.
-ref_cmd="skinbake bake --preset paper --target-error 0 --max-photons $REF_N --batch-photons $REF_B --seed 2 --out REF"
-bake ref --preset paper --target-error 0 --max-photons "$REF_N" --batch-photons "$REF_B" --seed 2
+ref_cmd="skinbake bake --preset refstack --target-error 0 --max-photons $REF_N --batch-photons $REF_B --seed 2 --out REF"
+bake ref --preset refstack --target-error 0 --max-photons "$REF_N" --batch-photons "$REF_B" --seed 2
 ref_err=$err ref_photons=$photons ref_secs=$secs
 
 # --- Targets ---------------------------------------------------------------
 echo
-echo "### Targets: \`paper\` to ${TARGET} RMS relative error"
+echo "### Targets: \`refstack\` to ${TARGET} RMS relative error"
 echo
 echo "| bake | command | photons | seconds | wall | CPU | RMS error | against reference (d / predicted) | target |"
 echo "|---|---|---|---|---|---|---|---|---|"
 # shellcheck disable=SC2086
-bake full --preset paper --target-error "$TARGET" $TOPT
+bake full --preset refstack --target-error "$TARGET" $TOPT
 met=$(awk "BEGIN { print ($wall < 60) ? \"met\" : \"NOT met\" }")
 # shellcheck disable=SC2046
 set -- $(PY cmp "$W/full" "$W/ref")
 vsref="$1 ($(calc '%.2f' "$1 / sqrt($err * $err + $2 * $2)"))"
-echo "| paper, 3 wavelengths x 10 angles, 18 x 18 | \`skinbake bake --preset paper --target-error $TARGET ${TOPT}--out DIR\` | $photons | $secs | $wall | $cpu | $err | $vsref | under 60 s wall: $met |"
+echo "| refstack, 3 wavelengths x 10 angles, 18 x 18 | \`skinbake bake --preset refstack --target-error $TARGET ${TOPT}--out DIR\` | $photons | $secs | $wall | $cpu | $err | $vsref | under 60 s wall: $met |"
 # shellcheck disable=SC2086
-bake one --preset paper --target-error "$TARGET" --theta-in 30.0 $TOPT
-echo "| one light (30 deg), 3 wavelengths, 18 x 18 | \`skinbake bake --preset paper --target-error $TARGET --theta-in 30.0 ${TOPT}--out DIR\` | $photons | $secs | $wall | $cpu | $err | - | - |"
+bake one --preset refstack --target-error "$TARGET" --theta-in 30.0 $TOPT
+echo "| one light (30 deg), 3 wavelengths, 18 x 18 | \`skinbake bake --preset refstack --target-error $TARGET --theta-in 30.0 ${TOPT}--out DIR\` | $photons | $secs | $wall | $cpu | $err | - | - |"
 echo
 echo "\"against reference\" and \"d / predicted\": see the next section (1 when the reported error is right)."
 echo
-echo "Thread speedup on the same work (\`paper\`, fixed photons, identical output):"
+echo "Thread speedup on the same work (\`refstack\`, fixed photons, identical output):"
 echo
 echo "| threads | command | photons | seconds | wall | CPU | speedup |"
 echo "|---|---|---|---|---|---|---|"
-bake thr1 --preset paper --target-error 0 --max-photons "$THR_N" --batch-photons "$THR_B" --threads 1
+bake thr1 --preset refstack --target-error 0 --max-photons "$THR_N" --batch-photons "$THR_B" --threads 1
 s1=$secs c1=$cpu
-echo "| 1 | \`skinbake bake --preset paper --target-error 0 --max-photons $THR_N --batch-photons $THR_B --threads 1 --out DIR\` | $photons | $secs | $wall | $cpu | 1 |"
-bake thr2 --preset paper --target-error 0 --max-photons "$THR_N" --batch-photons "$THR_B" --threads 2
+echo "| 1 | \`skinbake bake --preset refstack --target-error 0 --max-photons $THR_N --batch-photons $THR_B --threads 1 --out DIR\` | $photons | $secs | $wall | $cpu | 1 |"
+bake thr2 --preset refstack --target-error 0 --max-photons "$THR_N" --batch-photons "$THR_B" --threads 2
 same=$(cmp -s "$W/thr1/brdf.exr" "$W/thr2/brdf.exr" && echo "tables identical" || echo "TABLES DIFFER")
-echo "| 2 | \`skinbake bake --preset paper --target-error 0 --max-photons $THR_N --batch-photons $THR_B --threads 2 --out DIR\` | $photons | $secs | $wall | $cpu | $(calc '%.2f' "$s1 / $secs") (target >= 1.8; $same) |"
+echo "| 2 | \`skinbake bake --preset refstack --target-error 0 --max-photons $THR_N --batch-photons $THR_B --threads 2 --out DIR\` | $photons | $secs | $wall | $cpu | $(calc '%.2f' "$s1 / $secs") (target >= 1.8; $same) |"
 echo
 echo "CPU time with two threads over one thread: $(calc '%.3f' "$cpu / $c1") (1 = no parallel overhead; a"
 echo "speedup below 2 with this near 1 means the cores were shared with other work)."
 
 # --- Error against photons ---------------------------------------------------
 echo
-echo "### \`paper\`: error against photons"
+echo "### \`refstack\`: error against photons"
 echo
 echo "Reference: the independent bake above, \`$ref_cmd\`"
 echo "($ref_photons photons, $ref_secs s, its own RMS error $ref_err). Each row is"
-echo "\`skinbake bake --preset paper --target-error 0 --max-photons N --batch-photons B --out DIR\` (seed 1;"
+echo "\`skinbake bake --preset refstack --target-error 0 --max-photons N --batch-photons B --out DIR\` (seed 1;"
 echo "B = N / 240 gives 8 batches for each of the 30 jobs). \"against reference\" is the"
 echo "solid-angle-weighted RMS of (f - f_ref) / f_ref over all bins; it contains the reference's own"
 echo "error, so the next column removes it (sqrt(d^2 - e_ref^2)); the last column is d over the"
@@ -216,7 +216,7 @@ echo "|---|---|---|---|---|---|---|---|"
 : > "$W/conv.dat"
 for nb in $CURVE; do
 	n=${nb%:*} b=${nb#*:}
-	bake "c$n" --preset paper --target-error 0 --max-photons "$n" --batch-photons "$b"
+	bake "c$n" --preset refstack --target-error 0 --max-photons "$n" --batch-photons "$b"
 	# shellcheck disable=SC2046
 	set -- $(PY cmp "$W/c$n" "$W/ref")
 	d=$1 er=$2
@@ -243,7 +243,7 @@ set logscale xy
 set xlabel "bake seconds ($(nproc) threads)"
 set ylabel "RMS relative error of the table"
 set key top right
-set title "paper bake (3 wavelengths x 10 angles, 18 x 18): error against time"
+set title "refstack bake (3 wavelengths x 10 angles, 18 x 18): error against time"
 last = system("tail -1 $OUT/bake_error.dat | cut -d' ' -f2") + 0
 laste = system("tail -1 $OUT/bake_error.dat | cut -d' ' -f3") + 0
 plot "$OUT/bake_error.dat" using 2:3 with linespoints pt 5 title "reported by the bake", \
@@ -262,7 +262,7 @@ echo "### Efficiency of the variance reduction"
 echo
 echo "Efficiency = 1 / (variance x time), with variance = (RMS relative error)^2 and time = the"
 echo "bake's (or simulation's) own seconds; the gain is the ratio to the plain MCML-style setting."
-echo "Next-event estimation against binning the escaping photons, on the same bake (\`paper\`,"
+echo "Next-event estimation against binning the escaping photons, on the same bake (\`refstack\`,"
 echo "3 wavelengths x 10 angles, 18 x 18; binning gets 10 times the photons so that few bins stay"
 echo "empty: an empty bin counts as 100% error):"
 echo
@@ -272,14 +272,14 @@ echo "|---|---|---|---|---|---|---|---|---|"
 set -- $(PY info "$W/nee") $(cat "$W/c$NEE_N.cpu")
 photons=$1 secs=$2 err=$3 cpu=$5
 eff_nee=$(calc '%.4g' "1 / ($err * $err * $secs)") effc_nee=$(calc '%.6g' "1 / ($err * $err * $cpu)")
-row_nee="| nee (default) | \`skinbake bake --preset paper --target-error 0 --max-photons $NEE_N --batch-photons $NEE_B --estimator nee --out DIR\` | $photons | $secs | $cpu | $err | $eff_nee |"
-bake bins --preset paper --target-error 0 --max-photons "$BINS_N" --estimator bins
+row_nee="| nee (default) | \`skinbake bake --preset refstack --target-error 0 --max-photons $NEE_N --batch-photons $NEE_B --estimator nee --out DIR\` | $photons | $secs | $cpu | $err | $eff_nee |"
+bake bins --preset refstack --target-error 0 --max-photons "$BINS_N" --estimator bins
 eff_bins=$(calc '%.4g' "1 / ($err * $err * $secs)") effc_bins=$(calc '%.6g' "1 / ($err * $err * $cpu)")
-echo "| bins (MCML) | \`skinbake bake --preset paper --target-error 0 --max-photons $BINS_N --estimator bins --out DIR\` | $photons | $secs | $cpu | $err | $eff_bins | 1 | 1 |"
+echo "| bins (MCML) | \`skinbake bake --preset refstack --target-error 0 --max-photons $BINS_N --estimator bins --out DIR\` | $photons | $secs | $cpu | $err | $eff_bins | 1 | 1 |"
 echo "$row_nee $(calc '%.1f' "$eff_nee / $eff_bins") | $(calc '%.1f' "$effc_nee / $effc_bins") |"
 echo
 echo "Roulette: \`skinbake bake\` has no roulette options, so this is \`skinbake simulate\` (plain"
-echo "binning, no next-event estimation) on the \`paper\` stack at 550 nm, normal incidence: the"
+echo "binning, no next-event estimation) on the \`refstack\` stack at 550 nm, normal incidence: the"
 echo "defaults (roulette below weight 0.2, survival chance 0.3) against MCML's (1e-4, 0.1). Errors:"
 echo "of Rd, and the RMS relative error of the 18 azimuth-averaged theta_o bands of 5 degrees."
 echo
@@ -314,8 +314,8 @@ echo "|---|---|---|---|---|---|---|---|---|"
 : > "$W/res.dat"
 for r in $RES; do
 	bins=$(( ${r%x*} * ${r#*x} ))
-	bake "r$r" --preset paper --wavelengths 550 --theta-in 30.0 --resolution "$r" --target-error 0 --max-photons "$PJ" --batch-photons "$PJ_B"
-	echo "| resolution | \`skinbake bake --preset paper --wavelengths 550 --theta-in 30.0 --resolution $r --target-error 0 --max-photons $PJ --batch-photons $PJ_B --out DIR\` | $jobs | $bins | $photons | $secs | $cpu | $secs | $(calc '%.3f' "$secs / $bins * 1000") |"
+	bake "r$r" --preset refstack --wavelengths 550 --theta-in 30.0 --resolution "$r" --target-error 0 --max-photons "$PJ" --batch-photons "$PJ_B"
+	echo "| resolution | \`skinbake bake --preset refstack --wavelengths 550 --theta-in 30.0 --resolution $r --target-error 0 --max-photons $PJ --batch-photons $PJ_B --out DIR\` | $jobs | $bins | $photons | $secs | $cpu | $secs | $(calc '%.3f' "$secs / $bins * 1000") |"
 	echo "$bins $secs" >> "$W/res.dat"
 done
 wls=550
@@ -327,8 +327,8 @@ done
 ths=30.0
 for k in 1 2 4 8; do
 	[ "$k" = 1 ] || ths=$(seq -s, 30 $((29 + k)))
-	bake "a$k" --preset paper --wavelengths 550 --theta-in "$ths" --target-error 0 --max-photons $((PJ * k)) --batch-photons "$PJ_B"
-	echo "| angles | \`skinbake bake --preset paper --wavelengths 550 --theta-in $ths --target-error 0 --max-photons $((PJ * k)) --batch-photons $PJ_B --out DIR\` | $jobs | 324 | $photons | $secs | $cpu | $(calc '%.3f' "$secs / $jobs") | - |"
+	bake "a$k" --preset refstack --wavelengths 550 --theta-in "$ths" --target-error 0 --max-photons $((PJ * k)) --batch-photons "$PJ_B"
+	echo "| angles | \`skinbake bake --preset refstack --wavelengths 550 --theta-in $ths --target-error 0 --max-photons $((PJ * k)) --batch-photons $PJ_B --out DIR\` | $jobs | 324 | $photons | $secs | $cpu | $(calc '%.3f' "$secs / $jobs") | - |"
 done
 fit=$(awk '{ n++; sx += $1; sy += $2; sxx += $1 * $1; sxy += $1 * $2 }
 	END { b = (n * sxy - sx * sy) / (n * sxx - sx * sx); a = (sy - b * sx) / n;
@@ -336,21 +336,21 @@ fit=$(awk '{ n++; sx += $1; sy += $2; sxx += $1 * $1; sxy += $1 * $2 }
 echo
 echo "Least-squares line through the resolution rows: seconds = $fit."
 echo
-echo "One light against the full bake (\`paper\`, 3 wavelengths, $PJ photons per job):"
+echo "One light against the full bake (\`refstack\`, 3 wavelengths, $PJ photons per job):"
 echo
 echo "| bake | command | jobs | photons | seconds | CPU | seconds per job |"
 echo "|---|---|---|---|---|---|---|"
-bake onefix --preset paper --theta-in 30.0 --target-error 0 --max-photons $((PJ * 3)) --batch-photons "$PJ_B"
+bake onefix --preset refstack --theta-in 30.0 --target-error 0 --max-photons $((PJ * 3)) --batch-photons "$PJ_B"
 s_one=$secs c_one=$cpu
-echo "| one light | \`skinbake bake --preset paper --theta-in 30.0 --target-error 0 --max-photons $((PJ * 3)) --batch-photons $PJ_B --out DIR\` | $jobs | $photons | $secs | $cpu | $(calc '%.3f' "$secs / $jobs") |"
+echo "| one light | \`skinbake bake --preset refstack --theta-in 30.0 --target-error 0 --max-photons $((PJ * 3)) --batch-photons $PJ_B --out DIR\` | $jobs | $photons | $secs | $cpu | $(calc '%.3f' "$secs / $jobs") |"
 if [ ! -d "$W/fullfix" ]; then
-	bake fullfix --preset paper --target-error 0 --max-photons "$FULL_N" --batch-photons "$FULL_B"
+	bake fullfix --preset refstack --target-error 0 --max-photons "$FULL_N" --batch-photons "$FULL_B"
 else
 	# shellcheck disable=SC2046
 	set -- $(PY info "$W/fullfix") $(cat "$W/c$FULL_N.cpu")
 	photons=$1 secs=$2 jobs=$4 cpu=$5
 fi
-echo "| full (10 angles) | \`skinbake bake --preset paper --target-error 0 --max-photons $FULL_N --batch-photons $FULL_B --out DIR\` | $jobs | $photons | $secs | $cpu | $(calc '%.3f' "$secs / $jobs") |"
+echo "| full (10 angles) | \`skinbake bake --preset refstack --target-error 0 --max-photons $FULL_N --batch-photons $FULL_B --out DIR\` | $jobs | $photons | $secs | $cpu | $(calc '%.3f' "$secs / $jobs") |"
 echo
 echo "The full bake costs $(calc '%.1f' "$secs / $s_one") times the one-light bake ($(calc '%.1f' "$cpu / $c_one") in CPU time);"
 echo "the ten angles (0 to 81 degrees) are not equally expensive, so 10 is not exact."

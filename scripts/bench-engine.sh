@@ -28,18 +28,19 @@ for stack in MCML SKIN; do
 		J "'| %s | %s | %d | %.2f | %.3g | %.3g | %.1f |' % ('$stack'.replace('MCML','MCML benchmark slab').replace('SKIN','skin stack (550 nm)'), '$t'.replace('0','all ($(nproc))'), d['photons'], d['seconds'], d['photons_per_second'], d['events_per_second'], d['scattering_events']/d['photons'])" < "$OUT/tp.json"
 	done
 done
-# The paper preset's three wavelengths, with the layers `skinbake preset show paper` resolves.
+# The refstack preset's three wavelengths (the reference stack; `paper` before issue 16),
+# with the layers `skinbake preset show refstack` resolves.
 for wl in 470 550 656; do
-	L=$("$SKINBAKE" preset show paper | awk -v w=$wl '$1 == w { printf " --layer d=%s,n=%s,mua=%s,mus=%s,g=%s", $3, $4, $5, $6, $7 }')
+	L=$("$SKINBAKE" preset show refstack | awk -v w=$wl '$1 == w { printf " --layer d=%s,n=%s,mua=%s,mus=%s,g=%s", $3, $4, $5, $6, $7 }')
 	for t in 1 0; do
 		# shellcheck disable=SC2086
 		run $L --n-below 1.4 --photons 1e6 --threads $t > "$OUT/tp.json"
-		J "'| paper preset, %s nm | %s | %d | %.2f | %.3g | %.3g | %.1f |' % ('$wl', '$t'.replace('0','all ($(nproc))'), d['photons'], d['seconds'], d['photons_per_second'], d['events_per_second'], d['scattering_events']/d['photons'])" < "$OUT/tp.json"
+		J "'| refstack preset, %s nm | %s | %d | %.2f | %.3g | %.3g | %.1f |' % ('$wl', '$t'.replace('0','all ($(nproc))'), d['photons'], d['seconds'], d['photons_per_second'], d['events_per_second'], d['scattering_events']/d['photons'])" < "$OUT/tp.json"
 	done
 done
 echo
-echo "Scaling (all threads over one) is the ratio of the photons/s columns. The paper rows use the"
-echo "layers of \`skinbake preset show paper\` with \`skinbake simulate ... --n-below 1.4 --photons 1e6\`."
+echo "Scaling (all threads over one) is the ratio of the photons/s columns. The refstack rows use the"
+echo "layers of \`skinbake preset show refstack\` with \`skinbake simulate ... --n-below 1.4 --photons 1e6\`."
 echo
 echo "### Skin stack: Rd to a standard error of 7.4e-5 (0.1%), one thread"
 echo
@@ -65,15 +66,15 @@ n=$(python3 -c "print(int(2e5*($e0/0.01)**2*1.05))")
 run $SKIN --photons "$n" --threads 0 > "$OUT/bt.json"
 e1=$(rms < "$OUT/bt.json")
 J "'| estimator | photons | seconds | RMS relative error |\n|---|---|---|---|\n| plain band tallies (simulate) | %d | %.2f | %.4f |' % (d['photons'], d['seconds'], float('$e1'))" < "$OUT/bt.json"
-# The same quantity as a one-column bake of the same stack (the `paper` preset at 550 nm is
+# The same quantity as a one-column bake of the same stack (the `refstack` preset at 550 nm is
 # this skin stack): next-event estimation, stopping at 1% by itself.
-"$SKINBAKE" bake --preset paper --wavelengths 550 --theta-in 0 --resolution 18x1 --target-error 0.01 \
+"$SKINBAKE" bake --preset refstack --wavelengths 550 --theta-in 0 --resolution 18x1 --target-error 0.01 \
 	--batch-photons 500 --out "$OUT/az-bake" --quiet
 python3 -c "import json; r=json.load(open('$OUT/az-bake/manifest.json'))['result']; print('| next-event estimation (bake) | %d | %.2f | %.4f |' % (r['photons'], r['seconds'], r['rms_rel_err']))"
 rm -rf "$OUT/az-bake"
 echo
 echo "Commands: \`skinbake simulate SKIN --photons N\` (bands of 5 degrees, azimuth-averaged), and"
-echo "\`skinbake bake --preset paper --wavelengths 550 --theta-in 0 --resolution 18x1 --target-error 0.01 --batch-photons 500\`"
+echo "\`skinbake bake --preset refstack --wavelengths 550 --theta-in 0 --resolution 18x1 --target-error 0.01 --batch-photons 500\`"
 echo "(18 bands x 1 azimuth bin = the azimuth average). MCML needs about half a minute of one core."
 echo
 echo "### Error against photons (skin stack Rd, one thread)"

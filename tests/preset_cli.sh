@@ -6,7 +6,7 @@
 out=$("$SKINBAKE" presets) && ok "presets runs" || fail "presets runs"
 n=$(printf '%s\n' "$out" | wc -l)
 [ "$n" -ge 14 ] && ok "presets lists $n presets" || fail "presets lists $n presets"
-for p in paper paper-dry very-fair-oily very-fair-dry dark-oily dark-dry; do
+for p in paper paper-literal paper-dry refstack very-fair-oily very-fair-dry dark-oily dark-dry; do
 	printf '%s\n' "$out" | grep -q "^$p " && ok "presets lists $p" || fail "presets lists $p"
 done
 
@@ -19,8 +19,11 @@ done
 rows=$(grep -c '^[0-9]' "$tmpd/paper")
 [ "$rows" -eq 9 ] && ok "paper: 3 wavelengths x 3 layers" || fail "paper rows = $rows"
 grep -q 'mua_1/cm' "$tmpd/paper" && ok "header names units" || fail "header names units"
-awk '$1 == 550 && $2 == "epidermis" && $5 == 50 && $6 == 370 { f = 1 } END { exit !f }' "$tmpd/paper" \
-	&& ok "paper epidermis at 550 nm: mua 50, mus 370" || fail "paper epidermis at 550 nm"
+awk '$1 == 550 && $2 == "epidermis" && $5 == 50 && $6 == 185 { f = 1 } END { exit !f }' "$tmpd/paper" \
+	&& ok "paper epidermis at 550 nm: mua 50, mus 185" || fail "paper epidermis at 550 nm"
+"$SKINBAKE" preset show refstack >"$tmpd/refstack"
+awk '$1 == 550 && $2 == "epidermis" && $5 == 50 && $6 == 370 { f = 1 } END { exit !f }' "$tmpd/refstack" \
+	&& ok "refstack epidermis at 550 nm: mua 50, mus 370" || fail "refstack epidermis at 550 nm"
 awk '$1 == 656 && $2 == "dermis" { f = 1 } END { exit !f }' "$tmpd/paper" \
 	&& ok "paper has 656 nm" || fail "paper has 656 nm"
 

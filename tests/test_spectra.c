@@ -61,12 +61,13 @@ static void test_formulas(void **state)
 	assert_float_equal(spectra_mua_eumelanin(300), spectra_mua_eumelanin(380), 0);
 }
 
-/* The paper preset reproduces the reference stack of ../shared/refs at 550 nm. */
-static void test_paper_slab(void **state)
+/* The refstack preset (the `paper` preset before issue 16) reproduces the
+ * reference stack of ../shared/refs at 550 nm. */
+static void test_refstack_slab(void **state)
 {
 	(void)state;
 	char *cause = NULL;
-	struct skin_params *p = preset_load_builtin("paper", &cause);
+	struct skin_params *p = preset_load_builtin("refstack", &cause);
 	assert_non_null(p);
 	struct slab s;
 	assert_int_equal(tissue_slab(p, 550, &s, &cause), 0);
@@ -88,6 +89,39 @@ static void test_paper_slab(void **state)
 	assert_non_null(strstr(cause, "470, 550 and 656"));
 	free(cause);
 	preset_free(p);
+}
+
+/* The paper presets hold Li & Ng's Tables 1-2 (../shared/paper): mu_a as
+ * printed; the scattering row as mu_s' (paper: mu_s = mu_s' / (1 - g)) or as
+ * mu_s (paper-literal), the same in epidermis and dermis. */
+static void test_paper_tables(void **state)
+{
+	(void)state;
+	static const double wl[3] = { 470, 550, 656 };
+	static const double mua_epi[3] = { 85, 50, 28 }, mua_derm[3] = { 6, 7, 0.58 }, sc[3] = { 60, 37, 23 };
+	for (int lit = 0; lit < 2; lit++) {
+		char *cause = NULL;
+		struct skin_params *p = preset_load_builtin(lit ? "paper-literal" : "paper", &cause);
+		assert_non_null(p);
+		for (int i = 0; i < 3; i++) {
+			struct slab s;
+			assert_int_equal(tissue_slab(p, wl[i], &s, &cause), 0);
+			assert_int_equal(s.n_layers, 3);
+			assert_float_equal(s.n_below, 1.43, 0);
+			assert_float_equal(s.layer[1].n, 1.5, 0);
+			assert_float_equal(s.layer[2].mu_a, mua_epi[i], 0);
+			assert_float_equal(s.layer[3].mu_a, mua_derm[i], 0);
+			for (int l = 2; l <= 3; l++) {
+				double musp = s.layer[l].mu_s * (lit ? 1.0 : 1.0 - s.layer[l].g);
+				assert_float_equal(musp, sc[i], 1e-9);
+				assert_float_equal(s.layer[l].g, 0.8, 0);
+				assert_float_equal(s.layer[l].n, 1.43, 0);
+			}
+			assert_float_equal(s.layer[2].d, 0.01, 0);
+			assert_float_equal(s.layer[3].d, 0.25, 0);
+		}
+		preset_free(p);
+	}
 }
 
 /* Chromophore mixing in a physiological preset. */
@@ -135,7 +169,8 @@ int main(void)
 	const struct CMUnitTest tests[] = {
 		cmocka_unit_test(test_blood),
 		cmocka_unit_test(test_formulas),
-		cmocka_unit_test(test_paper_slab),
+		cmocka_unit_test(test_refstack_slab),
+		cmocka_unit_test(test_paper_tables),
 		cmocka_unit_test(test_mixing),
 	};
 	return cmocka_run_group_tests(tests, NULL, NULL);

@@ -1,0 +1,334 @@
+#!/usr/bin/env python3
+"""Fit the free physical parameters of a skin preset to CUReT sample 39.
+
+Issue 16 item 3.  Free parameters: epidermal melanin fraction, dermal blood
+fraction, a scale on the reduced scattering of epidermis and dermis, the sebum
+film (on: 5 um, or off) and the GGX roughness of the top surface; everything
+else is the physiological presets' model (docs/presets.md), with
+`base = medium-oily` or `base = medium-dry` for the rest.  The fit uses only
+the CUReT points at incidence 11.25 and 33.75 deg (20 of 205, in and out of
+the plane of incidence); scripts/validate-brdf.sh reports the error on the
+other points.
+
+Model evaluation is one call, Model.model_brdf(params), with two solvers:
+--solver mc (default) bakes the preset at the training incidence angles
+(`skinbake bake`, Monte Carlo) and evaluates the bake with tests/brdf_points;
+--solver ad evaluates it with tests/brdf_model, the adding-doubling solver
+(src/engine/ad.h) at the points themselves, deterministic and without a bake.  CUReT's values are the
+mean of a camera's R, G and B; the model's are the mean over 470, 550 and
+656 nm (docs/presets.md, "Colour and RGB").
+
+The sebum film is clear, so its thickness does not change a plane-parallel
+model (only its two interfaces count): it is fitted as on or off.  Roughness
+enters only the analytic specular lobe, so with Monte Carlo the best
+roughness is found for each bake by a 1-D search over brdf_points --alpha
+without baking again, and melanin, blood and the scattering scale are
+searched by Nelder-Mead in their logarithms; with adding-doubling (no bake to
+save) all four are in one Nelder-Mead.  Each is run once with and once
+without sebum.
+
+Monte Carlo noise (with --solver ad the errors are the solver's estimates,
+about 1e-4 relative, and the same formulas hold): the objective is the mean over the points of
+r_i^2 - e_i^2, with r_i = (f_i - y_i) / y_i the relative error and e_i the
+relative standard error of f_i (from the bake's batches); E[r_i^2] = true
+r_i^2 + e_i^2, so the objective is an unbiased estimate of the squared RMS
+relative error, which is what the goal (8 %) is stated in.  Every bake uses
+the same seed (common random numbers), so differences between nearby
+parameters are much less noisy than the values.  Its own standard deviation,
+about 2/N sqrt(sum r_i^2 e_i^2), is printed with every evaluation; the simplex
+stops when the spread of its objective values falls below 3 times that.
+
+Usage (from a build directory, after `make tests/brdf_points`):
+  python3 $top_srcdir/scripts/fit-curet.py [--target-error 0.02] [--out DIR]
+Prints the log of every evaluation and, at the end, the preset's INI text.
+"""
+import argparse
+import json
+import math
+import os
+import subprocess
+import sys
+import time
+
+TRAIN_THETA_I = (11.25, 33.75)
+SEBUM_ON_CM = 0.0005            # the physiological presets' oily film (5 um)
+BASE_EPI_MUSP500 = 69.0         # base presets' musp500 (docs/presets.md)
+BASE_DERM_MUSP500 = 45.6
+# Bounds: melanosome fraction up to Jacques 1998's darkest skin (43 %); dermal
+# blood 0.2-7 % (Jacques 2013 Table 3, skin-optics.md A2.9; --blood-max 0.2,
+# the preset key's limit, lifts it); the scattering scale within a factor 2 of
+# the Salomatina 2006 means (our bound); GGX alpha as the preset keys.
+BOUNDS = {"melanin": (0.0005, 0.43), "blood": (0.002, 0.07), "scatter": (0.5, 2.0), "alpha": (0.02, 1.0)}
+
+
+def read_curet(path):
+    """CUReT rows as (idx, theta_i, theta_v, delta_phi [0 back, 180 mirror], brdf)."""
+    rows = []
+    with open(path) as f:
+        for line in f:
+            if line.startswith("#") or line.startswith("idx"):
+                continue
+            c = line.split("\t")
+            idx, tv, pv, ti, pi_, brdf = int(c[0]), float(c[1]), float(c[2]), float(c[3]), float(c[4]), float(c[6])
+            d = (pv - pi_) % 360.0
+            if d > 180.0:
+                d = 360.0 - d
+            rows.append((idx, ti, tv, d, brdf))
+    return rows
+
+
+class Model:
+    """The model: parameters -> BRDF at the training points, with errors."""
+
+    def __init__(self, args, points):
+        self.a = args
+        self.points = points
+        self.cache = {}
+        self.n_bakes = 0
+        self.seconds = 0.0
+        os.makedirs(args.out, exist_ok=True)
+        self.pts_file = os.path.join(args.out, "points.txt")
+        with open(self.pts_file, "w") as f:
+            for p in points:
+                f.write("%g %g %g\n" % (p[1], p[2], p[3]))
+
+    def preset_ini(self, q, alpha):
+        base = "medium-oily" if q["sebum"] else "medium-dry"
+        return ("[skin]\nbase = %s\nname = curet39-fit\n"
+                "[sebum]\nthickness = %g\n"
+                "[epidermis]\nmelanin = %.6g\nmusp500 = %.6g\n"
+                "[dermis]\nblood = %.6g\nmusp500 = %.6g\n"
+                "[surface]\nroughness_skin = %.4g\nroughness_sebum = %.4g\n"
+                % (base, SEBUM_ON_CM if q["sebum"] else 0, q["melanin"], BASE_EPI_MUSP500 * q["scatter"],
+                   q["blood"], BASE_DERM_MUSP500 * q["scatter"], alpha, alpha))
+
+    def bake(self, q):
+        """Bake the Monte Carlo part (cached: roughness does not enter it)."""
+        key = (q["sebum"], round(q["melanin"], 7), round(q["blood"], 7), round(q["scatter"], 6))
+        if key in self.cache:
+            return self.cache[key]
+        d = os.path.join(self.a.out, "bake%04d" % len(self.cache))
+        ini = d + ".ini"
+        with open(ini, "w") as f:
+            f.write(self.preset_ini(q, 0.3))
+        cmd = [self.a.skinbake, "bake", "--preset-file", ini, "--out", d,
+               "--theta-in", ",".join("%g" % t for t in TRAIN_THETA_I), "--wavelengths", "470,550,656",
+               "--target-error", str(self.a.target_error), "--batch-photons", str(self.a.batch_photons),
+               "--seed", "1", "--threads", str(self.a.threads), "--quiet"]
+        subprocess.run(cmd, check=True)
+        with open(os.path.join(d, "manifest.json")) as f:
+            self.seconds += json.load(f)["result"]["seconds"]
+        self.n_bakes += 1
+        self.cache[key] = d
+        return d
+
+    def eval_bake(self, d, alpha):
+        with open(self.pts_file) as f:
+            out = subprocess.run([self.a.brdf_points, d, "--alpha", "%.6g" % alpha], stdin=f,
+                                 check=True, capture_output=True, text=True).stdout
+        return parse_columns(out)
+
+    def eval_ad(self, q):
+        ini = os.path.join(self.a.out, "ad.ini")
+        with open(ini, "w") as f:
+            f.write(self.preset_ini(q, q["alpha"]))
+        with open(self.pts_file) as f:
+            out = subprocess.run([self.a.brdf_model, "--preset-file", ini, "--tol", "1e-4"], stdin=f,
+                                 check=True, capture_output=True, text=True).stdout
+        self.n_bakes += 1
+        return parse_columns(out)
+
+    def model_brdf(self, q):
+        """THE evaluation: BRDF [1/sr] (mean of 470/550/656 nm) and its standard
+        error at the training points for parameters q (melanin, blood, scatter,
+        sebum, alpha), by Monte Carlo (a cached bake; alpha enters only the
+        analytic lobe) or by adding-doubling."""
+        if self.a.solver == "ad":
+            return self.eval_ad(q)
+        return self.eval_bake(self.bake(q), q["alpha"])
+
+
+def parse_columns(out):
+    tot, err = [], []
+    for line in out.split("\n"):
+        if line:
+            c = line.split("\t")
+            tot.append(float(c[0]))
+            err.append(float(c[3]))
+    return tot, err
+
+
+def objective(points, f, e):
+    """Debiased mean squared relative error and its Monte Carlo standard deviation."""
+    s, v = 0.0, 0.0
+    for p, fi, ei in zip(points, f, e):
+        r, er = (fi - p[4]) / p[4], ei / p[4]
+        s += r * r - er * er
+        v += 4.0 * r * r * er * er
+    n = len(points)
+    return s / n, math.sqrt(v) / n
+
+
+def best_alpha(model, q, points, lo=0.02, hi=1.0):
+    """Golden-section search for the roughness (with Monte Carlo, no new bake)."""
+    g = (math.sqrt(5) - 1) / 2
+    memo = {}
+
+    def j(a):
+        if a not in memo:
+            memo[a] = objective(points, *model.model_brdf(dict(q, alpha=a)))
+        return memo[a]
+    a, b = lo, hi
+    c1, c2 = b - g * (b - a), a + g * (b - a)
+    while b - a > 0.005:
+        if j(c1)[0] < j(c2)[0]:
+            b, c2 = c2, c1
+            c1 = b - g * (b - a)
+        else:
+            a, c1 = c1, c2
+            c2 = a + g * (b - a)
+    al = (a + b) / 2
+    return al, j(al)
+
+
+def to_params(x, sebum):
+    q = {"sebum": sebum}
+    for k, xi in zip(("melanin", "blood", "scatter", "alpha"), x):
+        lo, hi = BOUNDS[k]
+        q[k] = min(max(math.exp(xi), lo), hi)
+    return q
+
+
+def nelder_mead(f, x0, steps, noise, max_evals):
+    """Nelder-Mead (Lagarias et al. 1998 coefficients); f returns (value, sd)."""
+    n = len(x0)
+    simplex = [list(x0)] + [[x0[j] + (steps[j] if j == i else 0.0) for j in range(n)] for i in range(n)]
+    vals = [f(x) for x in simplex]
+    evals = n + 1
+    while evals < max_evals:
+        order = sorted(range(n + 1), key=lambda i: vals[i][0])
+        simplex = [simplex[i] for i in order]
+        vals = [vals[i] for i in order]
+        spread = vals[-1][0] - vals[0][0]
+        sd = max(v[1] for v in vals)
+        size = max(abs(simplex[i][j] - simplex[0][j]) for i in range(1, n + 1) for j in range(n))
+        if spread < noise * max(sd, 1e-6) or size < 0.01:
+            break
+        c = [sum(simplex[i][j] for i in range(n)) / n for j in range(n)]
+        xr = [c[j] + (c[j] - simplex[-1][j]) for j in range(n)]
+        fr = f(xr)
+        evals += 1
+        if fr[0] < vals[0][0]:
+            xe = [c[j] + 2 * (c[j] - simplex[-1][j]) for j in range(n)]
+            fe = f(xe)
+            evals += 1
+            simplex[-1], vals[-1] = (xe, fe) if fe[0] < fr[0] else (xr, fr)
+        elif fr[0] < vals[-2][0]:
+            simplex[-1], vals[-1] = xr, fr
+        else:
+            inside = fr[0] >= vals[-1][0]
+            # outside contraction toward xr, or inside toward the worst point
+            xc = [c[j] + (-0.5 if inside else 0.5) * (c[j] - simplex[-1][j]) for j in range(n)]
+            fc = f(xc)
+            evals += 1
+            if fc[0] < min(fr[0], vals[-1][0]):
+                simplex[-1], vals[-1] = xc, fc
+            else:
+                for i in range(1, n + 1):
+                    simplex[i] = [simplex[0][j] + 0.5 * (simplex[i][j] - simplex[0][j]) for j in range(n)]
+                    vals[i] = f(simplex[i])
+                    evals += 1
+    i = min(range(n + 1), key=lambda k: vals[k][0])
+    return simplex[i], vals[i], evals
+
+
+def main():
+    ap = argparse.ArgumentParser(description=__doc__.split("\n")[0])
+    here = os.path.dirname(os.path.abspath(__file__))
+    ap.add_argument("--skinbake", default="./skinbake")
+    ap.add_argument("--brdf-points", default="./tests/brdf_points")
+    ap.add_argument("--curet", default=None, help="curet_sample39_brdf_205.tsv")
+    ap.add_argument("--out", default="fit-curet-work", help="scratch directory")
+    ap.add_argument("--brdf-model", default="./tests/brdf_model")
+    ap.add_argument("--solver", default="mc", choices=("mc", "ad"),
+                    help="mc: skinbake bake + brdf_points; ad: brdf_model (adding-doubling)")
+    ap.add_argument("--target-error", type=float, default=0.02, help="bake target RMS relative error")
+    ap.add_argument("--batch-photons", type=int, default=2000)
+    ap.add_argument("--threads", type=int, default=0)
+    ap.add_argument("--max-evals", type=int, default=None, help="evaluations per simplex (default 60 mc, 400 ad)")
+    ap.add_argument("--log", default=None, help="also write the evaluation log here (TSV)")
+    ap.add_argument("--blood-max", type=float, default=None, help="upper bound of the blood fraction (default 0.07)")
+    a = ap.parse_args()
+    if a.blood_max is not None:
+        BOUNDS["blood"] = (BOUNDS["blood"][0], a.blood_max)
+    if a.max_evals is None:
+        a.max_evals = 400 if a.solver == "ad" else 60
+    if a.curet is None:
+        for d in (os.path.join(here, "..", "..", "shared", "skin_data"), "/work/shared/skin_data"):
+            if os.path.exists(os.path.join(d, "curet_sample39_brdf_205.tsv")):
+                a.curet = os.path.join(d, "curet_sample39_brdf_205.tsv")
+                break
+    if a.curet is None:
+        sys.exit("fit-curet: give --curet PATH/curet_sample39_brdf_205.tsv")
+    t_start = time.time()
+    points = [r for r in read_curet(a.curet) if r[1] in TRAIN_THETA_I]
+    model = Model(a, points)
+    log = open(a.log, "w") if a.log else None
+    hdr = "eval\tsebum\tmelanin\tblood\tscatter\talpha\tJ\tJ_sd\trms_rel_pct"
+    print(hdr)
+    if log:
+        log.write("# scripts/fit-curet.py: %d training points (CUReT theta_i %s), solver %s, bake target %g, bounds %s\n"
+                  % (len(points), "/".join("%g" % t for t in TRAIN_THETA_I), a.solver, a.target_error,
+                     ", ".join("%s %g-%g" % (k, v[0], v[1]) for k, v in BOUNDS.items())))
+        log.write(hdr + "\n")
+    k = [0]
+
+    def f(x, sebum):
+        q = to_params(x, sebum)
+        if len(x) == 4:     # adding-doubling: the roughness in the simplex too
+            j, sd = objective(points, *model.model_brdf(q))
+        else:               # Monte Carlo: a 1-D search per (cached) bake
+            q["alpha"], (j, sd) = best_alpha(model, q, points)
+        k[0] += 1
+        line = "%d\t%d\t%.5f\t%.5f\t%.4f\t%.3f\t%.6f\t%.6f\t%.2f" % (
+            k[0], sebum, q["melanin"], q["blood"], q["scatter"], q["alpha"], j, sd, 100 * math.sqrt(max(j, 0)))
+        print(line, flush=True)
+        if log:
+            log.write(line + "\n")
+            log.flush()
+        # Out of bounds: the clamped value plus a penalty keeps the simplex inside.
+        pen = sum(max(0.0, abs(xi - math.log(min(max(math.exp(xi), BOUNDS[kk][0]), BOUNDS[kk][1]))))
+                  for xi, kk in zip(x, ("melanin", "blood", "scatter", "alpha")))
+        return j + pen, sd
+    x0 = [math.log(0.025), math.log(0.02), math.log(1.0)]     # medium skin, scattering as measured
+    steps = [math.log(3.0), math.log(3.0), math.log(1.5)]
+    if a.solver == "ad":
+        x0.append(math.log(0.35))
+        steps.append(math.log(1.5))
+    best = None
+    for sebum in (1, 0):
+        x, (j, sd), n = nelder_mead(lambda xx: f(xx, sebum), x0, steps, 3.0, a.max_evals)
+        q = to_params(x, sebum)
+        if a.solver == "ad":
+            j, sd = objective(points, *model.model_brdf(q))
+        else:
+            q["alpha"], (j, sd) = best_alpha(model, q, points)
+        print("# sebum %s: J %.6f +- %.6f (RMS relative %.2f %%) after %d evaluations"
+              % ("on" if sebum else "off", j, sd, 100 * math.sqrt(max(j, 0)), n), flush=True)
+        if best is None or j < best[0]:
+            best = (j, sd, q)
+    j, sd, q = best
+    summary = ("# best: sebum %s, melanin %.4g, blood %.4g, scatter %.3g, alpha %.3g: RMS relative %.2f %% "
+               "(J %.6f +- %.6f) on %d training points; solver %s: %d bakes or solves (%.0f s of bake time), %.0f s in all"
+               % ("on" if q["sebum"] else "off", q["melanin"], q["blood"], q["scatter"], q["alpha"],
+                  100 * math.sqrt(max(j, 0)), j, sd, len(points), a.solver, model.n_bakes, model.seconds,
+                  time.time() - t_start))
+    print(summary)
+    print(model.preset_ini(q, q["alpha"]))
+    if log:
+        log.write(summary + "\n")
+        log.close()
+
+
+if __name__ == "__main__":
+    main()

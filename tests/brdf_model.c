@@ -1,0 +1,152 @@
+/* brdf_model: a preset's BRDF at many geometries from the adding-doubling
+ * solver (engine/ad.h), without a bake: the deterministic model evaluation of
+ * the CUReT fit (scripts/fit-curet.py --solver ad) and of its checks.
+ * Diffuse part: ad_brdf at the point (the Monte Carlo bake gives bin means);
+ * specular part: the bake's analytic GGX lobe (specular_ggx on the clear top
+ * stack, specular_stack_of_slab, roughness preset_surface_roughness or
+ * --alpha).  Output columns as tests/brdf_points: total, diffuse, specular
+ * [1/sr], each the mean over the wavelengths, and the solver's error estimate
+ * of the diffuse mean.
+ *
+ *   brdf_model (--preset NAME | --preset-file F) [--wavelengths LIST]
+ *              [--alpha A] [--tol T] < points
+ *
+ * Input lines: theta_i theta_o delta_phi [deg] (delta_phi 0 = back toward
+ * the light, 180 = mirror side); '#' lines are skipped.  Default wavelengths
+ * 470, 550, 656 nm (the camera's B, G, R stand-ins of docs/presets.md);
+ * default tolerance 1e-3 (the solver's table RMS error estimate). */
+#include "config.h"
+
+#include <math.h>
+#include <stdio.h>
+#include <stdlib.h>
+#include <string.h>
+
+#include "engine/ad.h"
+#include "engine/specular.h"
+#include "skin/preset.h"
+#include "skin/tissue.h"
+#include "base/util.h"
+
+#define MAX_POINTS 100000
+
+static int usage(void)
+{
+	fprintf(stderr, "usage: brdf_model (--preset NAME | --preset-file F) [--wavelengths LIST] [--alpha A] "
+	    "[--tol T] < points (theta_i theta_o delta_phi in deg)\n");
+	return 2;
+}
+
+/* Index of theta in the list of distinct incidence angles, added if new. */
+static int angle_index(double *th, int *n, double t)
+{
+	for (int k = 0; k < *n; k++)
+		if (fabs(th[k] - t) < 1e-12)
+			return k;
+	if (*n >= AD_MAX_BEAMS)
+		return -1;
+	th[*n] = t;
+	return (*n)++;
+}
+
+int main(int argc, char **argv)
+{
+	const char *name = NULL, *file = NULL, *wls = "470,550,656";
+	double alpha = -1.0, tol = 1e-3;
+	for (int i = 1; i < argc; i++) {
+		if (i + 1 >= argc)
+			return usage();
+		char *end = NULL;
+		if (strcmp(argv[i], "--preset") == 0)
+			name = argv[++i];
+		else if (strcmp(argv[i], "--preset-file") == 0)
+			file = argv[++i];
+		else if (strcmp(argv[i], "--wavelengths") == 0)
+			wls = argv[++i];
+		else if (strcmp(argv[i], "--alpha") == 0) {
+			alpha = strtod(argv[++i], &end);
+			if (*end != '\0' || !(alpha >= 0.01 && alpha <= 1.0)) {
+				fprintf(stderr, "brdf_model: --alpha %s: not a number in [0.01, 1]\n", argv[i]);
+				return 2;
+			}
+		} else if (strcmp(argv[i], "--tol") == 0) {
+			tol = strtod(argv[++i], &end);
+			if (*end != '\0' || !(tol > 0.0 && tol <= 0.1)) {
+				fprintf(stderr, "brdf_model: --tol %s: not a number in (0, 0.1]\n", argv[i]);
+				return 2;
+			}
+		} else
+			return usage();
+	}
+	if ((name == NULL) == (file == NULL))
+		return usage();
+	char *cause = NULL;
+	struct skin_params *p = name ? preset_load_builtin(name, &cause) : preset_load_file(file, &cause);
+	double wl[SKIN_MAX_WL];
+	int n_wl = p ? preset_parse_wavelengths(wls, wl, &cause) : -1;
+	if (p == NULL || n_wl < 0) {
+		fprintf(stderr, "brdf_model: %s\n", cause);
+		free(cause);
+		preset_free(p);
+		return 2;
+	}
+	if (alpha < 0.0)
+		alpha = preset_surface_roughness(p);
+
+	/* The points, and their distinct incidence angles. */
+	double (*pt)[3] = xcalloc(MAX_POINTS, sizeof *pt);
+	int *beam = xcalloc(MAX_POINTS, sizeof *beam);
+	double th[AD_MAX_BEAMS];
+	int n_th = 0, n = 0, rc = 0;
+	char line[512];
+	const double rad = M_PI / 180.0;
+	while (fgets(line, sizeof line, stdin)) {
+		if (line[0] == '#' || line[0] == '\n')
+			continue;
+		double *q = pt[n];
+		if (n >= MAX_POINTS || sscanf(line, "%lf %lf %lf", &q[0], &q[1], &q[2]) != 3 || !(q[0] >= 0 && q[0] < 90)
+		    || !(q[1] >= 0 && q[1] <= 90) || !(q[2] >= 0 && q[2] <= 360)) {
+			fprintf(stderr, "brdf_model: point %d: expected theta_i theta_o delta_phi in degrees (theta_i in "
+			    "[0, 90), theta_o in [0, 90], delta_phi in [0, 360]; at most %d points)\n", n + 1, MAX_POINTS);
+			rc = 2;
+			goto out;
+		}
+		if ((beam[n] = angle_index(th, &n_th, q[0] * rad)) < 0) {
+			fprintf(stderr, "brdf_model: more than %d incidence angles\n", AD_MAX_BEAMS);
+			rc = 2;
+			goto out;
+		}
+		n++;
+	}
+	double *fd = xcalloc((size_t)n * 3, sizeof *fd), *fs = fd + n, *ve = fs + n;
+	struct ad_opts o;
+	ad_opts_default(&o);
+	o.tol = tol;
+	for (int w = 0; w < n_wl && rc == 0; w++) {
+		struct slab s;
+		struct ad_result r;
+		struct specular_stack st;
+		if (tissue_slab(p, wl[w], &s, &cause) != 0 || ad_solve(&s, OPTICS_FRESNEL_EXACT, th, n_th, &o, &r, &cause) != 0) {
+			fprintf(stderr, "brdf_model: %s at %g nm: %s\n", preset_get_name(p), wl[w], cause);
+			free(cause);
+			rc = 1;
+			break;
+		}
+		specular_stack_of_slab(&s, OPTICS_FRESNEL_EXACT, &st);
+		for (int i = 0; i < n; i++) {
+			double e, ph = pt[i][2] > 180.0 ? 360.0 - pt[i][2] : pt[i][2];
+			fd[i] += ad_brdf(&r, beam[i], pt[i][1] * rad, ph * rad, &e) / n_wl;
+			fs[i] += specular_ggx(&st, alpha, pt[i][0] * rad, pt[i][1] * rad, ph * rad) / n_wl;
+			ve[i] += e * e;
+		}
+		ad_result_free(&r);
+	}
+	for (int i = 0; i < n && rc == 0; i++)
+		printf("%.6g\t%.6g\t%.6g\t%.3g\n", fd[i] + fs[i], fd[i], fs[i], sqrt(ve[i]) / n_wl);
+	free(fd);
+out:
+	free(pt);
+	free(beam);
+	preset_free(p);
+	return rc;
+}
