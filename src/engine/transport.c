@@ -94,9 +94,6 @@ struct photon {
 	long steps;	/* interactions so far */
 };
 
-/* What a hop ends at. */
-enum hop_end { HOP_INTERACT, HOP_BOUNDARY, HOP_NOWHERE };
-
 /* Launch: the refracted direction and weight of struct launch, at the top
  * of the first turbid layer. */
 static inline void launch(struct photon *ph, const struct launch *ln)
@@ -116,37 +113,26 @@ static inline void launch(struct photon *ph, const struct launch *ln)
 }
 
 /* Hop: draw a step as optical depth, or finish the one carried across a
- * boundary; move to the interaction site if it lies in this layer, else to
- * the boundary ahead keeping the unused optical depth. */
-static inline enum hop_end hop(struct photon *ph, const struct slab *s, struct rng *r)
+ * boundary, and move to the interaction site if it lies in this layer (1).
+ * Otherwise (0) the photon stays, with *mu_t and *dz (the distance to the
+ * boundary ahead along z) for cross(). */
+static inline int hop(struct photon *ph, const struct slab *s, struct rng *r, double *mu_t, double *dz)
 {
 	if (ph->tau == 0.0)
 		ph->tau = -log(rng_uniform(r));
-	double mu_t = s->mu_t[ph->l];
-	/* Distance to the boundary ahead along z; comparing optical depths as
-	 * tau |uz| < mu_t dz avoids a division per step. */
-	double auz = fabs(ph->uz);
-	double dz = ph->uz > 0.0 ? s->z_bot[ph->l] - ph->z : ph->z - s->z_top[ph->l];
-	if (mu_t > 0.0 && ph->tau * auz < mu_t * dz) {
+	*mu_t = s->mu_t[ph->l];
+	*dz = ph->uz > 0.0 ? s->z_bot[ph->l] - ph->z : ph->z - s->z_top[ph->l];
+	/* Comparing optical depths as tau |uz| < mu_t dz avoids a division per
+	 * step. */
+	if (*mu_t > 0.0 && ph->tau * fabs(ph->uz) < *mu_t * *dz) {
 		double step = ph->tau * s->inv_mu_t[ph->l];
 		ph->x += step * ph->ux;
 		ph->y += step * ph->uy;
 		ph->z += step * ph->uz;
 		ph->tau = 0.0;
-		return HOP_INTERACT;
+		return 1;
 	}
-	if (auz == 0.0 || isinf(dz))
-		/* Travelling parallel to the layers in a clear layer: it would
-		 * never arrive anywhere. */
-		return HOP_NOWHERE;
-	double db = dz / auz;
-	ph->x += db * ph->ux;
-	ph->y += db * ph->uy;
-	ph->tau -= mu_t * db;
-	if (ph->tau < 0.0)
-		ph->tau = 0.0;
-	ph->z = ph->uz < 0.0 ? s->z_top[ph->l] : s->z_bot[ph->l];
-	return HOP_BOUNDARY;
+	return 0;
 }
 
 /* The step guard: 1 (weight booked as lost) after max_steps interactions. */
@@ -159,12 +145,29 @@ static inline int guard(struct photon *ph, const struct transport_opts *o, struc
 	return 0;
 }
 
-/* Boundary: at the boundary ahead, reflect (total internal reflection or
- * Fresnel) or refract (Snell in cosines) into the next layer; leaving the
- * top is scored, leaving the bottom is transmission.  1 when the walk ends. */
+/* Boundary: move to the boundary ahead keeping the unused optical depth,
+ * then reflect (total internal reflection or Fresnel) or refract (Snell in
+ * cosines) into the next layer; leaving the top is scored, leaving the
+ * bottom is transmission.  1 when the walk ends. */
 static inline int boundary(struct photon *ph, const struct slab *s, const struct transport_opts *o,
-    const struct tally_grid *grid, const struct nee *nee, struct rng *r, struct tally *t)
+    const struct tally_grid *grid, const struct nee *nee, double mu_t, double dz, struct rng *r,
+    struct tally *t)
 {
+	double auz = fabs(ph->uz);
+	if (auz == 0.0 || isinf(dz)) {
+		/* Travelling parallel to the layers in a clear layer: it would
+		 * never arrive anywhere. */
+		t->lost += ph->w;
+		return 1;
+	}
+	double db = dz / auz;
+	ph->x += db * ph->ux;
+	ph->y += db * ph->uy;
+	ph->tau -= mu_t * db;
+	if (ph->tau < 0.0)
+		ph->tau = 0.0;
+	ph->z = ph->uz < 0.0 ? s->z_top[ph->l] : s->z_bot[ph->l];
+
 	const struct layer *L = s->layer;
 	int l = ph->l, up = ph->uz < 0.0;
 	int nb = up ? l - 1 : l + 1;
@@ -226,11 +229,11 @@ static inline void spin(struct photon *ph, const struct hg_const *hg, struct rng
 /* Roulette below w_th: survive with probability chance at weight w /
  * chance, else die; the weight change is booked against A (see top).  1
  * when the photon dies. */
-static inline int roulette(struct photon *ph, const struct transport_opts *o, double inv_chance,
-    struct rng *r, struct tally *t)
+static inline int roulette(struct photon *ph, double w_th, double chance, double inv_chance, struct rng *r,
+    struct tally *t)
 {
-	if (ph->w < o->roulette_w) {
-		if (rng_uniform(r) < o->roulette_chance) {
+	if (ph->w < w_th) {
+		if (rng_uniform(r) < chance) {
 			t->a[ph->l] -= ph->w * (inv_chance - 1.0);
 			ph->w *= inv_chance;
 		} else {
@@ -245,7 +248,8 @@ void transport_run(const struct slab *s, const struct launch *ln, const struct t
     const struct tally_grid *grid, struct nee *nee, uint64_t seed, uint32_t stream, uint64_t first,
     uint64_t count, struct tally *t)
 {
-	const double inv_chance = 1.0 / o->roulette_chance;
+	/* Copies, so that stores to the tally need not reload them. */
+	const double w_th = o->roulette_w, chance = o->roulette_chance, inv_chance = 1.0 / o->roulette_chance;
 	struct hg_const hg[SLAB_MAX_LAYERS + 2];
 	for (int i = 0; i <= s->n_layers + 1; i++)
 		hg_const_init(&hg[i], s->layer[i].g);
@@ -264,13 +268,9 @@ void transport_run(const struct slab *s, const struct launch *ln, const struct t
 		if (nee)
 			nee_prepare(nee, s, o->fresnel, rng_uniform(&r));
 		for (;;) {
-			enum hop_end e = hop(&ph, s, &r);
-			if (e == HOP_NOWHERE) {
-				t->lost += ph.w;
-				break;
-			}
-			if (e == HOP_BOUNDARY) {
-				if (boundary(&ph, s, o, grid, nee, &r, t))
+			double mu_t, dz;
+			if (!hop(&ph, s, &r, &mu_t, &dz)) {
+				if (boundary(&ph, s, o, grid, nee, mu_t, dz, &r, t))
 					break;
 				continue;
 			}
@@ -282,7 +282,7 @@ void transport_run(const struct slab *s, const struct launch *ln, const struct t
 				ph.direct = 1;
 			}
 			spin(&ph, &hg[ph.l], &r, t);
-			if (roulette(&ph, o, inv_chance, &r, t) || guard(&ph, o, t))
+			if (roulette(&ph, w_th, chance, inv_chance, &r, t) || guard(&ph, o, t))
 				break;
 		}
 	}
