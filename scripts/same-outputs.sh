@@ -55,6 +55,17 @@ run texture --size 16 --out tex4
 run bake --preset paper --out bakead --theta-nodes 3 --resolution 9x6 --r-bins 50 --radial-photons 4000 --quiet
 run eval --bake bakead --theta-in 20 --theta-out 35 --phi 40 --json
 run simulate --solver ad --layer d=0.01,n=1.4,mua=2,mus=100,g=0.8 --layer d=inf,n=1.4,mua=1,mus=50,g=0.9 --theta-in 30 --r-bins 0 --json
+# Texture with every parameter (issue 11 items 5-6: cmd_texture, relief and
+# the Delaunay furrows split), a preset file, an output path that is not a directory,
+# a range error and a junction count over the limit.
+run texture --size 80 --seed 11 --tile-mm 6 --pore-density 3 --pore-radius 40 --pore-radius-sd 0.3 --pore-depth 50 --pore-depth-sd 0.2 --pore-aspect 1.5 --pore-junction 0.4 --pore-regularity 0.5 --levels 3 --furrow-cell 1.2 --furrow-width 60 --furrow-depth 40 --furrow-depth-sd 0.3 --ridge-height 8 --level-scale 0.45 --level-gain 0.6 --stretch 3 --orientation 25 --furrow-regularity 0.4 --out tex5
+printf '[texture]\nlevels = 2\nsite = cheek\nstretch = 1.5\n' > tex.ini
+run texture --preset-file tex.ini --size 48 --seed 2 --out tex6
+run texture --preset-file tex.ini --dump-config
+printf 'x' > notadir
+run texture --size 16 --out notadir/sub
+run texture --furrow-cell 40 --tile-mm 10 --out tex7
+run texture --levels 2 --furrow-cell 0.02 --tile-mm 500 --out tex8
 # A manifest without the keys added by issue 13 (solver record, per-job
 # method, batches and resolution, radial error, method and target, pilot
 # photons) and without the --solver mc added above.

@@ -5,7 +5,6 @@
  * manifest.json.  Everything is validated before any file is written. */
 #include "config.h"
 
-#include <math.h>
 #include <stdlib.h>
 #include <string.h>
 
@@ -14,7 +13,6 @@
 #include "geom/relief.h"
 #include "geom/sites.h"
 #include "geom/texdir.h"
-#include "base/util.h"
 
 static const char *CMD = "texture";
 
@@ -24,58 +22,29 @@ static void list_sites(void)
 		printf("%-10s %s\n", sites_name(i), sites_summary(i));
 }
 
-static void dump_config(const struct texture_config *cfg)
-{
-	int n;
-	const struct texture_param *p = sites_params(&n);
-	printf("[texture]\nsite = %s\n", cfg->site);
-	for (int i = 0; i < n; i++) {
-		char key[64];
-		snprintf(key, sizeof key, "%s", p[i].key);
-		for (char *c = key; *c; c++)
-			if (*c == '-')
-				*c = '_';
-		printf("%s = %.17g\n", key, sites_get(cfg, &p[i]));
-	}
-}
-
-/* After the options: grow the relief, render and write the maps.  Nothing
- * is written before the relief has been placed. */
+/* After the options: place, render and write (texdir_make), then the notes
+ * and the summary. */
 static int run(const struct texture_config *cfg, const char *out, int quiet)
 {
 	char *cause = NULL;
-	double t0 = util_now();
-	struct relief *r = relief_new(&cfg->relief, cfg->seed, &cause);
-	if (r == NULL) {
-		int rc = cli_fail(CMD, "%s", cause);
-		free(cause);
-		return rc;
-	}
-	char *notes = quiet ? NULL : texdir_resolution_notes(cfg, r);
-	for (char *line = notes, *nl; line; line = nl ? nl + 1 : NULL) {
+	struct texdir_made s;
+	int rc = texdir_make(out, cfg, &s, &cause);
+	for (char *line = quiet ? NULL : s.notes, *nl; line; line = nl ? nl + 1 : NULL) {
 		nl = strchr(line, '\n');
 		fprintf(stderr, "skinbake texture: note: %.*s\n", nl ? (int)(nl - line) : (int)strlen(line), line);
 	}
-	free(notes);
-	double t1 = util_now();
-	struct texdir_maps m;
-	texdir_maps_render(&m, r, cfg);
-	double lo, hi;
-	texdir_height_range(&m, &lo, &hi);
-	double t2 = util_now();
-	int rc = CLI_EXIT_OK;
-	if (texdir_write(out, cfg, r, &m, &cause) != 0) {
+	free(s.notes);
+	if (rc != 0) {
 		rc = cli_fail(CMD, "%s", cause);
 		free(cause);
-	} else if (!quiet) {
+		return rc;
+	}
+	if (!quiet)
 		fprintf(stderr, "skinbake texture: %s, %ld px over %.4g mm, seed %llu: %d pores, "
 		    "relief %.4g to %.4g um; place %.2f s, render %.2f s, write %.2f s -> %s\n",
 		    cfg->site, cfg->size, cfg->relief.tile * 10, (unsigned long long)cfg->seed,
-		    relief_n_pores(r), lo * 1e4, hi * 1e4, t1 - t0, t2 - t1, util_now() - t2, out);
-	}
-	texdir_maps_free(&m);
-	relief_free(r);
-	return rc;
+		    s.n_pores, s.h_min * 1e4, s.h_max * 1e4, s.t_place, s.t_render, s.t_write, out);
+	return CLI_EXIT_OK;
 }
 
 int cmd_texture(int argc, char **argv)
@@ -152,7 +121,9 @@ int cmd_texture(int argc, char **argv)
 		goto done;
 	}
 	if (dump) {
-		dump_config(&cfg);
+		char *ini = sites_ini_text(&cfg);
+		fputs(ini, stdout);
+		free(ini);
 		rc = CLI_EXIT_OK;
 		goto done;
 	}

@@ -81,20 +81,180 @@ static inline void score_top(const struct tally_grid *g, struct tally *t, double
 	t->exit[it * g->n_phi + ip] += w;
 }
 
+/* One photon between events.  Every step below is inlined into the walk, so
+ * the state stays in registers as it did in one function. */
+struct photon {
+	double x, y, z;	/* position [cm] */
+	double ux, uy, uz;	/* direction cosines [1] */
+	double w;	/* weight [1] */
+	double tau;	/* optical depth left of the current step [1] */
+	int l;	/* current layer */
+	int scattered;	/* scattered at least once */
+	int direct;	/* flying straight on since the last scattering (what nee scores) */
+	long steps;	/* interactions so far */
+};
+
+/* Launch: the refracted direction and weight of struct launch, at the top
+ * of the first turbid layer. */
+static inline void launch(struct photon *ph, const struct launch *ln)
+{
+	ph->x = 0.0;
+	ph->y = 0.0;
+	ph->z = ln->z;
+	ph->ux = ln->ux;
+	ph->uy = 0.0;
+	ph->uz = ln->uz;
+	ph->w = ln->w0;
+	ph->tau = 0.0;
+	ph->l = ln->layer;
+	ph->scattered = 0;
+	ph->direct = 0;
+	ph->steps = 0;
+}
+
+/* Hop: draw a step as optical depth, or finish the one carried across a
+ * boundary, and move to the interaction site if it lies in this layer (1).
+ * Otherwise (0) the photon stays, with *mu_t and *dz (the distance to the
+ * boundary ahead along z) for cross(). */
+static inline int hop(struct photon *ph, const struct slab *s, struct rng *r, double *mu_t, double *dz)
+{
+	if (ph->tau == 0.0)
+		ph->tau = -log(rng_uniform(r));
+	*mu_t = s->mu_t[ph->l];
+	*dz = ph->uz > 0.0 ? s->z_bot[ph->l] - ph->z : ph->z - s->z_top[ph->l];
+	/* Comparing optical depths as tau |uz| < mu_t dz avoids a division per
+	 * step. */
+	if (*mu_t > 0.0 && ph->tau * fabs(ph->uz) < *mu_t * *dz) {
+		double step = ph->tau * s->inv_mu_t[ph->l];
+		ph->x += step * ph->ux;
+		ph->y += step * ph->uy;
+		ph->z += step * ph->uz;
+		ph->tau = 0.0;
+		return 1;
+	}
+	return 0;
+}
+
+/* The step guard: 1 (weight booked as lost) after max_steps interactions. */
+static inline int guard(struct photon *ph, const struct transport_opts *o, struct tally *t)
+{
+	if (++ph->steps >= o->max_steps) {
+		t->lost += ph->w;
+		return 1;
+	}
+	return 0;
+}
+
+/* Boundary: move to the boundary ahead keeping the unused optical depth,
+ * then reflect (total internal reflection or Fresnel) or refract (Snell in
+ * cosines) into the next layer; leaving the top is scored, leaving the
+ * bottom is transmission.  1 when the walk ends. */
+static inline int boundary(struct photon *ph, const struct slab *s, const struct transport_opts *o,
+    const struct tally_grid *grid, const struct nee *nee, double mu_t, double dz, struct rng *r,
+    struct tally *t)
+{
+	double auz = fabs(ph->uz);
+	if (auz == 0.0 || isinf(dz)) {
+		/* Travelling parallel to the layers in a clear layer: it would
+		 * never arrive anywhere. */
+		t->lost += ph->w;
+		return 1;
+	}
+	double db = dz / auz;
+	ph->x += db * ph->ux;
+	ph->y += db * ph->uy;
+	ph->tau -= mu_t * db;
+	if (ph->tau < 0.0)
+		ph->tau = 0.0;
+	ph->z = ph->uz < 0.0 ? s->z_top[ph->l] : s->z_bot[ph->l];
+
+	const struct layer *L = s->layer;
+	int l = ph->l, up = ph->uz < 0.0;
+	int nb = up ? l - 1 : l + 1;
+	double ci = up ? -ph->uz : ph->uz;
+	double crit = up ? s->cos_crit_up[l] : s->cos_crit_down[l];
+	int reflect;
+	double ct = ci;
+	if (ci <= crit)
+		reflect = 1;	/* total internal reflection */
+	else {
+		double rf = optics_fresnel(o->fresnel, L[l].n, L[nb].n, ci, &ct);
+		reflect = rf > 0.0 && rng_uniform(r) < rf;
+	}
+	if (reflect) {
+		ph->uz = -ph->uz;
+		if (l >= s->first_turbid)
+			ph->direct = 0;	/* back into the turbid layers: nee did not count this path */
+		return guard(ph, o, t);
+	}
+	double eta = L[l].n / L[nb].n;
+	ph->ux *= eta;
+	ph->uy *= eta;
+	ph->uz = up ? -ct : ct;
+	if (nb == 0) {
+		score_top(grid, t, ph->w, ph->scattered, !(nee && ph->direct), ph->ux, ph->uy, ct, ph->x, ph->y);
+		return 1;
+	}
+	if (nb == s->n_layers + 1) {
+		t->tt += ph->w;
+		if (!ph->scattered)
+			t->tt_unscat += ph->w;
+		return 1;
+	}
+	ph->l = nb;
+	return 0;
+}
+
+/* Drop: implicit absorption of the fraction 1 - albedo.  1 when nothing is
+ * left. */
+static inline int drop(struct photon *ph, const struct slab *s, struct tally *t)
+{
+	double wa = ph->w * (1.0 - s->albedo[ph->l]);
+	t->a[ph->l] += wa;
+	ph->w -= wa;
+	return ph->w <= 0.0;
+}
+
+/* Spin: a new direction from Henyey-Greenstein and a uniform azimuth. */
+static inline void spin(struct photon *ph, const struct hg_const *hg, struct rng *r, struct tally *t)
+{
+	double ct = hg_sample_cos_c(hg, rng_uniform(r));
+	double cp, sp;
+	azimuth_sample(rng_uniform(r), &cp, &sp);
+	spin_dir(&ph->ux, &ph->uy, &ph->uz, ct, cp, sp);
+	ph->scattered = 1;
+	t->events += 1.0;
+}
+
+/* Roulette below w_th: survive with probability chance at weight w /
+ * chance, else die; the weight change is booked against A (see top).  1
+ * when the photon dies. */
+static inline int roulette(struct photon *ph, double w_th, double chance, double inv_chance, struct rng *r,
+    struct tally *t)
+{
+	if (ph->w < w_th) {
+		if (rng_uniform(r) < chance) {
+			t->a[ph->l] -= ph->w * (inv_chance - 1.0);
+			ph->w *= inv_chance;
+		} else {
+			t->a[ph->l] += ph->w;
+			return 1;
+		}
+	}
+	return 0;
+}
+
 void transport_run(const struct slab *s, const struct launch *ln, const struct transport_opts *o,
     const struct tally_grid *grid, struct nee *nee, uint64_t seed, uint32_t stream, uint64_t first,
     uint64_t count, struct tally *t)
 {
-	const int ft = s->first_turbid;
-	const int nl = s->n_layers;
-	const struct layer *L = s->layer;
+	/* Copies, so that stores to the tally need not reload them. */
 	const double w_th = o->roulette_w, chance = o->roulette_chance, inv_chance = 1.0 / o->roulette_chance;
-
 	struct hg_const hg[SLAB_MAX_LAYERS + 2];
-	for (int i = 0; i <= nl + 1; i++)
-		hg_const_init(&hg[i], L[i].g);
+	for (int i = 0; i <= s->n_layers + 1; i++)
+		hg_const_init(&hg[i], s->layer[i].g);
 
-	if (ln->layer > nl) {
+	if (ln->layer > s->n_layers) {
 		/* All clear: what is not reflected goes straight through. */
 		t->tt += ln->w0 * (double)count;
 		t->tt_unscat += ln->w0 * (double)count;
@@ -103,117 +263,27 @@ void transport_run(const struct slab *s, const struct launch *ln, const struct t
 	for (uint64_t p = first; p < first + count; p++) {
 		struct rng r;
 		rng_seed(&r, seed, stream, p);
-		double x = 0.0, y = 0.0, z = ln->z;
-		double ux = ln->ux, uy = 0.0, uz = ln->uz;
-		double w = ln->w0;
-		double tau = 0.0;	/* optical depth left of the current step */
-		int l = ln->layer, scattered = 0;
-		int direct = 0;	/* flying straight on since the last scattering (what nee scores) */
+		struct photon ph;
+		launch(&ph, ln);
 		if (nee)
 			nee_prepare(nee, s, o->fresnel, rng_uniform(&r));
-		long steps = 0;
-
 		for (;;) {
-			/* Hop: draw a step as optical depth, or finish the one carried
-			 * across a boundary. */
-			if (tau == 0.0)
-				tau = -log(rng_uniform(&r));
-			double mu_t = s->mu_t[l];
-			/* Distance to the boundary ahead along z; comparing optical
-			 * depths as tau |uz| < mu_t dz avoids a division per step. */
-			double auz = fabs(uz);
-			double dz = uz > 0.0 ? s->z_bot[l] - z : z - s->z_top[l];
-
-			if (mu_t > 0.0 && tau * auz < mu_t * dz) {
-				double step = tau * s->inv_mu_t[l];
-				x += step * ux;
-				y += step * uy;
-				z += step * uz;
-				tau = 0.0;
-				/* Drop: implicit absorption. */
-				double wa = w * (1.0 - s->albedo[l]);
-				t->a[l] += wa;
-				w -= wa;
-				if (w <= 0.0)
+			double mu_t, dz;
+			if (!hop(&ph, s, &r, &mu_t, &dz)) {
+				if (boundary(&ph, s, o, grid, nee, mu_t, dz, &r, t))
 					break;
-				if (nee) {
-					nee_score(nee, s, l, z, ux, uy, uz, w, rng_uniform(&r), rng_uniform(&r), t->exit);
-					direct = 1;
-				}
-				/* Spin. */
-				double ct = hg_sample_cos_c(&hg[l], rng_uniform(&r));
-				double cp, sp;
-				azimuth_sample(rng_uniform(&r), &cp, &sp);
-				spin_dir(&ux, &uy, &uz, ct, cp, sp);
-				scattered = 1;
-				t->events += 1.0;
-				/* Roulette; its weight change is booked against A (see top). */
-				if (w < w_th) {
-					if (rng_uniform(&r) < chance) {
-						t->a[l] -= w * (inv_chance - 1.0);
-						w *= inv_chance;
-					} else {
-						t->a[l] += w;
-						break;
-					}
-				}
-				if (++steps >= o->max_steps) {
-					t->lost += w;
-					break;
-				}
 				continue;
 			}
-			if (auz == 0.0 || isinf(dz)) {
-				/* Travelling parallel to the layers in a clear layer: it
-				 * would never arrive anywhere. */
-				t->lost += w;
+			if (drop(&ph, s, t))
 				break;
+			if (nee) {
+				nee_score(nee, s, ph.l, ph.z, ph.ux, ph.uy, ph.uz, ph.w, rng_uniform(&r),
+				    rng_uniform(&r), t->exit);
+				ph.direct = 1;
 			}
-			double db = dz / auz;
-			/* Move to the boundary and keep the unused optical depth. */
-			x += db * ux;
-			y += db * uy;
-			tau -= mu_t * db;
-			if (tau < 0.0)
-				tau = 0.0;
-			int up = uz < 0.0;
-			int nb = up ? l - 1 : l + 1;
-			z = up ? s->z_top[l] : s->z_bot[l];
-			double ci = up ? -uz : uz;
-			double crit = up ? s->cos_crit_up[l] : s->cos_crit_down[l];
-			int reflect;
-			double ct = ci;
-			if (ci <= crit)
-				reflect = 1;	/* total internal reflection */
-			else {
-				double rf = optics_fresnel(o->fresnel, L[l].n, L[nb].n, ci, &ct);
-				reflect = rf > 0.0 && rng_uniform(&r) < rf;
-			}
-			if (reflect) {
-				uz = -uz;
-				if (l >= ft)
-					direct = 0;	/* back into the turbid layers: nee did not count this path */
-				if (++steps >= o->max_steps) {
-					t->lost += w;
-					break;
-				}
-				continue;
-			}
-			double eta = L[l].n / L[nb].n;
-			ux *= eta;
-			uy *= eta;
-			uz = up ? -ct : ct;
-			if (nb == 0) {
-				score_top(grid, t, w, scattered, !(nee && direct), ux, uy, ct, x, y);
+			spin(&ph, &hg[ph.l], &r, t);
+			if (roulette(&ph, w_th, chance, inv_chance, &r, t) || guard(&ph, o, t))
 				break;
-			}
-			if (nb == nl + 1) {
-				t->tt += w;
-				if (!scattered)
-					t->tt_unscat += w;
-				break;
-			}
-			l = nb;
 		}
 	}
 }

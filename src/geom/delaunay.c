@@ -62,46 +62,93 @@ static struct delaunay_edge canonical(struct copy u, struct copy v)
 	return (struct delaunay_edge){ u.idx, v.idx, dx, dy };
 }
 
-/* One attempt with copies within `band` tiles of the central tile, over the
- * (2 ring + 1)^2 neighbourhood.  Returns 0 with *out set, 1 if the counts
- * fail (widen and retry), -1 with *cause if qhull fails. */
-static int attempt(int n, const double *xy, const double *m, double band, int ring,
-    struct delaunay **out, char **cause)
+/* The edges and triangles gathered from qhull's facets, growing. */
+struct net {
+	struct delaunay_edge *edges;
+	struct delaunay_tri *tris;
+	int ne, nt;	/* filled */
+	int ecap, tcap;	/* allocated */
+};
+
+/* Copies of the points in the (2 ring + 1)^2 tiles around the central one
+ * that lie within `band` tiles of it, in the metric m: *cp says which point
+ * and shift each is, *pts holds their coordinates for qhull.  Returns the
+ * number of copies. */
+static int band_copies(int n, const double *xy, const double *m, double band, int ring, struct copy **cp,
+    coordT **pts)
 {
 	int cap = (2 * ring + 1) * (2 * ring + 1) * n, nc = 0;
-	struct copy *cp = xmalloc(sizeof *cp * (size_t)cap);
-	coordT *pts = xmalloc(sizeof *pts * 2 * (size_t)cap);
+	*cp = xmalloc(sizeof **cp * (size_t)cap);
+	*pts = xmalloc(sizeof **pts * 2 * (size_t)cap);
 	for (int a = -ring; a <= ring; a++)
 		for (int b = -ring; b <= ring; b++)
 			for (int k = 0; k < n; k++) {
 				double x = xy[2 * k] + a, y = xy[2 * k + 1] + b;
 				if (x < -band || x >= 1 + band || y < -band || y >= 1 + band)
 					continue;
-				cp[nc] = (struct copy){ k, a, b };
-				pts[2 * nc] = m[0] * x + m[1] * y;
-				pts[2 * nc + 1] = m[2] * x + m[3] * y;
+				(*cp)[nc] = (struct copy){ k, a, b };
+				(*pts)[2 * nc] = m[0] * x + m[1] * y;
+				(*pts)[2 * nc + 1] = m[2] * x + m[3] * y;
 				nc++;
 			}
+	return nc;
+}
 
-	qhT qh_qh, *qh = &qh_qh;
-	char *errbuf = NULL;
-	size_t errlen = 0;
-	FILE *errfp = open_memstream(&errbuf, &errlen);
-	char options[] = "qhull d Qbb Qc Qz Q12 Qt";
-	int rc = -1;
-	struct delaunay_edge *edges = NULL;
-	struct delaunay_tri *tris = NULL;
-	int ne = 0, nt = 0, ecap = 0, tcap = 0;
-
-	QHULL_LIB_CHECK
-	qh_zero(qh, errfp);
-	int exitcode = qh_new_qhull(qh, 2, nc, pts, False, options, NULL, errfp);
-	if (exitcode != 0) {
-		fflush(errfp);
-		*cause = xasprintf("qhull failed (code %d) on %d points: %.300s", exitcode, nc,
-		    errbuf ? errbuf : "");
-		goto done;
+/* The sides of triangle c that have an endpoint in the central tile. */
+static void net_add_edges(struct net *t, int n, const struct copy c[3])
+{
+	for (int e = 0; e < 3; e++) {
+		struct copy u = c[e], v = c[(e + 1) % 3];
+		if (!(u.sx == 0 && u.sy == 0) && !(v.sx == 0 && v.sy == 0))
+			continue;
+		if (t->ne == t->ecap) {
+			t->ecap = t->ecap ? 2 * t->ecap : 3 * n + 64;
+			t->edges = xreallocarray(t->edges, (size_t)t->ecap, sizeof *t->edges);
+		}
+		t->edges[t->ne++] = canonical(u, v);
 	}
+}
+
+/* Triangle c if its centroid is in the central tile: counter-clockwise,
+ * lowest point index first. */
+static void net_add_tri(struct net *t, int n, const double *xy, struct copy c[3])
+{
+	double px[3], py[3];
+	for (int e = 0; e < 3; e++) {
+		px[e] = xy[2 * c[e].idx] + c[e].sx;
+		py[e] = xy[2 * c[e].idx + 1] + c[e].sy;
+	}
+	double cx = (px[0] + px[1] + px[2]) / 3, cy = (py[0] + py[1] + py[2]) / 3;
+	if (cx < 0 || cx >= 1 || cy < 0 || cy >= 1)
+		return;
+	double cross = (px[1] - px[0]) * (py[2] - py[0]) - (py[1] - py[0]) * (px[2] - px[0]);
+	if (cross < 0) {
+		struct copy s = c[1];
+		c[1] = c[2];
+		c[2] = s;
+	}
+	/* Lowest index first, keeping the orientation. */
+	int f = 0;
+	for (int e = 1; e < 3; e++)
+		if (c[e].idx < c[f].idx)
+			f = e;
+	if (t->nt == t->tcap) {
+		t->tcap = t->tcap ? 2 * t->tcap : 2 * n + 64;
+		t->tris = xreallocarray(t->tris, (size_t)t->tcap, sizeof *t->tris);
+	}
+	for (int e = 0; e < 3; e++) {
+		struct copy q = c[(f + e) % 3];
+		t->tris[t->nt].v[e] = q.idx;
+		t->tris[t->nt].sx[e] = q.sx;
+		t->tris[t->nt].sy[e] = q.sy;
+	}
+	t->nt++;
+}
+
+/* Walk the lower Delaunay facets of qhull's hull; each is a triangle of
+ * three copies (cp, nc of them). */
+static void net_collect(qhT *qh, const struct copy *cp, int nc, int n, const double *xy, struct net *t)
+{
 	facetT *facet;
 	vertexT *vertex, **vertexp;
 	FORALLfacets {
@@ -119,80 +166,77 @@ static int attempt(int n, const double *xy, const double *m, double band, int ri
 		}
 		if (bad || k != 3)
 			continue;
-		/* Edges with an endpoint in the central tile. */
-		for (int e = 0; e < 3; e++) {
-			struct copy u = c[e], v = c[(e + 1) % 3];
-			if (!(u.sx == 0 && u.sy == 0) && !(v.sx == 0 && v.sy == 0))
-				continue;
-			if (ne == ecap) {
-				ecap = ecap ? 2 * ecap : 3 * n + 64;
-				edges = xreallocarray(edges, (size_t)ecap, sizeof *edges);
-			}
-			edges[ne++] = canonical(u, v);
-		}
-		/* Triangles whose centroid is in the central tile. */
-		double px[3], py[3];
-		for (int e = 0; e < 3; e++) {
-			px[e] = xy[2 * c[e].idx] + c[e].sx;
-			py[e] = xy[2 * c[e].idx + 1] + c[e].sy;
-		}
-		double cx = (px[0] + px[1] + px[2]) / 3, cy = (py[0] + py[1] + py[2]) / 3;
-		if (cx < 0 || cx >= 1 || cy < 0 || cy >= 1)
-			continue;
-		double cross = (px[1] - px[0]) * (py[2] - py[0]) - (py[1] - py[0]) * (px[2] - px[0]);
-		if (cross < 0) {
-			struct copy t = c[1];
-			c[1] = c[2];
-			c[2] = t;
-		}
-		/* Lowest index first, keeping the orientation. */
-		int f = 0;
-		for (int e = 1; e < 3; e++)
-			if (c[e].idx < c[f].idx)
-				f = e;
-		if (nt == tcap) {
-			tcap = tcap ? 2 * tcap : 2 * n + 64;
-			tris = xreallocarray(tris, (size_t)tcap, sizeof *tris);
-		}
-		for (int e = 0; e < 3; e++) {
-			struct copy q = c[(f + e) % 3];
-			tris[nt].v[e] = q.idx;
-			tris[nt].sx[e] = q.sx;
-			tris[nt].sy[e] = q.sy;
-		}
-		nt++;
+		net_add_edges(t, n, c);
+		net_add_tri(t, n, xy, c);
 	}
+}
 
-	qsort(edges, (size_t)ne, sizeof *edges, edge_cmp);
+/* Sort both lists and drop the edges found twice, then check that the net
+ * closes up on the torus: E = 3N, F = 2N, and every side of every triangle
+ * one of the edges.  1 when it does. */
+static int net_closes(struct net *t, int n)
+{
+	qsort(t->edges, (size_t)t->ne, sizeof *t->edges, edge_cmp);
 	int w = 0;
-	for (int e = 0; e < ne; e++)
-		if (w == 0 || edge_cmp(&edges[w - 1], &edges[e]) != 0)
-			edges[w++] = edges[e];
-	ne = w;
-	qsort(tris, (size_t)nt, sizeof *tris, tri_cmp);
-
-	rc = 1;
-	if (ne != 3 * n || nt != 2 * n)
-		goto done;
-	/* Every triangle side must be one of the edges: the two lists agree. */
-	for (int t = 0; t < nt; t++)
+	for (int e = 0; e < t->ne; e++)
+		if (w == 0 || edge_cmp(&t->edges[w - 1], &t->edges[e]) != 0)
+			t->edges[w++] = t->edges[e];
+	t->ne = w;
+	qsort(t->tris, (size_t)t->nt, sizeof *t->tris, tri_cmp);
+	if (t->ne != 3 * n || t->nt != 2 * n)
+		return 0;
+	for (int k = 0; k < t->nt; k++)
 		for (int e = 0; e < 3; e++) {
-			struct copy u = { tris[t].v[e], tris[t].sx[e], tris[t].sy[e] };
-			struct copy v = { tris[t].v[(e + 1) % 3], tris[t].sx[(e + 1) % 3],
-				tris[t].sy[(e + 1) % 3] };
+			const struct delaunay_tri *q = &t->tris[k];
+			struct copy u = { q->v[e], q->sx[e], q->sy[e] };
+			struct copy v = { q->v[(e + 1) % 3], q->sx[(e + 1) % 3], q->sy[(e + 1) % 3] };
 			struct delaunay_edge key = canonical(u, v);
-			if (bsearch(&key, edges, (size_t)ne, sizeof *edges, edge_cmp) == NULL)
-				goto done;
+			if (bsearch(&key, t->edges, (size_t)t->ne, sizeof *t->edges, edge_cmp) == NULL)
+				return 0;
 		}
+	return 1;
+}
+
+/* One attempt with copies within `band` tiles of the central tile, over the
+ * (2 ring + 1)^2 neighbourhood.  Returns 0 with *out set, 1 if the counts
+ * fail (widen and retry), -1 with *cause if qhull fails. */
+static int attempt(int n, const double *xy, const double *m, double band, int ring,
+    struct delaunay **out, char **cause)
+{
+	struct copy *cp;
+	coordT *pts;
+	int nc = band_copies(n, xy, m, band, ring, &cp, &pts);
+
+	qhT qh_qh, *qh = &qh_qh;
+	char *errbuf = NULL;
+	size_t errlen = 0;
+	FILE *errfp = open_memstream(&errbuf, &errlen);
+	char options[] = "qhull d Qbb Qc Qz Q12 Qt";
+	int rc = -1;
+	struct net t = { 0 };
+
+	QHULL_LIB_CHECK
+	qh_zero(qh, errfp);
+	int exitcode = qh_new_qhull(qh, 2, nc, pts, False, options, NULL, errfp);
+	if (exitcode != 0) {
+		fflush(errfp);
+		*cause = xasprintf("qhull failed (code %d) on %d points: %.300s", exitcode, nc,
+		    errbuf ? errbuf : "");
+		goto done;
+	}
+	net_collect(qh, cp, nc, n, xy, &t);
+	rc = 1;
+	if (!net_closes(&t, n))
+		goto done;
 	struct delaunay *d = xcalloc(1, sizeof *d);
 	d->n_points = n;
-	d->n_edges = ne;
-	d->n_tris = nt;
-	d->edges = edges;
-	d->tris = tris;
+	d->n_edges = t.ne;
+	d->n_tris = t.nt;
+	d->edges = t.edges;
+	d->tris = t.tris;
 	d->band = band;
-	edges = NULL;
-	tris = NULL;
+	t.edges = NULL;
+	t.tris = NULL;
 	*out = d;
 	rc = 0;
 done:
@@ -201,8 +245,8 @@ done:
 	qh_memfreeshort(qh, &curlong, &totlong);
 	fclose(errfp);
 	free(errbuf);
-	free(edges);
-	free(tris);
+	free(t.edges);
+	free(t.tris);
 	free(pts);
 	free(cp);
 	return rc;

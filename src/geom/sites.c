@@ -429,3 +429,21 @@ int sites_read_ini(const char *path, struct texture_config *cfg, char **cause)
 	free(text);
 	return 0;
 }
+
+char *sites_ini_text(const struct texture_config *cfg)
+{
+	int n;
+	const struct texture_param *p = sites_params(&n);
+	char *s = xasprintf("[texture]\nsite = %s\n", cfg->site);
+	for (int i = 0; i < n; i++) {
+		char key[64];
+		snprintf(key, sizeof key, "%s", p[i].key);
+		for (char *c = key; *c; c++)
+			if (*c == '-')
+				*c = '_';
+		char *t = xasprintf("%s%s = %.17g\n", s, key, sites_get(cfg, &p[i]));
+		free(s);
+		s = t;
+	}
+	return s;
+}

@@ -56,4 +56,8 @@ double sites_get(const struct texture_config *cfg, const struct texture_param *p
  * are ignored; unknown keys in [texture] are errors.  -1 and *cause as
  * "PATH:LINE: message" on failure; cfg is then unspecified. */
 int sites_read_ini(const char *path, struct texture_config *cfg, char **cause);
+/* cfg as a [texture] section that sites_read_ini reads back to the same
+ * values: the site, then every parameter (%.17g, in user units).  Caller
+ * frees. */
+char *sites_ini_text(const struct texture_config *cfg);
 #endif

@@ -374,6 +374,31 @@ int texdir_write(const char *dir, const struct texture_config *cfg, const struct
 	return write_manifest(&o, r, sh, sp, sf, cause);
 }
 
+/* The steps in the order the command reports them; nothing is written
+ * before the relief has been placed. */
+int texdir_make(const char *dir, const struct texture_config *cfg, struct texdir_made *made, char **cause)
+{
+	memset(made, 0, sizeof *made);
+	double t0 = util_now();
+	struct relief *r = relief_new(&cfg->relief, cfg->seed, cause);
+	if (r == NULL)
+		return -1;
+	made->n_pores = relief_n_pores(r);
+	made->notes = texdir_resolution_notes(cfg, r);
+	double t1 = util_now();
+	struct texdir_maps m;
+	texdir_maps_render(&m, r, cfg);
+	texdir_height_range(&m, &made->h_min, &made->h_max);
+	double t2 = util_now();
+	int rc = texdir_write(dir, cfg, r, &m, cause);
+	made->t_place = t1 - t0;
+	made->t_render = t2 - t1;
+	made->t_write = util_now() - t2;
+	texdir_maps_free(&m);
+	relief_free(r);
+	return rc;
+}
+
 /* ---- reader ---- */
 
 void texdir_free(struct texdir *t)

@@ -51,6 +51,20 @@ char *texdir_resolution_notes(const struct texture_config *cfg, const struct rel
 int texdir_write(const char *dir, const struct texture_config *cfg, const struct relief *r,
     const struct texdir_maps *m, char **cause);
 
+/* What texdir_make did, for the command's summary. */
+struct texdir_made {
+	int n_pores;		/* pores placed */
+	double h_min, h_max;	/* lowest and highest point of the height map [cm] */
+	double t_place, t_render, t_write;	/* wall time of each step [s] */
+	char *notes;		/* texdir_resolution_notes, or NULL; caller frees */
+};
+
+/* All of `skinbake texture` after its options: place the relief of cfg,
+ * render the maps at cfg->size and write DIR (texdir_write).  Nothing is
+ * written when placing fails.  -1 and *cause (caller frees) on failure;
+ * made->notes may be set either way. */
+int texdir_make(const char *dir, const struct texture_config *cfg, struct texdir_made *made, char **cause);
+
 /* ---- reader ---- */
 
 struct texdir {

@@ -1,0 +1,300 @@
+/* relief_render: rasterise a placed relief (relief.c) onto pixels, and the
+ * normals of a height map.  Features are binned into square blocks of
+ * pixels, each feature once per tile shift that reaches the window, so
+ * features that cross the tile border reappear on the other side and the map
+ * is periodic by construction.  Blocks are independent, so OpenMP over blocks
+ * gives the same result for any thread count.  Profiles are smooth
+ * polynomials with zero slope at their rim, so the height is continuous with
+ * a continuous slope except at the bottom of a furrow (a V groove) and where
+ * two grooves meet. */
+#include "config.h"
+
+#include "geom/relief.h"
+
+#include <math.h>
+#include <stdlib.h>
+#include <string.h>
+
+#include "geom/relief_impl.h"
+#include "base/util.h"
+
+#define BLOCK 64
+
+/* Features binned by pixel block, as compressed rows: the entries of block
+ * b are entry[start[b] .. start[b+1]). */
+struct bin_entry {
+	int id;	/* feature */
+	int sx, sy;	/* tile shift that brings it into the window [tiles] */
+};
+
+struct bins {
+	int *start;
+	struct bin_entry *entry;
+};
+
+struct window {
+	int n;	/* pixels per edge */
+	int nb;	/* blocks per edge */
+	double x0, y0;	/* lower-left corner [tiles], in [0, 1) */
+};
+
+/* Pixel range [lo, hi] of the feature extent shifted by s, clipped to the
+ * window; empty when lo > hi.  Column c samples x0 + (c + 0.5) / n; row r
+ * samples y0 + (n - r - 0.5) / n. */
+static void col_range(const struct window *w, double a, double b, int *lo, int *hi)
+{
+	*lo = (int)fmax(0, ceil((a - w->x0) * w->n - 0.5));
+	*hi = (int)fmin(w->n - 1, floor((b - w->x0) * w->n - 0.5));
+}
+
+static void row_range(const struct window *w, double a, double b, int *lo, int *hi)
+{
+	*lo = (int)fmax(0, ceil(w->n - 0.5 - (b - w->y0) * w->n));
+	*hi = (int)fmin(w->n - 1, floor(w->n - 0.5 - (a - w->y0) * w->n));
+}
+
+/* Visit every (feature shift, block) pair whose pixels the feature reaches.
+ * Called twice: first to count (entry == NULL), then to fill. */
+static void bin_pass(const struct window *w, int nf, const struct bbox *box, int *count,
+    struct bin_entry *entry)
+{
+	for (int f = 0; f < nf; f++) {
+		const struct bbox *b = &box[f];
+		int sx0 = (int)floor(w->x0 - b->x1), sx1 = (int)ceil(w->x0 + 1 - b->x0);
+		int sy0 = (int)floor(w->y0 - b->y1), sy1 = (int)ceil(w->y0 + 1 - b->y0);
+		for (int sy = sy0; sy <= sy1; sy++) {
+			int r0, r1;
+			row_range(w, b->y0 + sy, b->y1 + sy, &r0, &r1);
+			if (r0 > r1)
+				continue;
+			for (int sx = sx0; sx <= sx1; sx++) {
+				int c0, c1;
+				col_range(w, b->x0 + sx, b->x1 + sx, &c0, &c1);
+				if (c0 > c1)
+					continue;
+				for (int br = r0 / BLOCK; br <= r1 / BLOCK; br++)
+					for (int bc = c0 / BLOCK; bc <= c1 / BLOCK; bc++) {
+						int blk = br * w->nb + bc;
+						if (entry)
+							entry[count[blk]++] = (struct bin_entry){ f, sx, sy };
+						else
+							count[blk + 1]++;
+					}
+			}
+		}
+	}
+}
+
+static struct bins bin_features(const struct window *w, int nf, const struct bbox *box)
+{
+	int nblk = w->nb * w->nb;
+	struct bins b;
+	b.start = xcalloc((size_t)nblk + 1, sizeof *b.start);
+	bin_pass(w, nf, box, b.start, NULL);
+	for (int k = 0; k < nblk; k++)
+		b.start[k + 1] += b.start[k];
+	b.entry = xmalloc(sizeof *b.entry * (size_t)(b.start[nblk] > 0 ? b.start[nblk] : 1));
+	int *fill = xmalloc(sizeof *fill * (size_t)nblk);
+	memcpy(fill, b.start, sizeof *fill * (size_t)nblk);
+	bin_pass(w, nf, box, fill, b.entry);
+	free(fill);
+	return b;
+}
+
+static void bins_free(struct bins *b)
+{
+	free(b->start);
+	free(b->entry);
+}
+
+/* Pixel rectangle of one block. */
+struct rect {
+	int r0, r1, c0, c1;	/* inclusive rows and columns */
+};
+
+static double px_x(const struct window *w, int c)
+{
+	return w->x0 + (c + 0.5) / w->n;
+}
+
+static double px_y(const struct window *w, int r)
+{
+	return w->y0 + (w->n - r - 0.5) / w->n;
+}
+
+/* Clip a shifted extent to the block; 0 if nothing is left. */
+static int clip(const struct window *w, const struct rect *k, const struct bbox *b, int sx, int sy,
+    struct rect *out)
+{
+	col_range(w, b->x0 + sx, b->x1 + sx, &out->c0, &out->c1);
+	row_range(w, b->y0 + sy, b->y1 + sy, &out->r0, &out->r1);
+	out->c0 = out->c0 > k->c0 ? out->c0 : k->c0;
+	out->c1 = out->c1 < k->c1 ? out->c1 : k->c1;
+	out->r0 = out->r0 > k->r0 ? out->r0 : k->r0;
+	out->r1 = out->r1 < k->r1 ? out->r1 : k->r1;
+	return out->c0 <= out->c1 && out->r0 <= out->r1;
+}
+
+/* Pore dimple: -depth (1 - s^2)^2 inside the ellipse (s < 1), zero slope at
+ * the centre and at the rim.  Overlapping pores take the deeper value. */
+static void draw_pores(const struct relief *r, const struct window *w, const struct bins *bn, int blk,
+    const struct rect *k, float *buf)
+{
+	double T = r->p.tile;
+	for (int e = bn->start[blk]; e < bn->start[blk + 1]; e++) {
+		const struct bin_entry *be = &bn->entry[e];
+		const struct pore *q = &r->pores[be->id];
+		struct rect c;
+		if (!clip(w, k, &r->pore_box[be->id], be->sx, be->sy, &c))
+			continue;
+		double ia2 = 1 / (q->a * q->a), ib2 = 1 / (q->b * q->b);
+		for (int row = c.r0; row <= c.r1; row++) {
+			double dy = (px_y(w, row) - (q->y + be->sy)) * T;
+			float *o = buf + (row - k->r0) * BLOCK;
+			for (int col = c.c0; col <= c.c1; col++) {
+				double dx = (px_x(w, col) - (q->x + be->sx)) * T;
+				double u = q->c * dx + q->s * dy, v = -q->s * dx + q->c * dy;
+				double s2 = u * u * ia2 + v * v * ib2;
+				if (s2 >= 1)
+					continue;
+				float h = (float)(-q->depth * (1 - s2) * (1 - s2));
+				if (h < o[col - k->c0])
+					o[col - k->c0] = h;
+			}
+		}
+	}
+}
+
+/* Furrow groove along a segment: -depth (1 - t^2)^2 with t = distance /
+ * half width; grooves of one level combine by their minimum. */
+static void draw_furrows(const struct level *l, double T, const struct window *w,
+    const struct bins *bn, int blk, const struct rect *k, float *buf)
+{
+	for (int e = bn->start[blk]; e < bn->start[blk + 1]; e++) {
+		const struct bin_entry *be = &bn->entry[e];
+		const struct furrow *f = &l->furrows[be->id];
+		struct rect c;
+		if (!clip(w, k, &l->fbox[be->id], be->sx, be->sy, &c))
+			continue;
+		double ax = (f->x0 + be->sx) * T, ay = (f->y0 + be->sy) * T;
+		double ex = (f->x1 - f->x0) * T, ey = (f->y1 - f->y0) * T;
+		double il2 = 1 / (ex * ex + ey * ey), ih2 = 1 / (f->half * f->half);
+		for (int row = c.r0; row <= c.r1; row++) {
+			double py = px_y(w, row) * T - ay;
+			float *o = buf + (row - k->r0) * BLOCK;
+			for (int col = c.c0; col <= c.c1; col++) {
+				double px = px_x(w, col) * T - ax;
+				double t = (px * ex + py * ey) * il2;
+				t = t < 0 ? 0 : t > 1 ? 1 : t;
+				double dx = px - t * ex, dy = py - t * ey;
+				double s2 = (dx * dx + dy * dy) * ih2;
+				if (s2 >= 1)
+					continue;
+				float h = (float)(-f->depth * (1 - s2) * (1 - s2));
+				if (h < o[col - k->c0])
+					o[col - k->c0] = h;
+			}
+		}
+	}
+}
+
+/* Plateau dome: ridge * 27 b0 b1 b2 (barycentric bubble), 1 at the
+ * centroid and 0 on the edges, so neighbouring triangles join continuously. */
+static void draw_plateaus(const struct level *l, const struct window *w, const struct bins *bn,
+    int blk, const struct rect *k, float *buf)
+{
+	for (int e = bn->start[blk]; e < bn->start[blk + 1]; e++) {
+		const struct bin_entry *be = &bn->entry[e];
+		const struct plateau *q = &l->plateaus[be->id];
+		struct rect c;
+		if (q->ridge <= 0 || !clip(w, k, &l->pbox[be->id], be->sx, be->sy, &c))
+			continue;
+		double x0 = q->x[0] + be->sx, y0 = q->y[0] + be->sy;
+		double x1 = q->x[1] + be->sx, y1 = q->y[1] + be->sy;
+		double x2 = q->x[2] + be->sx, y2 = q->y[2] + be->sy;
+		for (int row = c.r0; row <= c.r1; row++) {
+			double py = px_y(w, row);
+			float *o = buf + (row - k->r0) * BLOCK;
+			for (int col = c.c0; col <= c.c1; col++) {
+				double px = px_x(w, col);
+				double b1 = ((px - x0) * (y2 - y0) - (py - y0) * (x2 - x0)) * q->inv2a;
+				double b2 = ((x1 - x0) * (py - y0) - (y1 - y0) * (px - x0)) * q->inv2a;
+				double b0 = 1 - b1 - b2;
+				if (b0 < 0 || b1 < 0 || b2 < 0)
+					continue;
+				o[col - k->c0] = (float)(q->ridge * 27 * b0 * b1 * b2);
+			}
+		}
+	}
+}
+
+void relief_render(const struct relief *r, int n, double x0, double y0, float *pores, float *furrows)
+{
+	struct window w = { n, (n + BLOCK - 1) / BLOCK, x0 - floor(x0), y0 - floor(y0) };
+	struct bins pb = { 0 }, fb[RELIEF_MAX_LEVELS], tb[RELIEF_MAX_LEVELS];
+	if (pores)
+		pb = bin_features(&w, r->n_pores, r->pore_box);
+	for (int k = 0; furrows && k < r->n_levels; k++) {
+		fb[k] = bin_features(&w, r->level[k].n_furrows, r->level[k].fbox);
+		tb[k] = bin_features(&w, r->level[k].n_plateaus, r->level[k].pbox);
+	}
+	int nblk = w.nb * w.nb;
+#pragma omp parallel for schedule(dynamic, 4)
+	for (int blk = 0; blk < nblk; blk++) {
+		float acc[BLOCK * BLOCK], groove[BLOCK * BLOCK], dome[BLOCK * BLOCK];
+		struct rect k;
+		k.r0 = blk / w.nb * BLOCK;
+		k.c0 = blk % w.nb * BLOCK;
+		k.r1 = k.r0 + BLOCK - 1 < n - 1 ? k.r0 + BLOCK - 1 : n - 1;
+		k.c1 = k.c0 + BLOCK - 1 < n - 1 ? k.c0 + BLOCK - 1 : n - 1;
+		if (pores) {
+			memset(acc, 0, sizeof acc);
+			draw_pores(r, &w, &pb, blk, &k, acc);
+			for (int row = k.r0; row <= k.r1; row++)
+				memcpy(pores + (size_t)row * n + k.c0, acc + (row - k.r0) * BLOCK,
+				    sizeof(float) * (size_t)(k.c1 - k.c0 + 1));
+		}
+		if (furrows) {
+			memset(acc, 0, sizeof acc);
+			for (int lv = 0; lv < r->n_levels; lv++) {
+				memset(groove, 0, sizeof groove);
+				memset(dome, 0, sizeof dome);
+				draw_furrows(&r->level[lv], r->p.tile, &w, &fb[lv], blk, &k, groove);
+				draw_plateaus(&r->level[lv], &w, &tb[lv], blk, &k, dome);
+				for (int q = 0; q < BLOCK * BLOCK; q++)
+					acc[q] += groove[q] + dome[q];
+			}
+			for (int row = k.r0; row <= k.r1; row++)
+				memcpy(furrows + (size_t)row * n + k.c0, acc + (row - k.r0) * BLOCK,
+				    sizeof(float) * (size_t)(k.c1 - k.c0 + 1));
+		}
+	}
+	if (pores)
+		bins_free(&pb);
+	for (int k = 0; furrows && k < r->n_levels; k++) {
+		bins_free(&fb[k]);
+		bins_free(&tb[k]);
+	}
+}
+
+void relief_normals(int n, double pitch, const float *h, float *nx, float *ny, float *nz)
+{
+	double inv = 1 / (2 * pitch);
+#pragma omp parallel for schedule(static)
+	for (int row = 0; row < n; row++) {
+		const float *up = h + (size_t)((row + n - 1) % n) * n;
+		const float *dn = h + (size_t)((row + 1) % n) * n;
+		const float *cur = h + (size_t)row * n;
+		size_t o = (size_t)row * n;
+		for (int c = 0; c < n; c++) {
+			int l = c ? c - 1 : n - 1, rr = c + 1 < n ? c + 1 : 0;
+			/* Row index grows downward, so dh/dy (y up) is up - down. */
+			double hx = ((double)cur[rr] - cur[l]) * inv;
+			double hy = ((double)up[c] - dn[c]) * inv;
+			double norm = 1 / sqrt(hx * hx + hy * hy + 1);
+			nx[o + c] = (float)(-hx * norm);
+			ny[o + c] = (float)(-hy * norm);
+			nz[o + c] = (float)norm;
+		}
+	}
+}

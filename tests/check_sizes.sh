@@ -1,0 +1,75 @@
+#!/bin/sh
+# Size rules of src/ (DEVELOPERS.md, house rules): every .c file opens with a
+# comment saying what it is for; no .c file over 600 lines unless a line
+# "Over 600 lines because ..." in its first 20 lines gives the reason; every
+# command file src/cli/cmd_*.c under 150 lines; no function over 120 lines.
+# A function is what this code base writes as a definition: its signature
+# starts at column 0 and its body is a '{' alone on a line through the next
+# '}' alone on a line; its length counts from the signature's first line to
+# that '}'.  One TAP line per rule and file, then probes that the rules bite.
+. "$top_srcdir/tests/tap.sh"
+MAX_FILE=600
+MAX_CMD=150
+MAX_FUNC=120
+# long_functions FILE: "name lines" for each function over MAX_FUNC lines.
+long_functions() {
+	awk -v max="$MAX_FUNC" '
+	!infn && /^\{$/ { if (sig) infn = 1; next }
+	!infn && /^[A-Za-z_]/ { if (!sig) { start = NR; head = $0; sig = 1 } if (/;$/) sig = 0; next }
+	!infn && sig && /^    [^ ]/ { next }
+	!infn { sig = 0; next }
+	/^\}/ {
+		n = NR - start + 1
+		if (n > max) {
+			name = head; sub(/\(.*/, "", name); sub(/.*[ *]/, "", name)
+			printf "%s %d\n", name, n
+		}
+		infn = 0; sig = 0
+	}' "$1"
+}
+# why FILE: the reasons FILE breaks the rules, or nothing.
+why() {
+	f=$1
+	head -n 1 "$f" | grep -q '^/\* [^ ]' || printf ' does not open with a comment saying what it is for;'
+	n=$(wc -l < "$f")
+	if [ "$n" -gt "$MAX_FILE" ] && ! head -n 20 "$f" | grep -q 'Over 600 lines because'; then
+		printf ' %d lines (over %d) without "Over 600 lines because ..." in its first 20 lines;' \
+		    "$n" "$MAX_FILE"
+	fi
+	case $f in
+	*cli/cmd_*.c) [ "$n" -ge "$MAX_CMD" ] && printf ' a command file of %d lines (150 or more);' "$n" ;;
+	esac
+	long_functions "$f" | while read -r name len; do
+		printf ' function %s is %d lines (over %d);' "$name" "$len" "$MAX_FUNC"
+	done
+}
+cd "$top_srcdir/src" || exit 1
+for f in $(find . -name '*.c' | sed 's|^\./||' | LC_ALL=C sort); do
+	w=$(why "$f")
+	if [ -z "$w" ]; then ok "$f: sizes within the rules"; else fail "$f:$w"; fi
+done
+
+# Probes: each rule catches a planted violation, and a function of exactly
+# MAX_FUNC lines passes.
+body() { i=0; while [ $i -lt "$1" ]; do echo "	x += $i;"; i=$((i + 1)); done; }
+{
+	echo '/* probe: a long function. */'
+	echo 'static int short_one(int x)'; echo '{'; body 3; echo '	return x;'; echo '}'
+	echo 'int long_one(int x,'; echo '    int y)'; echo '{'; body 120; echo '	return x + y;'; echo '}'
+} > "$tmpd/long.c"
+check "a planted 125-line function is caught by name" test "$(long_functions "$tmpd/long.c")" = "long_one 125"
+{
+	echo '/* probe: a function of exactly 120 lines. */'
+	echo 'int fits(int x)'; echo '{'; body 116; echo '	return x;'; echo '}'
+} > "$tmpd/fits.c"
+check "a 120-line function passes" test -z "$(long_functions "$tmpd/fits.c")"
+{ echo '/* probe: a big file. */'; body 600; } > "$tmpd/big.c"
+check "a 601-line file without a reason is caught" test -n "$(why "$tmpd/big.c")"
+{ echo '/* probe: a big file.  Over 600 lines because it is a probe. */'; body 600; } > "$tmpd/big2.c"
+check "a 601-line file with its reason passes" test -z "$(why "$tmpd/big2.c")"
+mkdir -p "$tmpd/cli"
+{ echo '/* probe: a command. */'; body 149; } > "$tmpd/cli/cmd_probe.c"
+check "a 150-line cmd_*.c is caught" test -n "$(why "$tmpd/cli/cmd_probe.c")"
+{ echo '#include "config.h"'; } > "$tmpd/bare.c"
+check "a file without an opening comment is caught" test -n "$(why "$tmpd/bare.c")"
+tap_done
