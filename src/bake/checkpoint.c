@@ -159,8 +159,11 @@ static int load(struct checkpoint *c, char **cause)
 	int done = 0;
 	for (int i = 0; i < c->n; i++)
 		done += c->rec[i].done != 0;
-	c->note = xasprintf("resuming from %s: %d %s%s finished, %d in progress\n", c->path, done, c->unit,
-	    done == 1 ? "" : "s", c->n - done);
+	if (strcmp(c->unit, "member") == 0)	/* members are saved only when finished */
+		c->note = xasprintf("resuming from %s: %d member%s finished\n", c->path, done, done == 1 ? "" : "s");
+	else
+		c->note = xasprintf("resuming from %s: %d %s%s finished, %d in progress\n", c->path, done, c->unit,
+		    done == 1 ? "" : "s", c->n - done);
 	return 0;
 }
 
