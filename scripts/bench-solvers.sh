@@ -5,14 +5,16 @@
 # error against time for both, the Monte Carlo Rd(r) run behind the
 # subsurface radius of an adding-doubling bake (reported error against the
 # spread over seeds), and `verify`.  Prints one markdown section; the plot
-# goes to $BENCH_OUT (default docs/bench).  BENCH_QUICK=1 shrinks the work
-# (for trying the script; its numbers are not the benchmark).
+# goes to $BENCH_IMG (default docs/img) as bench-solvers.png.  Timed bakes
+# are best of 3 (the machine is shared), each run with the 1-minute load
+# average at its start.  BENCH_QUICK=1 shrinks the work (for trying the
+# script; its numbers are not the benchmark).
 set -eu
 SKINBAKE=${SKINBAKE:-./skinbake}
 top_srcdir=${top_srcdir:-.}
-OUT=${BENCH_OUT:-$top_srcdir/docs/bench}
+IMG=${BENCH_IMG:-$top_srcdir/docs/img}
 QUICK=${BENCH_QUICK:-0}
-mkdir -p "$OUT"
+mkdir -p "$IMG"
 W=$(mktemp -d "${TMPDIR:-/tmp}/skinbake-bench-solvers.XXXXXX")
 trap 'rm -rf "$W"' EXIT INT TERM
 
@@ -45,7 +47,24 @@ bake() {
 	wall=$1 cpu=$2 photons=$3 secs=$4 err=$5 rsecs=$6 solver=$7
 }
 load() { sed 's/.*load average: //' /proc/loadavg 2>/dev/null | cut -d' ' -f1-3 || uptime; }
-median3() { printf '%s\n%s\n%s\n' "$1" "$2" "$3" | sort -g | sed -n 2p; }
+min3() { printf '%s\n%s\n%s\n' "$1" "$2" "$3" | sort -g | sed -n 1p; }
+load1() { cut -d' ' -f1 /proc/loadavg; }
+# best3 NAME ARGS...: bake three times (NAME1..3, the last kept as NAME);
+# sets wall (the best), walls ("wall@load" of each), and the rest as bake.
+best3() {
+	t_name=$1; shift
+	walls='' t_w=''
+	for t_i in 1 2 3; do
+		t_l=$(load1)
+		bake "$t_name$t_i" "$@"
+		walls="$walls $wall@$t_l"
+		t_w="$t_w $wall"
+		[ "$t_i" = 3 ] || rm -rf "${W:?}/$t_name$t_i"
+	done
+	mv "$W/$t_name"3 "$W/$t_name"
+	# shellcheck disable=SC2086
+	wall=$(min3 $t_w)
+}
 
 cpu_name=$(grep -m1 'model name' /proc/cpuinfo | cut -d: -f2 | sed 's/^ //')
 t_start=$(date +%s)
@@ -75,30 +94,26 @@ ref_secs=$secs ref_err=$err
 echo
 echo "### \`paper\`: adding-doubling against Monte Carlo at ${MC_TARGET}"
 echo
-echo "| solver | command | wall | CPU | table s | Rd(r) s | photons | estimated | actual |"
-echo "|---|---|---|---|---|---|---|---|---|"
-walls=
-for i in 1 2 3; do
-	bake "ad$i" --preset paper --solver ad
-	walls="$walls $wall"
-done
-# shellcheck disable=SC2086
-w_ad=$(median3 $walls)
-bake ad --preset paper --solver ad
+echo "| solver | command | wall, best of 3 | each wall [s] @ 1-min load | CPU | table s | Rd(r) s | photons | estimated | actual |"
+echo "|---|---|---|---|---|---|---|---|---|---|"
+best3 ad --preset paper --solver ad
+w_ad=$wall
 # shellcheck disable=SC2046
 set -- $(PY cmp "$W/ad" "$W/ref")
 ad_act=$1 ad_est=$err ad_secs=$secs
-echo "| ad (median of 3 walls:$walls) | \`skinbake bake --preset paper --solver ad --out DIR\` | $w_ad | $cpu | $secs | $rsecs | $photons (Rd(r)) | $err | $ad_act |"
-bake mc --preset paper --solver mc --target-error "$MC_TARGET"
+echo "| ad | \`skinbake bake --preset paper --solver ad --out DIR\` | $w_ad |$walls | $cpu | $secs | $rsecs | $photons (Rd(r)) | $err | $ad_act |"
+best3 mc --preset paper --solver mc --target-error "$MC_TARGET"
 w_mc=$wall
 # shellcheck disable=SC2046
 set -- $(PY cmp "$W/mc" "$W/ref")
 mc_act=$1
 echo "$secs $err $1 $photons" > "$W/mc.dat"
-echo "| mc | \`skinbake bake --preset paper --solver mc --target-error $MC_TARGET --out DIR\` | $wall | $cpu | $secs | - | $photons | $err | $mc_act |"
+echo "| mc | \`skinbake bake --preset paper --solver mc --target-error $MC_TARGET --out DIR\` | $wall |$walls | $cpu | $secs | - | $photons | $err | $mc_act |"
 echo
 sp=$(calc '%.0f' "$w_mc / $w_ad")
-echo "Speed-up in wall time: **$sp x** (goal >= 30 x); adding-doubling's own error estimate $ad_est"
+echo "CPU, table s, Rd(r) s and the errors are of the third run."
+echo
+echo "Speed-up in wall time (best against best): **$sp x** (goal >= 30 x); adding-doubling's own error estimate $ad_est"
 echo "(goal <= 1e-3), actual error $ad_act. The reference itself: $ref_secs s, estimated error $ref_err."
 echo "Monte Carlo's actual error against the reference, $mc_act, is its reported standard error"
 echo "($(PY info "$W/mc" | cut -d' ' -f3)) as it should be: the two methods agree."
@@ -109,15 +124,15 @@ echo "### The physiological presets by adding-doubling (16 wavelengths each)"
 echo
 echo "\`skinbake bake --preset NAME --solver ad --out DIR\`; goal: under 10 s wall each on 2 cores."
 echo
-echo "| preset | wavelengths | wall | CPU | table s | Rd(r) s | nodes per unit cosine | Fourier orders | estimated | under 10 s |"
-echo "|---|---|---|---|---|---|---|---|---|---|"
+echo "| preset | wavelengths | wall, best of 3 | each wall [s] @ 1-min load | CPU | table s | Rd(r) s | nodes per unit cosine | Fourier orders | estimated | under 10 s |"
+echo "|---|---|---|---|---|---|---|---|---|---|---|"
 worst=0
 for p in $PRESETS; do
-	bake "p_$p" --preset "$p" --solver ad
+	best3 "p_$p" --preset "$p" --solver ad
 	nwl=$(python3 -c "import json; print(len(json.load(open('$W/p_$p/manifest.json'))['wavelengths_nm']))")
 	# shellcheck disable=SC2046
 	set -- $(PY quad "$W/p_$p")
-	echo "| $p | $nwl | $wall | $cpu | $secs | $rsecs | $1 | $2 | $err | $(calc '%s' "($wall < 10) ? \"yes\" : \"NO\"") |"
+	echo "| $p | $nwl | $wall |$walls | $cpu | $secs | $rsecs | $1 | $2 | $err | $(calc '%s' "($wall < 10) ? \"yes\" : \"NO\"") |"
 	worst=$(calc '%.3f' "($wall > $worst) ? $wall : $worst")
 	rm -rf "$W/p_$p"
 done
@@ -133,30 +148,35 @@ echo "keeps the Fourier series from being cut early), and its default (\`--solve
 echo "from 16 up that meet 1e-3); Monte Carlo at \`--solver mc --target-error E\`. Time: the table's own"
 echo "seconds. Both errors against the same reference."
 echo
-echo "| solver | setting | table s | photons | estimated | actual |"
-echo "|---|---|---|---|---|---|"
+echo "| solver | setting | table s | 1-min load | photons | estimated | actual |"
+echo "|---|---|---|---|---|---|---|"
 : > "$W/ad.dat"
+loads=
 for q in $AD_CURVE; do
+	l=$(load1) loads="$loads $l"
 	bake "q$q" --preset paper --solver ad --ad-quad "$q" --ad-tol 1e-6 --radial-photons 100
 	# shellcheck disable=SC2046
 	set -- $(PY cmp "$W/q$q" "$W/ref")
-	echo "| ad | \`--ad-quad $q --ad-tol 1e-6\` | $secs | - | $err | $1 |"
+	echo "| ad | \`--ad-quad $q --ad-tol 1e-6\` | $secs | $l | - | $err | $1 |"
 	echo "$secs $err $1" >> "$W/ad.dat"
 	rm -rf "$W/q$q"
 done
-echo "| ad | default (\`--ad-tol 1e-3\`) | $ad_secs | - | $ad_est | $ad_act |"
+echo "| ad | default (\`--ad-tol 1e-3\`) | $ad_secs | (above) | - | $ad_est | $ad_act |"
 echo "$ad_secs $ad_est $ad_act" > "$W/ad_default.dat"
 for e in $MC_CURVE; do
+	l=$(load1) loads="$loads $l"
 	bake "m$e" --preset paper --solver mc --target-error "$e"
 	# shellcheck disable=SC2046
 	set -- $(PY cmp "$W/m$e" "$W/ref")
-	echo "| mc | \`--target-error $e\` | $secs | $photons | $err | $1 |"
+	echo "| mc | \`--target-error $e\` | $secs | $l | $photons | $err | $1 |"
 	echo "$secs $err $1 $photons" >> "$W/mc.dat"
 	rm -rf "$W/m$e"
 done
 # shellcheck disable=SC2046
 set -- $(cat "$W/mc.dat" | head -1)
-echo "| mc | \`--target-error $MC_TARGET\` | $1 | $4 | $2 | $3 |"
+echo "| mc | \`--target-error $MC_TARGET\` | $1 | (above) | $4 | $2 | $3 |"
+# shellcheck disable=SC2086
+lrange=$(printf '%s\n' $loads | sort -g | sed -n '1p;$p' | paste -sd- -)
 sort -g "$W/mc.dat" > "$W/mc_sorted.dat"
 echo
 echo "Monte Carlo's smallest bake is its pilot, 8 x 250 photons per (wavelength, angle): targets at or"
@@ -167,11 +187,11 @@ echo "(about 3e-8 RMS)."
 if command -v gnuplot >/dev/null 2>&1; then
 	gnuplot <<GP
 set terminal pngcairo size 720,480
-set output "$OUT/solvers_error_vs_time.png"
+set output "$IMG/bench-solvers.png"
 set termoption noenhanced
 set logscale xy
 set format y "1e%T"
-set xlabel "table seconds ($(nproc) threads)"
+set xlabel "table seconds ($(nproc) threads; shared machine, 1-min load $lrange)"
 set ylabel "RMS relative error of the table"
 set key right center
 set grid
@@ -185,8 +205,24 @@ plot "$W/ad.dat" using 1:3 with linespoints pt 7 lc rgb "#1f77b4" title "adding-
      "$W/mc_sorted.dat" using 1:2 with points pt 4 ps 2 lc rgb "#d62728" title "Monte Carlo, its standard error"
 GP
 	echo
-	echo "![error against time, both solvers](docs/bench/solvers_error_vs_time.png)"
+	echo "![error against time, both solvers](docs/img/bench-solvers.png)"
 fi
+
+cat <<'MD'
+
+### The correctness lines of issue 13 and the tests that assert them
+
+Timings are above; correctness is asserted by tests (`make check`), not here.
+
+| issue 13 line | test | what it asserts |
+|---|---|---|
+| every normal-incidence AD value in shared/refs to 1e-4 relative | tests/test_ad `test_public_refs` | every AD_ row of tests/data/public_refs.tsv within 1e-4 relative (with a 1e-8 absolute floor, binding only for the three skin Tt rows of order 1e-5); the published rows within 3 sigma |
+| the skin stack's azimuth-averaged curve to 0.2% per 5-degree band | tests/test_ad `test_bands_converged`; tests/test_ad_mc `test_bands_normal` | the bake's defaults against 128 nodes per unit cosine: every band within 0.2% and within the error estimates, at 0, 34 and 60 deg (measured: within 4e-6); against Monte Carlo (1e6 photons, next-event estimation): every band within 3 sigma (sigma 0.15-0.3%); `AD_MC_LONG=1 tests/test_ad_mc`: 2e7 photons, every band within 3 sigma and within 0.2% (a validation run of about 4 min of CPU, not in `make check`) |
+| energy Rsp + Rd + Tt + sum A = 1 to 1e-6 | tests/test_ad `test_energy` and every hard case; tests/ad_hard.sh | three stacks x 4 angles x 2 Fresnel models; each hard case |
+| 34 and 60 deg against a long Monte Carlo, every bin within 3 sigma (sigma about 0.5%) | tests/test_ad_mc `test_tables_oblique` | 2 x 324 bins against 2e5 photons of next-event estimation each: no bin beyond 4 sigma, at most 1% of the bins beyond 3 sigma, chi^2 per bin below 2 (the statistical form of the line: 648 bins put about 2 beyond 3 sigma by chance) |
+| reciprocity f(i, o) = f(o, i) to 1e-5 relative | tests/test_ad `test_reciprocity` | 12 angles off the quadrature, 66 pairs x 9 azimuths, two stacks |
+| the hard cases finish, balance and have honest errors | tests/test_ad `test_hard_*` (16 against 48 nodes); tests/ad_hard.sh (the command line: the default tolerance against twice the nodes at 1e-6, and against Monte Carlo) | g = +-0.99: refused at the default tolerance; `bake --solver auto` falls back to Monte Carlo for that wavelength and says so on stderr |
+MD
 
 # --- Rd(r) of an adding-doubling bake ----------------------------------------------------
 echo

@@ -52,7 +52,7 @@ int cmd_simulate(int argc, char **argv)
 	struct layers ls = { 0 };
 	double na, nbw, th, tos, phs, tol;
 	long seed;
-	int json = 0, fresnel, solver;
+	int json = 0, fresnel, solver, n_quad = 0;
 	char *cause = NULL;
 	const struct opt opts[] = {
 		{ "layer", OPT_CUSTOM, &ls, "SPEC", .fn = add_layer, .keys = layer_keys, .max = SLAB_MAX_LAYERS,
@@ -65,6 +65,8 @@ int cmd_simulate(int argc, char **argv)
 		  .help = "Monte Carlo (mc) or adding-doubling (ad: no Rd(r); errors are its error estimates)" },
 		{ "ad-tol", OPT_DOUBLE, &tol, "E", "1e-4", .lo = 1e-6, .hi = 0.1,
 		  .help = "ad: estimated RMS relative error of the BRDF bins to reach (and of Rd, Tt)" },
+		{ "ad-quad", OPT_INT, &n_quad, "N", "0", .lo = 0, .hi = 1024, .help = "ad: quadrature nodes per unit "
+		  "cosine, 4 or more (0 = the fewest from 16 up, doubling, that meet --ad-tol)" },
 		{ "photons", OPT_LONG, &c.photons, "N", "1e6", .lo = 1, .hi = 1e12, .help = "mc: photons" },
 		{ "seed", OPT_LONG, &seed, "N", "1", .lo = 0, .hi = (double)LONG_MAX, .help = "mc: random seed" },
 		{ "threads", OPT_INT, &c.threads, "N", "0", .lo = 0, .hi = 1024, .help = "OpenMP threads (0 = all cores)" },
@@ -114,6 +116,8 @@ int cmd_simulate(int argc, char **argv)
 		free(cause);
 		return rc;
 	}
+	if (n_quad > 0 && n_quad < 4)
+		return opt_error(&x, "--ad-quad = %d: 0 (automatic) or 4..1024 nodes per unit cosine", n_quad);
 	slab_prepare(&c.slab);
 	c.theta_in = th * M_PI / 180.0;
 	c.grid.n_theta = (int)round(90.0 / tos);
@@ -132,7 +136,7 @@ int cmd_simulate(int argc, char **argv)
 	cli_progress_start(&pr, "simulate");
 	if (solver == 0)
 		sim_run(&c, &r, cli_progress_update, &pr);
-	else if (ad_sim_run(&c, tol, &r, &ad, &cause) != 0) {
+	else if (ad_sim_run(&c, tol, n_quad, &r, &ad, &cause) != 0) {
 		int rc = opt_error(&x, "--solver ad: %s (--solver mc samples it)", cause);
 		free(cause);
 		return rc;

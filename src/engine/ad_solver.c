@@ -224,12 +224,13 @@ static void sim_of_ad(const struct ad_result *a, int n_layers, const struct tall
 	out->balance = b->balance;
 }
 
-int ad_sim_run(const struct sim_config *c, double tol, struct sim_result *r, struct ad_sim_info *info, char **cause)
+int ad_sim_run(const struct sim_config *c, double tol, int n_quad, struct sim_result *r, struct ad_sim_info *info,
+    char **cause)
 {
 	struct ad_opts o;
 	struct ad_result a;
 	ad_opts_default(&o);
-	o.tol = tol, o.n_to = c->grid.n_theta, o.n_phi = c->grid.n_phi, o.threads = c->threads;
+	o.tol = tol, o.n_quad = n_quad, o.n_to = c->grid.n_theta, o.n_phi = c->grid.n_phi, o.threads = c->threads;
 	if (ad_solve(&c->slab, c->opts.fresnel, &c->theta_in, 1, &o, &a, cause) != 0)
 		return -1;
 	*info = (struct ad_sim_info){ tol, a.n_quad, a.n_orders, a.rms_rel_err };

@@ -39,7 +39,8 @@ double ad_solver_tol(const struct ad_solver_settings *s, const struct solver_pro
 extern const struct solver_ops ad_solver;
 /* One stack at one angle, as sim_run gives it by Monte Carlo (`skinbake
  * simulate --solver ad`): the solve of c's slab at c->theta_in, Fresnel
- * model and exit grid (no Rd(r)) to tolerance tol, with c->threads over the
+ * model and exit grid (no Rd(r)) to tolerance tol at n_quad nodes per unit
+ * cosine (0: the fewest that meet tol, as ad_opts), with c->threads over the
  * Fourier orders, as a sim_result (errors: the error estimates; no photons)
  * and what else it tells.  0, or -1 and *cause where the solver refuses. */
 struct ad_sim_info {
@@ -48,5 +49,6 @@ struct ad_sim_info {
 	int n_orders;		/* Fourier orders kept */
 	double rms_rel_err;	/* estimated RMS relative error of the BRDF bins [-] */
 };
-int ad_sim_run(const struct sim_config *c, double tol, struct sim_result *r, struct ad_sim_info *info, char **cause);
+int ad_sim_run(const struct sim_config *c, double tol, int n_quad, struct sim_result *r, struct ad_sim_info *info,
+    char **cause);
 #endif

@@ -4,6 +4,7 @@
 #include "maps/edit.h"
 
 #include <math.h>
+#include <stdio.h>
 #include <stdlib.h>
 #include <string.h>
 
@@ -43,5 +44,24 @@ int maps_edit(struct mapset *m, const struct maps_op *ops, int n_ops, const stru
 	 * (which texels are skin) still holds. */
 	free(m->de2000);
 	m->de2000 = NULL;
+	return 0;
+}
+
+int maps_ops_resolve(const struct mapset *m, const struct maps_edit_arg *args, int n, struct maps_op *ops,
+    char **cause)
+{
+	for (int k = 0; k < n; k++) {
+		int a = mapset_find(m, args[k].key);
+		if (a < 0) {
+			char names[256] = "";
+			for (int b = 0; b < m->n; b++)
+				snprintf(names + strlen(names), sizeof names - strlen(names), "%s%s", b ? ", " : "", m->p[b].key);
+			return *cause = xasprintf("%s: not one of the maps (%s)", args[k].key, names), -1;
+		}
+		if (args[k].kind == MAPS_SET && !(args[k].value >= m->p[a].fam_lo && args[k].value <= m->p[a].fam_hi))
+			return *cause = xasprintf("--set %s = %g is outside the family's range [%g, %g]", args[k].key,
+			    args[k].value, m->p[a].fam_lo, m->p[a].fam_hi), -1;
+		ops[k] = (struct maps_op){ args[k].kind, a, args[k].value };
+	}
 	return 0;
 }

@@ -7,6 +7,8 @@
 #include <stdio.h>
 #include <stdlib.h>
 #include <string.h>
+#include <sys/stat.h>
+#include <unistd.h>
 
 #include "base/util.h"
 #include "io/exrio.h"
@@ -174,4 +176,23 @@ int image_write_exr(const char *path, const struct image *im, const char *const 
 	free(planes);
 	free(a);
 	return rc;
+}
+
+int image_check_out(const char *path, int *exr, char **cause)
+{
+	size_t n = strlen(path);
+	struct stat st;
+	*exr = n > 4 && strcmp(path + n - 4, ".exr") == 0;
+	if (!(*exr || (n > 4 && strcmp(path + n - 4, ".png") == 0)))
+		return *cause = xasprintf("'%s' does not end with .png or .exr", path), -1;
+	if (stat(path, &st) == 0 && S_ISDIR(st.st_mode))
+		return *cause = xasprintf("'%s' is a directory, expected a file name", path), -1;
+	char *dir = xstrdup(path), *sl = strrchr(dir, '/');
+	if (sl)
+		*(sl == dir ? sl + 1 : sl) = '\0';
+	int ok = access(sl ? dir : ".", W_OK) == 0;
+	if (!ok)
+		*cause = xasprintf("'%s': its directory '%s' is missing or not writable", path, sl ? dir : ".");
+	free(dir);
+	return ok ? 0 : -1;
 }

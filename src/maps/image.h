@@ -33,6 +33,11 @@ void image_free(struct image *im);	/* NULL is a no-op */
  * channel and a missing alpha for 1. */
 float image_get(const struct image *im, size_t i, int c);
 
+/* An output image path: ends with .png or .exr (*exr set accordingly), is
+ * not a directory, its directory exists and is writable; -1 and *cause
+ * ("'PATH' does not end with .png or .exr", ...). */
+int image_check_out(const char *path, int *exr, char **cause);
+
 /* Write a PNG of bits 8 or 16 from values in [0, 1] (clamped, rounded);
  * srgb marks an 8-bit colour picture as sRGB-encoded (io/pngio.h). */
 int image_write_png(const char *path, const struct image *im, int bits, int srgb, int ntext,

@@ -421,3 +421,14 @@ int mapset_check_family(const struct mapset *m, const char *dir, const struct fa
 	}
 	return 0;
 }
+
+char *mapset_command_line(const char *action, int argc, char **argv)
+{
+	char *s = xasprintf("skinbake maps %s", action);
+	for (int i = 1; i < argc; i++) {
+		char *t = xasprintf("%s %s", s, argv[i]);
+		free(s);
+		s = t;
+	}
+	return s;
+}

@@ -53,6 +53,8 @@ struct mapset {
 struct mapset *mapset_new(const struct family *f, int w, int h, const double *x);
 void mapset_free(struct mapset *m);	/* NULL is a no-op */
 void mapset_add_history(struct mapset *m, const char *command);
+/* "skinbake maps ACTION ARGS..." (argv[1] on), for the history.  Caller frees. */
+char *mapset_command_line(const char *action, int argc, char **argv);
 /* The index of the map of KEY, or -1. */
 int mapset_find(const struct mapset *m, const char *key);
 

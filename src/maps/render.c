@@ -8,6 +8,7 @@
 #endif
 
 #include "base/check.h"
+#include "base/srgb.h"
 #include "base/util.h"
 
 struct image *maps_render_albedo(struct family *f, const struct mapset *m, struct image **radius, int threads)
@@ -37,4 +38,26 @@ struct image *maps_render_albedo(struct family *f, const struct mapset *m, struc
 	if (radius)
 		*radius = rad;
 	return im;
+}
+
+int maps_render_write(const char *out, int exr, int bits, int srgb, struct image *im, const char *radius_path,
+    const struct image *rad, char **cause)
+{
+	static const char *names[] = { "R", "G", "B" };
+	const char *kv[] = { "skinbake:content", "diffuse albedo, linear sRGB (D65)" };
+	int rc;
+	if (exr)
+		rc = image_write_exr(out, im, names, 1, kv, cause);
+	else {
+		if (srgb)
+			for (size_t i = 0; i < (size_t)im->w * im->h * 3; i++)
+				im->v[i] = (float)srgb_encode(im->v[i]);
+		struct png_text_kv tx[] = { { "Software", PACKAGE_STRING }, { "Comment", srgb
+			? "diffuse albedo, sRGB-encoded" : "diffuse albedo, linear sRGB values (no transfer function)" } };
+		rc = image_write_png(out, im, bits, srgb && bits == 8, 2, tx, cause);
+	}
+	const char *rkv[] = { "skinbake:content", "subsurface radius (mean exit radius) per R, G, B [cm]" };
+	if (rc == 0 && rad)
+		rc = image_write_exr(radius_path, rad, names, 1, rkv, cause);
+	return rc;
 }

@@ -12,4 +12,10 @@
  * wanted) gets the mean exit radius per R, G, B [cm] the same way.  The
  * maps must suit the family (mapset_check_family). */
 struct image *maps_render_albedo(struct family *f, const struct mapset *m, struct image **radius, int threads);
+/* Write the albedo im to out: a float EXR (exr), else a PNG of bits 8 or
+ * 16, sRGB-encoded (srgb: im's values are encoded in place) or linear
+ * values; then the radius rad, if not NULL, to the EXR radius_path.  -1 and
+ * *cause. */
+int maps_render_write(const char *out, int exr, int bits, int srgb, struct image *im, const char *radius_path,
+    const struct image *rad, char **cause);
 #endif

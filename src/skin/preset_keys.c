@@ -1,6 +1,5 @@
 /* preset_keys: the table of preset keys and the setters that turn a key's
- * text into struct skin_params fields (see preset_keys.h); also the
- * resolved parameters as INI text and the key listing of `preset keys`. */
+ * text into struct skin_params fields (see preset_keys.h). */
 #include "config.h"
 #include "skin/preset_keys.h"
 
@@ -13,35 +12,11 @@
 #include "base/util.h"
 #include "skin/preset.h"
 #include "skin/spectra.h"
-
-enum kind {
-	K_NUM,		/* a number in [lo, hi] */
-	K_LEN,		/* a thickness in [lo, hi] or "inf" */
-	K_IOR,		/* a number or "ding2006" */
-	K_ANISO,	/* a number or "vangemert1989" */
-	K_TEXT,		/* name or description */
-	K_MODEL,	/* chromophores | tables */
-	K_WL,		/* wavelength list */
-	K_BASE		/* start from a built-in preset */
-};
-
 #define NONE (-1)
 #define LOFF(f) offsetof(struct skin_layer_params, f)
 #define POFF(f) offsetof(struct skin_params, f)
 
-struct key {
-	const char *section;
-	const char *name;
-	enum kind kind;
-	int layer;		/* enum skin_layer_id, or NONE for a struct skin_params field */
-	size_t off;		/* field offset in the layer or the params */
-	double lo, hi;		/* inclusive range */
-	const char *unit;
-	const char *dflt;	/* default, in the file syntax ("" = none) */
-	const char *doc;
-};
-
-static const struct key keys[] = {
+const struct preset_key preset_key_table[] = {
 	{ "skin", "base", K_BASE, NONE, 0, 0, 0, "", "",
 	  "start from this built-in preset (must be the first key of the file)" },
 	{ "skin", "name", K_TEXT, NONE, POFF(name), 1, 64, "", "",
@@ -111,17 +86,11 @@ static const struct key keys[] = {
 	{ "surface", "roughness_sebum", K_NUM, NONE, POFF(roughness_sebum), 0.01, 1, "", "0.25",
 	  "GGX alpha of the sebum-covered surface" },
 };
-#define N_KEYS ((int)(sizeof keys / sizeof keys[0]))
-_Static_assert(sizeof keys / sizeof keys[0] <= PRESET_MAX_KEYS, "struct preset_ctx.seen is too small");
+#define N_KEYS ((int)(sizeof preset_key_table / sizeof preset_key_table[0]))
+_Static_assert(sizeof preset_key_table / sizeof preset_key_table[0] <= PRESET_MAX_KEYS, "struct preset_ctx.seen is too small");
 
 /* Keys of [override.WL] sections: LAYER.PROP. */
-enum { OV_MUA, OV_MUS, OV_G, OV_N, OV_N_PROPS };
-static const struct {
-	const char *name;
-	double lo, hi;
-	const char *unit;
-	const char *doc;
-} ov_props[OV_N_PROPS] = {
+const struct preset_ov_prop preset_ov_props[OV_N_PROPS] = {
 	{ "mua", 0, 1e5, "1/cm", "absorption coefficient" },
 	{ "mus", 0, 1e6, "1/cm", "scattering coefficient (not reduced)" },
 	{ "g", -0.99, 0.99, "", "HG anisotropy" },
@@ -143,10 +112,10 @@ int preset_key_find(const char *section, const char *name)
 {
 	int known_section = 0;
 	for (int i = 0; i < N_KEYS; i++) {
-		if (strcmp(keys[i].section, section) != 0)
+		if (strcmp(preset_key_table[i].section, section) != 0)
 			continue;
 		known_section = 1;
-		if (strcmp(keys[i].name, name) == 0)
+		if (strcmp(preset_key_table[i].name, name) == 0)
 			return i;
 	}
 	return known_section ? -1 : -2;
@@ -156,9 +125,9 @@ char *preset_key_names(const char *section)
 {
 	char *list = xstrdup("");
 	for (int i = 0; i < N_KEYS; i++) {
-		if (strcmp(keys[i].section, section) != 0)
+		if (strcmp(preset_key_table[i].section, section) != 0)
 			continue;
-		char *t = xasprintf("%s%s%s", list, *list ? ", " : "", keys[i].name);
+		char *t = xasprintf("%s%s%s", list, *list ? ", " : "", preset_key_table[i].name);
 		free(list);
 		list = t;
 	}
@@ -266,7 +235,7 @@ void preset_free_contents(struct skin_params *p)
 /* Set one key of the table; 0 or -1 (message in c). */
 int preset_key_set(struct preset_ctx *c, int ki, const char *v)
 {
-	const struct key *k = &keys[ki];
+	const struct preset_key *k = &preset_key_table[ki];
 	struct skin_params *p = c->p;
 	char *base = k->layer == NONE ? (char *)p : (char *)&p->layer[k->layer];
 	double *dp = (double *)(base + k->off), x;
@@ -426,7 +395,7 @@ int preset_override_set(struct preset_ctx *c, const char *section, const char *n
 	const char *dot = strchr(name, '.');
 	int l = dot ? find_layer(name, (size_t)(dot - name)) : -1, prop = -1;
 	for (int i = 0; dot && i < OV_N_PROPS; i++)
-		if (strcmp(dot + 1, ov_props[i].name) == 0)
+		if (strcmp(dot + 1, preset_ov_props[i].name) == 0)
 			prop = i;
 	if (l < 0 || prop < 0) {
 		preset_ctx_err(c, "unknown key '%s' in [%s] (keys: LAYER.mua, LAYER.mus, LAYER.g, LAYER.n with LAYER "
@@ -434,12 +403,12 @@ int preset_override_set(struct preset_ctx *c, const char *section, const char *n
 		return -1;
 	}
 	char rng[96];
-	range_text(rng, sizeof rng, ov_props[prop].lo, ov_props[prop].hi, ov_props[prop].unit);
+	range_text(rng, sizeof rng, preset_ov_props[prop].lo, preset_ov_props[prop].hi, preset_ov_props[prop].unit);
 	if (parse_number(v, &x) != 0) {
 		preset_ctx_err(c, "%s: %s = %s: not a decimal number (range %s)", section, name, v, rng);
 		return -1;
 	}
-	if (!(x >= ov_props[prop].lo && x <= ov_props[prop].hi)) {
+	if (!(x >= preset_ov_props[prop].lo && x <= preset_ov_props[prop].hi)) {
 		preset_ctx_err(c, "%s: %s = %s: out of range %s", section, name, v, rng);
 		return -1;
 	}
@@ -477,95 +446,12 @@ void preset_apply_defaults(struct skin_params *p)
 	struct preset_ctx c = { .origin = "defaults", .p = p };
 	memset(p, 0, sizeof *p);
 	for (int i = 0; i < N_KEYS; i++) {
-		if (keys[i].dflt[0] == '\0')
+		if (preset_key_table[i].dflt[0] == '\0')
 			continue;
-		if (preset_key_set(&c, i, keys[i].dflt) != 0)
+		if (preset_key_set(&c, i, preset_key_table[i].dflt) != 0)
 			fatalx("preset defaults: %s", c.err);
 	}
 	free(c.ov_seen);
-}
-
-/* Append printf output to *s. */
-static void cat(char **s, const char *fmt, ...) __attribute__((format(printf, 2, 3)));
-static void cat(char **s, const char *fmt, ...)
-{
-	va_list ap;
-	char *m;
-	va_start(ap, fmt);
-	if (vasprintf(&m, fmt, ap) < 0)
-		fatalx("out of memory");
-	va_end(ap);
-	char *t = xasprintf("%s%s", *s, m);
-	free(*s);
-	free(m);
-	*s = t;
-}
-
-/* Wavelength list with uniform runs of 3 or more written as ranges. */
-static void cat_wavelengths(char **s, const double *wl, int n)
-{
-	for (int i = 0; i < n;) {
-		int j = i + 1;
-		double st = j < n ? wl[j] - wl[i] : 0.0;
-		while (j + 1 < n && fabs((wl[j + 1] - wl[j]) - st) < 1e-9)
-			j++;
-		if (j - i >= 2) {
-			cat(s, "%s%.15g:%.15g:%.15g", i ? ", " : "", wl[i], wl[j], st);
-			i = j + 1;
-		} else {
-			cat(s, "%s%.15g", i ? ", " : "", wl[i]);
-			i++;
-		}
-	}
-}
-
-char *preset_to_ini(const struct skin_params *p)
-{
-	char *s = xasprintf("; skinbake preset (resolved)\n");
-	const char *sec = "";
-	for (int i = 0; i < N_KEYS; i++) {
-		const struct key *k = &keys[i];
-		if (k->kind == K_BASE)
-			continue;
-		if (strcmp(sec, k->section) != 0) {
-			cat(&s, "%s[%s]\n", *sec ? "\n" : "", k->section);
-			sec = k->section;
-		}
-		const char *base = k->layer == NONE ? (const char *)p : (const char *)&p->layer[k->layer];
-		double x = *(const double *)(base + k->off);
-		switch (k->kind) {
-		case K_TEXT:
-			cat(&s, "%s = %s\n", k->name, *(char *const *)(base + k->off));
-			break;
-		case K_MODEL:
-			cat(&s, "%s = %s\n", k->name, p->model == SKIN_MODEL_TABLES ? "tables" : "chromophores");
-			break;
-		case K_WL:
-			cat(&s, "%s = ", k->name);
-			cat_wavelengths(&s, p->wl, p->n_wl);
-			cat(&s, "\n");
-			break;
-		default:
-			if (isinf(x))
-				cat(&s, "%s = inf\n", k->name);
-			else if (isnan(x))
-				cat(&s, "%s = %s\n", k->name, k->kind == K_IOR ? "ding2006" : "vangemert1989");
-			else
-				cat(&s, "%s = %.15g\n", k->name, x);
-			break;
-		}
-	}
-	for (int i = 0; i < p->n_override; i++) {
-		const struct skin_override *o = &p->override[i];
-		cat(&s, "\n[override.%.15g]\n", o->wl);
-		for (int l = 0; l < SKIN_N_LAYERS; l++) {
-			const double *v[OV_N_PROPS] = { o->mu_a, o->mu_s, o->g, o->n };
-			for (int j = 0; j < OV_N_PROPS; j++)
-				if (!isnan(v[j][l]))
-					cat(&s, "%s.%s = %.15g\n", tissue_layer_name(l), ov_props[j].name, v[j][l]);
-		}
-	}
-	return s;
 }
 
 int preset_parse_wavelengths(const char *s, double *wl, char **cause)
@@ -576,7 +462,7 @@ int preset_parse_wavelengths(const char *s, double *wl, char **cause)
 
 void preset_key_info(int i, struct preset_key_info *out)
 {
-	const struct key *k = &keys[i];
+	const struct preset_key *k = &preset_key_table[i];
 	*out = (struct preset_key_info){ k->section, k->name, k->unit, k->lo, k->hi, k->layer, k->off,
 		k->kind == K_NUM || k->kind == K_LEN || k->kind == K_IOR || k->kind == K_ANISO };
 }
@@ -586,31 +472,3 @@ int preset_key_count(void)
 	return N_KEYS;
 }
 
-void preset_print_keys(FILE *fp)
-{
-	fprintf(fp, "%-28s %-6s %-14s %-20s %s\n", "key", "unit", "default", "range", "meaning");
-	for (int i = 0; i < N_KEYS; i++) {
-		const struct key *k = &keys[i];
-		char full[64], rng[64];
-		snprintf(full, sizeof full, "%s.%s", k->section, k->name);
-		if (k->kind == K_NUM || k->kind == K_LEN || k->kind == K_IOR || k->kind == K_ANISO)
-			snprintf(rng, sizeof rng, "[%g, %g]%s", k->lo, k->hi, k->kind == K_LEN ? " | inf" : "");
-		else if (k->kind == K_WL)
-			snprintf(rng, sizeof rng, "[%g, %g]", k->lo, k->hi);
-		else if (k->kind == K_MODEL)
-			snprintf(rng, sizeof rng, "chromophores|tables");
-		else if (k->kind == K_BASE)
-			snprintf(rng, sizeof rng, "built-in name");
-		else
-			snprintf(rng, sizeof rng, "<= %g chars", k->hi);
-		fprintf(fp, "%-28s %-6s %-14s %-20s %s\n", full, *k->unit ? k->unit : "-", *k->dflt ? k->dflt : "-",
-		    rng, k->doc);
-	}
-	for (int j = 0; j < OV_N_PROPS; j++) {
-		char full[64], rng[64];
-		snprintf(full, sizeof full, "override.WL:LAYER.%s", ov_props[j].name);
-		snprintf(rng, sizeof rng, "[%g, %g]", ov_props[j].lo, ov_props[j].hi);
-		fprintf(fp, "%-28s %-6s %-14s %-20s %s at wavelength WL [nm] (replaces the computed value)\n", full,
-		    *ov_props[j].unit ? ov_props[j].unit : "-", "-", rng, ov_props[j].doc);
-	}
-}

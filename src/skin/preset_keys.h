@@ -1,7 +1,8 @@
 /* preset_keys: the keys of the preset format, for preset.c (the two files
  * are one module; skin/preset.h is its public face).  The table of every
  * key with its unit, default and range; setting one key's or one
- * [override.WL] key's value; the defaults; the wavelength list syntax.  The
+ * [override.WL] key's value; the defaults; the wavelength list syntax (the
+ * resolved INI text and the key listing are in preset_ini.c).  The
  * parse state is shared: preset.c drives libinih, these setters report into
  * it. */
 #ifndef SKINBAKE_PRESET_KEYS_H
@@ -41,6 +42,40 @@ struct preset_key_info {
 };
 void preset_key_info(int i, struct preset_key_info *out);
 int preset_key_count(void);
+
+/* The key table (preset_keys.c); its order is the order of the INI text
+ * and of the listing (preset_ini.c). */
+enum preset_key_kind {
+	K_NUM,		/* a number in [lo, hi] */
+	K_LEN,		/* a thickness in [lo, hi] or "inf" */
+	K_IOR,		/* a number or "ding2006" */
+	K_ANISO,	/* a number or "vangemert1989" */
+	K_TEXT,		/* name or description */
+	K_MODEL,	/* chromophores | tables */
+	K_WL,		/* wavelength list */
+	K_BASE		/* start from a built-in preset */
+};
+struct preset_key {
+	const char *section;
+	const char *name;
+	enum preset_key_kind kind;
+	int layer;		/* enum skin_layer_id, or -1 for a struct skin_params field */
+	size_t off;		/* field offset in the layer or the params */
+	double lo, hi;		/* inclusive range */
+	const char *unit;
+	const char *dflt;	/* default, in the file syntax ("" = none) */
+	const char *doc;
+};
+extern const struct preset_key preset_key_table[];
+/* Keys of [override.WL] sections: LAYER.PROP. */
+enum { OV_MUA, OV_MUS, OV_G, OV_N, OV_N_PROPS };
+struct preset_ov_prop {
+	const char *name;
+	double lo, hi;
+	const char *unit;
+	const char *doc;
+};
+extern const struct preset_ov_prop preset_ov_props[OV_N_PROPS];
 
 /* Index of key section.name in the table; -1 when the section has no such
  * key, -2 when there is no such section. */
