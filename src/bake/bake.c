@@ -10,6 +10,7 @@
 
 #include "base/check.h"
 #include "base/util.h"
+#include "bake/bakefile.h"
 #include "bake/checkpoint.h"
 #include "engine/ad_solver.h"
 #include "engine/mc.h"
@@ -328,4 +329,20 @@ void bake_spec_axes(struct bake_spec *s, const double *wl_nm, int n_wl, const do
 	s->n_ti = n_theta > 0 ? n_theta : nodes;
 	for (int k = 0; k < s->n_ti; k++)
 		s->theta_i[k] = n_theta > 0 ? theta_deg[k] * M_PI / 180.0 : 0.5 * M_PI * k / s->n_ti;
+}
+
+int bake_preset_to_dir(struct bake_spec *s, const struct skin_params *p, const char *label, const char *out,
+    const char *command, struct bake_result *r, char **cause)
+{
+	s->checkpoint_out = out;
+	if (bake_run(s, r, cause) != 0)
+		return -1;
+	if (s->rank != 0)
+		return 0;	/* every rank holds the whole result; rank 0 writes it */
+	double *m = xmalloc(sizeof(double) * 3 * (size_t)s->n_wl);
+	struct bake_meta meta = { .preset = label, .ior = preset_surface_ior(p), .roughness = preset_surface_roughness(p),
+		.rgb_from_wl = m, .rgb_note = bake_rgb_weights(s, m), .command = command };
+	int rc = bake_write(out, s, r, &meta, cause) != 0 || checkpoint_remove(out, cause) != 0 ? -2 : 0;
+	free(m);
+	return rc;
 }

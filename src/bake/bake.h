@@ -124,4 +124,11 @@ void bake_spec_axes(struct bake_spec *s, const double *wl_nm, int n_wl, const do
  * stacks; for Monte Carlo, check that the photon budget covers the first
  * round.  The preset (caller frees with preset_free), or NULL and *cause. */
 struct skin_params *bake_spec_preset(struct bake_spec *s, const char *name, const char *pfile, char **cause);
+/* The single bake of preset p (label names it in the manifest) into the
+ * directory out: bake_run with its checkpoint beside out, then on rank 0
+ * the directory (bakefile.h) and the checkpoint removed.  0; -1 and *cause
+ * when the bake is refused (r zeroed); -2 and *cause when out cannot be
+ * written (r holds the result).  Caller frees r with bake_result_free. */
+int bake_preset_to_dir(struct bake_spec *s, const struct skin_params *p, const char *label, const char *out,
+    const char *command, struct bake_result *r, char **cause);
 #endif

@@ -31,6 +31,7 @@ struct checkpoint {
 	int n, cap;
 	int n_loaded;		/* runs read from the file */
 	int seq;		/* solver runs begun in this process */
+	const char *unit;	/* what a record is, for the note: "solver run" or "member" */
 	char *note, *error;
 	struct solver_ckpt hooks;
 };
@@ -158,8 +159,11 @@ static int load(struct checkpoint *c, char **cause)
 	int done = 0;
 	for (int i = 0; i < c->n; i++)
 		done += c->rec[i].done != 0;
-	c->note = xasprintf("resuming from %s: %d solver run%s finished, %d in progress\n", c->path, done,
-	    done == 1 ? "" : "s", c->n - done);
+	if (strcmp(c->unit, "member") == 0)	/* members are saved only when finished */
+		c->note = xasprintf("resuming from %s: %d member%s finished\n", c->path, done, done == 1 ? "" : "s");
+	else
+		c->note = xasprintf("resuming from %s: %d %s%s finished, %d in progress\n", c->path, done, c->unit,
+		    done == 1 ? "" : "s", c->n - done);
 	return 0;
 }
 
@@ -257,13 +261,15 @@ static void hook_save(void *user, const struct solver_ops *ops, const void *stat
 	}
 }
 
-struct checkpoint *checkpoint_open(const char *out, const struct bake_spec *s, int resume, int write, double every_s,
+/* checkpoint_open with the identity given (records of unit). */
+static struct checkpoint *open_id(const char *out, uint64_t id, const char *unit, int resume, int write, double every_s,
     char **cause)
 {
 	struct checkpoint *c = xcalloc(1, sizeof *c);
 	c->path = checkpoint_path(out);
 	c->tmp = xasprintf("%s.tmp", c->path);
-	c->id = checkpoint_identity(s);
+	c->id = id;
+	c->unit = unit;
 	c->write = write;
 	c->every_s = every_s;
 	c->hooks = (struct solver_ckpt){ hook_restore, hook_save, c };
@@ -282,6 +288,56 @@ struct checkpoint *checkpoint_open(const char *out, const struct bake_spec *s, i
 		c->note = xstrdup("");
 	c->last = util_now();
 	return c;
+}
+
+struct checkpoint *checkpoint_open(const char *out, const struct bake_spec *s, int resume, int write, double every_s,
+    char **cause)
+{
+	return open_id(out, checkpoint_identity(s), "solver run", resume, write, every_s, cause);
+}
+
+uint64_t checkpoint_hash(uint64_t h, const void *v, size_t n)
+{
+	return fnv(h ? h : FNV0, v, n);
+}
+
+struct checkpoint *checkpoint_open_units(const char *out, uint64_t id, int resume, int write, double every_s,
+    char **cause)
+{
+	return open_id(out, id, "member", resume, write, every_s, cause);
+}
+
+int checkpoint_units(const struct checkpoint *c)
+{
+	int k = 0;
+	while (k < c->n_loaded && c->rec[k].done && strcmp(c->rec[k].method, "member") == 0)
+		k++;
+	return k;
+}
+
+const void *checkpoint_unit(const struct checkpoint *c, int k, size_t *len)
+{
+	*len = c->rec[k].len;
+	return c->rec[k].state;
+}
+
+void checkpoint_unit_add(struct checkpoint *c, const void *state, size_t len)
+{
+	if (!c->write)
+		return;
+	if (c->n >= c->cap) {
+		c->rec = xreallocarray(c->rec, (size_t)(c->cap = 2 * c->n + 4), sizeof *c->rec);
+		memset(c->rec + c->n, 0, sizeof *c->rec * (size_t)(c->cap - c->n));
+	}
+	struct record *r = &c->rec[c->n++];
+	r->state = xmalloc(len ? len : 1);
+	memcpy(r->state, state, len);
+	r->len = len;
+	r->done = 1;
+	snprintf(r->method, sizeof r->method, "member");
+	double now = util_now();
+	if (c->error == NULL && now - c->last >= c->every_s && save_file(c, &c->error) == 0)
+		c->last = now;
 }
 
 const struct solver_ckpt *checkpoint_hooks(struct checkpoint *c)

@@ -45,6 +45,20 @@ uint64_t checkpoint_identity(const struct bake_spec *s);
  * every step).  NULL and *cause on error. */
 struct checkpoint *checkpoint_open(const char *out, const struct bake_spec *s, int resume, int write, double every_s,
     char **cause);
+/* Checkpoints of units, for family bakes (bake/family.h): the same file
+ * format, one record per finished unit (a member's packed result, in
+ * member order), under an identity the caller makes with checkpoint_hash
+ * (seeded with 0 or with checkpoint_identity).  checkpoint_open_units acts
+ * as checkpoint_open (same errors); checkpoint_units is how many units
+ * were restored, checkpoint_unit the k-th of them (owned by c);
+ * checkpoint_unit_add appends one (when c writes) and writes the file when
+ * every_s seconds have passed since the last write. */
+uint64_t checkpoint_hash(uint64_t h, const void *v, size_t n);
+struct checkpoint *checkpoint_open_units(const char *out, uint64_t id, int resume, int write, double every_s,
+    char **cause);
+int checkpoint_units(const struct checkpoint *c);
+const void *checkpoint_unit(const struct checkpoint *c, int k, size_t *len);
+void checkpoint_unit_add(struct checkpoint *c, const void *state, size_t len);
 /* The hooks for solver_run.ckpt. */
 const struct solver_ckpt *checkpoint_hooks(struct checkpoint *c);
 /* A line for the user about what was restored ("" when nothing was), and

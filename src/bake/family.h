@@ -137,7 +137,13 @@ int family_check_out(const char *dir, char **cause);
  * spec.allreduce; rank 0 writes.  The tables do not depend on the ranks.
  * On success *out (rank 0; may be NULL) holds the family as written
  * (caller frees with family_free).  -1 and *cause when a member's bake
- * is refused (by its solver), -2 when the directory cannot be written. */
+ * is refused (by its solver) or DIR.checkpoint cannot be used (stale
+ * without spec.resume, of another family, damaged, resume under MPI), -2
+ * when the directory cannot be written.  One process saves every finished
+ * member's result in DIR.checkpoint (checkpoint.h, at most every
+ * spec.checkpoint_s seconds); with spec.resume those members are written
+ * from it, not baked again (whole members: one killed half way starts
+ * over).  The checkpoint is removed once DIR is in place. */
 int family_bake(const struct family_plan *pl, const char *dir, struct family **out, char **cause);
 
 /* ---- the directory ---- */

@@ -1,12 +1,11 @@
-/* family_run: the family bake (family.h): member parameters, node
- * placement by equal colour steps, the members baked one by one (spread
+/* family_run: the family bake (family.h): member parameters, the members baked one by one (spread
  * over MPI ranks, gathered to rank 0 through the bake's allreduce hook)
- * and written into the staging directory, then moved into place. */
+ * and written into the staging directory, then moved into place; finished
+ * members saved in DIR.checkpoint for --resume. */
 #include "config.h"
 #include "bake/family.h"
 
 #include <errno.h>
-#include <math.h>
 #include <stdlib.h>
 #include <string.h>
 #include <unistd.h>
@@ -14,6 +13,7 @@
 #include "base/check.h"
 #include "base/outdir.h"
 #include "base/util.h"
+#include "bake/checkpoint.h"
 #include "bake/manifest.h"
 #include "skin/colour.h"
 #include "skin/preset.h"
@@ -49,101 +49,6 @@ struct skin_params *family_params(const struct skin_params *base, const struct f
 		return NULL;
 	}
 	return p;
-}
-
-/* The middle of an axis' range in its coordinate. */
-static double axis_middle(const struct family_axis *a)
-{
-	return a->lo > 0 && a->spacing != FAMILY_SPACING_LIN ? sqrt(a->lo * a->hi) : 0.5 * (a->lo + a->hi);
-}
-
-/* Diffuse albedo at theta_i[0] in linear sRGB of parameters x: a bake of
- * one angle and one exit bin on this process alone. */
-static int pilot_colour(const struct family_plan *pl, const double *x, struct bake_spec *ps, double rgb[3], char **cause)
-{
-	struct skin_params *p = family_params(pl->base, pl->axis, pl->n_axes, x, cause);
-	if (p == NULL)
-		return -1;
-	int rc = bake_spec_layers(ps, p, "pilot", cause);
-	preset_free(p);
-	if (rc != 0)
-		return -1;
-	struct bake_result r;
-	if (bake_run(ps, &r, cause) != 0)
-		return -1;
-	double w[3 * BAKE_MAX_WL];
-	bake_rgb_weights(ps, w);
-	for (int c = 0; c < 3; c++) {
-		rgb[c] = 0.0;
-		for (int k = 0; k < ps->n_wl; k++)
-			rgb[c] += w[c * ps->n_wl + k] * r.table.entry[k * ps->n_ti].albedo.v;
-	}
-	bake_result_free(&r);
-	return 0;
-}
-
-/* Nodes of de axis a: 90 % equal CIEDE2000 steps along the pilot's colour
- * curve, 10 % uniform in the coordinate (so that no stretch of the range
- * is left without nodes where the colour happens to stand still). */
-static int place_axis(struct family_plan *pl, int a, struct bake_spec *ps, char **cause)
-{
-	struct family_axis *ax = &pl->axis[a];
-	int lg = ax->lo > 0, P = FAMILY_PILOT;
-	double x[FAMILY_MAX_AXES], lab[FAMILY_PILOT][3], c[FAMILY_PILOT];
-	for (int b = 0; b < pl->n_axes; b++)
-		x[b] = axis_middle(&pl->axis[b]);
-	for (int k = 0; k < P; k++) {
-		double t = (double)k / (P - 1);
-		c[k] = lg ? log(ax->lo) + t * (log(ax->hi) - log(ax->lo)) : ax->lo + t * (ax->hi - ax->lo);
-		x[a] = k == 0 ? ax->lo : k == P - 1 ? ax->hi : lg ? exp(c[k]) : c[k];
-		ax->pilot_value[k] = x[a];
-		double rgb[3];
-		if (pilot_colour(pl, x, ps, rgb, cause) != 0)
-			return -1;
-		colour_linear_srgb_to_lab(rgb, lab[k]);
-		ax->pilot_de[k] = k ? ax->pilot_de[k - 1] + colour_de2000(lab[k - 1], lab[k]) : 0.0;
-	}
-	ax->n_pilot = P;
-	double total = ax->pilot_de[P - 1];
-	ax->de_fallback = !(total >= 0.5);
-	for (int j = 1; j < ax->n - 1; j++) {
-		double u = (double)j / (ax->n - 1), cu = c[0] + u * (c[P - 1] - c[0]), cd = cu;
-		if (!ax->de_fallback) {
-			double s = u * total;
-			int k = 0;
-			while (k < P - 2 && ax->pilot_de[k + 1] < s)
-				k++;
-			double ds = ax->pilot_de[k + 1] - ax->pilot_de[k];
-			cd = c[k] + (ds > 0 ? (s - ax->pilot_de[k]) / ds : 0.0) * (c[k + 1] - c[k]);
-			cd = 0.9 * cd + 0.1 * cu;
-		}
-		ax->node[j] = lg ? exp(cd) : cd;
-	}
-	ax->node[0] = ax->lo;
-	ax->node[ax->n - 1] = ax->hi;
-	ax->log_coord = lg;
-	return 0;
-}
-
-int family_place_nodes(struct family_plan *pl, char **cause)
-{
-	struct bake_spec *ps = xmalloc(sizeof *ps);
-	*ps = pl->spec;
-	ps->n_ti = 1;
-	ps->n_to = ps->n_phi = 1;
-	ps->n_r = 1;
-	ps->rank = 0, ps->n_ranks = 1, ps->allreduce = NULL, ps->progress = NULL;
-	/* The pilot wants colours to about 1 %; Monte Carlo gets there with small batches. */
-	if (ps->batch_photons > 1000)
-		ps->batch_photons = 1000;
-	if (ps->target_error < 0.01)
-		ps->target_error = 0.01;
-	int rc = 0;
-	for (int a = 0; a < pl->n_axes && rc == 0; a++)
-		if (pl->axis[a].spacing == FAMILY_SPACING_DE)
-			rc = place_axis(pl, a, ps, cause);
-	free(ps);
-	return rc;
 }
 
 /* ---- one member's result as doubles, for the gather over ranks ---- */
@@ -459,18 +364,87 @@ int family_plan_check(const struct family_plan *pl, int *n_members, char **cause
 	return rc;
 }
 
+/* The identity of the family's checkpoint: the axes (keys and nodes) and
+ * every member's bake identity (checkpoint.h: its layer stacks, angles,
+ * grid, solver settings, seed). */
+static uint64_t family_identity(const struct family_plan *pl, const struct family *f, struct bake_spec *s)
+{
+	uint64_t h = checkpoint_hash(0, "skinbake family", 15);
+	for (int a = 0; a < pl->n_axes; a++) {
+		h = checkpoint_hash(h, pl->axis[a].key, strlen(pl->axis[a].key) + 1);
+		h = checkpoint_hash(h, pl->axis[a].node, sizeof(double) * (size_t)pl->axis[a].n);
+	}
+	for (int m = 0; m < f->n_members; m++) {
+		char *why = NULL;
+		struct skin_params *p = member_spec(pl, f, m, s, &why);
+		uint64_t id = p ? checkpoint_identity(s) : 0;
+		h = checkpoint_hash(h, &id, sizeof id);
+		preset_free(p);
+		free(why);
+	}
+	return h;
+}
+
+/* Open DIR.checkpoint (rank 0 writes it, one process only); *n_done the
+ * members it restores, each checked to be a packed result of this spec. */
+static struct checkpoint *family_ckpt_open(const struct family_plan *pl, const struct family *f, const char *dir,
+    int *n_done, char **cause)
+{
+	int R = pl->spec.n_ranks > 1 ? pl->spec.n_ranks : 1;
+	if (pl->spec.resume && R > 1) {
+		*cause = xstrdup("--resume works in one process only (skinbake, not skinbake-mpi under mpirun)");
+		return NULL;
+	}
+	struct bake_spec *s = xmalloc(sizeof *s);
+	*s = pl->spec;
+	uint64_t id = family_identity(pl, f, s);
+	free(s);
+	struct checkpoint *ck = checkpoint_open_units(dir, id, pl->spec.resume, R == 1 && pl->spec.rank == 0,
+	    pl->spec.checkpoint_s, cause);
+	*n_done = ck ? checkpoint_units(ck) : 0;
+	for (int m = 0; m < *n_done; m++) {
+		size_t len;
+		const double *v = checkpoint_unit(ck, m, &len);
+		if (m >= f->n_members || len != sizeof(double) * pack_len(&pl->spec) || v[0] != 1.0) {
+			*cause = xasprintf("%s.checkpoint: member m%04d does not fit this family; remove the file to bake from "
+			    "the start", dir, m);
+			checkpoint_close(ck);
+			return NULL;
+		}
+	}
+	return ck;
+}
+
+/* After the family is written: the checkpoint's note first in f->notes. */
+static void family_ckpt_note(struct family *f, const struct checkpoint *ck)
+{
+	const char *e = checkpoint_write_error(ck);
+	if (*checkpoint_note(ck) == '\0' && e == NULL)
+		return;
+	char *all = xasprintf("%s%s%s%s%s", checkpoint_note(ck), e ? "checkpoint not written: " : "", e ? e : "",
+	    e ? "\n" : "", f->notes ? f->notes : "");
+	free(f->notes);
+	f->notes = all;
+}
+
 int family_bake(const struct family_plan *pl, const char *dir, struct family **out, char **cause)
 {
-	int n_members, rank = pl->spec.rank, R = pl->spec.n_ranks > 1 ? pl->spec.n_ranks : 1;
+	int n_members, n_done, rank = pl->spec.rank, R = pl->spec.n_ranks > 1 ? pl->spec.n_ranks : 1;
 	if (out)
 		*out = NULL;
 	if (count_members(pl, &n_members, cause) != 0)
 		return -1;
 	struct family *f = family_new(pl, n_members);
+	struct checkpoint *ck = family_ckpt_open(pl, f, dir, &n_done, cause);
+	if (ck == NULL) {
+		family_free(f);
+		return -1;
+	}
 	struct outdir od;
 	const char *stage = NULL;
 	if (rank == 0) {
 		if (stage_open(&od, dir, pl->base, cause) != 0) {
+			checkpoint_close(ck);
 			family_free(f);
 			return -2;
 		}
@@ -479,8 +453,9 @@ int family_bake(const struct family_plan *pl, const char *dir, struct family **o
 	/* Ranks go round by round in lockstep: each bakes one member of the
 	 * round, the sum over ranks gathers them, rank 0 writes them.  The slot
 	 * after the members carries rank 0's write failure to the others, so
-	 * that all stop at the same round. */
-	size_t L = pack_len(&pl->spec), nbuf = L * (size_t)R + 1;
+	 * that all stop at the same round.  Members the checkpoint restored
+	 * (one process only) are written from it, not baked again. */
+	size_t L = pack_len(&pl->spec), nbuf = L * (size_t)R + 1, len;
 	double *buf = xmalloc(sizeof(double) * nbuf);
 	struct bake_spec *s = xmalloc(sizeof *s);
 	*s = pl->spec;
@@ -491,6 +466,8 @@ int family_bake(const struct family_plan *pl, const char *dir, struct family **o
 		char *why = NULL;
 		if (rc != 0)
 			buf[nbuf - 1] = 1.0;
+		else if (m < n_done)
+			memcpy(buf + (size_t)rank * L, checkpoint_unit(ck, m, &len), sizeof(double) * L);
 		else if (m < n_members)
 			bake_member(pl, f, m, s, buf + (size_t)rank * L, &why);
 		if (R > 1 && pl->spec.allreduce)
@@ -511,6 +488,8 @@ int family_bake(const struct family_plan *pl, const char *dir, struct family **o
 			if (mj >= n_members)
 				continue;
 			rc = write_member(pl, f, mj, buf + (size_t)j * L, s, stage, cause) ? -2 : 0;
+			if (rc == 0 && mj >= n_done)
+				checkpoint_unit_add(ck, buf + (size_t)j * L, sizeof(double) * L);
 			if (rc == 0 && pl->progress)
 				pl->progress(pl->progress_user, mj + 1, n_members);
 		}
@@ -521,13 +500,16 @@ int family_bake(const struct family_plan *pl, const char *dir, struct family **o
 	free(buf);
 	free(s);
 	if (rank == 0 && rc == 0)
-		rc = family_write_index(stage, f, pl->command, cause) || outdir_commit(&od, cause) ? -2 : 0;
+		rc = family_write_index(stage, f, pl->command, cause) || outdir_commit(&od, cause) ||
+		    checkpoint_remove(dir, cause) ? -2 : 0;
 	if (rank == 0 && rc != 0)
 		outdir_abort(&od);
 	if (rc == 0 && rank == 0 && out) {
+		family_ckpt_note(f, ck);
 		f->dir = xstrdup(dir);
 		*out = f;
 	} else
 		family_free(f);
+	checkpoint_close(ck);
 	return rc;
 }

@@ -7,8 +7,6 @@
 #include <string.h>
 
 #include "bake/bake.h"
-#include "bake/bakefile.h"
-#include "bake/checkpoint.h"
 #include "bake/summary.h"
 #include "cli/cli.h"
 #include "cli/cmd_bake_family.h"
@@ -38,46 +36,32 @@ static int parse_resolution(struct opt_ctx *x, const struct opt *o, const char *
 static int run(struct bake_spec *s, const char *preset, const char *pfile, const char *out, int quiet,
     const struct bake_vary *vary, int argc, char **argv)
 {
-	char *cause = NULL;
+	char *cause = NULL, *cmdline = cli_command_line(argc, argv);
+	const char *label = preset ? preset : pfile;
 	struct skin_params *p = bake_spec_preset(s, preset, pfile, &cause);
-	if (p == NULL) {
-		int rc = cli_usage_error(CMD, "%s", cause);
-		free(cause);
-		return rc;
-	}
-	if (vary->n > 0) {
-		char *cmdline = cli_command_line(argc, argv);
-		int rc = bake_family_run(s, p, preset ? preset : pfile, out, vary, quiet, cmdline);
-		free(cmdline);
-		preset_free(p);
-		return rc;
-	}
-	double *m = xmalloc(sizeof(double) * 3 * (size_t)s->n_wl);
-	char *cmdline = cli_command_line(argc, argv);
-	struct bake_meta meta = { .preset = preset ? preset : pfile, .ior = preset_surface_ior(p),
-		.roughness = preset_surface_roughness(p), .rgb_from_wl = m, .rgb_note = bake_rgb_weights(s, m),
-		.command = cmdline };
-	s->rank = cli_par.rank, s->n_ranks = cli_par.size, s->allreduce = cli_par.allreduce, s->checkpoint_out = out;
-	struct cli_progress pr;
-	cli_progress_start(&pr, "bake");
-	s->progress = cli_progress_update, s->progress_user = &pr;
-	struct bake_result r;
-	int ok = bake_run(s, &r, &cause) == 0, rc = CLI_EXIT_OK;
-	cli_progress_end(&pr);
-	if (ok && cli_par.rank == 0)
-		bake_summary_notes(stderr, &r);	/* fallbacks are never silent, even with --quiet */
-	if (!ok)
+	int rc = CLI_EXIT_OK;
+	if (p == NULL)
 		rc = cli_usage_error(CMD, "%s", cause);
-	else if (cli_par.rank != 0)
-		;	/* every rank holds the whole result; rank 0 writes it */
-	else if (bake_write(out, s, &r, &meta, &cause) != 0 || checkpoint_remove(out, &cause) != 0)
-		rc = cli_fail(CMD, "%s", cause);
-	else if (!quiet)
-		bake_summary(stdout, s, &r, meta.preset, out);
+	else if (vary->n > 0)
+		rc = bake_family_run(s, p, label, out, vary, quiet, cmdline);
+	else {
+		s->rank = cli_par.rank, s->n_ranks = cli_par.size, s->allreduce = cli_par.allreduce;
+		struct cli_progress pr;
+		cli_progress_start(&pr, "bake");
+		s->progress = cli_progress_update, s->progress_user = &pr;
+		struct bake_result r;
+		int e = bake_preset_to_dir(s, p, label, out, cmdline, &r, &cause);
+		cli_progress_end(&pr);
+		if (e != -1 && cli_par.rank == 0)
+			bake_summary_notes(stderr, &r);	/* fallbacks are never silent, even with --quiet */
+		if (e != 0)
+			rc = e == -1 ? cli_usage_error(CMD, "%s", cause) : cli_fail(CMD, "%s", cause);
+		else if (!quiet && cli_par.rank == 0)
+			bake_summary(stdout, s, &r, label, out);
+		bake_result_free(&r);	/* zeroed when the bake failed */
+	}
 	free(cause);
-	bake_result_free(&r);	/* zeroed when the bake failed */
 	free(cmdline);
-	free(m);
 	preset_free(p);
 	return rc;
 }
@@ -135,7 +119,8 @@ int cmd_bake(int argc, char **argv)
 		{ "seed", OPT_LONG, &seed, "N", "1", .lo = 0, .hi = (double)LONG_MAX, .help = "mc: random seed" },
 		{ "threads", OPT_INT, &s.threads, "N", "0", .lo = 0, .hi = 1024, .help = "OpenMP threads (0 = all cores)" },
 		{ "quiet", OPT_FLAG, &quiet, .help = "no summary on stdout" },
-		{ "resume", OPT_FLAG, &s.resume, .help = "go on from DIR.checkpoint (none: from the start); not under MPI" },
+		{ "resume", OPT_FLAG, &s.resume, .help = "go on from DIR.checkpoint (none: from the start; a "
+		  "family bake from its finished members, whole members only); not under MPI" },
 		{ "checkpoint-seconds", OPT_DOUBLE, &s.checkpoint_s, "S", "5", .lo = 0, .hi = 1e6, .unit = "s",
 		  .help = "write DIR.checkpoint at most every S seconds (0: after every step)" },
 		{ "vary", OPT_CUSTOM, &vary, "KEY=LO:HI:N[:SPACING]", .fn = bake_vary_parse, .flags = OPT_REPEAT,

@@ -102,10 +102,11 @@ int cmd_simulate(int argc, char **argv)
 	struct opt_ctx x;
 	if (opt_parse(&x, &cmd, argc, argv) != 0)
 		return x.exit;
-	if (fabs(90.0 / tos - round(90.0 / tos)) > 1e-9)	/* the ranges keep the counts in [1, 18000] */
-		return opt_error(&x, "--theta-out-step = %g does not divide 90 degrees", tos);
-	if (fabs(180.0 / phs - round(180.0 / phs)) > 1e-9)
-		return opt_error(&x, "--phi-step = %g does not divide 180 degrees", phs);
+	if (tally_grid_steps(&c.grid, tos, phs, &cause) != 0) {	/* the ranges keep each count in [1, 18000] */
+		int rc = opt_error(&x, "%s", cause);
+		free(cause);
+		return rc;
+	}
 	c.seed = (uint64_t)seed;
 	c.opts.fresnel = fresnel == 0 ? OPTICS_FRESNEL_EXACT : OPTICS_FRESNEL_SCHLICK;
 	slab_init(&c.slab, na, nbw);
@@ -120,12 +121,6 @@ int cmd_simulate(int argc, char **argv)
 		return opt_error(&x, "--ad-quad = %d: 0 (automatic) or 4..1024 nodes per unit cosine", n_quad);
 	slab_prepare(&c.slab);
 	c.theta_in = th * M_PI / 180.0;
-	c.grid.n_theta = (int)round(90.0 / tos);
-	c.grid.n_phi = (int)round(180.0 / phs);
-	if ((long)c.grid.n_theta * c.grid.n_phi > 1000000)
-		return opt_error(&x, "--theta-out-step %g and --phi-step %g give %ld bins; at most 1e6 are allowed",
-		    tos, phs, (long)c.grid.n_theta * c.grid.n_phi);
-
 	for (const char **o = (const char *[]){ "photons", "seed", "batches", "r-step", "r-bins", "roulette-w",
 		 "roulette-chance", "max-steps", NULL }; solver == 1 && *o; o++)
 		if (opt_given(&x, *o) && (strcmp(*o, "r-bins") != 0 || c.grid.n_r > 0))

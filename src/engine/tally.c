@@ -10,6 +10,27 @@
 #include "base/check.h"
 #include "base/util.h"
 
+int tally_grid_steps(struct tally_grid *g, double theta_step_deg, double phi_step_deg, char **cause)
+{
+	double nt = 90.0 / theta_step_deg, np = 180.0 / phi_step_deg;
+	if (fabs(nt - round(nt)) > 1e-9) {
+		*cause = xasprintf("--theta-out-step = %g does not divide 90 degrees", theta_step_deg);
+		return -1;
+	}
+	if (fabs(np - round(np)) > 1e-9) {
+		*cause = xasprintf("--phi-step = %g does not divide 180 degrees", phi_step_deg);
+		return -1;
+	}
+	if (round(nt) * round(np) > 1e6) {
+		*cause = xasprintf("--theta-out-step %g and --phi-step %g give %ld bins; at most 1e6 are allowed",
+		    theta_step_deg, phi_step_deg, (long)round(nt) * (long)round(np));
+		return -1;
+	}
+	g->n_theta = (int)round(nt);
+	g->n_phi = (int)round(np);
+	return 0;
+}
+
 void tally_alloc(struct tally *t, const struct tally_grid *g)
 {
 	CHECK(g->n_theta >= 1 && g->n_phi >= 1 && g->n_r >= 0);

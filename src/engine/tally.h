@@ -27,6 +27,10 @@ struct tally {
 };
 
 /* Allocate zeroed arrays for grid (caller frees with tally_free). */
+/* The angular bins from their widths [deg]: n_theta = 90/theta_step and
+ * n_phi = 180/phi_step; -1 and *cause (naming the option as the CLI spells
+ * it) when a width does not divide its range or the bins exceed 1e6. */
+int tally_grid_steps(struct tally_grid *g, double theta_step_deg, double phi_step_deg, char **cause);
 void tally_alloc(struct tally *t, const struct tally_grid *g);
 void tally_free(struct tally *t);
 void tally_zero(struct tally *t, const struct tally_grid *g);

@@ -1,0 +1,87 @@
+#!/bin/sh
+# Family checkpoints (src/bake/family_run.c): a family bake (3 members,
+# adding-doubling) SIGKILLed once FAM.checkpoint holds its first member and
+# run again with --resume writes a family directory equal to the
+# uninterrupted one: every EXR and PNG byte for byte, family.json and the
+# members' manifests but for the command line and wall times.  Also: a
+# stale checkpoint without --resume is exit 2 and names --resume; --resume
+# of a changed command (another --vary range) is exit 2; under MPI --resume
+# is refused (exit 2).  Costs about 8 s CPU (each member about 1 s).
+. "$top_srcdir/tests/tap.sh"
+B="$SKINBAKE"
+cd "$tmpd" || exit 1
+
+# same REF DIR: every file of REF and its member directories equal in DIR
+# (*.json: but the command and seconds lines), and no file more or less
+same() {
+	for f in "$1"/* "$1"/*/*; do
+		[ -d "$f" ] && continue
+		g="$2/${f#"$1"/}"
+		case $f in
+		*.json) grep -v -e '"command":' -e '"seconds":' "$f" > a.json
+			grep -v -e '"command":' -e '"seconds":' "$g" > b.json
+			cmp -s a.json b.json || { echo "# $g differs"; return 1; } ;;
+		*) cmp -s "$f" "$g" || { echo "# $g differs"; return 1; } ;;
+		esac
+	done
+	[ "$(cd "$1" && find . | sort)" = "$(cd "$2" && find . | sort)" ]
+}
+
+# differ A B: files A and B are not equal
+differ() { ! cmp -s "$1" "$2"; }
+
+# members DIR: the members saved in DIR.checkpoint (its uint32 after the
+# 23-byte header line and the 8-byte identity), 0 without one
+members() {
+	n=$(od -An -tu4 -j31 -N4 "$1.checkpoint" 2>/dev/null | tr -d ' ')
+	echo "${n:-0}"
+}
+
+# killat DIR N CMD...: start CMD, SIGKILL it once DIR.checkpoint holds N
+# members; 0 when it was killed that way, 1 when it ended first
+killat() {
+	kdir=$1 kn=$2
+	shift 2
+	"$@" & pid=$!
+	while kill -0 $pid 2>/dev/null; do
+		[ "$(members "$kdir")" -ge "$kn" ] && break
+		sleep 0.02
+	done
+	kill -9 $pid 2>/dev/null
+	wait $pid
+	[ $? -eq 137 ]
+}
+
+F="--preset fair-oily --solver ad --theta-nodes 2 --resolution 6x4 --radial-photons 10000 --r-bins 10 --threads 1
+	--checkpoint-seconds 0 --quiet"
+V="--vary dermis.blood=0.01:0.05:3:lin"
+check "family: uninterrupted bake" "$B" bake $F $V --out ref
+check "family: killed after its first member was saved" killat fam 1 "$B" bake $F $V --out fam
+check "family: the killed bake left a checkpoint of 1 member and no output" \
+	[ "$(members fam)" -eq 1 -a ! -e fam ]
+"$B" bake $F $V --out fam 2> err.txt
+check "family: a stale checkpoint without --resume: exit 2" [ $? -eq 2 ]
+check "family: ... and the message says to pass --resume or remove it" grep -q "fam.checkpoint.*--resume.*remove" err.txt
+check "family: ... and no output" [ ! -e fam ]
+"$B" bake $F --vary dermis.blood=0.01:0.06:3:lin --out fam --resume 2> err.txt
+check "family: --resume with another --vary range: exit 2 (another bake)" [ $? -eq 2 ]
+check "family: ... naming the checkpoint" grep -q "fam.checkpoint was written by a different bake" err.txt
+"$B" bake $F $V --out fam --resume 2> err.txt
+check "family: --resume" [ $? -eq 0 ]
+check "family: ... says what it restored" grep -q "resuming from fam.checkpoint: 1 member finished" err.txt
+check "family: resumed directory equals the uninterrupted one" same ref fam
+check "family: ... whose members differ (the comparison can fail)" differ ref/m0000/brdf.exr ref/m0002/brdf.exr
+check "family: the checkpoint is gone after the bake" [ ! -e fam.checkpoint ]
+
+MPI="$top_builddir/skinbake-mpi"
+if command -v mpirun >/dev/null 2>&1 && [ -x "$MPI" ]; then
+	mpirun --allow-run-as-root -np 2 "$MPI" bake $F $V --out mpi --resume >/dev/null 2> err.txt
+	check "family: --resume under MPI: exit 2" [ $? -eq 2 ]
+	check "family: ... saying it works in one process only" grep -q "one process only" err.txt
+	check "family: ... and no output" [ ! -e mpi ]
+else
+	skip "family: --resume under MPI (no mpirun)"
+	skip "family: ... saying it works in one process only"
+	skip "family: ... and no output"
+fi
+tap_done
