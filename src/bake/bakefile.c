@@ -175,14 +175,8 @@ static int write_albedo(const struct stage *st, char **cause)
 static int write_manifest(const struct stage *st, char **cause)
 {
 	char *path = xasprintf("%s/manifest.json", st->dir);
-	struct outfile of;
 	char *text = bake_manifest_text(st->s, st->r, st->m);
-	int rc = outfile_open(&of, path, cause);
-	if (rc == 0) {
-		fputs(text, of.fp);
-		fputc('\n', of.fp);
-		rc = outfile_commit(&of, cause);
-	}
+	int rc = outfile_write_text(path, text, cause);
 	free(text);
 	free(path);
 	return rc;

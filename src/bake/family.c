@@ -275,13 +275,7 @@ static int write_swatches(const char *dir, const struct family *f, char **cause)
 int family_write_index(const char *dir, const struct family *f, const char *command, char **cause)
 {
 	char *path = xasprintf("%s/family.json", dir), *text = index_text(f, command);
-	struct outfile of;
-	int rc = outfile_open(&of, path, cause);
-	if (rc == 0) {
-		fputs(text, of.fp);
-		fputc('\n', of.fp);
-		rc = outfile_commit(&of, cause);
-	}
+	int rc = outfile_write_text(path, text, cause);
 	free(text);
 	free(path);
 	return rc == 0 ? write_swatches(dir, f, cause) : -1;

@@ -197,22 +197,13 @@ static void unpack(const struct bake_spec *s, const double *v, char *solver, str
 
 /* ---- the directory ---- */
 
-static int write_text(const char *path, const char *text, char **cause)
-{
-	struct outfile of;
-	if (outfile_open(&of, path, cause) != 0)
-		return -1;
-	fputs(text, of.fp);
-	return outfile_commit(&of, cause);
-}
-
 /* The staging directory (base/outdir.h), with the base preset in it. */
 static int stage_open(struct outdir *od, const char *dir, const struct skin_params *base, char **cause)
 {
 	if (outdir_begin(od, dir, "family.json", cause) != 0)
 		return -1;
 	char *ini = preset_to_ini(base), *ip = xasprintf("%s/preset.ini", outdir_path(od));
-	int rc = write_text(ip, ini, cause);
+	int rc = outfile_write_text(ip, ini, cause);
 	free(ini);
 	free(ip);
 	if (rc != 0)

@@ -104,6 +104,18 @@ int outfile_open(struct outfile *o, const char *path, char **cause)
 	return 0;
 }
 
+int outfile_write_text(const char *path, const char *text, char **cause)
+{
+	struct outfile of;
+	if (outfile_open(&of, path, cause) != 0)
+		return -1;
+	size_t n = strlen(text);
+	fputs(text, of.fp);
+	if (n == 0 || text[n - 1] != '\n')
+		fputc('\n', of.fp);
+	return outfile_commit(&of, cause);
+}
+
 int outfile_commit(struct outfile *o, char **cause)
 {
 	int rc = 0;

@@ -25,6 +25,9 @@ struct outfile {
 int outfile_open(struct outfile *o, const char *path, char **cause);
 int outfile_commit(struct outfile *o, char **cause);
 void outfile_abort(struct outfile *o);
+/* PATH holds TEXT, ended by a newline when TEXT has none, written through an
+ * outfile (all or nothing). */
+int outfile_write_text(const char *path, const char *text, char **cause);
 /* A fresh temporary name beside PATH for writers that open files themselves
  * (libpng, OpenEXR); caller frees.  Pair with util_commit_tmp. */
 char *util_tmp_name(const char *path);

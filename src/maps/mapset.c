@@ -221,13 +221,7 @@ static int write_all(const char *stage, const struct mapset *m, char **cause)
 			return -1;
 	}
 	char *path = xasprintf("%s/maps.json", stage), *text = index_text(m);
-	struct outfile of;
-	int rc = outfile_open(&of, path, cause);
-	if (rc == 0) {
-		fputs(text, of.fp);
-		fputc('\n', of.fp);
-		rc = outfile_commit(&of, cause);
-	}
+	int rc = outfile_write_text(path, text, cause);
 	free(text);
 	free(path);
 	return rc;
