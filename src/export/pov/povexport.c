@@ -15,7 +15,7 @@
 #include "export/pov/bumpmap.h"
 #include "export/pov/povfiles.h"
 #include "export/pov/pov_maps.h"
-#include "export/pov/placement.h"
+#include "scene/placement.h"
 #include "export/pov/povscene.h"
 #include "geom/mesh.h"
 #include "export/pov/strategy.h"

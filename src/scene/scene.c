@@ -4,7 +4,7 @@
  * are read in scene_keys.c; this file loads and makes the whole-file checks. */
 #include "config.h"
 
-#include "export/pov/scene.h"
+#include "scene/scene.h"
 
 #include <errno.h>
 #include <ini.h>
@@ -17,8 +17,8 @@
 #include "base/util.h"
 #include "geom/mesh.h"
 #include "io/inifile.h"
-#include "export/pov/placement.h"
-#include "export/pov/scene_parse.h"
+#include "scene/placement.h"
+#include "scene/scene_parse.h"
 
 int scene_fail(struct scene_parse *p, const char *fmt, ...)
 {

@@ -96,4 +96,5 @@ int scene_valid_name(const char *n);
 /* Names of enum values, as written in scene files. */
 const char *scene_shape_name(enum scene_shape sh);
 const char *scene_strategy_name(enum scene_strategy st);
+const char *scene_material_name(enum scene_material m);
 #endif
