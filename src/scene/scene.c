@@ -198,3 +198,20 @@ int scene_find_skin(const struct scene *s, const char *name)
 			return i;
 	return -1;
 }
+
+struct scene *scene_from_parts(const struct scene *parts, double unit_mm)
+{
+	struct scene *s = xcalloc(1, sizeof *s);
+	*s = *parts;
+	s->path = xstrdup("the command line");
+	s->width = 320;
+	s->height = 240;
+	s->unit_mm = 10;
+	if (unit_mm > 0)
+		s->unit_mm = unit_mm;
+	s->n_skins = 1;
+	snprintf(s->skins[0].name, sizeof s->skins[0].name, "skin");
+	s->skins[0].preset = xstrdup("(from the bake)");
+	s->skins[0].bumps = 1;
+	return s;
+}
