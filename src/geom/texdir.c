@@ -13,6 +13,7 @@
 #include "base/srgb.h"
 #include "base/util.h"
 #include "io/exrio.h"
+#include "io/json.h"
 #include "io/pngio.h"
 
 static const char *NORMAL_CONVENTION = "OpenGL +Y";
@@ -242,8 +243,8 @@ static json_object *jrange(const char *file, struct stats s)
 {
 	json_object *c = json_object_new_object();
 	json_object_object_add(c, "file", json_object_new_string(file));
-	json_object_object_add(c, "height_min_um", json_object_new_double(s.lo * 1e4));
-	json_object_object_add(c, "height_max_um", json_object_new_double(s.hi * 1e4));
+	json_object_object_add(c, "height_min_um", json_num(s.lo * 1e4));
+	json_object_object_add(c, "height_max_um", json_num(s.hi * 1e4));
 	return c;
 }
 
@@ -258,16 +259,16 @@ static int write_manifest(const struct outputs *o, const struct relief *r, struc
 	json_object_object_add(m, "site", json_object_new_string(cfg->site));
 	json_object_object_add(m, "seed", json_object_new_int64((int64_t)cfg->seed));
 	json_object_object_add(m, "size_px", json_object_new_int64(cfg->size));
-	json_object_object_add(m, "tile_mm", json_object_new_double(tile_mm));
-	json_object_object_add(m, "pixel_um", json_object_new_double(tile_mm * 1000 / (double)cfg->size));
-	json_object_object_add(m, "height_min_um", json_object_new_double(sh.lo * 1e4));
-	json_object_object_add(m, "height_max_um", json_object_new_double(sh.hi * 1e4));
+	json_object_object_add(m, "tile_mm", json_num(tile_mm));
+	json_object_object_add(m, "pixel_um", json_num(tile_mm * 1000 / (double)cfg->size));
+	json_object_object_add(m, "height_min_um", json_num(sh.lo * 1e4));
+	json_object_object_add(m, "height_max_um", json_num(sh.hi * 1e4));
 	json_object_object_add(m, "height_encoding", json_object_new_string(
 	    "height.png: 16-bit gray, 0 = height_min_um, 65535 = height_max_um, linear; "
 	    "heights relative to the undisturbed surface"));
 	/* POV-Ray bump_map scale (docs pov.md section 4): range * pixels / tile. */
 	json_object_object_add(m, "pov_bump_size",
-	    json_object_new_double((sh.hi - sh.lo) * 10 * (double)cfg->size / tile_mm));
+	    json_num((sh.hi - sh.lo) * 10 * (double)cfg->size / tile_mm));
 	json_object_object_add(m, "normal_convention", json_object_new_string(NORMAL_CONVENTION));
 	json_object_object_add(m, "normal_encoding", json_object_new_string(NORMAL_CONVENTION_LONG));
 	json_object_object_add(m, "row0", json_object_new_string("top of the image = +y end of the tile"));
@@ -283,7 +284,7 @@ static int write_manifest(const struct outputs *o, const struct relief *r, struc
 			if (*c == '-')
 				*c = '_';
 		double v = sites_get(cfg, &p[i]);
-		json_object_object_add(par, key, p[i].type == SITES_REAL ? json_object_new_double(v)
+		json_object_object_add(par, key, p[i].type == SITES_REAL ? json_num(v)
 		    : json_object_new_int64((int64_t)v));
 		json_object_object_add(units, key, json_object_new_string(p[i].unit));
 	}
@@ -297,10 +298,10 @@ static int write_manifest(const struct outputs *o, const struct relief *r, struc
 		json_object_object_add(l, "level", json_object_new_int(k + 1));
 		json_object_object_add(l, "junctions", json_object_new_int(li.points));
 		json_object_object_add(l, "furrows", json_object_new_int(3 * li.points));
-		json_object_object_add(l, "cell_mm", json_object_new_double(li.cell * 10));
-		json_object_object_add(l, "width_um", json_object_new_double(li.width * 1e4));
-		json_object_object_add(l, "depth_um", json_object_new_double(li.depth * 1e4));
-		json_object_object_add(l, "ridge_um", json_object_new_double(li.ridge * 1e4));
+		json_object_object_add(l, "cell_mm", json_num(li.cell * 10));
+		json_object_object_add(l, "width_um", json_num(li.width * 1e4));
+		json_object_object_add(l, "depth_um", json_num(li.depth * 1e4));
+		json_object_object_add(l, "ridge_um", json_num(li.ridge * 1e4));
 		json_object_array_add(lv, l);
 	}
 	json_object_object_add(m, "furrow_levels", lv);
@@ -322,8 +323,9 @@ static int write_manifest(const struct outputs *o, const struct relief *r, struc
 	struct outfile of;
 	int rc = outfile_open(&of, path, cause);
 	if (rc == 0) {
-		fprintf(of.fp, "%s\n", json_object_to_json_string_ext(m,
-		    JSON_C_TO_STRING_PRETTY | JSON_C_TO_STRING_NOSLASHESCAPE));
+		char *text = json_text(m, JSON_PRETTY);
+		fprintf(of.fp, "%s\n", text);
+		free(text);
 		rc = outfile_commit(&of, cause);
 	}
 	free(path);
@@ -505,7 +507,7 @@ static int check_manifest(const char *dir, const struct texdir *t, char **cause)
 		return 0;
 	}
 	fclose(f);
-	json_object *m = json_object_from_file(mp), *v;
+	json_object *m = json_load(mp), *v;
 	int rc = -1;
 	char px[32];
 	snprintf(px, sizeof px, "%d px", t->w);
