@@ -156,7 +156,13 @@ static int read_spec(const struct rd *r, json_object *o, struct family *f)
 	s->method = BAKE_SOLVER_MC;
 	if (json_object_object_get_ex(b, "requested", &v) && json_object_is_type(v, json_type_string)) {
 		const char *q = json_object_get_string(v);
-		s->method = !strcmp(q, "ad") ? BAKE_SOLVER_AD : !strcmp(q, "auto") ? BAKE_SOLVER_AUTO : BAKE_SOLVER_MC;
+		const struct bake_method_info *m = bake_method_named(q);
+		if (m == NULL) {
+			*r->cause = xasprintf("%s: field bake.requested = '%s' is not one of %s", r->path, q,
+			    bake_method_choices());
+			return -1;
+		}
+		s->method = m->id;
 		double y[4] = { 0 };
 		static const char *k2[] = { "ad_tol", "ad_quad", "radial_error", "radial_photons" };
 		for (int i = 0; i < 4; i++)

@@ -175,10 +175,9 @@ static json_object *radial_info(const struct bake_spec *s, const struct bake_res
 /* Which method made the table, how, and what its errors mean. */
 static json_object *solver_info(const struct bake_spec *s, const struct bake_result *r)
 {
-	static const char *requested[] = { "mc", "ad", "auto" };
 	json_object *so = json_object_new_object();
 	add(so, "name", jstr(r->solver));
-	add(so, "requested", jstr(requested[s->method]));
+	add(so, "requested", jstr(bake_method_of(s->method)->name));
 	add(so, "rms_rel_err", json_num(r->table.rms_rel_err));
 	add(so, "error", jstr("fr_err, albedo_err and rms_rel_err of entries made by mc: standard errors (batch means); "
 	    "by ad: the adding-doubling error estimates (|X_N - X_N/2| from a solve at half the quadrature nodes, scaled up "
