@@ -161,6 +161,49 @@ static void test_sampling(void **state)
 				}
 }
 
+/* Where the sampler sends the light: the weight per band of cos_o against
+ * the BSDF times |cos_o| integrated over the band (4 standard errors). */
+static void test_sampling_bands(void **state)
+{
+	(void)state;
+	const int cases[][2] = { { 0, 60 }, { 3, 30 }, { 3, 60 }, { 2, 85 } };
+	for (int c = 0; c < 4; c++) {
+		struct microfacet m = { MICROFACET_GGX, 0.3, OPTICS_FRESNEL_EXACT };
+		double ni = pairs[cases[c][0]][0], nt = pairs[cases[c][0]][1], wi[3];
+		dir(cos(cases[c][1] * M_PI / 180.0), 0.0, wi);
+		enum { NB = 10, N = 400000 };
+		double s[2 * NB] = { 0 }, s2[2 * NB] = { 0 };
+		struct rng r;
+		rng_seed(&r, 11, 3, (uint64_t)c);
+		for (int k = 0; k < N; k++) {
+			double wo[3], u1 = rng_uniform(&r), u2 = rng_uniform(&r), u3 = rng_uniform(&r);
+			double w = microfacet_sample(&m, ni, nt, wi, u1, u2, u3, wo);
+			if (w == 0.0)
+				continue;
+			int b = (int)(fabs(wo[2]) * NB);
+			b = (b >= NB ? NB - 1 : b) + (wo[2] < 0.0 ? NB : 0);
+			s[b] += w;
+			s2[b] += w * w;
+		}
+		for (int b = 0; b < 2 * NB; b++) {
+			double want = 0.0, sign = b < NB ? 1.0 : -1.0;
+			enum { Q = 200, P = 400 };
+			for (int i = 0; i < Q; i++) {
+				double co = ((b % NB) + (i + 0.5) / Q) / NB;
+				for (int q = 0; q < P; q++) {
+					double wo[3];
+					dir(co, M_PI * (q + 0.5) / P, wo);
+					wo[2] *= sign;
+					want += 2.0 * microfacet_bsdf(&m, ni, nt, wi, wo) * co * (1.0 / (NB * Q)) * (M_PI / P);
+				}
+			}
+			double mean = s[b] / N, se = sqrt(fmax(0.0, s2[b] / N - mean * mean) / N);
+			if (fabs(mean - want) > 4.0 * se + 2e-4)
+				fail_msg("case %d band %d: sampled %g, BSDF %g (se %g)", c, b, mean, want, se);
+		}
+	}
+}
+
 /* alpha -> 0: R and T of the smooth interface (optics_fresnel), total
  * internal reflection included, to 1e-3 up to 85 degrees. */
 static void test_smooth_limit(void **state)
@@ -218,6 +261,7 @@ int main(void)
 		cmocka_unit_test(test_reciprocity),
 		cmocka_unit_test(test_bsdf_integral),
 		cmocka_unit_test(test_sampling),
+		cmocka_unit_test(test_sampling_bands),
 		cmocka_unit_test(test_smooth_limit),
 		cmocka_unit_test(test_energy),
 	};

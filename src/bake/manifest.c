@@ -123,6 +123,8 @@ static json_object *layers_info(const struct bake_spec *s)
 			add(lo, "mua_per_cm", json_object_new_double(l->mu_a));
 			add(lo, "mus_per_cm", json_object_new_double(l->mu_s));
 			add(lo, "g", json_object_new_double(l->g));
+			if (l->rough > 0.0)
+				add(lo, "rough_top", json_object_new_double(l->rough));
 			json_object_array_add(ls, lo);
 		}
 		add(lw, "layers", ls);
@@ -260,6 +262,8 @@ static json_object *entries_info(const struct bake_result *r)
 		add(jo, "Tt", json_object_new_double(b->tt.v));
 		add(jo, "A", json_object_new_double(b->a_total.v));
 		add(jo, "lost", json_object_new_double(b->lost.v));
+		if (b->facet_loss.v > 0.0)
+			add(jo, "facet_loss", json_object_new_double(b->facet_loss.v));
 		add(jo, "rms_rel_err", json_object_new_double(b->rms_rel_err));
 		json_object_array_add(jobs, jo);
 	}
@@ -462,7 +466,7 @@ static int read_stack(json_object *lw, struct slab *s, int w, const char *mpath,
 	for (size_t i = 0; i < json_object_array_length(ls); i++) {
 		json_object *lo = json_object_array_get_idx(ls, i), *d;
 		struct layer l = { INFINITY, jnum(lo, "n", 1.0), jnum(lo, "mua_per_cm", 0.0), jnum(lo, "mus_per_cm", 0.0),
-			jnum(lo, "g", 0.0) };
+			jnum(lo, "g", 0.0), jnum(lo, "rough_top", 0.0) };
 		if (json_object_object_get_ex(lo, "d_cm", &d) && !json_object_is_type(d, json_type_string))
 			l.d = json_object_get_double(d);
 		char *why = NULL;
