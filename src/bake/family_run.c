@@ -60,7 +60,7 @@ struct skin_params *family_params(const struct skin_params *base, const struct f
 
 static size_t entry_len(const struct bake_spec *s)
 {
-	return 3 + 2 * (5 + SLAB_MAX_LAYERS + 2) + 2 * (size_t)s->n_to * s->n_phi + 2 * (size_t)s->n_r + 7;
+	return 3 + 2 * (6 + SLAB_MAX_LAYERS + 2) + 2 * (size_t)s->n_to * s->n_phi + 2 * (size_t)s->n_r + 7;
 }
 
 static size_t pack_len(const struct bake_spec *s)
@@ -170,6 +170,7 @@ static void pack(const struct bake_spec *s, const struct bake_result *r, double 
 		for (int k = 0; k < SLAB_MAX_LAYERS + 2; k++)
 			put_est(&p, e->a[k]);
 		put_est(&p, e->lost);
+		put_est(&p, e->facet_loss);
 		memcpy(p, e->fr, nb * sizeof(double)), p += nb;
 		memcpy(p, e->fr_err, nb * sizeof(double)), p += nb;
 		for (int k = 0; k < s->n_r; k++)
@@ -221,6 +222,7 @@ static void unpack(const struct bake_spec *s, const double *v, char *solver, str
 		for (int k = 0; k < SLAB_MAX_LAYERS + 2; k++)
 			e->a[k] = get_est(&p);
 		e->lost = get_est(&p);
+		e->facet_loss = get_est(&p);
 		memcpy(e->fr, p, nb * sizeof(double)), p += nb;
 		memcpy(e->fr_err, p, nb * sizeof(double)), p += nb;
 		for (int k = 0; k < s->n_r; k++)

@@ -121,6 +121,8 @@ static json_object *layers_info(const struct bake_spec *s)
 			add(lo, "mua_per_cm", json_num(l->mu_a));
 			add(lo, "mus_per_cm", json_num(l->mu_s));
 			add(lo, "g", json_num(l->g));
+			if (l->rough > 0.0)
+				add(lo, "rough_top", json_num(l->rough));
 			json_object_array_add(ls, lo);
 		}
 		add(lw, "layers", ls);
@@ -257,6 +259,8 @@ static json_object *entries_info(const struct bake_result *r)
 		add(jo, "Tt", json_num(b->tt.v));
 		add(jo, "A", json_num(b->a_total.v));
 		add(jo, "lost", json_num(b->lost.v));
+		if (b->facet_loss.v > 0.0)
+			add(jo, "facet_loss", json_num(b->facet_loss.v));
 		add(jo, "rms_rel_err", json_num(b->rms_rel_err));
 		json_object_array_add(jobs, jo);
 	}
@@ -480,7 +484,7 @@ static int read_stack(json_object *lw, struct slab *s, int w, const char *mpath,
 	for (size_t i = 0; i < json_object_array_length(ls); i++) {
 		json_object *lo = json_object_array_get_idx(ls, i), *d;
 		struct layer l = { INFINITY, jnum(lo, "n", 1.0), jnum(lo, "mua_per_cm", 0.0), jnum(lo, "mus_per_cm", 0.0),
-			jnum(lo, "g", 0.0) };
+			jnum(lo, "g", 0.0), jnum(lo, "rough_top", 0.0) };
 		if (json_object_object_get_ex(lo, "d_cm", &d) && !json_object_is_type(d, json_type_string))
 			l.d = json_object_get_double(d);
 		char *why = NULL;
