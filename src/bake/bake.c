@@ -392,14 +392,27 @@ int bake_preset_to_dir(struct bake_spec *s, const struct skin_params *p, const c
     const char *command, struct bake_result *r, char **cause)
 {
 	s->checkpoint_out = out;
-	if (bake_run(s, r, cause) != 0)
+	memset(r, 0, sizeof *r);
+	/* Rank 0 takes the output (and its lock) before the work: a target that
+	 * is not a bake, or one another bake is writing, fails now. */
+	struct outdir od;
+	if (s->rank == 0 && outdir_begin(&od, out, &bake_outdir_kind, cause) != 0)
 		return -1;
+	if (bake_run(s, r, cause) != 0) {
+		if (s->rank == 0)
+			outdir_abort(&od);
+		return -1;
+	}
 	if (s->rank != 0)
 		return 0;	/* every rank holds the whole result; rank 0 writes it */
 	double *m = xmalloc(sizeof(double) * 3 * (size_t)s->n_wl);
 	struct bake_meta meta = { .preset = label, .ior = preset_surface_ior(p), .roughness = preset_surface_roughness(p),
 		.rgb_from_wl = m, .rgb_note = bake_rgb_weights(s, m), .command = command };
-	int rc = bake_write(out, s, r, &meta, cause) != 0 || checkpoint_remove(out, cause) != 0 ? -2 : 0;
+	int rc = bake_write_files(outdir_path(&od), s, r, &meta, cause) != 0 ? -2 : 0;
+	if (rc != 0)
+		outdir_abort(&od);
+	else if (outdir_commit(&od, cause) != 0 || checkpoint_remove(out, cause) != 0)
+		rc = -2;
 	free(m);
 	return rc;
 }
