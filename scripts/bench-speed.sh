@@ -9,13 +9,14 @@
 #   2. `bake --preset paper` and the 16-wavelength presets by adding-doubling, with the share of
 #      the Rd(r) Monte Carlo run (the same bake with --radial-photons 100 --radial-error 1).
 #   3. The family pilot and a small family.
-# Prints one markdown section.  Needs tests/ad_bench (make check builds it).
+# Prints one markdown section.  Builds tests/ad_bench when it is missing.
 set -eu
 SKINBAKE=${SKINBAKE:-./skinbake}
 top_builddir=${top_builddir:-.}
 top_srcdir=${top_srcdir:-.}
 REPS=${REPS:-3}
 ADB="$top_builddir/tests/ad_bench"
+[ -x "$ADB" ] || make -C "$top_builddir" tests/ad_bench >/dev/null
 W=$(mktemp -d "${TMPDIR:-/tmp}/skinbake-bench-speed.XXXXXX")
 trap 'rm -rf "$W"' EXIT INT TERM
 
