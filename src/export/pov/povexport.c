@@ -15,7 +15,7 @@
 #include "export/pov/bumpmap.h"
 #include "export/pov/povfiles.h"
 #include "export/pov/pov_maps.h"
-#include "export/pov/placement.h"
+#include "scene/placement.h"
 #include "export/pov/povscene.h"
 #include "geom/mesh.h"
 #include "export/pov/strategy.h"
@@ -224,16 +224,7 @@ static struct scene *make_scene(const struct povexport_options *o, char **cause)
 	} else {
 		if (o->cmdline->n_lights == 0 || !o->have_camera)
 			return *cause = xstrdup("give --scene FILE, or --light SPEC and --camera SPEC (see --help)"), NULL;
-		s = xcalloc(1, sizeof *s);
-		*s = *o->cmdline;
-		s->path = xstrdup("the command line");
-		s->width = 320, s->height = 240, s->unit_mm = 10;
-		if (o->unit_mm > 0)
-			s->unit_mm = o->unit_mm;
-		s->n_skins = 1;
-		snprintf(s->skins[0].name, sizeof s->skins[0].name, "skin");
-		s->skins[0].preset = xstrdup("(from the bake)");
-		s->skins[0].bumps = 1;
+		s = scene_from_parts(o->cmdline, o->unit_mm);
 	}
 	if (o->width > 0)
 		s->width = o->width, s->height = o->height;
