@@ -36,6 +36,7 @@ import subprocess
 import sys
 import tempfile
 
+FAR_ANGLES = [0.0, 20.0, 40.0, 60.0, 75.0, 85.0]       # theta_i and theta_o nodes of --far [deg]
 DEFAULT_EDGES = [0.0, 0.02, 0.035, 0.05, 0.075, 0.1, 0.15, 0.2, 0.3, 0.45, 0.65, 1.0, 1.5, 2.2,
                  3.2, 4.6, 6.5, 9.0, 13.0, 20.0]
 
@@ -110,6 +111,49 @@ def read_ppm(path):
     raw = d[i:i + w * h * 3 * nb]
     vals = [int.from_bytes(raw[k:k + nb], "big") / mx for k in range(0, len(raw), nb)]
     return w, [vals[k:k + 3] for k in range(0, len(vals), 3)]
+
+
+POV_FAR = """#version 3.7;
+global_settings {{ assumed_gamma 1 ambient_light 0 mm_per_unit 1 subsurface {{ samples {samples}, 1 }} }}
+camera {{ orthographic location {cam} look_at <0, 0, 0> sky y right x * 2 up y * 2 }}
+light_source {{ {lig} rgb 1 parallel point_at <0, 0, 0> }}
+box {{ <-{w}, -{d}, -{w}>, <{w}, 0, {w}>
+  texture {{ pigment {{ rgb <{c[0]}, {c[1]}, {c[2]}> }}
+    finish {{ diffuse 1 ambient 0 emission 0 specular 0 phong 0 subsurface {{ translucency <{t[0]}, {t[1]}, {t[2]}> }} }} }}
+  interior {{ ior {ior} }} }}
+"""
+
+
+def far_dirs(ti, to):
+    """Light and view directions (y up): light in the x-y plane at theta_i, view in the y-z plane
+    at theta_o (delta_phi = 90 degrees, the mean of the azimuths)."""
+    li = (math.sin(ti), math.cos(ti), 0.0)
+    vo = (0.0, math.cos(to), math.sin(to))
+    return li, vo
+
+
+def pov_far(a):
+    """pi f of the closure (fully lit slab, parallel light at theta_i, orthographic view at
+    theta_o): mean pixel / cos(theta_i), per pair of FAR_ANGLES."""
+    t = a.radius if len(a.radius) == 3 else a.radius * 3
+    far = []
+    with tempfile.TemporaryDirectory() as tmp:
+        for ti in FAR_ANGLES:
+            for to in FAR_ANGLES:
+                li, vo = far_dirs(math.radians(ti), math.radians(to))
+                src = POV_FAR.format(samples=a.samples, cam="<%g,%g,%g>" % tuple(100 * x for x in vo),
+                                     lig="<%g,%g,%g>" % tuple(1000 * x for x in li), w=a.width, d=a.depth,
+                                     c=a.colour, t=t, ior=a.ior)
+                pov, ppm = os.path.join(tmp, "f.pov"), os.path.join(tmp, "f.ppm")
+                with open(pov, "w") as f:
+                    f.write(src)
+                res = subprocess.run(["povray", "-D", "-A", "+W8", "+H8", "+FP16", "File_Gamma=1.0", "+WT2",
+                                      f"+I{pov}", f"+O{ppm}"], capture_output=True, text=True)
+                if res.returncode != 0 or not os.path.exists(ppm):
+                    sys.exit(f"sss_profile: povray failed:\n{res.stderr[-2000:]}")
+                n, px = read_ppm(ppm)
+                far.append([sum(p[c] for p in px) / len(px) / li[1] for c in range(3)])
+    return far
 
 
 def pov_version():
@@ -254,10 +298,44 @@ def cycles_inner(a):
             # rows run bottom to top; the weights are symmetric, so the order does not matter
             g.append(weighted_mean([flat[4 * i:4 * i + 3] for i in range(n * n)], n, math.pi))
     rad = a.radius if len(a.radius) == 3 else a.radius * 3
-    return {"renderer": "cycles", "version": bpy.app.version_string,
+    far = cycles_far(a, sc, occ) if a.far else None
+    return {"far_pi_f": far, "renderer": "cycles", "version": bpy.app.version_string,
             "closure": "Subsurface Scattering node, falloff " + a.method,
             "params": {"colour": a.colour, "radius_mm": rad, "scale": 1.0, "ior": a.ior, "samples": a.samples,
                        "size": a.size}, "g": g}
+
+
+def cycles_far(a, sc, occ):
+    """pi f of the closure: fully lit slab, sun at theta_i, orthographic camera at theta_o."""
+    import bpy
+    from mathutils import Vector
+    occ.hide_render = True
+    cam = sc.camera
+    cam.data.type = "ORTHO"
+    cam.data.ortho_scale = 2.0
+    cam.data.clip_start = 0.1
+    sc.render.resolution_x = sc.render.resolution_y = 8
+    sun = bpy.data.objects["sun"]
+    far = []
+    with tempfile.TemporaryDirectory() as tmp:
+        for ti in FAR_ANGLES:
+            for to in FAR_ANGLES:
+                li, vo = far_dirs(math.radians(ti), math.radians(to))
+                # y up in far_dirs, z up here
+                light, view = Vector((li[0], li[2], li[1])), Vector((vo[0], vo[2], vo[1]))
+                sun.rotation_euler = light.to_track_quat("Z", "Y").to_euler()
+                cam.location = 100.0 * view
+                cam.rotation_euler = view.to_track_quat("Z", "Y").to_euler()
+                path = os.path.join(tmp, "f.exr")
+                sc.render.filepath = path
+                bpy.ops.render.render(write_still=True)
+                img = bpy.data.images.load(path, check_existing=False)
+                img.colorspace_settings.name = "Non-Color"
+                flat = list(img.pixels)
+                bpy.data.images.remove(img)
+                n = len(flat) // 4
+                far.append([math.pi * sum(flat[4 * i + c] for i in range(n)) / n / li[1] for c in range(3)])
+    return far
 
 
 def cycles_measure(a, argv):
@@ -293,6 +371,8 @@ def parse(argv):
     p.add_argument("--height", type=float, default=None, help="camera height [mm] (POV-Ray 1e-4, Cycles 1e-3)")
     p.add_argument("--width", type=float, default=None, help="slab half-width [mm] (POV-Ray 500, Cycles 30)")
     p.add_argument("--depth", type=float, default=None, help="slab thickness [mm] (POV-Ray 500, Cycles 30)")
+    p.add_argument("--far", action="store_true", help="also the closure's far-field pi f(theta_i, theta_o) "
+                   "at FAR_ANGLES (fully lit slab, orthographic camera)")
     p.add_argument("--json", help="write the result here (default stdout)")
     p.add_argument("--inner", action="store_true", help=argparse.SUPPRESS)
     a = p.parse_args(argv)
@@ -322,6 +402,9 @@ def main():
     r = pov_measure(a) if a.renderer == "pov" else cycles_measure(a, argv)
     r["edges_mm"] = a.edges
     r.update(profile(a.edges, r["g"]))
+    if a.far:
+        r["far_angles_deg"] = FAR_ANGLES
+        r["far_pi_f"] = pov_far(a) if a.renderer == "pov" else r.pop("far_pi_f")
     text = json.dumps(r, indent=1)
     if a.json:
         with open(a.json, "w") as f:
