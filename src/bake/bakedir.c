@@ -19,6 +19,7 @@ void bake_free(struct bake *b)
 	free(b->fr_err);
 	free(b->fr_rgb);
 	free(b->albedo);
+	free(b->rd_r_rgb);
 	free(b->albedo_rgb);
 	free(b->rgb_from_wl);
 	free(b->stack);

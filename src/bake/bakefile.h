@@ -21,10 +21,22 @@
 #ifndef SKINBAKE_BAKEFILE_H
 #define SKINBAKE_BAKEFILE_H
 #include "bake/bakedir.h"
+#include "base/outdir.h"
 
-/* Write the bake directory DIR (created if needed).  Files are staged and
- * renamed into place only when all were written; -1 and *cause otherwise. */
+/* A bake directory, for base/outdir.h: manifest.json of format
+ * "skinbake-bake" and the tables. */
+extern const struct outdir_kind bake_outdir_kind;
+
+/* Write the bake directory DIR (created if needed) through base/outdir.h:
+ * the complete new set replaces the old one in one swap, or nothing
+ * changes; -1 and *cause (also when DIR is not a bake directory, or is
+ * being written by another process). */
 int bake_write(const char *dir, const struct bake_spec *s, const struct bake_result *r,
+    const struct bake_meta *m, char **cause);
+/* The files of a bake, written straight into the existing directory DIR
+ * (a staging directory: outdir_path, or a family member's in the family's
+ * staging); -1 and *cause. */
+int bake_write_files(const char *dir, const struct bake_spec *s, const struct bake_result *r,
     const struct bake_meta *m, char **cause);
 
 struct skin_params;

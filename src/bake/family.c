@@ -278,7 +278,12 @@ int family_write_index(const char *dir, const struct family *f, const char *comm
 	return rc == 0 ? write_swatches(dir, f, cause) : -1;
 }
 
+static const char *const family_names[] = { "family.json", "preset.ini", "swatches.png", "m[0-9][0-9][0-9][0-9]*",
+	NULL };
+const struct outdir_kind family_outdir_kind = { "family directory", "family.json", "format", "skinbake-family",
+	family_names };
+
 int family_check_out(const char *dir, char **cause)
 {
-	return util_dir_replaceable(dir, "family.json", "family directory", cause);
+	return outdir_check(dir, &family_outdir_kind, NULL, cause);
 }

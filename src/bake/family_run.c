@@ -60,7 +60,7 @@ struct skin_params *family_params(const struct skin_params *base, const struct f
 
 static size_t entry_len(const struct bake_spec *s)
 {
-	return 3 + 2 * (5 + SLAB_MAX_LAYERS + 2) + 2 * (size_t)s->n_to * s->n_phi + 2 * (size_t)s->n_r + 7;
+	return 3 + 2 * (6 + SLAB_MAX_LAYERS + 2) + 2 * (size_t)s->n_to * s->n_phi + 2 * (size_t)s->n_r + 7;
 }
 
 static size_t pack_len(const struct bake_spec *s)
@@ -170,6 +170,7 @@ static void pack(const struct bake_spec *s, const struct bake_result *r, double 
 		for (int k = 0; k < SLAB_MAX_LAYERS + 2; k++)
 			put_est(&p, e->a[k]);
 		put_est(&p, e->lost);
+		put_est(&p, e->facet_loss);
 		memcpy(p, e->fr, nb * sizeof(double)), p += nb;
 		memcpy(p, e->fr_err, nb * sizeof(double)), p += nb;
 		for (int k = 0; k < s->n_r; k++)
@@ -221,6 +222,7 @@ static void unpack(const struct bake_spec *s, const double *v, char *solver, str
 		for (int k = 0; k < SLAB_MAX_LAYERS + 2; k++)
 			e->a[k] = get_est(&p);
 		e->lost = get_est(&p);
+		e->facet_loss = get_est(&p);
 		memcpy(e->fr, p, nb * sizeof(double)), p += nb;
 		memcpy(e->fr_err, p, nb * sizeof(double)), p += nb;
 		for (int k = 0; k < s->n_r; k++)
@@ -253,7 +255,7 @@ static void unpack(const struct bake_spec *s, const double *v, char *solver, str
 /* The staging directory (base/outdir.h), with the base preset in it. */
 static int stage_open(struct outdir *od, const char *dir, const struct skin_params *base, char **cause)
 {
-	if (outdir_begin(od, dir, "family.json", cause) != 0)
+	if (outdir_begin(od, dir, &family_outdir_kind, cause) != 0)
 		return -1;
 	char *ini = preset_to_ini(base), *ip = xasprintf("%s/preset.ini", outdir_path(od));
 	int rc = outfile_write_text(ip, ini, cause);
@@ -365,7 +367,8 @@ static int write_member(const struct family_plan *pl, struct family *f, int m, c
 		.roughness = preset_surface_roughness(p), .rgb_from_wl = w, .rgb_note = bake_rgb_weights(s, w),
 		.command = pl->command };
 	char *mdir = xasprintf("%s/m%04d", stage, m);
-	int rc = bake_write(mdir, s, &r, &meta, cause) || member_record(f, m, s, &r, mdir, cause) ? -1 : 0;
+	int rc = util_mkdirs(mdir, cause) || bake_write_files(mdir, s, &r, &meta, cause) ||
+	    member_record(f, m, s, &r, mdir, cause) ? -1 : 0;
 	free(mdir);
 	free(w);
 	bake_result_free(&r);
@@ -478,21 +481,22 @@ int family_bake(const struct family_plan *pl, const char *dir, struct family **o
 		*out = NULL;
 	if (count_members(pl, &n_members, cause) != 0)
 		return -1;
-	struct family *f = family_new(pl, n_members);
-	struct checkpoint *ck = family_ckpt_open(pl, f, dir, &n_done, cause);
-	if (ck == NULL) {
-		family_free(f);
-		return -1;
-	}
+	/* The output and its lock first: a second run on DIR is refused
+	 * before it reads DIR.checkpoint, which the first is writing. */
 	struct outdir od;
 	const char *stage = NULL;
 	if (rank == 0) {
-		if (stage_open(&od, dir, pl->base, cause) != 0) {
-			checkpoint_close(ck);
-			family_free(f);
-			return -2;
-		}
+		if (stage_open(&od, dir, pl->base, cause) != 0)
+			return -1;
 		stage = outdir_path(&od);
+	}
+	struct family *f = family_new(pl, n_members);
+	struct checkpoint *ck = family_ckpt_open(pl, f, dir, &n_done, cause);
+	if (ck == NULL) {
+		if (rank == 0)
+			outdir_abort(&od);
+		family_free(f);
+		return -1;
 	}
 	/* Ranks go round by round in lockstep: each bakes one member of the
 	 * round, the sum over ranks gathers them, rank 0 writes them.  The slot

@@ -121,6 +121,8 @@ static json_object *layers_info(const struct bake_spec *s)
 			add(lo, "mua_per_cm", json_num(l->mu_a));
 			add(lo, "mus_per_cm", json_num(l->mu_s));
 			add(lo, "g", json_num(l->g));
+			if (l->rough > 0.0)
+				add(lo, "rough_top", json_num(l->rough));
 			json_object_array_add(ls, lo);
 		}
 		add(lw, "layers", ls);
@@ -257,6 +259,8 @@ static json_object *entries_info(const struct bake_result *r)
 		add(jo, "Tt", json_num(b->tt.v));
 		add(jo, "A", json_num(b->a_total.v));
 		add(jo, "lost", json_num(b->lost.v));
+		if (b->facet_loss.v > 0.0)
+			add(jo, "facet_loss", json_num(b->facet_loss.v));
 		add(jo, "rms_rel_err", json_num(b->rms_rel_err));
 		json_object_array_add(jobs, jo);
 	}
@@ -410,6 +414,34 @@ static int read_specular(json_object *o, struct bake *b, const char *mpath, char
 	return 0;
 }
 
+/* The radial profile in linear sRGB (rgb_from_wl applied to Rd(r) per
+ * wavelength); left NULL when the manifest has none or it is malformed. */
+static void read_radial_profile(json_object *rad, struct bake *b)
+{
+	json_object *prof;
+	int n_r = (int)jnum(rad, "n_r", 0);
+	double dr = jnum(rad, "dr_cm", 0);
+	if (!json_object_object_get_ex(rad, "rd_r", &prof) || !json_object_is_type(prof, json_type_array) ||
+	    (int)json_object_array_length(prof) != b->n_wl || n_r < 1 || n_r > 100000 || !(dr > 0 && dr < 100))
+		return;
+	double *rgb = xcalloc((size_t)(3 * n_r), sizeof(double));
+	for (int w = 0; w < b->n_wl; w++) {
+		json_object *row = json_object_array_get_idx(prof, (size_t)w);
+		if (!json_object_is_type(row, json_type_array) || (int)json_object_array_length(row) != n_r) {
+			free(rgb);
+			return;
+		}
+		for (int i = 0; i < n_r; i++) {
+			double v = json_object_get_double(json_object_array_get_idx(row, (size_t)i));
+			for (int c = 0; c < 3; c++)
+				rgb[c * n_r + i] += b->rgb_from_wl[c * b->n_wl + w] * v;
+		}
+	}
+	b->n_r = n_r;
+	b->dr_cm = dr;
+	b->rd_r_rgb = rgb;
+}
+
 /* Subsurface radii: optional (0 when the manifest has none). */
 static void read_radial(json_object *o, struct bake *b, const char *mpath)
 {
@@ -433,6 +465,7 @@ static void read_radial(json_object *o, struct bake *b, const char *mpath)
 		free(tmp);
 	}
 	free(ignored);
+	read_radial_profile(rad, b);
 }
 
 int bake_manifest_read(const char *dir, struct bake *b, char **cause)
@@ -480,7 +513,7 @@ static int read_stack(json_object *lw, struct slab *s, int w, const char *mpath,
 	for (size_t i = 0; i < json_object_array_length(ls); i++) {
 		json_object *lo = json_object_array_get_idx(ls, i), *d;
 		struct layer l = { INFINITY, jnum(lo, "n", 1.0), jnum(lo, "mua_per_cm", 0.0), jnum(lo, "mus_per_cm", 0.0),
-			jnum(lo, "g", 0.0) };
+			jnum(lo, "g", 0.0), jnum(lo, "rough_top", 0.0) };
 		if (json_object_object_get_ex(lo, "d_cm", &d) && !json_object_is_type(d, json_type_string))
 			l.d = json_object_get_double(d);
 		char *why = NULL;

@@ -44,6 +44,12 @@ static void add_totals(json_object *o, const struct sim_result *r)
 	add(o, "A", jarray(a, r->n_layers));
 	add(o, "A_err", jarray(ae, r->n_layers));
 	add(o, "lost", json_num(r->lost.v));
+	if (r->rsp_err > 0.0 || r->facet_loss.v > 0.0) {
+		/* Rough boundaries only, so smooth stacks' reports stay as they were. */
+		add(o, "Rsp_err", json_num(r->rsp_err));
+		add(o, "facet_loss", json_num(r->facet_loss.v));
+		add(o, "facet_loss_err", json_num(r->facet_loss.err));
+	}
 	add(o, "balance", json_num(r->balance));
 }
 
@@ -123,7 +129,10 @@ void sim_report_table(FILE *fp, const struct sim_config *c, const struct sim_res
 		    (unsigned long long)c->seed, r->seconds, r->photons / r->seconds, r->events / r->seconds);
 	const char *err = ad ? "error est." : "std.err";
 	fprintf(fp, "  %-18s %12s %12s\n", "quantity", "value", err);
-	fprintf(fp, "  %-18s %12.6f %12s\n", "Rsp", r->rsp, "exact");
+	if (r->rsp_err > 0.0)
+		fprintf(fp, "  %-18s %12.6f %12.2e\n", "Rsp", r->rsp, r->rsp_err);
+	else
+		fprintf(fp, "  %-18s %12.6f %12s\n", "Rsp", r->rsp, "exact");
 	fprintf(fp, "  %-18s %12.6f %12.2e\n", "Rd", r->rd.v, r->rd.err);
 	fprintf(fp, "  %-18s %12.6f %12.2e\n", "  unscattered", r->rd_unscat.v, r->rd_unscat.err);
 	fprintf(fp, "  %-18s %12.6f %12.2e\n", "Tt", r->tt.v, r->tt.err);
@@ -134,6 +143,8 @@ void sim_report_table(FILE *fp, const struct sim_config *c, const struct sim_res
 		fprintf(fp, "  %-18s %12.6f %12.2e\n", name, r->a[i].v, r->a[i].err);
 	}
 	fprintf(fp, "  %-18s %12.3g\n", "lost", r->lost.v);
+	if (r->facet_loss.v > 0.0)
+		fprintf(fp, "  %-18s %12.6f %12.2e\n", "facet loss", r->facet_loss.v, r->facet_loss.err);
 	fprintf(fp, "  %-18s %12.3g\n", "balance - 1", r->balance);
 	fprintf(fp, "\n  azimuth-averaged diffuse BRDF [1/sr]\n  %-18s %12s %12s\n", "theta_out [deg]", "fr", err);
 	for (int i = 0; i < r->grid.n_theta; i++) {

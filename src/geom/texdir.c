@@ -10,6 +10,7 @@
 #include <string.h>
 
 #include "base/check.h"
+#include "base/outdir.h"
 #include "base/srgb.h"
 #include "base/util.h"
 #include "io/exrio.h"
@@ -333,7 +334,13 @@ static int write_manifest(const struct outputs *o, const struct relief *r, struc
 	return rc;
 }
 
-int texdir_write(const char *dir, const struct texture_config *cfg, const struct relief *r,
+static const char *const texdir_names[] = { "height.png", "normal.png", "normal.exr", "height.exr", "preview.png",
+	"pores_height.png", "furrows_height.png", NULL };
+const struct outdir_kind texdir_outdir_kind = { "texture directory", "manifest.json", "kind", "skinbake texture",
+	texdir_names };
+
+/* Every file into the existing directory DIR, manifest.json last. */
+static int write_files(const char *dir, const struct texture_config *cfg, const struct relief *r,
     const struct texdir_maps *m, char **cause)
 {
 	CHECK(m->n == (int)cfg->size);
@@ -344,8 +351,6 @@ int texdir_write(const char *dir, const struct texture_config *cfg, const struct
 	snprintf(o.tile, sizeof o.tile, "%.10g", cfg->relief.tile * 10);
 	snprintf(o.seed, sizeof o.seed, "%llu", (unsigned long long)cfg->seed);
 	snprintf(o.size, sizeof o.size, "%ld", cfg->size);
-	if (util_mkdirs(dir, cause) != 0)
-		return -1;
 	/* The writers are independent (own libpng / OpenEXR contexts), and
 	 * compression dominates, so they run in parallel; the manifest, which
 	 * lists them, comes last. */
@@ -376,15 +381,36 @@ int texdir_write(const char *dir, const struct texture_config *cfg, const struct
 	return write_manifest(&o, r, sh, sp, sf, cause);
 }
 
-/* The steps in the order the command reports them; nothing is written
- * before the relief has been placed. */
+int texdir_write(const char *dir, const struct texture_config *cfg, const struct relief *r,
+    const struct texdir_maps *m, char **cause)
+{
+	struct outdir od;
+	if (outdir_begin(&od, dir, &texdir_outdir_kind, cause) != 0)
+		return -1;
+	if (write_files(outdir_path(&od), cfg, r, m, cause) != 0) {
+		outdir_abort(&od);
+		return -1;
+	}
+	return outdir_commit(&od, cause);
+}
+
+/* The steps in the order the command reports them; the output (and its
+ * lock) is taken first, nothing is written before the relief has been
+ * placed. */
 int texdir_make(const char *dir, const struct texture_config *cfg, struct texdir_made *made, char **cause)
 {
 	memset(made, 0, sizeof *made);
+	struct outdir od;
+	if (outdir_begin(&od, dir, &texdir_outdir_kind, cause) != 0) {
+		made->refused = 1;
+		return -1;
+	}
 	double t0 = util_now();
 	struct relief *r = relief_new(&cfg->relief, cfg->seed, cause);
-	if (r == NULL)
+	if (r == NULL) {
+		outdir_abort(&od);
 		return -1;
+	}
 	made->n_pores = relief_n_pores(r);
 	made->notes = texdir_resolution_notes(cfg, r);
 	double t1 = util_now();
@@ -392,7 +418,11 @@ int texdir_make(const char *dir, const struct texture_config *cfg, struct texdir
 	texdir_maps_render(&m, r, cfg);
 	texdir_height_range(&m, &made->h_min, &made->h_max);
 	double t2 = util_now();
-	int rc = texdir_write(dir, cfg, r, &m, cause);
+	int rc = write_files(outdir_path(&od), cfg, r, &m, cause);
+	if (rc != 0)
+		outdir_abort(&od);
+	else
+		rc = outdir_commit(&od, cause);
 	made->t_place = t1 - t0;
 	made->t_render = t2 - t1;
 	made->t_write = util_now() - t2;

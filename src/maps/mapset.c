@@ -69,9 +69,12 @@ int mapset_find(const struct mapset *m, const char *key)
 	return -1;
 }
 
+static const char *const mapset_names[] = { "maps.json", "*.png", "*.exr", NULL };
+const struct outdir_kind mapset_outdir_kind = { "maps directory", "maps.json", "format", "skinbake-maps", mapset_names };
+
 int mapset_check_out(const char *dir, char **cause)
 {
-	return util_dir_replaceable(dir, "maps.json", "maps directory", cause);
+	return outdir_check(dir, &mapset_outdir_kind, NULL, cause);
 }
 
 /* ---- writer ---- */
@@ -231,7 +234,7 @@ static int write_all(const char *stage, const struct mapset *m, char **cause)
 int mapset_write(const char *dir, const struct mapset *m, char **cause)
 {
 	struct outdir od;
-	if (outdir_begin(&od, dir, "maps.json", cause) != 0)
+	if (outdir_begin(&od, dir, &mapset_outdir_kind, cause) != 0)
 		return -1;
 	if (write_all(outdir_path(&od), m, cause) != 0) {
 		outdir_abort(&od);
