@@ -15,11 +15,7 @@
 #include "io/json.h"
 
 /* ---- writer ---- */
-
-static json_object *jarr(const double *v, int n)
-{
-	return json_num_array(v, n);
-}
+#define jarr json_num_array	/* a number array */
 
 static json_object *jarr_deg(const double *v, int n)
 {
