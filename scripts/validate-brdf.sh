@@ -651,6 +651,14 @@ fi
 		echo "fit_fwd=$(f5 "$fitted" total 10)"
 		echo "whatif_held=$(hs whatif 3)"
 	fi
+	if [ -n "$rough" ] && [ "$fit_ok" = 1 ]; then
+		echo "rough_train=$(hs "$rough" 2)"
+		echo "rough_held=$(hs "$rough" 3)"
+		echo "rough_mar=$(hs "$rough" 7)"
+		echo "rough_back=$(f5 "$rough" total 9)"
+		echo "rough_fwd=$(f5 "$rough" total 10)"
+		echo "rough_alpha=$(sed -n 's/^roughness *= *\([0-9.]*\).*/\1/p' "$rough_ini")"
+	fi
 	echo "bake_time=$bake_time"
 	echo "solver_note='$solver_note'"
 	echo "best_held=$best_held"
