@@ -44,12 +44,12 @@ for a in 0 0.3; do
 done
 echo
 printf '[skin]\nbase = fair-oily\n[surface]\nroughness = 0.3\n' >"$W/rough.ini"
-echo "| \`bake\` fair-oily, 550 nm, 2 incidence nodes, 9x6 bins, target 0.05, --solver mc | CPU [s] | photons | table RMS rel. error |"
+echo "| \`bake\` fair-oily, 550 nm, 2 incidence nodes, 9x6 bins, target 0.02, --solver mc | CPU [s] | photons | table RMS rel. error |"
 echo "|---|---|---|---|"
 for src in "--preset fair-oily" "--preset-file $W/rough.ini"; do
 	# shellcheck disable=SC2086
 	t=$(cpu "$SKINBAKE" bake $src --solver mc --wavelengths 550 --theta-nodes 2 --resolution 9x6 \
-		--target-error 0.05 --batch-photons 1000 --out "$W/b" --quiet)
+		--target-error 0.02 --batch-photons 1000 --out "$W/b" --quiet)
 	case $src in *rough*) l="top α = 0.3 (escapes)" ;; *) l="smooth (next-event estimation)" ;; esac
 	echo "| $l | $t | $(jq -r '.result.photons' "$W/b/manifest.json") | $(jq -r '.result.rms_rel_err * 1000 | round / 1000' "$W/b/manifest.json") |"
 done

@@ -510,7 +510,7 @@ splitstats() {
 }
 splitcol() { splitstats "$1" | awk -F'|' -v c="$2" '{ v = $(c + 1); sub(/ *\(.*/, "", v); gsub(/ /, "", v); print v }'; }
 # The unfitted preset with the smallest held-out error.
-best_held=$(awk -F'\t' '$1 != "whatif" && $1 != "marschner-fit" && $1 != "curet39" { if (m == "" || $3 < m) { m = $3; n = $1 } } END { print n }' "$br/held.tsv")
+best_held=$(awk -F'\t' '$1 != "whatif" && $1 != "marschner-fit" && $1 != "curet39" && $1 != "curet39-rough" { if (m == "" || $3 < m) { m = $3; n = $1 } } END { print n }' "$br/held.tsv")
 if [ "$fit_ok" = 1 ]; then
 	held_f=$(hs "$fitted" 3)
 	back_f=$(f5 "$fitted" total 9)
