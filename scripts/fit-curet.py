@@ -31,7 +31,9 @@ With --rough (issue 21) the roughness is also the GGX alpha of the top
 boundary in the subsurface transport ([surface] roughness): light enters and
 leaves the skin through the microfacets, so every roughness needs its own
 bake and, with Monte Carlo, the roughness joins the simplex as with
-adding-doubling.  --sebum on|off fits one of the two films only.
+adding-doubling.  --multiple makes the facets scatter light as often as it
+meets them ([surface] multiple_scattering = 1).  --sebum on|off fits one of
+the two films only.
 
 Monte Carlo noise (with --solver ad the errors are the solver's estimates,
 about 1e-4 relative, and the same formulas hold): the objective is the mean over the points of
@@ -107,7 +109,8 @@ class Model:
                 "[surface]\nroughness_skin = %.4g\nroughness_sebum = %.4g\n%s"
                 % (base, SEBUM_ON_CM if q["sebum"] else 0, q["melanin"], BASE_EPI_MUSP500 * q["scatter"],
                    q["blood"], BASE_DERM_MUSP500 * q["scatter"], alpha, alpha,
-                   "roughness = %.4g\n" % alpha if self.a.rough else ""))
+                   ("roughness = %.4g\n" % alpha if self.a.rough else "")
+                   + ("multiple_scattering = 1\n" if self.a.multiple else "")))
 
     def bake(self, q):
         """Bake the Monte Carlo part (cached: roughness does not enter it)."""
@@ -268,6 +271,8 @@ def main():
     ap.add_argument("--blood-max", type=float, default=None, help="upper bound of the blood fraction (default 0.07)")
     ap.add_argument("--rough", action="store_true",
                     help="the roughness is also the transport's rough top boundary ([surface] roughness)")
+    ap.add_argument("--multiple", action="store_true",
+                    help="with --rough: light scatters on the facets until it leaves (Heitz 2016)")
     ap.add_argument("--sebum", default="both", choices=("on", "off", "both"), help="films to fit")
     ap.add_argument("--start", default=None,
                     help="starting point melanin,blood,scatter,alpha (default 0.025,0.02,1,0.35)")

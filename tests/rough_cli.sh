@@ -15,6 +15,7 @@ bad() { # name, ini text, expected words in the message
 bad negative '[skin]\nbase = fair-dry\n[surface]\nroughness = -0.1\n' 'surface.roughness = -0.1: out of range \[0, 1\]'
 bad above1 '[skin]\nbase = fair-dry\n[surface]\nroughness = 1.01\n' 'surface.roughness = 1.01: out of range'
 bad layer_above1 '[skin]\nbase = fair-oily\n[dermis]\ntop_roughness = 2\n' 'dermis.top_roughness = 2: out of range'
+bad ms_half '[skin]\nbase = fair-dry\n[surface]\nmultiple_scattering = 0.5\n' 'surface.multiple_scattering = 0.5: must be 0 or 1'
 bad no_film '[skin]\nbase = fair-dry\n[epidermis]\ntop_roughness = 0.2\n' 'epidermis.top_roughness = 0.2 but there is no sebum film'
 bad no_subcutis '[skin]\nbase = fair-dry\n[subcutis]\nthickness = 0\ntop_roughness = 0.2\n' 'subcutis.top_roughness = 0.2 but the preset has no subcutis'
 

@@ -17,6 +17,7 @@
 #include "engine/microfacet.h"
 #include "engine/sim.h"
 #include "engine/specular.h"
+#include "base/rng.h"
 
 static void stack(struct sim_config *c, double n_above, double n_below, long photons)
 {
@@ -75,6 +76,46 @@ static void test_single_interface(void **state)
 				assert_true(r.rd.v == 0.0);
 				sim_result_free(&r);
 			}
+}
+
+static double uni(void *r)
+{
+	return rng_uniform(r);
+}
+
+/* With multiple scattering on the facets nothing is lost: the single
+ * interface's Rsp and Tt sum to 1 and match the walk's own reflectance
+ * (microfacet_sample_ms called directly) from either side. */
+static void test_multiple_scattering(void **state)
+{
+	(void)state;
+	const double idx[][2] = { { 1.0, 1.5 }, { 1.5, 1.0 } }, ths[] = { 0, 60, 85 };
+	for (int p = 0; p < 2; p++)
+		for (int k = 0; k < 3; k++) {
+			struct sim_config c;
+			stack(&c, idx[p][0], idx[p][1], 100000);
+			layer(&c, 0.01, idx[p][1], 0.0, 0.0, 0.0, 0.35);
+			prepare(&c);
+			c.slab.rough_ms = 1;
+			c.theta_in = ths[k] * M_PI / 180.0;
+			struct sim_result r;
+			sim_run(&c, &r, NULL, NULL);
+			assert_true(r.facet_loss.v == 0.0);
+			assert_true(fabs(r.rsp + r.tt.v - 1.0) < 1e-12);
+			struct microfacet m = { MICROFACET_GGX, 0.35, OPTICS_FRESNEL_EXACT };
+			double wi[3] = { sin(c.theta_in), 0.0, cos(c.theta_in) }, R = 0.0;
+			struct rng g;
+			rng_seed(&g, 99, 1, (uint64_t)(p * 3 + k));
+			enum { N = 200000 };
+			for (int i = 0; i < N; i++) {
+				double wo[3];
+				microfacet_sample_ms(&m, idx[p][0], idx[p][1], wi, uni, &g, wo, NULL);
+				R += wo[2] > 0.0;
+			}
+			R /= N;
+			near("Rsp (multiple scattering)", r.rsp, hypot(r.rsp_err, sqrt(R * (1 - R) / N)), R, ths[k], 0.35);
+			sim_result_free(&r);
+		}
 }
 
 /* alpha = 1e-4 gives the smooth interface's Rsp and Rd (turbid layer,
@@ -173,6 +214,7 @@ int main(void)
 {
 	const struct CMUnitTest tests[] = {
 		cmocka_unit_test(test_single_interface),
+		cmocka_unit_test(test_multiple_scattering),
 		cmocka_unit_test(test_smooth_limit),
 		cmocka_unit_test(test_balance),
 		cmocka_unit_test(test_check),
