@@ -411,7 +411,7 @@ issue16=$(cat <<EOF
    What looks wrong in them is listed under the figures.
 $( [ -n "${rough_held:-}" ] && cat <<EOR
 5. **Issue 21, a rough top in the transport: held-out goal $(awk -v h="$rough_held" 'BEGIN { print (h + 0 < 8 ? "met" : "not met") }')** (section 3.4).
-   \`curet39-rough\` (GGX α $rough_alpha at the top boundary of both the transport and the lobe,
+   \`curet39-rough\` (GGX α $rough_alpha at the top boundary of both the transport and the lobe, $rough_facets scattering on the facets,
    fitted again with melanin, blood and the scattering scale on the same $n_train points, Monte
    Carlo): $rough_train % RMS on them, **$rough_held % on the $n_held held-out points** (goal under 8 %;
    \`$fitted\` with a smooth top: $fit_held %), back-side fall **$rough_back** and forward rise
