@@ -10,6 +10,7 @@
 #include <string.h>
 
 #include "base/check.h"
+#include "base/checksum.h"
 #include "base/outdir.h"
 #include "base/srgb.h"
 #include "base/util.h"
@@ -319,15 +320,8 @@ static int write_manifest(const struct outputs *o, const struct relief *r, struc
 		json_object_array_add(fl, json_object_new_string(files[i]));
 	json_object_object_add(m, "files", fl);
 
-	char *path = path_in(o, "manifest.json");
-	struct outfile of;
-	int rc = outfile_open(&of, path, cause);
-	if (rc == 0) {
-		fprintf(of.fp, "%s\n", json_object_to_json_string_ext(m,
-		    JSON_C_TO_STRING_PRETTY | JSON_C_TO_STRING_NOSLASHESCAPE));
-		rc = outfile_commit(&of, cause);
-	}
-	free(path);
+	int rc = checksum_write_manifest(o->dir, "manifest.json", json_object_to_json_string_ext(m,
+	    JSON_C_TO_STRING_PRETTY | JSON_C_TO_STRING_NOSLASHESCAPE), cause);
 	json_object_put(m);
 	return rc;
 }
@@ -580,7 +574,9 @@ struct texdir *texdir_load(const char *dir, int with_normal, char **cause)
 	struct texdir *t = xcalloc(1, sizeof *t);
 	t->dir = xstrdup(dir);
 	char *hp = xasprintf("%s/height.png", dir), *np = xasprintf("%s/normal.png", dir);
-	int rc = read_height(hp, t, cause);
+	int rc = checksum_verify_dir(dir, "manifest.json", cause);
+	if (rc == 0)
+		rc = read_height(hp, t, cause);
 	if (rc == 0 && with_normal)
 		rc = read_normal(np, hp, t, cause);
 	if (rc == 0)
