@@ -15,7 +15,9 @@
 #include "bake/bake.h"
 #include "bake/checkpoint.h"
 #include "bake/manifest.h"
+#include "bake/manifest_check.h"
 #include "base/check.h"
+#include "base/checksum.h"
 #include "base/srgb.h"
 #include "base/util.h"
 #include "io/exrio.h"
@@ -163,11 +165,9 @@ static int write_albedo(const struct stage *st, char **cause)
 
 static int write_manifest(const struct stage *st, char **cause)
 {
-	char *path = xasprintf("%s/manifest.json", st->dir);
 	char *text = bake_manifest_text(st->s, st->r, st->m);
-	int rc = outfile_write_text(path, text, cause);
+	int rc = checksum_write_manifest(st->dir, "manifest.json", text, cause);
 	free(text);
-	free(path);
 	return rc;
 }
 
@@ -261,7 +261,8 @@ struct bake *bake_load(const char *dir, char **cause)
 {
 	struct bake *b = xcalloc(1, sizeof *b);
 	b->dir = xstrdup(dir);
-	if (bake_manifest_read(dir, b, cause) || read_brdf(dir, b, cause) || read_albedo(dir, b, cause)) {
+	if (manifest_check_bake(dir, cause) || bake_manifest_read(dir, b, cause) || read_brdf(dir, b, cause) ||
+	    read_albedo(dir, b, cause) || manifest_check_values(b, cause)) {
 		bake_free(b);
 		return NULL;
 	}

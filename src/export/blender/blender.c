@@ -21,6 +21,7 @@
 #include "io/pngio.h"
 #include "geom/texdir.h"
 #include "base/check.h"
+#include "base/checksum.h"
 #include "base/util.h"
 
 void blender_options_default(struct blender_options *o)
@@ -384,18 +385,10 @@ static json_object *manifest_build(const struct brdf_source *m, const struct ble
 	return j;
 }
 
-static int write_manifest(const char *path, json_object *j, char **cause)
+static int write_manifest(const char *dir, json_object *j, char **cause)
 {
-	struct outfile of;
-	if (outfile_open(&of, path, cause) != 0)
-		return -1;
 	const char *s = json_object_to_json_string_ext(j, JSON_C_TO_STRING_PRETTY | JSON_C_TO_STRING_NOSLASHESCAPE);
-	if (fputs(s, of.fp) == EOF || fputc('\n', of.fp) == EOF) {
-		*cause = xasprintf("%s: %s", path, strerror(errno));
-		outfile_abort(&of);
-		return -1;
-	}
-	return outfile_commit(&of, cause);
+	return checksum_write_manifest(dir, "manifest.json", s, cause);
 }
 
 static int write_rgb_exr(const char *path, int w, int h, const float *rgb, int nattr,
@@ -543,8 +536,8 @@ int blender_write_files(const struct blender_set *s, const char *dir, char **cau
 		goto out;
 	free(path);
 	/* The manifest goes last: its presence marks a complete image set. */
-	path = xasprintf("%s/manifest.json", dir);
-	if (write_manifest(path, s->manifest, cause) != 0)
+	path = NULL;
+	if (write_manifest(dir, s->manifest, cause) != 0)
 		goto out;
 	rc = 0;
 out:
