@@ -205,6 +205,10 @@ int ad_solve(const struct slab *s, enum optics_fresnel model, const double *thet
 {
 	if (check_opts(o, theta_i, n_beams, cause))
 		return -1;
+	if (s->rough_any) {
+		*cause = xasprintf("adding-doubling: rough boundaries are not supported (use the Monte Carlo solver)");
+		return -1;
+	}
 	double t0 = util_now();
 	struct ad_model md;
 	model_build(s, model, &md);
