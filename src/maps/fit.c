@@ -210,6 +210,33 @@ static int lut_nearest(const struct lut *t, const double lab[3])
 	return best;
 }
 
+/* lut_eval for two axes: the same operations in the same order (so the
+ * same bits), unrolled; the general loop spends most of its time on
+ * indexing and branches. */
+static void lut_eval2(const struct lut *t, const int *i0, const double *fr, double lab[3],
+    double jac[3][FAMILY_MAX_AXES])
+{
+	const double f0 = fr[0], f1 = fr[1], e0 = 1.0 - fr[0], e1 = 1.0 - fr[1];
+	const double w[4] = { e0 * e1, f0 * e1, e0 * f1, f0 * f1 };
+	const double d0[4] = { -1.0 * e1, 1.0 * e1, -1.0 * f1, 1.0 * f1 };
+	const double d1[4] = { e0 * -1.0, f0 * -1.0, e0 * 1.0, f0 * 1.0 };
+	const int base = i0[0] + i0[1] * t->g[0];
+	const int off[4] = { base, base + 1, base + t->g[0], base + t->g[0] + 1 };
+	for (int c = 0; c < 3; c++) {
+		lab[c] = 0.0;
+		jac[c][0] = 0.0;
+		jac[c][1] = 0.0;
+	}
+	for (int corner = 0; corner < 4; corner++) {
+		const double *L = t->lab + 3 * (size_t)off[corner];
+		for (int c = 0; c < 3; c++) {
+			lab[c] += w[corner] * L[c];
+			jac[c][0] += d0[corner] * L[c];
+			jac[c][1] += d1[corner] * L[c];
+		}
+	}
+}
+
 /* The multilinear interpolant of the grid at g and its Jacobian. */
 static void lut_eval(const struct lut *t, const double *g, double lab[3], double jac[3][FAMILY_MAX_AXES])
 {
@@ -222,6 +249,10 @@ static void lut_eval(const struct lut *t, const double *g, double lab[3], double
 		if (i0[a] < 0)
 			i0[a] = 0;
 		fr[a] = g[a] - i0[a];
+	}
+	if (t->k == 2) {
+		lut_eval2(t, i0, fr, lab, jac);
+		return;
 	}
 	for (int c = 0; c < 3; c++) {
 		lab[c] = 0.0;
