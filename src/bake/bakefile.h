@@ -20,6 +20,7 @@
  * not in the tables: it is analytic, from `ior` and `roughness`. */
 #ifndef SKINBAKE_BAKEFILE_H
 #define SKINBAKE_BAKEFILE_H
+#include "base/outdir.h"
 #include "engine/specular.h"
 
 struct bake {
@@ -42,6 +43,9 @@ struct bake {
 	struct specular_stack *stack;	/* [n_wl] clear top stack for the specular Fresnel */
 	double *sss_radius_cm;	/* [n_wl] mean exit radius of the diffuse light at normal incidence [cm] */
 	double sss_radius_rgb_cm[3];
+	int n_r;		/* radial bins of rd_r_rgb (0: the manifest has no profile) */
+	double dr_cm;		/* their width [cm] */
+	double *rd_r_rgb;	/* [3][n_r] linear sRGB Rd(r) at the first incidence node [1/cm^2], or NULL */
 };
 
 struct bake_spec;
@@ -57,9 +61,20 @@ struct bake_meta {
 	const char *command;		/* command line, for the manifest */
 };
 
-/* Write the bake directory DIR (created if needed).  Files are staged and
- * renamed into place only when all were written; -1 and *cause otherwise. */
+/* A bake directory, for base/outdir.h: manifest.json of format
+ * "skinbake-bake" and the tables. */
+extern const struct outdir_kind bake_outdir_kind;
+
+/* Write the bake directory DIR (created if needed) through base/outdir.h:
+ * the complete new set replaces the old one in one swap, or nothing
+ * changes; -1 and *cause (also when DIR is not a bake directory, or is
+ * being written by another process). */
 int bake_write(const char *dir, const struct bake_spec *s, const struct bake_result *r,
+    const struct bake_meta *m, char **cause);
+/* The files of a bake, written straight into the existing directory DIR
+ * (a staging directory: outdir_path, or a family member's in the family's
+ * staging); -1 and *cause. */
+int bake_write_files(const char *dir, const struct bake_spec *s, const struct bake_result *r,
     const struct bake_meta *m, char **cause);
 
 /* Load DIR; NULL with *cause (caller frees) when a file is missing or corrupt. */
