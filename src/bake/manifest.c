@@ -60,28 +60,13 @@ static void add_axes(json_object *o, const struct bake_spec *s)
 	for (int i = 0; i < np; i++)
 		e[i] = 180.0 * (i + 0.5) / np;
 	add(o, "delta_phi_centres_deg", jarr(e, np));
-	free(e);
 	if (bake_spec_points(s)) {	/* where adding-doubling entries hold point values */
-		double *v = xmalloc(sizeof(double) * (size_t)(nto > np ? nto : np));
-		bake_nodes_theta(nto, v);
-		add(o, "theta_o_nodes_deg", jarr_deg(v, nto));
-		bake_nodes_phi(np, v);
-		add(o, "delta_phi_nodes_deg", jarr_deg(v, np));
-		free(v);
+		bake_nodes_theta(nto, e);
+		add(o, "theta_o_nodes_deg", jarr_deg(e, nto));
+		bake_nodes_phi(np, e);
+		add(o, "delta_phi_nodes_deg", jarr_deg(e, np));
 	}
-}
-
-/* Per wavelength: "points" (values at theta_o_nodes_deg x delta_phi_nodes_deg)
- * or "bins" (means over the bins). */
-static json_object *values_info(const struct bake_spec *s, const struct bake_result *r)
-{
-	json_object *a = json_object_new_array();
-	for (int w = 0; w < s->n_wl; w++) {
-		const char *m = r->table.entry[w * s->n_ti].method;
-		int pts = bake_spec_points(s) && m && strcmp(m, "ad") == 0;
-		json_object_array_add(a, jstr(pts ? "points" : "bins"));
-	}
-	return a;
+	free(e);
 }
 
 static json_object *table_info(const struct bake_spec *s, const struct bake_result *r)
@@ -94,10 +79,14 @@ static json_object *table_info(const struct bake_spec *s, const struct bake_resu
 	add(t, "column", jstr("delta_phi bin index"));
 	add(t, "value", jstr("diffuse (subsurface) BRDF [1/sr]: mean over the (theta_o, delta_phi) bin at the theta_i node; "
 	    "delta_phi = 0 back toward the light, 180 the mirror side"));
-	add(t, "values", values_info(s, r));
-	add(t, "values_note", jstr("per wavelength: 'bins' as 'value' says (Monte Carlo); 'points': the BRDF at the "
-	    "theta_i node, theta_o_nodes_deg[row] and delta_phi_nodes_deg[column] (adding-doubling); at theta_i = 90 deg "
-	    "(not a node) the BRDF is 0 (smooth Fresnel boundary: nothing enters at grazing)"));
+	json_object *vals = json_object_new_array();
+	for (int w = 0; w < s->n_wl; w++) {	/* "points" at the nodes (adding-doubling) or "bins" (means) */
+		const char *m = r->table.entry[w * s->n_ti].method;
+		json_object_array_add(vals, jstr(bake_spec_points(s) && m && strcmp(m, "ad") == 0 ? "points" : "bins"));
+	}
+	add(t, "values", vals);
+	add(t, "values_note", jstr("per wavelength: 'bins' as 'value' says; 'points': the BRDF at the theta_i node, "
+	    "theta_o_nodes_deg[row], delta_phi_nodes_deg[column]; at theta_i 90 deg it is 0 (nothing enters at grazing)"));
 	add(t, "channels", jstr(strcmp(r->solver, "mc") == 0 ? "fr.<WL>nm and fr_err.<WL>nm (standard error)"
 	    : "fr.<WL>nm and fr_err.<WL>nm (its error estimate: see solver.error)"));
 	return t;
@@ -446,38 +435,29 @@ static void read_radial(json_object *o, struct bake *b, const char *mpath)
 static int read_points(json_object *o, struct bake *b, const char *mpath, char **cause)
 {
 	json_object *t, *vals;
+	int nt = 0, np = 0, any = 0, bad = -1;
 	if (!json_object_object_get_ex(o, "table", &t) || !json_object_object_get_ex(t, "values", &vals))
 		return 0;
-	int nt, np, any = 0;
-	if ((int)json_object_array_length(vals) != b->n_wl) {
-		*cause = xasprintf("%s: table.values has %d entries for %d wavelengths", mpath,
-		    (int)json_object_array_length(vals), b->n_wl);
-		return -1;
-	}
 	b->points = xcalloc((size_t)b->n_wl, sizeof(int));
-	for (int w = 0; w < b->n_wl; w++) {
+	for (int w = 0; w < b->n_wl && bad < 0; w++) {
 		const char *v = json_object_get_string(json_object_array_get_idx(vals, (size_t)w));
 		b->points[w] = v && strcmp(v, "points") == 0;
-		if (!v || (!b->points[w] && strcmp(v, "bins") != 0)) {
-			*cause = xasprintf("%s: table.values[%d] is '%s', not 'points' or 'bins'", mpath, w, v ? v : "");
-			return -1;
-		}
+		bad = b->points[w] || (v && strcmp(v, "bins") == 0) ? -1 : w;
 		any |= b->points[w];
 	}
-	if (!any)
-		return 0;
-	if (jnum_array(o, "theta_o_nodes_deg", &b->theta_o_nodes, &nt, cause, mpath) ||
-	    jnum_array(o, "delta_phi_nodes_deg", &b->phi_nodes, &np, cause, mpath))
-		return -1;
-	if (nt != b->n_to || np != b->n_phi) {
-		*cause = xasprintf("%s: %d theta_o nodes and %d delta_phi nodes for a %d x %d table", mpath, nt, np, b->n_to,
-		    b->n_phi);
+	if (bad >= 0 || (int)json_object_array_length(vals) != b->n_wl) {
+		*cause = xasprintf("%s: table.values must list 'points' or 'bins' for each of the %d wavelengths", mpath, b->n_wl);
 		return -1;
 	}
-	for (int i = 0; i < nt; i++)
-		b->theta_o_nodes[i] *= M_PI / 180.0;
-	for (int i = 0; i < np; i++)
-		b->phi_nodes[i] *= M_PI / 180.0;
+	if (any && (jnum_array(o, "theta_o_nodes_deg", &b->theta_o_nodes, &nt, cause, mpath) ||
+	    jnum_array(o, "delta_phi_nodes_deg", &b->phi_nodes, &np, cause, mpath)))
+		return -1;
+	if (any && (nt != b->n_to || np != b->n_phi)) {
+		*cause = xasprintf("%s: %d x %d nodes for a %d x %d table", mpath, nt, np, b->n_to, b->n_phi);
+		return -1;
+	}
+	for (int i = 0; i < nt + np; i++)
+		*(i < nt ? &b->theta_o_nodes[i] : &b->phi_nodes[i - nt]) *= M_PI / 180.0;
 	return 0;
 }
 
