@@ -108,5 +108,5 @@ mkdir -p "$tmpd/other" && echo keep > "$tmpd/other/notes.txt"
 msg=$("$B" bake --preset fair-oily $small --vary dermis.blood=0.01,0.06 --out "$tmpd/other" 2>&1 >/dev/null)
 rc=$?
 check "a non-family directory is refused (exit 2), its file kept" sh -c "[ $rc = 2 ] && [ -f '$tmpd/other/notes.txt' ] \
-	&& echo '$msg' | grep -q 'neither empty nor a family directory'"
+	&& echo '$msg' | grep -q 'without family.json, not a family directory'"
 tap_done

@@ -148,6 +148,7 @@ out_rules maps edit -- --maps "$tmpd/maps" --scale dermis.blood=1.1
 in_rules bake -- --preset-file file --out "$tmpd/new"
 in_rules eval -- --bake dir --theta-in 1 --theta-out 1 --phi 1
 in_rules verify -- --bake dir
+in_rules scene -- --scene file
 in_rules texture -- --preset-file file --out "$tmpd/new"
 in_rules export blender -- --bake dir --out "$tmpd/new"
 in_rules export blender -- --textures dir --bake "$tmpd/bake" --out "$tmpd/new"

@@ -42,6 +42,26 @@
 /* The method of a bake (0 = Monte Carlo, as before there was a choice). */
 enum bake_method { BAKE_SOLVER_MC = 0, BAKE_SOLVER_AD, BAKE_SOLVER_AUTO };
 
+/* The bake methods, in one table (bake_methods[] in bake.c): each row is a
+ * name (for --solver, the manifest's solver.requested and family.json's
+ * bake.requested), its enum value, a phrase for --help, and the function
+ * that solves a spec with it (in bake.c, using the engine's methods of
+ * engine/solvers.h).  Rows in the order --solver lists them, the default
+ * first. */
+struct bake_method_info {
+	const char *name;
+	enum bake_method id;
+	const char *help;
+};
+/* Row i, or NULL past the last. */
+const struct bake_method_info *bake_method_at(int i);
+/* The row of method ID (CHECKed). */
+const struct bake_method_info *bake_method_of(int id);
+/* The row named NAME, or NULL. */
+const struct bake_method_info *bake_method_named(const char *name);
+/* The names joined by '|', as OPT_ENUM choices ("auto|ad|mc"). */
+const char *bake_method_choices(void);
+
 struct bake_spec {
 	int n_wl;				/* wavelengths, 1..BAKE_MAX_WL */
 	double wl_nm[BAKE_MAX_WL];		/* [nm] */

@@ -1,5 +1,5 @@
 /* bakefile: the bake directory (layout in bakefile.h): the tables written
- * through a staging directory and renamed into place together, read back,
+ * through a staging directory swapped in as a whole (base/outdir.h), read back,
  * and the BRDF interpolated from them.  The manifest is manifest.c. */
 #include "config.h"
 #include "bake/bakefile.h"
@@ -23,23 +23,10 @@
 
 /* ---- writer ---- */
 
-/* Remove a staging directory and what it holds. */
-static void rm_staging(const char *dir)
-{
-	DIR *d = opendir(dir);
-	if (d) {
-		struct dirent *e;
-		while ((e = readdir(d)) != NULL) {
-			if (strcmp(e->d_name, ".") == 0 || strcmp(e->d_name, "..") == 0)
-				continue;
-			char *p = xasprintf("%s/%s", dir, e->d_name);
-			unlink(p);
-			free(p);
-		}
-		closedir(d);
-	}
-	rmdir(dir);
-}
+static const char *const bake_names[] = { "manifest.json", "brdf.exr", "brdf_rgb.exr", "albedo.exr", "albedo.png",
+	".staging.*", NULL };	/* .staging.PID: left inside by a killed bake before outdir */
+const struct outdir_kind bake_outdir_kind = { "bake directory", "manifest.json", "format", "skinbake-bake",
+	bake_names };
 
 /* What every table file carries. */
 struct stage {
@@ -183,43 +170,28 @@ static int write_manifest(const struct stage *st, char **cause)
 	return rc;
 }
 
-/* Everything is written: move it into place. */
-static int move_into_place(const char *stage, const char *dir, char **cause)
+int bake_write_files(const char *dir, const struct bake_spec *s, const struct bake_result *r,
+    const struct bake_meta *m, char **cause)
 {
-	static const char *files[] = { "brdf.exr", "brdf_rgb.exr", "albedo.exr", "albedo.png", "manifest.json" };
-	for (size_t i = 0; i < sizeof files / sizeof files[0]; i++) {
-		char *from = xasprintf("%s/%s", stage, files[i]), *to = xasprintf("%s/%s", dir, files[i]);
-		int e = rename(from, to);
-		if (e != 0)
-			*cause = xasprintf("%s: cannot rename into place: %s", to, strerror(errno));
-		free(from);
-		free(to);
-		if (e != 0)
-			return -1;
-	}
-	return 0;
+	CHECK(r->table.n_wl == s->n_wl && r->table.n_ti == s->n_ti && r->stack && r->mean_radius_cm);
+	struct stage st;
+	stage_init(&st, dir, s, r, m);
+	int rc = write_brdf(&st, cause) || write_albedo(&st, cause) || write_manifest(&st, cause) ? -1 : 0;
+	stage_free(&st);
+	return rc;
 }
 
 int bake_write(const char *dir, const struct bake_spec *s, const struct bake_result *r,
     const struct bake_meta *m, char **cause)
 {
-	CHECK(r->table.n_wl == s->n_wl && r->table.n_ti == s->n_ti && r->stack && r->mean_radius_cm);
-	if (util_mkdirs(dir, cause) != 0)
+	struct outdir od;
+	if (outdir_begin(&od, dir, &bake_outdir_kind, cause) != 0)
 		return -1;
-	char *stage = xasprintf("%s/.staging.%ld", dir, (long)getpid());
-	if (mkdir(stage, 0777) != 0) {
-		*cause = xasprintf("%s: cannot create: %s", stage, strerror(errno));
-		free(stage);
+	if (bake_write_files(outdir_path(&od), s, r, m, cause) != 0) {
+		outdir_abort(&od);
 		return -1;
 	}
-	struct stage st;
-	stage_init(&st, stage, s, r, m);
-	int rc = write_brdf(&st, cause) || write_albedo(&st, cause) || write_manifest(&st, cause) ||
-	    move_into_place(stage, dir, cause) ? -1 : 0;
-	stage_free(&st);
-	rm_staging(stage);
-	free(stage);
-	return rc;
+	return outdir_commit(&od, cause);
 }
 
 /* ---- reader ---- */
@@ -238,6 +210,7 @@ void bake_free(struct bake *b)
 	free(b->fr_err);
 	free(b->fr_rgb);
 	free(b->albedo);
+	free(b->rd_r_rgb);
 	free(b->albedo_rgb);
 	free(b->rgb_from_wl);
 	free(b->stack);

@@ -24,6 +24,7 @@
  * not in the tables: it is analytic, from `ior` and `roughness`. */
 #ifndef SKINBAKE_BAKEFILE_H
 #define SKINBAKE_BAKEFILE_H
+#include "base/outdir.h"
 #include "engine/specular.h"
 
 struct bake {
@@ -51,6 +52,9 @@ struct bake {
 	double *theta_o_nodes;	/* [n_to] exit nodes of point values [rad] */
 	double *phi_nodes;	/* [n_phi] delta_phi nodes of point values [rad] */
 	struct bake_series *interp;	/* the series through them (bakeinterp.h) */
+	int n_r;		/* radial bins of rd_r_rgb (0: the manifest has no profile) */
+	double dr_cm;		/* their width [cm] */
+	double *rd_r_rgb;	/* [3][n_r] linear sRGB Rd(r) at the first incidence node [1/cm^2], or NULL */
 };
 
 struct bake_spec;
@@ -66,9 +70,20 @@ struct bake_meta {
 	const char *command;		/* command line, for the manifest */
 };
 
-/* Write the bake directory DIR (created if needed).  Files are staged and
- * renamed into place only when all were written; -1 and *cause otherwise. */
+/* A bake directory, for base/outdir.h: manifest.json of format
+ * "skinbake-bake" and the tables. */
+extern const struct outdir_kind bake_outdir_kind;
+
+/* Write the bake directory DIR (created if needed) through base/outdir.h:
+ * the complete new set replaces the old one in one swap, or nothing
+ * changes; -1 and *cause (also when DIR is not a bake directory, or is
+ * being written by another process). */
 int bake_write(const char *dir, const struct bake_spec *s, const struct bake_result *r,
+    const struct bake_meta *m, char **cause);
+/* The files of a bake, written straight into the existing directory DIR
+ * (a staging directory: outdir_path, or a family member's in the family's
+ * staging); -1 and *cause. */
+int bake_write_files(const char *dir, const struct bake_spec *s, const struct bake_result *r,
     const struct bake_meta *m, char **cause);
 
 /* Load DIR; NULL with *cause (caller frees) when a file is missing or corrupt. */

@@ -26,6 +26,7 @@ static const struct opt_sub commands[] = {
 	{ "eval", "evaluate a baked BRDF at given angles", cmd_eval },
 	{ "verify", "check a bake's table against an independent Monte Carlo run", cmd_verify },
 	{ "texture", "grow pores and furrows as seamless height and normal maps", cmd_texture },
+	{ "scene", "write a scene file as renderer-neutral scene.json", cmd_scene },
 	{ "export", "export pov|blender: scenes and image sets for renderers", cmd_export },
 	{ "maps", "maps new|fit|edit|render-albedo: parameter maps of a family", cmd_maps },
 	{ NULL, NULL, NULL },

@@ -504,15 +504,30 @@ struct blender_set *blender_prepare(const struct brdf_source *m, const struct bl
 	return s;
 }
 
+static const char *const blender_names[] = { "albedo.exr", "brdf_lut.exr", "roughness.png", "height.png",
+	"normal.png", "family_lut.exr", "family_coord.exr", "albedo_map.exr", "sss_radius_map.exr", NULL };
+const struct outdir_kind blender_outdir_kind = { "Blender image set", "manifest.json", "format",
+	"skinbake-blender-image-set", blender_names };
+
 int blender_write(const struct blender_set *s, const char *dir, char **cause)
+{
+	struct outdir od;
+	if (outdir_begin(&od, dir, &blender_outdir_kind, cause) != 0)
+		return -1;
+	if (blender_write_files(s, outdir_path(&od), cause) != 0) {
+		outdir_abort(&od);
+		return -2;
+	}
+	return outdir_commit(&od, cause) != 0 ? -2 : 0;
+}
+
+int blender_write_files(const struct blender_set *s, const char *dir, char **cause)
 {
 	const struct blender_options *o = &s->o;
 	const struct detail *d = &s->d;
 	char *path = NULL, *np_s = xasprintf("%d", o->lut_phi), *nc_s = xasprintf("%d", o->lut_cos);
 	int rc = -1;
 
-	if (util_mkdirs(dir, cause) != 0)
-		goto out;
 	struct exr_attr_kv aattr[] = {
 		{ "skinbake:quantity", "bihemispherical diffuse albedo, linear Rec.709" },
 		{ "skinbake:generator", o->generator },
@@ -581,7 +596,7 @@ int blender_export(const struct brdf_source *m, const struct blender_options *o,
 	struct blender_set *s = blender_prepare(m, o, cause);
 	if (s == NULL)
 		return -1;
-	int rc = blender_write(s, dir, cause);
+	int rc = blender_write(s, dir, cause) != 0 ? -1 : 0;
 	blender_set_free(s);
 	return rc;
 }

@@ -15,7 +15,7 @@
 #include "export/pov/bumpmap.h"
 #include "export/pov/povfiles.h"
 #include "export/pov/pov_maps.h"
-#include "export/pov/placement.h"
+#include "scene/placement.h"
 #include "export/pov/povscene.h"
 #include "geom/mesh.h"
 #include "export/pov/strategy.h"
@@ -224,16 +224,7 @@ static struct scene *make_scene(const struct povexport_options *o, char **cause)
 	} else {
 		if (o->cmdline->n_lights == 0 || !o->have_camera)
 			return *cause = xstrdup("give --scene FILE, or --light SPEC and --camera SPEC (see --help)"), NULL;
-		s = xcalloc(1, sizeof *s);
-		*s = *o->cmdline;
-		s->path = xstrdup("the command line");
-		s->width = 320, s->height = 240, s->unit_mm = 10;
-		if (o->unit_mm > 0)
-			s->unit_mm = o->unit_mm;
-		s->n_skins = 1;
-		snprintf(s->skins[0].name, sizeof s->skins[0].name, "skin");
-		s->skins[0].preset = xstrdup("(from the bake)");
-		s->skins[0].bumps = 1;
+		s = scene_from_parts(o->cmdline, o->unit_mm);
 	}
 	if (o->width > 0)
 		s->width = o->width, s->height = o->height;
@@ -470,18 +461,43 @@ static int write_all(const struct povexport_options *o, const struct scene *s, c
     struct povexport_result *r, char **cause)
 {
 	struct pov_report rep = { 0 };
-	if (util_mkdirs(o->out, cause) != 0)
-		return -2;
+	struct outdir od;
+	if (outdir_begin(&od, o->out, &povfiles_outdir_kind, cause) != 0)
+		return -1;
+	const char *stage = outdir_path(&od);
 	struct pov_options po = { .base = base, .n_theta = o->n_theta, .n_gamma = o->n_gamma, .n_mix = o->n_mix,
 		.write_scene = o->scene_path != NULL, .shapes_inc = in->shapes ? "skinbake_shapes.inc" : NULL };
 	double t0 = util_now();
-	if (povfiles_write(s, in->ps, &po, o->out, &rep, cause) != 0 || write_extras(s, o->out, base, in, cause) != 0) {
+	if (povfiles_write(s, in->ps, &po, stage, &rep, cause) != 0 || write_extras(s, stage, base, in, cause) != 0 ||
+	    povfiles_write_index(stage, cause) != 0) {
+		povfiles_report_free(&rep);
+		outdir_abort(&od);
+		return -2;
+	}
+	if (outdir_commit(&od, cause) != 0) {
 		povfiles_report_free(&rep);
 		return -2;
 	}
 	report(o, s, &rep, util_now() - t0, r);
 	povfiles_report_free(&rep);
 	return 0;
+}
+
+/* --out may be replaced by an export, and is none of the inputs. */
+static int check_out(const struct povexport_options *o, char **cause)
+{
+	const char *in[2 * POVEXPORT_MAX_BIND + 5];
+	int n = 0;
+	for (int i = 0; i < o->n_bakes + o->n_texs; i++) {
+		const char *b = i < o->n_bakes ? o->bakes[i] : o->texs[i - o->n_bakes], *eq = strchr(b, '=');
+		in[n++] = eq ? eq + 1 : b;
+	}
+	const char *more[] = { o->scene_path, o->family, o->maps, o->data_dir };
+	for (int i = 0; i < 4; i++)
+		if (more[i])
+			in[n++] = more[i];
+	in[n] = NULL;
+	return outdir_check(o->out, &povfiles_outdir_kind, in, cause);
 }
 
 int povexport_run(const struct povexport_options *o, struct povexport_result *r, char **cause)
@@ -501,6 +517,8 @@ int povexport_run(const struct povexport_options *o, struct povexport_result *r,
 		*cause = xstrdup("--out DIR is required");
 		goto done;
 	}
+	if (check_out(o, cause) != 0)
+		goto done;
 	base = o->name ? xstrdup(o->name) : o->scene_path ? base_from_scene(o->scene_path) : xstrdup("skin");
 	if (!*base || strspn(base, "abcdefghijklmnopqrstuvwxyzABCDEFGHIJKLMNOPQRSTUVWXYZ0123456789_.-") != strlen(base)) {
 		*cause = xasprintf("--name = '%s' must be letters, digits, '_', '.' or '-'", base);

@@ -5,10 +5,11 @@
  * BASE_combine.pov/.ini (POV-Ray's own sum of the .hdr passes). */
 #ifndef SKINBAKE_POVFILES_H
 #define SKINBAKE_POVFILES_H
+#include "base/outdir.h"
 #include <stddef.h>
 
 #include "export/pov/littable.h"
-#include "export/pov/scene.h"
+#include "scene/scene.h"
 
 /* Everything the exporter knows about one skin of the scene. */
 struct pov_maps;
@@ -53,6 +54,12 @@ void povfiles_report_free(struct pov_report *r);
  * were written.  -1 and *cause on failure. */
 int povfiles_write(const struct scene *s, const struct pov_skin *skins, const struct pov_options *o,
     const char *outdir, struct pov_report *r, char **cause);
+
+/* An export's directory, for base/outdir.h: manifest.json of format
+ * "skinbake-pov" listing the files (written by povfiles_write_index). */
+extern const struct outdir_kind povfiles_outdir_kind;
+/* manifest.json in DIR listing every other entry of DIR (call it last). */
+int povfiles_write_index(const char *dir, char **cause);
 
 /* Copy a file, or write bytes to one (through a temporary name). */
 int povfiles_copy(const char *src, const char *dst, char **cause);
