@@ -7,7 +7,7 @@
 #include <stdlib.h>
 #include <string.h>
 
-#include "bake/bakefile.h"
+#include "bake/bakedir.h"
 #include "base/check.h"
 #include "base/util.h"
 
@@ -97,16 +97,19 @@ void bake_interp_build(struct bake *b)
 	}
 	if (!any || !b->theta_o_nodes || !b->phi_nodes)
 		return;
-	struct bake_series *s = xcalloc(1, sizeof *s);
-	s->sym = square_nodes(b);
+	/* One allocation (bake_free frees it without knowing its layout). */
+	int sym = square_nodes(b), NI = sym ? b->n_to : b->n_ti;
+	size_t len = (size_t)NI * b->n_to * b->n_phi, nd = len * (size_t)(3 * b->n_wl + 3);
+	struct bake_series *s = xcalloc(1, sizeof *s + sizeof(double) * nd);
+	s->sym = sym;
 	s->N = b->n_to;
 	s->P = b->n_phi;
-	s->NI = s->sym ? s->N : b->n_ti;
-	s->len = (size_t)s->NI * s->N * s->P;
+	s->NI = NI;
+	s->len = len;
 	s->rgb = all;
-	s->c = xcalloc(s->len * (size_t)(b->n_wl + 3), sizeof(double));
-	s->ce = xcalloc(s->len * (size_t)b->n_wl, sizeof(double));
-	s->ca = xcalloc(s->len * (size_t)b->n_wl, sizeof(double));
+	s->c = (double *)(s + 1);
+	s->ce = s->c + len * (size_t)(b->n_wl + 3);
+	s->ca = s->ce + len * (size_t)b->n_wl;
 	size_t npx = (size_t)b->n_ti * b->n_to * b->n_phi;
 	for (int w = 0; w < b->n_wl; w++) {
 		if (!b->points[w])
@@ -128,13 +131,7 @@ void bake_interp_build(struct bake *b)
 
 void bake_interp_free(struct bake *b)
 {
-	struct bake_series *s = b->interp;
-	if (s) {
-		free(s->c);
-		free(s->ce);
-		free(s->ca);
-		free(s);
-	}
+	free(b->interp);
 	b->interp = NULL;
 }
 

@@ -16,6 +16,7 @@
 #include "export/pov/povfiles.h"
 #include "export/pov/pov_maps.h"
 #include "scene/placement.h"
+#include "scene/scene_load.h"
 #include "export/pov/povscene.h"
 #include "geom/mesh.h"
 #include "export/pov/strategy.h"
