@@ -70,9 +70,9 @@ if command -v mpirun >/dev/null 2>&1 && [ -x "$top_builddir/skinbake-mpi" ]; the
 		for f in brdf.exr brdf_rgb.exr albedo.exr; do cmp -s "$fam/$m/$f" "$tmpd/fam2/$m/$f" || same=no; done
 	done
 	check "member tables bit-identical over 1 and 2 ranks" [ $same = yes ]
-	grep -v -e seconds -e command "$fam/family.json" > "$tmpd/j1"
-	grep -v -e seconds -e command "$tmpd/fam2/family.json" > "$tmpd/j2"
-	check "family.json identical but for times and the command" cmp "$tmpd/j1" "$tmpd/j2"
+	grep -v -e seconds -e command -e checksums "$fam/family.json" > "$tmpd/j1"
+	grep -v -e seconds -e command -e checksums "$tmpd/fam2/family.json" > "$tmpd/j2"
+	check "family.json identical but for times, the command and the checksums (of member manifests with times)" cmp "$tmpd/j1" "$tmpd/j2"
 else
 	skip "skinbake-mpi or mpirun missing (configure --with-mpi)"
 fi
@@ -108,5 +108,5 @@ mkdir -p "$tmpd/other" && echo keep > "$tmpd/other/notes.txt"
 msg=$("$B" bake --preset fair-oily $small --vary dermis.blood=0.01,0.06 --out "$tmpd/other" 2>&1 >/dev/null)
 rc=$?
 check "a non-family directory is refused (exit 2), its file kept" sh -c "[ $rc = 2 ] && [ -f '$tmpd/other/notes.txt' ] \
-	&& echo '$msg' | grep -q 'neither empty nor a family directory'"
+	&& echo '$msg' | grep -q 'without family.json, not a family directory'"
 tap_done

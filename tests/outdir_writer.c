@@ -36,7 +36,9 @@ int main(int argc, char **argv)
 	int n = atoi(argv[3]);
 	char *cause = NULL;
 	struct outdir o;
-	if (outdir_begin(&o, argv[1], "manifest.json", &cause) != 0) {
+	/* Marker only (its content is the generation), any file. */
+	const struct outdir_kind kind = { "test set", "manifest.json", NULL, NULL, NULL };
+	if (outdir_begin(&o, argv[1], &kind, &cause) != 0) {
 		fprintf(stderr, "outdir_writer: %s\n", cause);
 		free(cause);
 		return 2;

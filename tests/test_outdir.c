@@ -68,13 +68,20 @@ static int count_prefix(const char *dir, const char *prefix)
 	return n;
 }
 
+/* A kind as the writers declare theirs: the manifest names it, data.txt
+ * and the files it lists belong to it. */
+static const char *const set_names[] = { "data.txt", NULL };
+static const struct outdir_kind set_kind = { "test set", "manifest.json", "format", "test-set", set_names };
+static const struct outdir_kind other_kind = { "other set", "manifest.json", "format", "other-set", NULL };
+
 static void write_set(const char *target, const char *gen)
 {
 	struct outdir o;
 	char *cause = NULL;
-	assert_int_equal(outdir_begin(&o, target, "manifest.json", &cause), 0);
+	if (outdir_begin(&o, target, &set_kind, &cause) != 0)
+		fail_msg("%s: %s", target, cause);
 	put(outdir_path(&o), "data.txt", gen);
-	put(outdir_path(&o), "manifest.json", gen);
+	put(outdir_path(&o), "manifest.json", "{\"format\": \"test-set\", \"files\": [\"listed.txt\", \"sub/x\"]}");
 	assert_int_equal(outdir_commit(&o, &cause), 0);
 }
 
@@ -100,12 +107,16 @@ static void test_fresh_and_replace(void **state)
 	char *t = xasprintf("%s/a/b/out", root), *parent = xasprintf("%s/a/b", root);
 	write_set(t, "1");	/* parents created */
 	assert_string_equal(get(t, "data.txt"), "1");
-	put(t, "mine.txt", "x");	/* a file the user added: part of the old set */
 	write_set(t, "2");
 	assert_string_equal(get(t, "data.txt"), "2");
-	assert_string_equal(get(t, "manifest.json"), "2");
-	assert_false(exists(t, "mine.txt"));
-	assert_int_equal(count_prefix(parent, "\\.out\\."), 0);	/* no staging left */
+	assert_int_equal(count_prefix(parent, "\\.out\\."), 0);	/* no staging or lock left */
+	put(t, "listed.txt", "x");	/* named by the manifest's "files": part of the old set */
+	char *sub = xasprintf("%s/sub", t);
+	mkdir(sub, 0777);
+	write_set(t, "3");
+	assert_false(exists(t, "listed.txt"));
+	assert_false(exists(t, "sub"));
+	free(sub);
 	free(t);
 	free(parent);
 }
@@ -116,7 +127,7 @@ static void test_abort(void **state)
 	char *t = xasprintf("%s/ab", root), *cause = NULL;
 	write_set(t, "1");
 	struct outdir o;
-	assert_int_equal(outdir_begin(&o, t, "manifest.json", &cause), 0);
+	assert_int_equal(outdir_begin(&o, t, &set_kind, &cause), 0);
 	put(outdir_path(&o), "data.txt", "2");
 	outdir_abort(&o);
 	outdir_abort(&o);	/* harmless twice */
@@ -125,15 +136,21 @@ static void test_abort(void **state)
 	free(t);
 }
 
-static void refused(const char *target, const char *marker, const char *part)
+static void refused_kind(const char *target, const struct outdir_kind *k, const char *part)
 {
 	struct outdir o;
 	char *cause = NULL;
-	assert_int_equal(outdir_begin(&o, target, marker, &cause), -1);
+	assert_int_equal(outdir_begin(&o, target, k, &cause), -1);
 	assert_non_null(cause);
 	if (strstr(cause, part) == NULL)
 		fail_msg("'%s': message '%s' lacks '%s'", target, cause, part);
 	free(cause);
+}
+
+static void refused(const char *target, const char *marker, const char *part)
+{
+	(void)marker;
+	refused_kind(target, &set_kind, part);
 }
 
 static void test_refused(void **state)
@@ -152,6 +169,22 @@ static void test_refused(void **state)
 	refused(file, "manifest.json", "not a directory");
 	refused(home, "manifest.json", "without manifest.json");
 	assert_true(exists(home, "letter.txt"));
+	/* A complete set plus a user's file; another kind's set; a manifest
+	 * that is not JSON. */
+	char *set = xasprintf("%s/set", root);
+	write_set(set, "1");
+	put(set, "notes.txt", "mine");
+	refused(set, "manifest.json", "holds 'notes.txt', which is not part of a test set");
+	assert_string_equal(get(set, "notes.txt"), "mine");
+	refused_kind(set, &other_kind, "not of a other set (format \"other-set\" expected, \"test-set\" found)");
+	put(home, "manifest.json", "{ not json");
+	refused(home, "manifest.json", "not JSON");
+	/* A symbolic link to nothing. */
+	char *dangling = xasprintf("%s/dangling", root);
+	assert_int_equal(symlink("nowhere", dangling), 0);
+	refused(dangling, "manifest.json", "symbolic link to a directory that does not exist");
+	free(set);
+	free(dangling);
 	char *cause = NULL;
 	assert_int_equal(util_mkdirs("", &cause), -1);	/* once read past a 1-byte buffer */
 	free(cause);
@@ -232,6 +265,73 @@ static void test_symlink(void **state)
 	free(link);
 }
 
+/* The output equal to, inside, or holding an input. */
+static void test_inputs(void **state)
+{
+	(void)state;
+	char *in = xasprintf("%s/in", root), *inner = xasprintf("%s/in/x", root), *cause = NULL;
+	char *same = xasprintf("%s/./in/", root), *other = xasprintf("%s/in2", root);
+	write_set(in, "1");
+	const char *inputs[] = { in, NULL }, *inputs_inner[] = { inner, NULL };
+	assert_int_equal(outdir_check(same, &set_kind, inputs, &cause), -1);
+	assert_non_null(strstr(cause, "is also an input"));
+	free(cause);
+	cause = NULL;
+	assert_int_equal(outdir_check(inner, &set_kind, inputs, &cause), -1);
+	assert_non_null(strstr(cause, "inside the input"));
+	free(cause);
+	cause = NULL;
+	assert_int_equal(outdir_check(in, &set_kind, inputs_inner, &cause), -1);
+	assert_non_null(strstr(cause, "would be replaced as a whole"));
+	free(cause);
+	cause = NULL;
+	assert_int_equal(outdir_check(other, &set_kind, inputs, &cause), 0);	/* "in2" is not inside "in" */
+	free(in);
+	free(inner);
+	free(same);
+	free(other);
+}
+
+/* A second writer is refused while the first holds the lock, with the
+ * first's process id; after the first commits, a writer goes ahead. */
+static void test_lock(void **state)
+{
+	(void)state;
+	char *t = xasprintf("%s/locked", root), *cause = NULL;
+	int go[2], done[2];
+	assert_int_equal(pipe(go), 0);
+	assert_int_equal(pipe(done), 0);
+	pid_t child = fork();
+	if (child == 0) {
+		struct outdir o;
+		char c = outdir_begin(&o, t, &set_kind, &cause) == 0 ? 'y' : 'n';
+		put(outdir_path(&o), "data.txt", "child");
+		put(outdir_path(&o), "manifest.json", "{\"format\": \"test-set\"}");
+		if (write(go[1], &c, 1) != 1 || read(done[0], &c, 1) != 1)
+			_exit(1);
+		_exit(outdir_commit(&o, &cause) == 0 ? 0 : 1);
+	}
+	char c = 0;
+	assert_int_equal(read(go[0], &c, 1), 1);
+	assert_int_equal(c, 'y');
+	struct outdir o;
+	assert_int_equal(outdir_begin(&o, t, &set_kind, &cause), -1);
+	char *pid = xasprintf("process %ld (", (long)child);
+	if (strstr(cause, pid) == NULL || strstr(cause, "is being written by") == NULL)
+		fail_msg("message '%s' lacks '%s'", cause, pid);
+	free(cause);
+	free(pid);
+	assert_int_equal(write(done[1], "x", 1), 1);
+	int status;
+	waitpid(child, &status, 0);
+	assert_true(WIFEXITED(status) && WEXITSTATUS(status) == 0);
+	assert_string_equal(get(t, "data.txt"), "child");
+	write_set(t, "2");
+	assert_string_equal(get(t, "data.txt"), "2");
+	assert_int_equal(count_prefix(root, "\\.locked\\."), 0);	/* the lock file is removed too */
+	free(t);
+}
+
 int main(void)
 {
 	const struct CMUnitTest tests[] = {
@@ -240,6 +340,8 @@ int main(void)
 		cmocka_unit_test(test_refused),
 		cmocka_unit_test(test_stale),
 		cmocka_unit_test(test_symlink),
+		cmocka_unit_test(test_inputs),
+		cmocka_unit_test(test_lock),
 	};
 	return cmocka_run_group_tests(tests, setup, teardown);
 }

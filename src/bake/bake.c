@@ -10,10 +10,10 @@
 
 #include "base/check.h"
 #include "base/util.h"
-#include "bake/bakefile.h"
 #include "bake/checkpoint.h"
 #include "engine/ad_solver.h"
 #include "engine/mc.h"
+#include "engine/solvers.h"
 #include "skin/colour.h"
 #include "skin/preset.h"
 
@@ -47,9 +47,11 @@ static int not_solved(const struct brdf_entry *e)
 	return e->method == NULL;
 }
 
+/* Filled by a method that gives no Rd(r) (solver_ops.provides). */
 static int no_radial(const struct brdf_entry *e)
 {
-	return e->method != NULL && strcmp(e->method, "mc") != 0;
+	const struct solver_ops *ops = solvers_find(e->method);
+	return ops != NULL && !(ops->provides & SOLVER_RADIAL);
 }
 
 /* Solve p restricted to the n wavelengths w[] (all angles) with ops into t. */
@@ -193,6 +195,93 @@ static int bake_ad(const struct bake_spec *s, const struct solver_problem *p, co
 	return 0;
 }
 
+/* Monte Carlo alone. */
+static int bake_mc(const struct bake_spec *s, const struct solver_problem *p, const struct solver_run *run,
+    struct bake_result *r, char **cause)
+{
+	struct mc_settings mc;
+	mc_from_spec(s, &mc);
+	if (solver_solve(&mc_solver, &mc, p, run, &r->table, cause) != 0)
+		return -1;
+	r->solver = mc_solver.name;
+	return 0;
+}
+
+/* The table of bake.h: one row per method. */
+static const struct bake_method_row {
+	struct bake_method_info info;
+	int (*solve)(const struct bake_spec *s, const struct solver_problem *p, const struct solver_run *run,
+	    struct bake_result *r, char **cause);
+} bake_methods[] = {
+	{ { "auto", BAKE_SOLVER_AUTO, "ad, and mc for the wavelengths where ad cannot meet its tolerance" }, bake_ad },
+	{ { "ad", BAKE_SOLVER_AD, "adding-doubling (engine/ad_solver.h)" }, bake_ad },
+	{ { "mc", BAKE_SOLVER_MC, "Monte Carlo (engine/mc.h)" }, bake_mc },
+};
+#define N_METHODS ((int)(sizeof bake_methods / sizeof bake_methods[0]))
+
+const struct bake_method_info *bake_method_at(int i)
+{
+	if (i < 0 || i >= N_METHODS)
+		return NULL;
+	return &bake_methods[i].info;
+}
+
+const struct bake_method_info *bake_method_of(int id)
+{
+	for (int i = 0; i < N_METHODS; i++)
+		if ((int)bake_methods[i].info.id == id)
+			return &bake_methods[i].info;
+	CHECK(!"a bake method of the table");
+	return NULL;
+}
+
+const struct bake_method_info *bake_method_named(const char *name)
+{
+	for (int i = 0; i < N_METHODS; i++)
+		if (strcmp(bake_methods[i].info.name, name) == 0)
+			return &bake_methods[i].info;
+	return NULL;
+}
+
+const char *bake_method_choices(void)
+{
+	static char buf[128];
+	if (buf[0] == '\0')
+		for (int i = 0; i < N_METHODS; i++) {
+			size_t n = strlen(buf);
+			snprintf(buf + n, sizeof buf - n, "%s%s", i ? "|" : "", bake_methods[i].info.name);
+		}
+	return buf;
+}
+
+#define HASH(h, x) ((h) = checkpoint_hash((h), &(x), sizeof(x)))
+
+uint64_t bake_spec_identity(const struct bake_spec *s)
+{
+	uint64_t h = checkpoint_seed();
+	HASH(h, s->n_wl);
+	for (int w = 0; w < s->n_wl; w++) {
+		const struct slab *sl = &s->slab[w];
+		HASH(h, s->wl_nm[w]);
+		HASH(h, sl->n_layers);
+		HASH(h, sl->n_above);
+		HASH(h, sl->n_below);
+		for (int i = 0; i < sl->n_layers + 2; i++) {
+			const struct layer *l = &sl->layer[i];
+			HASH(h, l->d), HASH(h, l->n), HASH(h, l->mu_a), HASH(h, l->mu_s), HASH(h, l->g);
+		}
+	}
+	HASH(h, s->n_ti);
+	for (int k = 0; k < s->n_ti; k++)
+		HASH(h, s->theta_i[k]);
+	HASH(h, s->n_to), HASH(h, s->n_phi), HASH(h, s->n_r), HASH(h, s->dr);
+	HASH(h, s->opts.fresnel), HASH(h, s->opts.roulette_w), HASH(h, s->opts.roulette_chance), HASH(h, s->opts.max_steps);
+	HASH(h, s->method), HASH(h, s->ad_tol), HASH(h, s->ad_quad), HASH(h, s->radial_error), HASH(h, s->radial_photons);
+	HASH(h, s->seed), HASH(h, s->batch_photons), HASH(h, s->min_batches), HASH(h, s->target_error);
+	HASH(h, s->max_photons), HASH(h, s->nee);
+	return h;
+}
+
 static int bake_solve(const struct bake_spec *s, const struct solver_run *run, struct bake_result *r, char **cause);
 
 /* With a checkpoint (bake.h): open it, run, say what it restored and
@@ -211,7 +300,7 @@ int bake_run(const struct bake_spec *s, struct bake_result *r, char **cause)
 	}
 	struct checkpoint *ck = NULL;
 	if (s->checkpoint_out) {
-		ck = checkpoint_open(s->checkpoint_out, s, s->resume, run.n_ranks == 1, s->checkpoint_s, cause);
+		ck = checkpoint_open(s->checkpoint_out, bake_spec_identity(s), s->resume, run.n_ranks == 1, s->checkpoint_s, cause);
 		if (ck == NULL)
 			return -1;
 		run.ckpt = checkpoint_hooks(ck);
@@ -238,13 +327,8 @@ static int bake_solve(const struct bake_spec *s, const struct solver_run *run0, 
 		.fresnel = s->opts.fresnel, .target_error = s->target_error,
 	};
 	struct solver_run run = *run0;
-	if (s->method == BAKE_SOLVER_MC) {
-		struct mc_settings mc;
-		mc_from_spec(s, &mc);
-		if (solver_solve(&mc_solver, &mc, &p, &run, &r->table, cause) != 0)
-			return -1;
-		r->solver = mc_solver.name;
-	} else if (bake_ad(s, &p, &run, r, cause) != 0) {
+	const struct bake_method_row *m = (const struct bake_method_row *)bake_method_of(s->method);
+	if (m->solve(s, &p, &run, r, cause) != 0) {
 		bake_result_free(r);
 		return -1;
 	}
@@ -329,20 +413,4 @@ void bake_spec_axes(struct bake_spec *s, const double *wl_nm, int n_wl, const do
 	s->n_ti = n_theta > 0 ? n_theta : nodes;
 	for (int k = 0; k < s->n_ti; k++)
 		s->theta_i[k] = n_theta > 0 ? theta_deg[k] * M_PI / 180.0 : 0.5 * M_PI * k / s->n_ti;
-}
-
-int bake_preset_to_dir(struct bake_spec *s, const struct skin_params *p, const char *label, const char *out,
-    const char *command, struct bake_result *r, char **cause)
-{
-	s->checkpoint_out = out;
-	if (bake_run(s, r, cause) != 0)
-		return -1;
-	if (s->rank != 0)
-		return 0;	/* every rank holds the whole result; rank 0 writes it */
-	double *m = xmalloc(sizeof(double) * 3 * (size_t)s->n_wl);
-	struct bake_meta meta = { .preset = label, .ior = preset_surface_ior(p), .roughness = preset_surface_roughness(p),
-		.rgb_from_wl = m, .rgb_note = bake_rgb_weights(s, m), .command = command };
-	int rc = bake_write(out, s, r, &meta, cause) != 0 || checkpoint_remove(out, cause) != 0 ? -2 : 0;
-	free(m);
-	return rc;
 }

@@ -42,6 +42,26 @@
 /* The method of a bake (0 = Monte Carlo, as before there was a choice). */
 enum bake_method { BAKE_SOLVER_MC = 0, BAKE_SOLVER_AD, BAKE_SOLVER_AUTO };
 
+/* The bake methods, in one table (bake_methods[] in bake.c): each row is a
+ * name (for --solver, the manifest's solver.requested and family.json's
+ * bake.requested), its enum value, a phrase for --help, and the function
+ * that solves a spec with it (in bake.c, using the engine's methods of
+ * engine/solvers.h).  Rows in the order --solver lists them, the default
+ * first. */
+struct bake_method_info {
+	const char *name;
+	enum bake_method id;
+	const char *help;
+};
+/* Row i, or NULL past the last. */
+const struct bake_method_info *bake_method_at(int i);
+/* The row of method ID (CHECKed). */
+const struct bake_method_info *bake_method_of(int id);
+/* The row named NAME, or NULL. */
+const struct bake_method_info *bake_method_named(const char *name);
+/* The names joined by '|', as OPT_ENUM choices ("auto|ad|mc"). */
+const char *bake_method_choices(void);
+
 struct bake_spec {
 	int n_wl;				/* wavelengths, 1..BAKE_MAX_WL */
 	double wl_nm[BAKE_MAX_WL];		/* [nm] */
@@ -105,6 +125,11 @@ struct bake_result {
  * another bake, damaged, resume under MPI).  Caller frees r with bake_result_free. */
 int bake_run(const struct bake_spec *s, struct bake_result *r, char **cause);
 void bake_result_free(struct bake_result *r);
+/* The identity of a bake spec for its checkpoint (bake/checkpoint.h): a
+ * 64-bit FNV-1a hash of everything that changes the numbers (wavelengths,
+ * layer stacks, angles, grid, methods and their settings, seed; not the
+ * thread count or the output). */
+uint64_t bake_spec_identity(const struct bake_spec *s);
 
 /* Inputs from a skin preset.  bake_spec_layers fills s->slab[] at the
  * wavelengths s->wl_nm[0 .. n_wl) from p (checked and prepared); -1 and
@@ -124,11 +149,4 @@ void bake_spec_axes(struct bake_spec *s, const double *wl_nm, int n_wl, const do
  * stacks; for Monte Carlo, check that the photon budget covers the first
  * round.  The preset (caller frees with preset_free), or NULL and *cause. */
 struct skin_params *bake_spec_preset(struct bake_spec *s, const char *name, const char *pfile, char **cause);
-/* The single bake of preset p (label names it in the manifest) into the
- * directory out: bake_run with its checkpoint beside out, then on rank 0
- * the directory (bakefile.h) and the checkpoint removed.  0; -1 and *cause
- * when the bake is refused (r zeroed); -2 and *cause when out cannot be
- * written (r holds the result).  Caller frees r with bake_result_free. */
-int bake_preset_to_dir(struct bake_spec *s, const struct skin_params *p, const char *label, const char *out,
-    const char *command, struct bake_result *r, char **cause);
 #endif

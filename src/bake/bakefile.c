@@ -1,5 +1,5 @@
 /* bakefile: the bake directory (layout in bakefile.h): the tables written
- * through a staging directory and renamed into place together, read back,
+ * through a staging directory swapped in as a whole (base/outdir.h), read back,
  * and the BRDF interpolated from them.  The manifest is manifest.c. */
 #include "config.h"
 #include "bake/bakefile.h"
@@ -13,32 +13,23 @@
 #include <unistd.h>
 
 #include "bake/bake.h"
+#include "bake/checkpoint.h"
 #include "bake/manifest.h"
+#include "bake/manifest_check.h"
 #include "base/check.h"
+#include "base/checksum.h"
 #include "base/srgb.h"
 #include "base/util.h"
 #include "io/exrio.h"
 #include "io/pngio.h"
+#include "skin/preset.h"
 
 /* ---- writer ---- */
 
-/* Remove a staging directory and what it holds. */
-static void rm_staging(const char *dir)
-{
-	DIR *d = opendir(dir);
-	if (d) {
-		struct dirent *e;
-		while ((e = readdir(d)) != NULL) {
-			if (strcmp(e->d_name, ".") == 0 || strcmp(e->d_name, "..") == 0)
-				continue;
-			char *p = xasprintf("%s/%s", dir, e->d_name);
-			unlink(p);
-			free(p);
-		}
-		closedir(d);
-	}
-	rmdir(dir);
-}
+static const char *const bake_names[] = { "manifest.json", "brdf.exr", "brdf_rgb.exr", "albedo.exr", "albedo.png",
+	".staging.*", NULL };	/* .staging.PID: left inside by a killed bake before outdir */
+const struct outdir_kind bake_outdir_kind = { "bake directory", "manifest.json", "format", "skinbake-bake",
+	bake_names };
 
 /* What every table file carries. */
 struct stage {
@@ -174,76 +165,37 @@ static int write_albedo(const struct stage *st, char **cause)
 
 static int write_manifest(const struct stage *st, char **cause)
 {
-	char *path = xasprintf("%s/manifest.json", st->dir);
 	char *text = bake_manifest_text(st->s, st->r, st->m);
-	int rc = outfile_write_text(path, text, cause);
+	int rc = checksum_write_manifest(st->dir, "manifest.json", text, cause);
 	free(text);
-	free(path);
 	return rc;
 }
 
-/* Everything is written: move it into place. */
-static int move_into_place(const char *stage, const char *dir, char **cause)
+int bake_write_files(const char *dir, const struct bake_spec *s, const struct bake_result *r,
+    const struct bake_meta *m, char **cause)
 {
-	static const char *files[] = { "brdf.exr", "brdf_rgb.exr", "albedo.exr", "albedo.png", "manifest.json" };
-	for (size_t i = 0; i < sizeof files / sizeof files[0]; i++) {
-		char *from = xasprintf("%s/%s", stage, files[i]), *to = xasprintf("%s/%s", dir, files[i]);
-		int e = rename(from, to);
-		if (e != 0)
-			*cause = xasprintf("%s: cannot rename into place: %s", to, strerror(errno));
-		free(from);
-		free(to);
-		if (e != 0)
-			return -1;
-	}
-	return 0;
+	CHECK(r->table.n_wl == s->n_wl && r->table.n_ti == s->n_ti && r->stack && r->mean_radius_cm);
+	struct stage st;
+	stage_init(&st, dir, s, r, m);
+	int rc = write_brdf(&st, cause) || write_albedo(&st, cause) || write_manifest(&st, cause) ? -1 : 0;
+	stage_free(&st);
+	return rc;
 }
 
 int bake_write(const char *dir, const struct bake_spec *s, const struct bake_result *r,
     const struct bake_meta *m, char **cause)
 {
-	CHECK(r->table.n_wl == s->n_wl && r->table.n_ti == s->n_ti && r->stack && r->mean_radius_cm);
-	if (util_mkdirs(dir, cause) != 0)
+	struct outdir od;
+	if (outdir_begin(&od, dir, &bake_outdir_kind, cause) != 0)
 		return -1;
-	char *stage = xasprintf("%s/.staging.%ld", dir, (long)getpid());
-	if (mkdir(stage, 0777) != 0) {
-		*cause = xasprintf("%s: cannot create: %s", stage, strerror(errno));
-		free(stage);
+	if (bake_write_files(outdir_path(&od), s, r, m, cause) != 0) {
+		outdir_abort(&od);
 		return -1;
 	}
-	struct stage st;
-	stage_init(&st, stage, s, r, m);
-	int rc = write_brdf(&st, cause) || write_albedo(&st, cause) || write_manifest(&st, cause) ||
-	    move_into_place(stage, dir, cause) ? -1 : 0;
-	stage_free(&st);
-	rm_staging(stage);
-	free(stage);
-	return rc;
+	return outdir_commit(&od, cause);
 }
 
 /* ---- reader ---- */
-
-void bake_free(struct bake *b)
-{
-	if (b == NULL)
-		return;
-	free(b->dir);
-	free(b->preset);
-	free(b->wl_nm);
-	free(b->theta_i);
-	free(b->theta_o);
-	free(b->phi);
-	free(b->fr);
-	free(b->fr_err);
-	free(b->fr_rgb);
-	free(b->albedo);
-	free(b->rd_r_rgb);
-	free(b->albedo_rgb);
-	free(b->rgb_from_wl);
-	free(b->stack);
-	free(b->sss_radius_cm);
-	free(b);
-}
 
 /* brdf.exr: value and error planes per wavelength, sized as the manifest says. */
 static int read_brdf(const char *dir, struct bake *b, char **cause)
@@ -309,7 +261,8 @@ struct bake *bake_load(const char *dir, char **cause)
 {
 	struct bake *b = xcalloc(1, sizeof *b);
 	b->dir = xstrdup(dir);
-	if (bake_manifest_read(dir, b, cause) || read_brdf(dir, b, cause) || read_albedo(dir, b, cause)) {
+	if (manifest_check_bake(dir, cause) || bake_manifest_read(dir, b, cause) || read_brdf(dir, b, cause) ||
+	    read_albedo(dir, b, cause) || manifest_check_values(b, cause)) {
 		bake_free(b);
 		return NULL;
 	}
@@ -395,4 +348,33 @@ void bake_eval_rgb(const struct bake *b, double theta_i, double theta_o, double 
 		for (int w = 0; w < b->n_wl; w++)
 			rgb[c] += b->rgb_from_wl[c * b->n_wl + w] * sp[w];
 	}
+}
+
+int bake_preset_to_dir(struct bake_spec *s, const struct skin_params *p, const char *label, const char *out,
+    const char *command, struct bake_result *r, char **cause)
+{
+	s->checkpoint_out = out;
+	memset(r, 0, sizeof *r);
+	/* Rank 0 takes the output (and its lock) before the work: a target that
+	 * is not a bake, or one another bake is writing, fails now. */
+	struct outdir od;
+	if (s->rank == 0 && outdir_begin(&od, out, &bake_outdir_kind, cause) != 0)
+		return -1;
+	if (bake_run(s, r, cause) != 0) {
+		if (s->rank == 0)
+			outdir_abort(&od);
+		return -1;
+	}
+	if (s->rank != 0)
+		return 0;	/* every rank holds the whole result; rank 0 writes it */
+	double *m = xmalloc(sizeof(double) * 3 * (size_t)s->n_wl);
+	struct bake_meta meta = { .preset = label, .ior = preset_surface_ior(p), .roughness = preset_surface_roughness(p),
+		.rgb_from_wl = m, .rgb_note = bake_rgb_weights(s, m), .command = command };
+	int rc = bake_write_files(outdir_path(&od), s, r, &meta, cause) != 0 ? -2 : 0;
+	if (rc != 0)
+		outdir_abort(&od);
+	else if (outdir_commit(&od, cause) != 0 || checkpoint_remove(out, cause) != 0)
+		rc = -2;
+	free(m);
+	return rc;
 }

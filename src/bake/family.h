@@ -128,8 +128,12 @@ struct skin_params *family_params(const struct skin_params *base, const struct f
 /* Place the nodes of de axes (pilot bakes of the albedo only, on every
  * rank alike).  -1 and *cause when a pilot bake fails. */
 int family_place_nodes(struct family_plan *pl, char **cause);
+/* A family directory, for base/outdir.h: family.json of format
+ * "skinbake-family", the base preset, the swatches and the members. */
+extern const struct outdir_kind family_outdir_kind;
 /* Check DIR can take a family: absent, empty, or an earlier family
- * directory (which is replaced).  -1 and *cause otherwise. */
+ * directory (which is replaced) holding nothing else (outdir_check).  -1
+ * and *cause otherwise. */
 int family_check_out(const char *dir, char **cause);
 /* Bake every member and write the family directory DIR.  Members are
  * spread over MPI ranks (member m on rank m % n_ranks, each bake on one

@@ -6,7 +6,9 @@
 #include <dirent.h>
 #include <errno.h>
 #include <fcntl.h>
+#include <fnmatch.h>
 #include <ftw.h>
+#include <json-c/json.h>
 #include <limits.h>
 #include <signal.h>
 #include <stdio.h>
@@ -15,6 +17,7 @@
 #include <sys/stat.h>
 #include <unistd.h>
 
+#include "base/lock.h"
 #include "base/util.h"
 
 /* Host part of staging names: a PID means something only on its own host
@@ -150,7 +153,7 @@ static int split_target(const char *target, char **parent, char **name, char **c
 	if (*t == '\0' || strcmp(base, ".") == 0 || strcmp(base, "..") == 0 || *base == '\0') {
 		*cause = *t == '\0' ? xstrdup("the output directory name is empty")
 				    : xasprintf("%s: cannot replace this directory as a whole; name the output "
-					"directory itself (e.g. %s/out)", target, t);
+					"directory itself (e.g. %s/out)", target, strcmp(t, "/") == 0 ? "" : t);
 		free(t);
 		return -1;
 	}
@@ -201,6 +204,7 @@ int outdir_clean_stale(const char *target)
 
 static void outdir_free(struct outdir *o)
 {
+	lock_release(o->lock);
 	free(o->target);
 	free(o->parent);
 	free(o->name);
@@ -209,39 +213,165 @@ static void outdir_free(struct outdir *o)
 	memset(o, 0, sizeof *o);
 }
 
-/* Refuse targets that are not ours to replace. */
-static int check_target(const char *target, const char *marker, char **cause)
+/* Does LIST (an array of names, or an object keyed by name) name ENTRY or
+ * a path under it? */
+static int listed(const char *entry, json_object *list)
 {
-	struct stat st;
-	if (stat(target, &st) != 0) {
-		if (errno == ENOENT)
-			return 0;
-		*cause = xasprintf("%s: %s", target, strerror(errno));
-		return -1;
-	}
-	if (!S_ISDIR(st.st_mode)) {
-		*cause = xasprintf("%s exists and is not a directory", target);
-		return -1;
-	}
-	if (marker != NULL && !is_empty_dir(target)) {
-		char *m = xasprintf("%s/%s", target, marker);
-		int ok = access(m, F_OK) == 0;
-		free(m);
-		if (!ok) {
-			*cause = xasprintf("%s is a directory without %s, not an output of this kind: "
-			    "it would be replaced as a whole; name a new or empty directory", target, marker);
-			return -1;
+	size_t n = strlen(entry);
+	if (list && json_object_is_type(list, json_type_object)) {
+		json_object_object_foreach(list, key, val) {
+			(void)val;
+			if (strncmp(key, entry, n) == 0 && (key[n] == '\0' || key[n] == '/'))
+				return 1;
+		}
+	} else if (list && json_object_is_type(list, json_type_array)) {
+		for (size_t i = 0; i < json_object_array_length(list); i++) {
+			const char *key = json_object_get_string(json_object_array_get_idx(list, i));
+			if (key && strncmp(key, entry, n) == 0 && (key[n] == '\0' || key[n] == '/'))
+				return 1;
 		}
 	}
 	return 0;
 }
 
-int outdir_begin(struct outdir *o, const char *target, const char *marker, char **cause)
+/* Is ENTRY (a name in an output directory) part of an output of kind K
+ * whose manifest is J? */
+static int entry_ours(const char *entry, const struct outdir_kind *k, json_object *j)
+{
+	if (k->names == NULL || strcmp(entry, k->marker) == 0)
+		return 1;
+	for (const char *const *p = k->names; *p; p++)
+		if (fnmatch(*p, entry, FNM_PERIOD) == 0)
+			return 1;
+	json_object *files = NULL, *sums = NULL;
+	if (j && json_object_is_type(j, json_type_object)) {
+		json_object_object_get_ex(j, "files", &files);
+		json_object_object_get_ex(j, "checksums", &sums);
+	}
+	return listed(entry, files) || listed(entry, sums);
+}
+
+/* TARGET, an existing non-empty directory: a complete output of kind K and
+ * nothing else? */
+static int check_kind(const char *target, const struct outdir_kind *k, char **cause)
+{
+	char *m = xasprintf("%s/%s", target, k->marker);
+	json_object *j = NULL, *v;
+	int rc = -1;
+	if (access(m, F_OK) != 0) {
+		*cause = xasprintf("%s is a directory without %s, not a %s: it would be replaced as a whole; name a new "
+		    "or empty directory", target, k->marker, k->what);
+		goto out;
+	}
+	if (k->key != NULL) {
+		j = json_object_from_file(m);
+		const char *val = j && json_object_object_get_ex(j, k->key, &v) && json_object_is_type(v, json_type_string)
+		    ? json_object_get_string(v) : NULL;
+		if (val == NULL || strcmp(val, k->value) != 0) {
+			*cause = xasprintf("%s holds %s, but not of a %s (%s \"%s\" expected, %s%s%s): it would be replaced "
+			    "as a whole; name a new or empty directory", target, k->marker, k->what, k->key, k->value,
+			    val ? "\"" : "", val ? val : j ? "none" : "not JSON", val ? "\" found" : "");
+			goto out;
+		}
+	}
+	DIR *d = opendir(target);
+	struct dirent *e;
+	rc = 0;
+	while (rc == 0 && d && (e = readdir(d)) != NULL) {
+		if (strcmp(e->d_name, ".") == 0 || strcmp(e->d_name, "..") == 0 || entry_ours(e->d_name, k, j))
+			continue;
+		*cause = xasprintf("%s holds '%s', which is not part of a %s: it would be removed with the old output; "
+		    "move it away or name another directory", target, e->d_name, k->what);
+		rc = -1;
+	}
+	if (d)
+		closedir(d);
+out:
+	if (j)
+		json_object_put(j);
+	free(m);
+	return rc;
+}
+
+/* PATH made absolute with its symbolic links resolved as far as it exists;
+ * caller frees. */
+static char *resolved(const char *path)
+{
+	char *r = realpath(path, NULL);
+	if (r != NULL)
+		return r;
+	char *parent, *name, *cause = NULL;
+	if (split_target(path, &parent, &name, &cause) != 0) {
+		free(cause);
+		return xstrdup(path);
+	}
+	char *rp = resolved(parent);
+	r = xasprintf("%s/%s", strcmp(rp, "/") == 0 ? "" : rp, name);
+	free(rp);
+	free(parent);
+	free(name);
+	return r;
+}
+
+/* Is directory A equal to, or above, B? */
+static int contains(const char *a, const char *b)
+{
+	size_t n = strlen(a);
+	return strncmp(a, b, n) == 0 && (b[n] == '\0' || b[n] == '/' || (n == 1 && a[0] == '/'));
+}
+
+static int check_inputs(const char *target, const char *const *inputs, char **cause)
+{
+	char *t = resolved(target);
+	int rc = 0;
+	for (const char *const *p = inputs; rc == 0 && p && *p; p++) {
+		char *in = resolved(*p);
+		if (strcmp(t, in) == 0)
+			*cause = xasprintf("%s is also an input of this command (%s): writing it would destroy what is read; "
+			    "name another output directory", target, *p), rc = -1;
+		else if (contains(t, in))
+			*cause = xasprintf("the input %s is inside %s, which would be replaced as a whole; name another output "
+			    "directory", *p, target), rc = -1;
+		else if (contains(in, t))
+			*cause = xasprintf("%s is inside the input %s: writing it would change an input; name an output "
+			    "directory outside it", target, *p), rc = -1;
+		free(in);
+	}
+	free(t);
+	return rc;
+}
+
+int outdir_check(const char *target, const struct outdir_kind *kind, const char *const *inputs, char **cause)
+{
+	char *parent, *name;
+	if (split_target(target, &parent, &name, cause) != 0)
+		return -1;
+	free(parent);
+	free(name);
+	struct stat st;
+	if (stat(target, &st) != 0) {
+		if (errno == ENOENT && lstat(target, &st) == 0) {
+			*cause = xasprintf("%s is a symbolic link to a directory that does not exist", target);
+			return -1;
+		}
+		if (errno != ENOENT) {
+			*cause = xasprintf("%s: %s", target, strerror(errno));
+			return -1;
+		}
+	} else if (!S_ISDIR(st.st_mode)) {
+		*cause = xasprintf("%s exists and is not a directory", target);
+		return -1;
+	} else if (!is_empty_dir(target) && check_kind(target, kind, cause) != 0)
+		return -1;
+	return check_inputs(target, inputs, cause);
+}
+
+int outdir_begin(struct outdir *o, const char *target, const struct outdir_kind *kind, char **cause)
 {
 	memset(o, 0, sizeof *o);
-	if (split_target(target, &o->parent, &o->name, cause) != 0)
+	if (outdir_check(target, kind, NULL, cause) != 0 || split_target(target, &o->parent, &o->name, cause) != 0)
 		return -1;
-	if (check_target(target, marker, cause) != 0 || util_mkdirs(o->parent, cause) != 0) {
+	if (util_mkdirs(o->parent, cause) != 0) {
 		outdir_free(o);
 		return -1;
 	}
@@ -259,6 +389,13 @@ int outdir_begin(struct outdir *o, const char *target, const char *marker, char 
 	}
 	free(real);
 	o->target = strcmp(o->parent, "/") == 0 ? xasprintf("/%s", o->name) : xasprintf("%s/%s", o->parent, o->name);
+	/* Locked before anything beside the target is touched: the staging of
+	 * a live writer is never taken for stale, and the check is repeated
+	 * under the lock (another writer may have finished meanwhile). */
+	if ((o->lock = lock_take(o->target, cause)) == NULL || outdir_check(o->target, kind, NULL, cause) != 0) {
+		outdir_free(o);
+		return -1;
+	}
 	outdir_clean_stale(o->target);
 	o->staging = side_name(o->parent, o->name, "staging");
 	o->retired = side_name(o->parent, o->name, "retired");

@@ -233,33 +233,3 @@ int util_parse_long(const char *s, long *out)
 	*out = (long)v;
 	return 0;
 }
-
-int util_dir_replaceable(const char *dir, const char *marker, const char *what, char **cause)
-{
-	struct stat st;
-	if (stat(dir, &st) != 0)
-		return 0;
-	if (!S_ISDIR(st.st_mode)) {
-		*cause = xasprintf("%s exists and is not a directory", dir);
-		return -1;
-	}
-	char *idx = xasprintf("%s/%s", dir, marker);
-	int ours = access(idx, F_OK) == 0;
-	free(idx);
-	if (ours)
-		return 0;
-	DIR *d = opendir(dir);
-	int empty = 1;
-	struct dirent *e;
-	while (d && (e = readdir(d)) != NULL)
-		if (strcmp(e->d_name, ".") != 0 && strcmp(e->d_name, "..") != 0)
-			empty = 0;
-	if (d)
-		closedir(d);
-	if (!empty) {
-		*cause = xasprintf("%s is neither empty nor a %s (no %s); it would be replaced as a whole, so give a new "
-		    "or empty one", dir, what, marker);
-		return -1;
-	}
-	return 0;
-}

@@ -34,11 +34,6 @@ char *util_tmp_name(const char *path);
 int util_commit_tmp(const char *tmp, const char *path, char **cause);
 /* mkdir -p; -1 and *cause on failure. */
 int util_mkdirs(const char *dir, char **cause);
-/* Whether an output directory written as a whole (base/outdir.h) may
- * replace DIR, checked before any work without touching anything: 0 when
- * DIR is absent, empty, or holds MARKER (an earlier output of the kind
- * WHAT); -1 and *cause otherwise. */
-int util_dir_replaceable(const char *dir, const char *marker, const char *what, char **cause);
 /* Monotonic wall clock [s]. */
 double util_now(void);
 /* Parse a double/long from the whole string (no trailing junk); 0 on success. */

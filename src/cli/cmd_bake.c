@@ -7,6 +7,7 @@
 #include <string.h>
 
 #include "bake/bake.h"
+#include "bake/bakefile.h"
 #include "bake/summary.h"
 #include "cli/cli.h"
 #include "cli/cmd_bake_family.h"
@@ -94,7 +95,7 @@ int cmd_bake(int argc, char **argv)
 		  .help = "incidence angles 90*k/N deg (k = 0 .. N-1), N" },
 		{ "resolution", OPT_CUSTOM, &s, "TxP", "18x18", .fn = parse_resolution,
 		  .help = "theta_o bands x delta_phi bins over [0, 90] x [0, 180] deg, each in [1, 360]" },
-		{ "solver", OPT_ENUM, &solver, .def = "auto", .choices = "auto|ad|mc", .help = "adding-doubling (ad), Monte "
+		{ "solver", OPT_ENUM, &solver, .def = "auto", .choices = bake_method_choices(), .help = "adding-doubling (ad), Monte "
 		  "Carlo (mc), or ad with mc, said on stderr, for the wavelengths where ad cannot meet --ad-tol (auto)" },
 		{ "ad-tol", OPT_DOUBLE, &s.ad_tol, "E", "0.001", .lo = 1e-6, .hi = 0.1,
 		  .help = "ad: estimated RMS relative error of the table to reach (or --target-error when smaller)" },
@@ -140,7 +141,7 @@ int cmd_bake(int argc, char **argv)
 		return opt_error(&x, "--target-error = %g is out of range [0.001, 1] (or 0)", s.target_error);
 	bake_spec_axes(&s, wl.v, wl.n, th.v, th.n, nodes);
 	s.opts.fresnel = fresnel == 0 ? OPTICS_FRESNEL_EXACT : OPTICS_FRESNEL_SCHLICK;
-	s.method = (int[]){ BAKE_SOLVER_AUTO, BAKE_SOLVER_AD, BAKE_SOLVER_MC }[solver];
+	s.method = bake_method_at(solver)->id;
 	s.nee = est == 0, s.seed = (uint64_t)seed, s.min_batches = 8, s.n_ranks = 1;
 	return run(&s, preset, pfile, out, quiet, &vary, argc, argv);
 }

@@ -41,8 +41,8 @@ static int run(const char *bake_dir, const char *tex_dir, const char *out, const
 			blender_set_add_section(s, "translucent", j);
 			free(j);
 		}
-		if (blender_write(s, out, &cause) != 0)
-			rc = cli_fail(CMD, "%s", cause);
+		if ((rc = blender_write(s, out, &cause)) != 0)
+			rc = rc == -1 ? cli_usage_error(CMD, "%s", cause) : cli_fail(CMD, "%s", cause);
 	}
 	free(cause);
 	blender_set_free(s);
@@ -125,6 +125,9 @@ int cmd_export_blender(int argc, char **argv)
 		return opt_error(&x, "--family needs --maps (the parameter maps to export)");
 	if (maps_dir && !fam_dir)
 		return opt_error(&x, "--maps goes with --family, not --bake");
+	const char *in[] = { bake_dir, tex_dir, fam_dir, maps_dir };
+	if (opt_out_check(&x, out, &blender_outdir_kind, in, 4) != 0)
+		return CLI_EXIT_USAGE;
 	if (fam_dir)
 		return run_family(fam_dir, maps_dir, tex_dir, out, sub, &o);
 	return run(bake_dir, tex_dir, out, &o, translucent);

@@ -48,10 +48,10 @@ int cmd_maps_image_arg(const struct opt_ctx *x, const char *opt, const char *pat
 	return image_size(path, w, h, &cause) != 0 ? opt_cause(x, opt, " ", cause) : 0;
 }
 
-int cmd_maps_check_out_dir(const struct opt_ctx *x, const char *out)
+int cmd_maps_check_out_dir(const struct opt_ctx *x, const char *out, const char *in1, const char *in2)
 {
-	char *cause = NULL;
-	return mapset_check_out(out, &cause) != 0 ? opt_cause(x, "out", " ", cause) : 0;
+	const char *in[] = { in1, in2 };
+	return opt_out_check(x, out, &mapset_outdir_kind, in, 2);
 }
 
 int cmd_maps_check_out_file(const struct opt_ctx *x, const char *opt, const char *path, int *exr)

@@ -23,7 +23,7 @@ struct family *cmd_maps_load_family(const struct opt_ctx *x, const char *dir);
 struct mapset *cmd_maps_load_maps(const struct opt_ctx *x, const char *dir);
 /* An image option: a PNG or EXR, its size into w, h. */
 int cmd_maps_image_arg(const struct opt_ctx *x, const char *opt, const char *path, int *w, int *h);
-int cmd_maps_check_out_dir(const struct opt_ctx *x, const char *out);
+int cmd_maps_check_out_dir(const struct opt_ctx *x, const char *out, const char *in1, const char *in2);
 /* Output file: .png or .exr (*exr), its directory writable, not a directory itself. */
 int cmd_maps_check_out_file(const struct opt_ctx *x, const char *opt, const char *path, int *exr);
 /* The edits as map operations: keys known, set values in the family's range. */

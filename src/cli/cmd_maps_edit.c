@@ -40,7 +40,7 @@ int cmd_maps_edit(int argc, char **argv)
 	if (ops_l.n == 0)
 		return opt_error(&x, "no edit given (--scale, --add or --set)");
 	int mw, mh;
-	if ((mask && cmd_maps_image_arg(&x, "mask", mask, &mw, &mh)) || cmd_maps_check_out_dir(&x, out))
+	if ((mask && cmd_maps_image_arg(&x, "mask", mask, &mw, &mh)) || cmd_maps_check_out_dir(&x, out, mask, NULL))
 		return CLI_EXIT_USAGE;
 	struct mapset *m = cmd_maps_load_maps(&x, in);
 	if (m == NULL)

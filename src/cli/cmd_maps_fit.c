@@ -38,7 +38,7 @@ int cmd_maps_fit(int argc, char **argv)
 	if (opt_parse(&x, &cmd, argc, argv) != 0)
 		return x.exit;
 	int w, h, mw, mh;
-	if (cmd_maps_image_arg(&x, "albedo", alb, &w, &h) || (mask && cmd_maps_image_arg(&x, "mask", mask, &mw, &mh)) || cmd_maps_check_out_dir(&x, out))
+	if (cmd_maps_image_arg(&x, "albedo", alb, &w, &h) || (mask && cmd_maps_image_arg(&x, "mask", mask, &mw, &mh)) || cmd_maps_check_out_dir(&x, out, fam, alb))
 		return CLI_EXIT_USAGE;
 	if (mask && (mw != w || mh != h))
 		return opt_error(&x, "--mask %s is %d x %d texels, but --albedo %s is %d x %d", mask, mw, mh, alb, w, h);

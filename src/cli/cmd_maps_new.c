@@ -53,7 +53,7 @@ int cmd_maps_new(int argc, char **argv)
 	struct opt_ctx x;
 	if (opt_parse(&x, &cmd, argc, argv) != 0)
 		return x.exit;
-	if ((like && cmd_maps_image_arg(&x, "like", like, &wh[0], &wh[1])) || cmd_maps_check_out_dir(&x, out))
+	if ((like && cmd_maps_image_arg(&x, "like", like, &wh[0], &wh[1])) || cmd_maps_check_out_dir(&x, out, fam, like))
 		return CLI_EXIT_USAGE;
 	struct family *f = cmd_maps_load_family(&x, fam);
 	if (f == NULL)

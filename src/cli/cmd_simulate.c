@@ -1,6 +1,5 @@
-/* skinbake simulate: one Monte Carlo run (or an adding-doubling solve) on a
- * layer stack given on the command line; a readable table or one JSON object
- * on stdout. */
+/* skinbake simulate: one Monte Carlo run (or an adding-doubling solve) on a layer
+ * stack given on the command line; a readable table or one JSON object on stdout. */
 #include "config.h"
 
 #include <limits.h>
@@ -14,7 +13,7 @@
 #include "engine/sim_report.h"
 #include "base/util.h"
 
-/* --layer d=CM,n=N,mua=1/CM,mus=1/CM,g=G, top layer first. */
+/* --layer d=CM,n=N,mua=1/CM,mus=1/CM,g=G,rough=ALPHA, top layer first. */
 static const struct opt_key layer_keys[] = {
 	{ "d", OPT_DOUBLE, offsetof(struct layer, d), .lo = 0, .hi = INFINITY, .unit = "cm",
 	  .flags = OPT_REQUIRED | OPT_LO_OPEN | OPT_HI_OPEN | OPT_INF, .help = "thickness (the last layer may be inf)" },
@@ -25,6 +24,8 @@ static const struct opt_key layer_keys[] = {
 	  .help = "scattering coefficient" },
 	{ "g", OPT_DOUBLE, offsetof(struct layer, g), "0", .lo = -1, .hi = 1, .flags = OPT_LO_OPEN | OPT_HI_OPEN,
 	  .help = "Henyey-Greenstein anisotropy" },
+	{ "rough", OPT_DOUBLE, offsetof(struct layer, rough), "0", .lo = 0, .hi = 1,
+	  .help = "GGX alpha of the boundary on the layer's top (0 = smooth; mc only)" },
 	{ NULL },
 };
 

@@ -35,7 +35,7 @@ static int run(const struct texture_config *cfg, const char *out, int quiet)
 	}
 	free(s.notes);
 	if (rc != 0) {
-		rc = cli_fail(CMD, "%s", cause);
+		rc = s.refused ? cli_usage_error(CMD, "%s", cause) : cli_fail(CMD, "%s", cause);
 		free(cause);
 		return rc;
 	}

@@ -169,6 +169,14 @@ int opt_path_in(const struct opt_ctx *x, const char *label, const char *path, un
 int opt_path_in_hint(const struct opt_ctx *x, const char *label, const char *path, unsigned flags,
     const char *hint);
 int opt_path_out(const struct opt_ctx *x, const char *label, const char *path);
+/* After opt_parse, before any work: may --out PATH be replaced by an output
+ * of KIND (base/outdir.h outdir_check, with the command's INPUTS, a
+ * NULL-terminated list whose NULL entries before the end are skipped:
+ * pass optional inputs as they are, the list ends at index N)?  0, or -1
+ * after reporting (exit 2). */
+struct outdir_kind;
+int opt_out_check(const struct opt_ctx *x, const char *path, const struct outdir_kind *kind, const char *const *inputs,
+    int n);
 /* The range as messages and --help show it, e.g. "[0, 90) deg", "(0, inf) cm". */
 void opt_range_text(char *b, size_t n, double lo, double hi, unsigned flags, const char *unit);
 /* Parse "KEY=VALUE,KEY=VALUE" into the struct at BASE by KEYS (ends with

@@ -13,6 +13,7 @@
 #include <sys/stat.h>
 #include <unistd.h>
 
+#include "base/outdir.h"
 #include "base/util.h"
 
 /* ---- numbers ---------------------------------------------------------- */
@@ -213,4 +214,22 @@ int opt_path_out(const struct opt_ctx *x, const char *label, const char *path)
 		    strerror(errno));
 	free(parent);
 	return rc ? -1 : 0;
+}
+
+int opt_out_check(const struct opt_ctx *x, const char *path, const struct outdir_kind *kind, const char *const *inputs,
+    int n)
+{
+	const char **in = xcalloc((size_t)n + 1, sizeof *in);
+	int k = 0;
+	for (int i = 0; i < n; i++)
+		if (inputs[i] != NULL)
+			in[k++] = inputs[i];
+	char *cause = NULL;
+	int rc = outdir_check(path, kind, in, &cause);
+	free(in);
+	if (rc != 0) {
+		opt_error(x, "--out: %s", cause);
+		free(cause);
+	}
+	return rc;
 }

@@ -10,9 +10,12 @@
 #include <string.h>
 
 #include "base/check.h"
+#include "base/checksum.h"
+#include "base/outdir.h"
 #include "base/srgb.h"
 #include "base/util.h"
 #include "io/exrio.h"
+#include "io/json.h"
 #include "io/pngio.h"
 
 static const char *NORMAL_CONVENTION = "OpenGL +Y";
@@ -242,8 +245,8 @@ static json_object *jrange(const char *file, struct stats s)
 {
 	json_object *c = json_object_new_object();
 	json_object_object_add(c, "file", json_object_new_string(file));
-	json_object_object_add(c, "height_min_um", json_object_new_double(s.lo * 1e4));
-	json_object_object_add(c, "height_max_um", json_object_new_double(s.hi * 1e4));
+	json_object_object_add(c, "height_min_um", json_num(s.lo * 1e4));
+	json_object_object_add(c, "height_max_um", json_num(s.hi * 1e4));
 	return c;
 }
 
@@ -258,16 +261,16 @@ static int write_manifest(const struct outputs *o, const struct relief *r, struc
 	json_object_object_add(m, "site", json_object_new_string(cfg->site));
 	json_object_object_add(m, "seed", json_object_new_int64((int64_t)cfg->seed));
 	json_object_object_add(m, "size_px", json_object_new_int64(cfg->size));
-	json_object_object_add(m, "tile_mm", json_object_new_double(tile_mm));
-	json_object_object_add(m, "pixel_um", json_object_new_double(tile_mm * 1000 / (double)cfg->size));
-	json_object_object_add(m, "height_min_um", json_object_new_double(sh.lo * 1e4));
-	json_object_object_add(m, "height_max_um", json_object_new_double(sh.hi * 1e4));
+	json_object_object_add(m, "tile_mm", json_num(tile_mm));
+	json_object_object_add(m, "pixel_um", json_num(tile_mm * 1000 / (double)cfg->size));
+	json_object_object_add(m, "height_min_um", json_num(sh.lo * 1e4));
+	json_object_object_add(m, "height_max_um", json_num(sh.hi * 1e4));
 	json_object_object_add(m, "height_encoding", json_object_new_string(
 	    "height.png: 16-bit gray, 0 = height_min_um, 65535 = height_max_um, linear; "
 	    "heights relative to the undisturbed surface"));
 	/* POV-Ray bump_map scale (docs pov.md section 4): range * pixels / tile. */
 	json_object_object_add(m, "pov_bump_size",
-	    json_object_new_double((sh.hi - sh.lo) * 10 * (double)cfg->size / tile_mm));
+	    json_num((sh.hi - sh.lo) * 10 * (double)cfg->size / tile_mm));
 	json_object_object_add(m, "normal_convention", json_object_new_string(NORMAL_CONVENTION));
 	json_object_object_add(m, "normal_encoding", json_object_new_string(NORMAL_CONVENTION_LONG));
 	json_object_object_add(m, "row0", json_object_new_string("top of the image = +y end of the tile"));
@@ -283,7 +286,7 @@ static int write_manifest(const struct outputs *o, const struct relief *r, struc
 			if (*c == '-')
 				*c = '_';
 		double v = sites_get(cfg, &p[i]);
-		json_object_object_add(par, key, p[i].type == SITES_REAL ? json_object_new_double(v)
+		json_object_object_add(par, key, p[i].type == SITES_REAL ? json_num(v)
 		    : json_object_new_int64((int64_t)v));
 		json_object_object_add(units, key, json_object_new_string(p[i].unit));
 	}
@@ -297,10 +300,10 @@ static int write_manifest(const struct outputs *o, const struct relief *r, struc
 		json_object_object_add(l, "level", json_object_new_int(k + 1));
 		json_object_object_add(l, "junctions", json_object_new_int(li.points));
 		json_object_object_add(l, "furrows", json_object_new_int(3 * li.points));
-		json_object_object_add(l, "cell_mm", json_object_new_double(li.cell * 10));
-		json_object_object_add(l, "width_um", json_object_new_double(li.width * 1e4));
-		json_object_object_add(l, "depth_um", json_object_new_double(li.depth * 1e4));
-		json_object_object_add(l, "ridge_um", json_object_new_double(li.ridge * 1e4));
+		json_object_object_add(l, "cell_mm", json_num(li.cell * 10));
+		json_object_object_add(l, "width_um", json_num(li.width * 1e4));
+		json_object_object_add(l, "depth_um", json_num(li.depth * 1e4));
+		json_object_object_add(l, "ridge_um", json_num(li.ridge * 1e4));
 		json_object_array_add(lv, l);
 	}
 	json_object_object_add(m, "furrow_levels", lv);
@@ -318,20 +321,20 @@ static int write_manifest(const struct outputs *o, const struct relief *r, struc
 		json_object_array_add(fl, json_object_new_string(files[i]));
 	json_object_object_add(m, "files", fl);
 
-	char *path = path_in(o, "manifest.json");
-	struct outfile of;
-	int rc = outfile_open(&of, path, cause);
-	if (rc == 0) {
-		fprintf(of.fp, "%s\n", json_object_to_json_string_ext(m,
-		    JSON_C_TO_STRING_PRETTY | JSON_C_TO_STRING_NOSLASHESCAPE));
-		rc = outfile_commit(&of, cause);
-	}
-	free(path);
+	char *text = json_text(m, JSON_PRETTY);
+	int rc = checksum_write_manifest(o->dir, "manifest.json", text, cause);
+	free(text);
 	json_object_put(m);
 	return rc;
 }
 
-int texdir_write(const char *dir, const struct texture_config *cfg, const struct relief *r,
+static const char *const texdir_names[] = { "height.png", "normal.png", "normal.exr", "height.exr", "preview.png",
+	"pores_height.png", "furrows_height.png", NULL };
+const struct outdir_kind texdir_outdir_kind = { "texture directory", "manifest.json", "kind", "skinbake texture",
+	texdir_names };
+
+/* Every file into the existing directory DIR, manifest.json last. */
+static int write_files(const char *dir, const struct texture_config *cfg, const struct relief *r,
     const struct texdir_maps *m, char **cause)
 {
 	CHECK(m->n == (int)cfg->size);
@@ -342,8 +345,6 @@ int texdir_write(const char *dir, const struct texture_config *cfg, const struct
 	snprintf(o.tile, sizeof o.tile, "%.10g", cfg->relief.tile * 10);
 	snprintf(o.seed, sizeof o.seed, "%llu", (unsigned long long)cfg->seed);
 	snprintf(o.size, sizeof o.size, "%ld", cfg->size);
-	if (util_mkdirs(dir, cause) != 0)
-		return -1;
 	/* The writers are independent (own libpng / OpenEXR contexts), and
 	 * compression dominates, so they run in parallel; the manifest, which
 	 * lists them, comes last. */
@@ -374,15 +375,36 @@ int texdir_write(const char *dir, const struct texture_config *cfg, const struct
 	return write_manifest(&o, r, sh, sp, sf, cause);
 }
 
-/* The steps in the order the command reports them; nothing is written
- * before the relief has been placed. */
+int texdir_write(const char *dir, const struct texture_config *cfg, const struct relief *r,
+    const struct texdir_maps *m, char **cause)
+{
+	struct outdir od;
+	if (outdir_begin(&od, dir, &texdir_outdir_kind, cause) != 0)
+		return -1;
+	if (write_files(outdir_path(&od), cfg, r, m, cause) != 0) {
+		outdir_abort(&od);
+		return -1;
+	}
+	return outdir_commit(&od, cause);
+}
+
+/* The steps in the order the command reports them; the output (and its
+ * lock) is taken first, nothing is written before the relief has been
+ * placed. */
 int texdir_make(const char *dir, const struct texture_config *cfg, struct texdir_made *made, char **cause)
 {
 	memset(made, 0, sizeof *made);
+	struct outdir od;
+	if (outdir_begin(&od, dir, &texdir_outdir_kind, cause) != 0) {
+		made->refused = 1;
+		return -1;
+	}
 	double t0 = util_now();
 	struct relief *r = relief_new(&cfg->relief, cfg->seed, cause);
-	if (r == NULL)
+	if (r == NULL) {
+		outdir_abort(&od);
 		return -1;
+	}
 	made->n_pores = relief_n_pores(r);
 	made->notes = texdir_resolution_notes(cfg, r);
 	double t1 = util_now();
@@ -390,7 +412,11 @@ int texdir_make(const char *dir, const struct texture_config *cfg, struct texdir
 	texdir_maps_render(&m, r, cfg);
 	texdir_height_range(&m, &made->h_min, &made->h_max);
 	double t2 = util_now();
-	int rc = texdir_write(dir, cfg, r, &m, cause);
+	int rc = write_files(outdir_path(&od), cfg, r, &m, cause);
+	if (rc != 0)
+		outdir_abort(&od);
+	else
+		rc = outdir_commit(&od, cause);
 	made->t_place = t1 - t0;
 	made->t_render = t2 - t1;
 	made->t_write = util_now() - t2;
@@ -505,7 +531,7 @@ static int check_manifest(const char *dir, const struct texdir *t, char **cause)
 		return 0;
 	}
 	fclose(f);
-	json_object *m = json_object_from_file(mp), *v;
+	json_object *m = json_load(mp), *v;
 	int rc = -1;
 	char px[32];
 	snprintf(px, sizeof px, "%d px", t->w);
@@ -550,7 +576,9 @@ struct texdir *texdir_load(const char *dir, int with_normal, char **cause)
 	struct texdir *t = xcalloc(1, sizeof *t);
 	t->dir = xstrdup(dir);
 	char *hp = xasprintf("%s/height.png", dir), *np = xasprintf("%s/normal.png", dir);
-	int rc = read_height(hp, t, cause);
+	int rc = checksum_verify_dir(dir, "manifest.json", cause);
+	if (rc == 0)
+		rc = read_height(hp, t, cause);
 	if (rc == 0 && with_normal)
 		rc = read_normal(np, hp, t, cause);
 	if (rc == 0)

@@ -20,6 +20,7 @@
 #define SKINBAKE_TEXDIR_H
 #include <stdint.h>
 
+#include "base/outdir.h"
 #include "geom/relief.h"
 #include "geom/sites.h"
 
@@ -46,8 +47,13 @@ void texdir_height_range(const struct texdir_maps *m, double *lo, double *hi);
  * NULL when there are none.  Caller frees. */
 char *texdir_resolution_notes(const struct texture_config *cfg, const struct relief *r);
 
-/* Write every file above into DIR (created if needed), manifest.json last;
- * -1 and *cause (caller frees) on an I/O failure. */
+/* A texture directory, for base/outdir.h: manifest.json of kind
+ * "skinbake texture" and the maps above. */
+extern const struct outdir_kind texdir_outdir_kind;
+
+/* Write every file above into DIR (created if needed) through base/outdir.h
+ * (all or nothing, one swap); -1 and *cause (caller frees) on an I/O
+ * failure or when DIR is not a texture directory or is being written. */
 int texdir_write(const char *dir, const struct texture_config *cfg, const struct relief *r,
     const struct texdir_maps *m, char **cause);
 
@@ -57,6 +63,7 @@ struct texdir_made {
 	double h_min, h_max;	/* lowest and highest point of the height map [cm] */
 	double t_place, t_render, t_write;	/* wall time of each step [s] */
 	char *notes;		/* texdir_resolution_notes, or NULL; caller frees */
+	int refused;		/* 1: the output directory was refused (outdir_begin), nothing done */
 };
 
 /* All of `skinbake texture` after its options: place the relief of cfg,

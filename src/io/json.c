@@ -46,22 +46,36 @@ int json_save(const char *path, struct json_object *o, enum json_layout layout, 
 	return rc;
 }
 
-int json_get_num(struct json_object *o, const char *key, const char *what, double *out, char **cause)
+struct json_object *json_load(const char *path)
+{
+	return json_object_from_file(path);
+}
+
+struct json_object *json_parse(const char *text)
+{
+	return json_tokener_parse(text);
+}
+
+int json_to_num(struct json_object *v, double *out)
+{
+	enum json_type t = json_object_get_type(v);
+	if (t == json_type_null) {
+		*out = NAN;
+		return 1;
+	}
+	if (t != json_type_double && t != json_type_int)
+		return -1;
+	double x = json_object_get_double(v);
+	if (!isfinite(x))
+		return -1;
+	*out = x;
+	return 0;
+}
+
+int json_get_num(struct json_object *o, const char *key, double *out)
 {
 	struct json_object *v;
-	if (!json_object_object_get_ex(o, key, &v)) {
-		*cause = xasprintf("%s: no \"%s\"", what, key);
+	if (!json_object_object_get_ex(o, key, &v))
 		return -1;
-	}
-	if (v == NULL) {
-		*out = NAN;
-		return 0;
-	}
-	enum json_type t = json_object_get_type(v);
-	if (t != json_type_double && t != json_type_int) {
-		*cause = xasprintf("%s: \"%s\" is not a number", what, key);
-		return -1;
-	}
-	*out = json_object_get_double(v);
-	return 0;
+	return json_to_num(v, out);
 }

@@ -3,12 +3,16 @@
  * policy for the numbers JSON cannot hold.
  *
  * Non-finite numbers: JSON (RFC 8259) has no NaN or infinity, and json-c
- * would print them as NaN/Infinity, which strict parsers refuse.  The writer
- * json_num() turns a non-finite value into null; a reader taking a number
- * (json_get_num) gives NaN for null.  A field that may be null says so in
- * the schema of its file (docs/json.md lists them).  Where infinity has a
- * meaning of its own (a semi-infinite layer) the writer says so with a
- * string ("inf"), never with null. */
+ * would print them as NaN/Infinity, which strict parsers refuse.  Writers
+ * put every number through json_num(), which writes a non-finite value as
+ * null.  Readers take numbers through json_to_num(): a finite number is
+ * read, null is reported apart (1, and NaN) so that the reader accepts it
+ * only for a member its schema says may be null, and anything else (a
+ * string, or the NaN/Infinity tokens json-c's parser takes but JSON has
+ * not) is refused.  Where infinity has a meaning of its own (a
+ * semi-infinite layer's thickness) the writer says so with a string
+ * ("inf"), never with null.  docs/json.md lists the members that may be
+ * null.  */
 #ifndef SKINBAKE_JSON_H
 #define SKINBAKE_JSON_H
 #include <json-c/json.h>
@@ -28,7 +32,14 @@ char *json_text(struct json_object *o, enum json_layout layout);
 /* Write O as text in LAYOUT to PATH, all or nothing (base/util.h outfile),
  * ended by a newline; -1 and *cause on failure. */
 int json_save(const char *path, struct json_object *o, enum json_layout layout, char **cause);
-/* A number member KEY of O: its value, NaN for null; -1 and *cause naming
- * WHAT (the file) and KEY when it is missing or not a number. */
-int json_get_num(struct json_object *o, const char *key, const char *what, double *out, char **cause);
+/* The JSON file PATH parsed (json-c's parser), or NULL when it cannot be
+ * read or is not JSON; the caller says which file it expected. */
+struct json_object *json_load(const char *path);
+/* TEXT parsed, or NULL. */
+struct json_object *json_parse(const char *text);
+/* V as a number: 0 and *out for a finite number, 1 and *out = NaN for null
+ * (V NULL), -1 for anything else (not a number, or not finite). */
+int json_to_num(struct json_object *v, double *out);
+/* Member KEY of O through json_to_num; -1 also when it is missing. */
+int json_get_num(struct json_object *o, const char *key, double *out);
 #endif

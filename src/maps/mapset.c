@@ -12,7 +12,9 @@
 #include <unistd.h>
 
 #include "base/outdir.h"
+#include "base/checksum.h"
 #include "base/util.h"
+#include "io/json.h"
 #include "maps/image.h"
 
 struct mapset *mapset_new(const struct family *f, int w, int h, const double *x)
@@ -68,9 +70,12 @@ int mapset_find(const struct mapset *m, const char *key)
 	return -1;
 }
 
+static const char *const mapset_names[] = { "maps.json", "*.png", "*.exr", NULL };
+const struct outdir_kind mapset_outdir_kind = { "maps directory", "maps.json", "format", "skinbake-maps", mapset_names };
+
 int mapset_check_out(const char *dir, char **cause)
 {
-	return util_dir_replaceable(dir, "maps.json", "maps directory", cause);
+	return outdir_check(dir, &mapset_outdir_kind, NULL, cause);
 }
 
 /* ---- writer ---- */
@@ -82,7 +87,7 @@ static void add(json_object *o, const char *k, json_object *v)
 
 static json_object *num(double v)
 {
-	return json_object_new_double(v);
+	return json_num(v);
 }
 
 /* One float map: 16-bit PNG of (v - lo) / (hi - lo), or float EXR. */
@@ -178,7 +183,7 @@ static char *index_text(const struct mapset *m)
 		add(o, "status", e);
 	}
 	if (m->fit) {
-		json_object *f = json_tokener_parse(m->fit);
+		json_object *f = json_parse(m->fit);
 		if (f)
 			add(o, "fit", f);
 	}
@@ -186,7 +191,7 @@ static char *index_text(const struct mapset *m)
 	for (int i = 0; i < m->n_history; i++)
 		json_object_array_add(h, json_object_new_string(m->history[i]));
 	add(o, "history", h);
-	char *text = xstrdup(json_object_to_json_string_ext(o, JSON_C_TO_STRING_PRETTY | JSON_C_TO_STRING_NOSLASHESCAPE));
+	char *text = json_text(o, JSON_PRETTY);
 	json_object_put(o);
 	return text;
 }
@@ -220,8 +225,8 @@ static int write_all(const char *stage, const struct mapset *m, char **cause)
 		if (rc)
 			return -1;
 	}
-	char *path = xasprintf("%s/maps.json", stage), *text = index_text(m);
-	int rc = outfile_write_text(path, text, cause);
+	char *path = NULL, *text = index_text(m);
+	int rc = checksum_write_manifest(stage, "maps.json", text, cause);
 	free(text);
 	free(path);
 	return rc;
@@ -230,7 +235,7 @@ static int write_all(const char *stage, const struct mapset *m, char **cause)
 int mapset_write(const char *dir, const struct mapset *m, char **cause)
 {
 	struct outdir od;
-	if (outdir_begin(&od, dir, "maps.json", cause) != 0)
+	if (outdir_begin(&od, dir, &mapset_outdir_kind, cause) != 0)
 		return -1;
 	if (write_all(outdir_path(&od), m, cause) != 0) {
 		outdir_abort(&od);
@@ -250,12 +255,7 @@ static const char *jstr(json_object *o, const char *k)
 
 static int jnum(json_object *o, const char *k, double *out)
 {
-	json_object *v;
-	if (!json_object_object_get_ex(o, k, &v) ||
-	    !(json_object_is_type(v, json_type_double) || json_object_is_type(v, json_type_int)))
-		return -1;
-	*out = json_object_get_double(v);
-	return 0;
+	return json_get_num(o, k, out) == 0 ? 0 : -1;
 }
 
 /* A map file of the directory: its size must be maps.json's. */
@@ -332,7 +332,7 @@ static int read_extras(const char *dir, json_object *o, struct mapset *m, int pn
 		free(s);
 	}
 	if (json_object_object_get_ex(o, "fit", &e))
-		m->fit = xstrdup(json_object_to_json_string_ext(e, JSON_C_TO_STRING_PLAIN));
+		m->fit = json_text(e, JSON_PLAIN);
 	if (json_object_object_get_ex(o, "history", &h) && json_object_is_type(h, json_type_array))
 		for (size_t i = 0; i < json_object_array_length(h); i++)
 			mapset_add_history(m, json_object_get_string(json_object_array_get_idx(h, i)));
@@ -350,10 +350,12 @@ struct mapset *mapset_read(const char *dir, char **cause)
 		*cause = xasprintf("%s: not a maps directory (%s: %s)", dir, path, strerror(errno));
 		goto fail;
 	}
-	if ((o = json_object_from_file(path)) == NULL || !json_object_is_type(o, json_type_object)) {
+	if ((o = json_load(path)) == NULL || !json_object_is_type(o, json_type_object)) {
 		*cause = xasprintf("%s: not a skinbake maps index (corrupt JSON)", path);
 		goto fail;
 	}
+	if (checksum_verify_dir(dir, "maps.json", cause) != 0)
+		goto fail;
 	if ((s = jstr(o, "format")) == NULL || strcmp(s, "skinbake-maps") != 0) {
 		*cause = xasprintf("%s: field format = '%s', expected 'skinbake-maps'", path, s ? s : "(missing)");
 		goto fail;

@@ -61,6 +61,9 @@ int mapset_find(const struct mapset *m, const char *key);
 /* Write DIR (absent, empty, or earlier maps, which are replaced); -1 and
  * *cause. */
 int mapset_write(const char *dir, const struct mapset *m, char **cause);
+/* A maps directory, for base/outdir.h: maps.json of format "skinbake-maps"
+ * and its images. */
+extern const struct outdir_kind mapset_outdir_kind;
 /* Check DIR can take maps (as family_check_out); -1 and *cause. */
 int mapset_check_out(const char *dir, char **cause);
 /* Read DIR; NULL and *cause naming the file, field, value and what was

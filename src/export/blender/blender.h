@@ -26,6 +26,7 @@
 #ifndef SKINBAKE_BLENDER_H
 #define SKINBAKE_BLENDER_H
 
+#include "base/outdir.h"
 #include "export/source.h"
 
 #define BLENDER_FORMAT_VERSION 1	/* manifest "format_version"; the importer checks it */
@@ -55,11 +56,6 @@ void blender_options_default(struct blender_options *o);
  * n_cos rows by n_phi * n_cos columns, row 0 at the top.  Caller frees the
  * returned block (planes at offsets 0, w*h, 2*w*h). */
 float *blender_lut(const struct brdf_source *m, int n_cos, int n_phi);
-/* What the importer's node tree reads from that atlas at cos_light, cos_view
- * in [0, 1] and dphi in [0, pi]: bilinear inside the two neighbouring
- * delta_phi tiles, then linear between them. */
-void blender_lut_sample(const float *lut, int n_cos, int n_phi, double cos_l, double cos_v, double dphi,
-    double rgb[3]);
 /* Bihemispherical (white-sky) albedo 2 * int a(mu) mu dmu per channel, with
  * a(theta) linear between the model's nodes and clamped beyond them. */
 void blender_albedo_mean(const struct brdf_source *m, double rgb[3]);
@@ -69,13 +65,21 @@ void blender_direction(double elevation, double azimuth, double v[3]);
 /* o and m within the ranges above; -1 and *cause (caller frees) otherwise. */
 int blender_check(const struct brdf_source *m, const struct blender_options *o, char **cause);
 
+/* An image set, for base/outdir.h: manifest.json of format
+ * "skinbake-blender-image-set" and the images. */
+extern const struct outdir_kind blender_outdir_kind;
+
 /* The image set in memory.  blender_prepare validates o and m (blender_check)
  * and computes every file; NULL and *cause (caller frees) on bad
- * input.  blender_write writes it into DIR (created if needed), manifest.json
- * last; -1 and *cause on an I/O failure.  blender_set_free(NULL) is a no-op. */
+ * input.  blender_write writes it into DIR through base/outdir.h (all or
+ * nothing, one swap): -1 and *cause when DIR is refused (not an image set,
+ * or being written), -2 on an I/O failure.  blender_write_files writes the
+ * files into the existing directory DIR (a staging directory), manifest.json
+ * last; -1 on an I/O failure.  blender_set_free(NULL) is a no-op. */
 struct blender_set;
 struct blender_set *blender_prepare(const struct brdf_source *m, const struct blender_options *o, char **cause);
 int blender_write(const struct blender_set *s, const char *dir, char **cause);
+int blender_write_files(const struct blender_set *s, const char *dir, char **cause);
 void blender_set_free(struct blender_set *s);
 /* Add a section KEY (JSON object text) to the manifest s will write. */
 void blender_set_add_section(struct blender_set *s, const char *key, const char *json);

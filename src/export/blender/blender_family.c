@@ -188,7 +188,7 @@ static void texel_maps(struct family *f, const struct mapset *m, const struct su
 }
 
 int blender_family_export(struct family *f, const struct mapset *m, const struct blender_options *o, int sub,
-    const char *detail_dir, const char *dir, char **cause)
+    const char *detail_dir, const char *out_dir, char **cause)
 {
 	if (sub < BLENDER_FAMILY_SUB_MIN || sub > BLENDER_FAMILY_SUB_MAX) {
 		*cause = xasprintf("%d sub-grid points per axis is out of range [%d, %d]", sub, BLENDER_FAMILY_SUB_MIN,
@@ -217,14 +217,20 @@ int blender_family_export(struct family *f, const struct mapset *m, const struct
 	float *lut = family_lut(f, &g, o->lut_cos, o->lut_phi), *alb = xmalloc(sizeof(float) * 3 * n);
 	float *rad = xmalloc(sizeof(float) * 3 * n), *pos = xmalloc(sizeof(float) * 3 * n);
 	texel_maps(f, m, &g, alb, rad, pos);
-	/* The family's files first: blender_write puts the manifest last. */
-	int rc = util_mkdirs(dir, cause) ||
-	    write_rgb(dir, "family_lut.exr", o->lut_cos * o->lut_phi, o->lut_cos * g.slices, lut,
+	/* The family's files first: blender_write_files puts the manifest last. */
+	struct outdir od;
+	int rc = outdir_begin(&od, out_dir, &blender_outdir_kind, cause) != 0 ? -1 : 0;
+	const char *dir = rc == 0 ? outdir_path(&od) : NULL;
+	rc = rc != 0 ? -1 : write_rgb(dir, "family_lut.exr", o->lut_cos * o->lut_phi, o->lut_cos * g.slices, lut,
 	    "pi * f_r atlases of the family's sub-grid, stacked (manifest family)", cause) ||
 	    write_rgb(dir, "family_coord.exr", m->w, m->h, pos, "sub-grid position per axis", cause) ||
 	    write_rgb(dir, "albedo_map.exr", m->w, m->h, alb, "bihemispherical diffuse albedo, linear Rec.709", cause) ||
 	    write_rgb(dir, "sss_radius_map.exr", m->w, m->h, rad, "mean exit radius per R, G, B [m]", cause) ||
-	    blender_write(set, dir, cause) ? -2 : 0;
+	    blender_write_files(set, dir, cause) ? -2 : 0;
+	if (rc == -2)
+		outdir_abort(&od);
+	else if (rc == 0 && outdir_commit(&od, cause) != 0)
+		rc = -2;
 	free(lut);
 	free(alb);
 	free(rad);

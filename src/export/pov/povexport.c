@@ -16,6 +16,7 @@
 #include "export/pov/povfiles.h"
 #include "export/pov/pov_maps.h"
 #include "scene/placement.h"
+#include "scene/scene_load.h"
 #include "export/pov/povscene.h"
 #include "geom/mesh.h"
 #include "export/pov/strategy.h"
@@ -501,19 +502,44 @@ static int write_all(const struct povexport_options *o, const struct scene *s, c
     struct povexport_result *r, char **cause)
 {
 	struct pov_report rep = { 0 };
-	if (util_mkdirs(o->out, cause) != 0)
-		return -2;
+	struct outdir od;
+	if (outdir_begin(&od, o->out, &povfiles_outdir_kind, cause) != 0)
+		return -1;
+	const char *stage = outdir_path(&od);
 	struct pov_options po = { .base = base, .n_theta = o->n_theta, .n_gamma = o->n_gamma, .n_mix = o->n_mix,
 		.write_scene = o->scene_path != NULL, .shapes_inc = in->shapes ? "skinbake_shapes.inc" : NULL,
 		.sss_samples = o->translucent ? o->sss_samples : 0 };
 	double t0 = util_now();
-	if (povfiles_write(s, in->ps, &po, o->out, &rep, cause) != 0 || write_extras(s, o->out, base, in, cause) != 0) {
+	if (povfiles_write(s, in->ps, &po, stage, &rep, cause) != 0 || write_extras(s, stage, base, in, cause) != 0 ||
+	    povfiles_write_index(stage, cause) != 0) {
+		povfiles_report_free(&rep);
+		outdir_abort(&od);
+		return -2;
+	}
+	if (outdir_commit(&od, cause) != 0) {
 		povfiles_report_free(&rep);
 		return -2;
 	}
 	report(o, s, &rep, util_now() - t0, r);
 	povfiles_report_free(&rep);
 	return 0;
+}
+
+/* --out may be replaced by an export, and is none of the inputs. */
+static int check_out(const struct povexport_options *o, char **cause)
+{
+	const char *in[2 * POVEXPORT_MAX_BIND + 5];
+	int n = 0;
+	for (int i = 0; i < o->n_bakes + o->n_texs; i++) {
+		const char *b = i < o->n_bakes ? o->bakes[i] : o->texs[i - o->n_bakes], *eq = strchr(b, '=');
+		in[n++] = eq ? eq + 1 : b;
+	}
+	const char *more[] = { o->scene_path, o->family, o->maps, o->data_dir };
+	for (int i = 0; i < 4; i++)
+		if (more[i])
+			in[n++] = more[i];
+	in[n] = NULL;
+	return outdir_check(o->out, &povfiles_outdir_kind, in, cause);
 }
 
 int povexport_run(const struct povexport_options *o, struct povexport_result *r, char **cause)
@@ -533,6 +559,8 @@ int povexport_run(const struct povexport_options *o, struct povexport_result *r,
 		*cause = xstrdup("--out DIR is required");
 		goto done;
 	}
+	if (check_out(o, cause) != 0)
+		goto done;
 	base = o->name ? xstrdup(o->name) : o->scene_path ? base_from_scene(o->scene_path) : xstrdup("skin");
 	if (!*base || strspn(base, "abcdefghijklmnopqrstuvwxyzABCDEFGHIJKLMNOPQRSTUVWXYZ0123456789_.-") != strlen(base)) {
 		*cause = xasprintf("--name = '%s' must be letters, digits, '_', '.' or '-'", base);

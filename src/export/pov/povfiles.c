@@ -6,11 +6,14 @@
 
 #include "export/pov/povfiles.h"
 
+#include <dirent.h>
 #include <errno.h>
+#include <json-c/json.h>
 #include <math.h>
 #include <stdlib.h>
 #include <string.h>
 
+#include "base/checksum.h"
 #include "base/util.h"
 #include "export/pov/mesh2.h"
 #include "export/pov/povinc.h"
@@ -200,6 +203,11 @@ out:
 	return rc;
 }
 
+static int cmp_names(const void *a, const void *b)
+{
+	return strcmp(json_object_get_string(*(json_object *const *)a), json_object_get_string(*(json_object *const *)b));
+}
+
 int povfiles_copy(const char *src, const char *dst, char **cause)
 {
 	FILE *in = fopen(src, "rb");
@@ -230,4 +238,28 @@ int povfiles_write_bytes(const char *dst, const unsigned char *data, size_t size
 		return -1;
 	fwrite(data, 1, size, o.fp);
 	return outfile_commit(&o, cause);
+}
+
+static const char *const povfiles_names[] = { NULL };	/* every file is listed in the manifest */
+const struct outdir_kind povfiles_outdir_kind = { "POV-Ray export directory", "manifest.json", "format", "skinbake-pov",
+	povfiles_names };
+
+int povfiles_write_index(const char *dir, char **cause)
+{
+	json_object *j = json_object_new_object(), *files = json_object_new_array();
+	json_object_object_add(j, "format", json_object_new_string("skinbake-pov"));
+	json_object_object_add(j, "skinbake_version", json_object_new_string(PACKAGE_VERSION));
+	DIR *d = opendir(dir);
+	struct dirent *e;
+	while (d && (e = readdir(d)) != NULL)
+		if (e->d_name[0] != '.' && strcmp(e->d_name, "manifest.json") != 0)
+			json_object_array_add(files, json_object_new_string(e->d_name));
+	if (d)
+		closedir(d);
+	json_object_array_sort(files, cmp_names);
+	json_object_object_add(j, "files", files);
+	int rc = checksum_write_manifest(dir, "manifest.json", json_object_to_json_string_ext(j, JSON_C_TO_STRING_PRETTY |
+	    JSON_C_TO_STRING_NOSLASHESCAPE), cause);
+	json_object_put(j);
+	return rc;
 }
