@@ -322,10 +322,11 @@ def render(export_dir, mode, out, width=None, spp=64, variant_name=None):
         scene = mi.load_dict(build(export_dir, mode, width, spp, tmp))
         t0 = time.time()
         img = mi.render(scene, spp=spp)
+        arr = np.array(img)        # forces the (lazy) render
         seconds = time.time() - t0
     finally:
         shutil.rmtree(tmp, ignore_errors=True)
-    bmp = mi.Bitmap(img)
+    bmp = mi.Bitmap(arr)
     if out.endswith(".png"):
         bmp = bmp.convert(mi.Bitmap.PixelFormat.RGB, mi.Struct.Type.UInt8, srgb_gamma=True)
     bmp.write(out)
