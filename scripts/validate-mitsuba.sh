@@ -113,7 +113,9 @@ for line in open(mw + "/times.tsv"):
 def load(path):
     a = np.array(mi.Bitmap(path), dtype=float)
     if path.endswith(".png"):
-        a = a / 65535.0 if a.max() > 1.5 else a   # 16-bit linear (File_Gamma=1.0)
+        # POV-Ray: 16-bit linear (File_Gamma=1.0); a white Lambertian shows the
+        # light's irradiance, so a pixel is pi x radiance (docs/scene-json.md)
+        a = (a / 65535.0 if a.max() > 1.5 else a) / np.pi
     return a[..., :3]
 
 cols = [("mitsuba-volumetric", "Mitsuba volumetric (reference)"), ("mitsuba-table", "Mitsuba, baked table"),
@@ -163,6 +165,8 @@ for label, name, med, p95, t in rows:
     tt = "%d s (%s)" % t if t else "not run"
     print("| %s | %s | %s | %s | %s |" % (label, name, "-" if med is None else "%.2f" % med,
                                            "-" if p95 is None else "%.2f" % p95, tt))
+print("\nThe reference is rendered per channel (R, G, B apart, grey media of that channel's wavelength) "
+      "and is still grainy at this size and sample count: part of each dE00 is its noise, not the bridge's error.")
 print("\nBlender's modes are not in the table yet: its importer builds its own camera and lights "
       "(exporters/blender/human_scene.py), not those of scene.json.")
 PYEOF
