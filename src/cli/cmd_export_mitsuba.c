@@ -8,6 +8,7 @@
 #include "cli/cli.h"
 #include "cli/opt.h"
 #include "export/mitsuba/mtsexport.h"
+#include "scene/scene_load.h"
 
 static const char *CMD = "export mitsuba";
 

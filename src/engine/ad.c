@@ -25,8 +25,9 @@ void ad_opts_default(struct ad_opts *o)
 	o->n_quad_max = 256;
 	o->error_estimate = 1;
 	/* Diamond starts up to mu_min / 8: four doublings fewer per layer than
-	 * mu_min / 128; the start's own error (second order) stays below 1e-9
-	 * relative, under the estimates test_ad checks (mu_min / 2: 1e-8). */
+	 * mu_min / 128; the start's own error (second order in its thickness)
+	 * stays below 1e-8 relative (test_ad test_start_thickness), under the
+	 * estimates test_ad checks at tight tolerances (mu_min / 2 was not). */
 	o->dtau_frac = 1.0 / 8.0;
 	o->dm_terms = 2.0;
 	o->max_orders = 1000;
