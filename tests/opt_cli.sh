@@ -195,7 +195,7 @@ bad "preset cat, two names" "unexpected argument 'b'" preset cat paper b
 bad "preset keys with an argument" "unexpected argument 'x'" preset keys x
 bad "presets with an argument" "unexpected argument 'x'" presets x
 bad "preset, unknown action" "unknown action 'frob' (show, cat, keys)" preset frob
-bad "export, unknown exporter" "unknown action 'pbrt' (pov, blender)" export pbrt
+bad "export, unknown exporter" "unknown action 'pbrt' (pov, blender, mitsuba)" export pbrt
 bad "maps, unknown action" "unknown action 'paint' (new, fit, edit, render-albedo)" maps paint
 bad "maps edit --scale hex" "--scale dermis.blood = '0x2' is not a decimal number in [0, 100]" maps edit --maps "$tmpd/maps" --scale dermis.blood=0x2 --out "$tmpd/new"
 bad "maps edit --add without =" "--add = 'dermis.blood' is not KEY=VALUE" maps edit --maps "$tmpd/maps" --add dermis.blood --out "$tmpd/new"

@@ -37,6 +37,7 @@
 #include "export/pov/littable.h"
 #include "scene/placement.h"
 #include "scene/scene.h"
+#include "scene/scene_load.h"
 #include "base/util.h"
 
 static float *load(const char *path, int *w, int *h)

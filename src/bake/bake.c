@@ -10,7 +10,6 @@
 
 #include "base/check.h"
 #include "base/util.h"
-#include "bake/bakefile.h"
 #include "bake/checkpoint.h"
 #include "engine/ad_solver.h"
 #include "engine/mc.h"
@@ -255,6 +254,34 @@ const char *bake_method_choices(void)
 	return buf;
 }
 
+#define HASH(h, x) ((h) = checkpoint_hash((h), &(x), sizeof(x)))
+
+uint64_t bake_spec_identity(const struct bake_spec *s)
+{
+	uint64_t h = checkpoint_seed();
+	HASH(h, s->n_wl);
+	for (int w = 0; w < s->n_wl; w++) {
+		const struct slab *sl = &s->slab[w];
+		HASH(h, s->wl_nm[w]);
+		HASH(h, sl->n_layers);
+		HASH(h, sl->n_above);
+		HASH(h, sl->n_below);
+		for (int i = 0; i < sl->n_layers + 2; i++) {
+			const struct layer *l = &sl->layer[i];
+			HASH(h, l->d), HASH(h, l->n), HASH(h, l->mu_a), HASH(h, l->mu_s), HASH(h, l->g);
+		}
+	}
+	HASH(h, s->n_ti);
+	for (int k = 0; k < s->n_ti; k++)
+		HASH(h, s->theta_i[k]);
+	HASH(h, s->n_to), HASH(h, s->n_phi), HASH(h, s->n_r), HASH(h, s->dr);
+	HASH(h, s->opts.fresnel), HASH(h, s->opts.roulette_w), HASH(h, s->opts.roulette_chance), HASH(h, s->opts.max_steps);
+	HASH(h, s->method), HASH(h, s->ad_tol), HASH(h, s->ad_quad), HASH(h, s->radial_error), HASH(h, s->radial_photons);
+	HASH(h, s->seed), HASH(h, s->batch_photons), HASH(h, s->min_batches), HASH(h, s->target_error);
+	HASH(h, s->max_photons), HASH(h, s->nee);
+	return h;
+}
+
 static int bake_solve(const struct bake_spec *s, const struct solver_run *run, struct bake_result *r, char **cause);
 
 /* With a checkpoint (bake.h): open it, run, say what it restored and
@@ -273,7 +300,7 @@ int bake_run(const struct bake_spec *s, struct bake_result *r, char **cause)
 	}
 	struct checkpoint *ck = NULL;
 	if (s->checkpoint_out) {
-		ck = checkpoint_open(s->checkpoint_out, s, s->resume, run.n_ranks == 1, s->checkpoint_s, cause);
+		ck = checkpoint_open(s->checkpoint_out, bake_spec_identity(s), s->resume, run.n_ranks == 1, s->checkpoint_s, cause);
 		if (ck == NULL)
 			return -1;
 		run.ckpt = checkpoint_hooks(ck);
@@ -386,33 +413,4 @@ void bake_spec_axes(struct bake_spec *s, const double *wl_nm, int n_wl, const do
 	s->n_ti = n_theta > 0 ? n_theta : nodes;
 	for (int k = 0; k < s->n_ti; k++)
 		s->theta_i[k] = n_theta > 0 ? theta_deg[k] * M_PI / 180.0 : 0.5 * M_PI * k / s->n_ti;
-}
-
-int bake_preset_to_dir(struct bake_spec *s, const struct skin_params *p, const char *label, const char *out,
-    const char *command, struct bake_result *r, char **cause)
-{
-	s->checkpoint_out = out;
-	memset(r, 0, sizeof *r);
-	/* Rank 0 takes the output (and its lock) before the work: a target that
-	 * is not a bake, or one another bake is writing, fails now. */
-	struct outdir od;
-	if (s->rank == 0 && outdir_begin(&od, out, &bake_outdir_kind, cause) != 0)
-		return -1;
-	if (bake_run(s, r, cause) != 0) {
-		if (s->rank == 0)
-			outdir_abort(&od);
-		return -1;
-	}
-	if (s->rank != 0)
-		return 0;	/* every rank holds the whole result; rank 0 writes it */
-	double *m = xmalloc(sizeof(double) * 3 * (size_t)s->n_wl);
-	struct bake_meta meta = { .preset = label, .ior = preset_surface_ior(p), .roughness = preset_surface_roughness(p),
-		.rgb_from_wl = m, .rgb_note = bake_rgb_weights(s, m), .command = command };
-	int rc = bake_write_files(outdir_path(&od), s, r, &meta, cause) != 0 ? -2 : 0;
-	if (rc != 0)
-		outdir_abort(&od);
-	else if (outdir_commit(&od, cause) != 0 || checkpoint_remove(out, cause) != 0)
-		rc = -2;
-	free(m);
-	return rc;
 }

@@ -125,6 +125,11 @@ struct bake_result {
  * another bake, damaged, resume under MPI).  Caller frees r with bake_result_free. */
 int bake_run(const struct bake_spec *s, struct bake_result *r, char **cause);
 void bake_result_free(struct bake_result *r);
+/* The identity of a bake spec for its checkpoint (bake/checkpoint.h): a
+ * 64-bit FNV-1a hash of everything that changes the numbers (wavelengths,
+ * layer stacks, angles, grid, methods and their settings, seed; not the
+ * thread count or the output). */
+uint64_t bake_spec_identity(const struct bake_spec *s);
 
 /* Inputs from a skin preset.  bake_spec_layers fills s->slab[] at the
  * wavelengths s->wl_nm[0 .. n_wl) from p (checked and prepared); -1 and
@@ -144,11 +149,4 @@ void bake_spec_axes(struct bake_spec *s, const double *wl_nm, int n_wl, const do
  * stacks; for Monte Carlo, check that the photon budget covers the first
  * round.  The preset (caller frees with preset_free), or NULL and *cause. */
 struct skin_params *bake_spec_preset(struct bake_spec *s, const char *name, const char *pfile, char **cause);
-/* The single bake of preset p (label names it in the manifest) into the
- * directory out: bake_run with its checkpoint beside out, then on rank 0
- * the directory (bakefile.h) and the checkpoint removed.  0; -1 and *cause
- * when the bake is refused (r zeroed); -2 and *cause when out cannot be
- * written (r holds the result).  Caller frees r with bake_result_free. */
-int bake_preset_to_dir(struct bake_spec *s, const struct skin_params *p, const char *label, const char *out,
-    const char *command, struct bake_result *r, char **cause);
 #endif

@@ -13,12 +13,16 @@
 #include <unistd.h>
 
 #include "bake/bake.h"
+#include "bake/checkpoint.h"
 #include "bake/manifest.h"
+#include "bake/manifest_check.h"
 #include "base/check.h"
+#include "base/checksum.h"
 #include "base/srgb.h"
 #include "base/util.h"
 #include "io/exrio.h"
 #include "io/pngio.h"
+#include "skin/preset.h"
 
 /* ---- writer ---- */
 
@@ -161,11 +165,9 @@ static int write_albedo(const struct stage *st, char **cause)
 
 static int write_manifest(const struct stage *st, char **cause)
 {
-	char *path = xasprintf("%s/manifest.json", st->dir);
 	char *text = bake_manifest_text(st->s, st->r, st->m);
-	int rc = outfile_write_text(path, text, cause);
+	int rc = checksum_write_manifest(st->dir, "manifest.json", text, cause);
 	free(text);
-	free(path);
 	return rc;
 }
 
@@ -194,28 +196,6 @@ int bake_write(const char *dir, const struct bake_spec *s, const struct bake_res
 }
 
 /* ---- reader ---- */
-
-void bake_free(struct bake *b)
-{
-	if (b == NULL)
-		return;
-	free(b->dir);
-	free(b->preset);
-	free(b->wl_nm);
-	free(b->theta_i);
-	free(b->theta_o);
-	free(b->phi);
-	free(b->fr);
-	free(b->fr_err);
-	free(b->fr_rgb);
-	free(b->albedo);
-	free(b->rd_r_rgb);
-	free(b->albedo_rgb);
-	free(b->rgb_from_wl);
-	free(b->stack);
-	free(b->sss_radius_cm);
-	free(b);
-}
 
 /* brdf.exr: value and error planes per wavelength, sized as the manifest says. */
 static int read_brdf(const char *dir, struct bake *b, char **cause)
@@ -281,7 +261,8 @@ struct bake *bake_load(const char *dir, char **cause)
 {
 	struct bake *b = xcalloc(1, sizeof *b);
 	b->dir = xstrdup(dir);
-	if (bake_manifest_read(dir, b, cause) || read_brdf(dir, b, cause) || read_albedo(dir, b, cause)) {
+	if (manifest_check_bake(dir, cause) || bake_manifest_read(dir, b, cause) || read_brdf(dir, b, cause) ||
+	    read_albedo(dir, b, cause) || manifest_check_values(b, cause)) {
 		bake_free(b);
 		return NULL;
 	}
@@ -367,4 +348,33 @@ void bake_eval_rgb(const struct bake *b, double theta_i, double theta_o, double 
 		for (int w = 0; w < b->n_wl; w++)
 			rgb[c] += b->rgb_from_wl[c * b->n_wl + w] * sp[w];
 	}
+}
+
+int bake_preset_to_dir(struct bake_spec *s, const struct skin_params *p, const char *label, const char *out,
+    const char *command, struct bake_result *r, char **cause)
+{
+	s->checkpoint_out = out;
+	memset(r, 0, sizeof *r);
+	/* Rank 0 takes the output (and its lock) before the work: a target that
+	 * is not a bake, or one another bake is writing, fails now. */
+	struct outdir od;
+	if (s->rank == 0 && outdir_begin(&od, out, &bake_outdir_kind, cause) != 0)
+		return -1;
+	if (bake_run(s, r, cause) != 0) {
+		if (s->rank == 0)
+			outdir_abort(&od);
+		return -1;
+	}
+	if (s->rank != 0)
+		return 0;	/* every rank holds the whole result; rank 0 writes it */
+	double *m = xmalloc(sizeof(double) * 3 * (size_t)s->n_wl);
+	struct bake_meta meta = { .preset = label, .ior = preset_surface_ior(p), .roughness = preset_surface_roughness(p),
+		.rgb_from_wl = m, .rgb_note = bake_rgb_weights(s, m), .command = command };
+	int rc = bake_write_files(outdir_path(&od), s, r, &meta, cause) != 0 ? -2 : 0;
+	if (rc != 0)
+		outdir_abort(&od);
+	else if (outdir_commit(&od, cause) != 0 || checkpoint_remove(out, cause) != 0)
+		rc = -2;
+	free(m);
+	return rc;
 }

@@ -1,4 +1,5 @@
-/* manifest: write and read manifest.json of a bake directory (json-c). */
+/* manifest: write and read manifest.json of a bake directory (json-c).
+ * Over 600 lines because it writes and reads every section of the one format. */
 #include "config.h"
 #include "bake/manifest.h"
 
@@ -15,11 +16,7 @@
 #include "io/json.h"
 
 /* ---- writer ---- */
-
-static json_object *jarr(const double *v, int n)
-{
-	return json_num_array(v, n);
-}
+#define jarr json_num_array	/* a number array */
 
 static json_object *jarr_deg(const double *v, int n)
 {
@@ -121,8 +118,10 @@ static json_object *layers_info(const struct bake_spec *s)
 			add(lo, "mua_per_cm", json_num(l->mu_a));
 			add(lo, "mus_per_cm", json_num(l->mu_s));
 			add(lo, "g", json_num(l->g));
-			if (l->rough > 0.0)
+			if (l->rough > 0.0) {
 				add(lo, "rough_top", json_num(l->rough));
+				add(lo, "rough_multiple", json_num(s->slab[w].rough_ms));
+			}
 			json_object_array_add(ls, lo);
 		}
 		add(lw, "layers", ls);
@@ -514,6 +513,8 @@ static int read_stack(json_object *lw, struct slab *s, int w, const char *mpath,
 		json_object *lo = json_object_array_get_idx(ls, i), *d;
 		struct layer l = { INFINITY, jnum(lo, "n", 1.0), jnum(lo, "mua_per_cm", 0.0), jnum(lo, "mus_per_cm", 0.0),
 			jnum(lo, "g", 0.0), jnum(lo, "rough_top", 0.0) };
+		if (jnum(lo, "rough_multiple", 0.0) == 1.0)
+			s->rough_ms = 1;
 		if (json_object_object_get_ex(lo, "d_cm", &d) && !json_object_is_type(d, json_type_string))
 			l.d = json_object_get_double(d);
 		char *why = NULL;

@@ -7,6 +7,7 @@
 #include <string.h>
 
 #include "bake/bake.h"
+#include "bake/bakefile.h"
 #include "bake/summary.h"
 #include "cli/cli.h"
 #include "cli/cmd_bake_family.h"

@@ -6,6 +6,13 @@
  * internal reflection; clear layers of any thickness crossed incoherently;
  * ambient media above and below; collimated incidence at any angles.
  *
+ * The parts carry the names of the adding-doubling literature (van de
+ * Hulst 1980, Multiple Light Scattering; Prahl 1995, The Adding-Doubling
+ * Method): the phase redistribution function and matrix (ad_phase.h), the
+ * reflection and transmission matrices R and T of a layer and the doubling
+ * that makes them (ad_layer.h), the adding of layers and boundaries
+ * (ad_stack.h), one azimuthal Fourier order at a time (ad_order.h).
+ *
  * One call solves all incidence angles from one set of reflection
  * matrices (each a collimated beam riding along with the quadrature).  It
  * returns per angle Rsp, Rd, Tt and the absorption per layer (as
