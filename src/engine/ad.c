@@ -26,8 +26,10 @@ void ad_opts_default(struct ad_opts *o)
 	o->error_estimate = 1;
 	/* Diamond starts up to mu_min / 8: four doublings fewer per layer than
 	 * mu_min / 128; the start's own error (second order in its thickness)
-	 * stays below 1e-8 relative (test_ad test_start_thickness), under the
-	 * estimates test_ad checks at tight tolerances (mu_min / 2 was not). */
+	 * stays below 1e-8 relative in Rd and the table bins (test_ad
+	 * test_start_thickness; 1.2e-8 in the paper preset's Tt of 1e-6),
+	 * under the estimates test_ad checks at tight tolerances (mu_min / 2
+	 * was not). */
 	o->dtau_frac = 1.0 / 8.0;
 	o->dm_terms = 2.0;
 	o->max_orders = 1000;
