@@ -96,6 +96,41 @@ static int cmp_str(const void *a, const void *b)
 	return strcmp(*(char *const *)a, *(char *const *)b);
 }
 
+struct name_list {
+	char **names;
+	size_t n, cap;
+};
+
+static void name_add(struct name_list *l, char *name)
+{
+	if (l->n + 2 > l->cap)
+		l->names = xreallocarray(l->names, l->cap = 2 * l->cap + 16, sizeof *l->names);
+	l->names[l->n++] = name;
+}
+
+/* The regular files of DIR/SUB but its manifest.json, as "SUB/NAME": the
+ * data of a member output (a family's mNNNN).  Not the member's manifest
+ * itself: it holds run times, and a checksum over it would make the outer
+ * manifest differ between two identical runs (resume and kill tests). */
+static void add_member_files(struct name_list *l, const char *dir, const char *sub)
+{
+	char *p = xasprintf("%s/%s", dir, sub);
+	DIR *d = opendir(p);
+	struct dirent *e;
+	while (d != NULL && (e = readdir(d)) != NULL) {
+		if (e->d_name[0] == '.' || strcmp(e->d_name, "manifest.json") == 0)
+			continue;
+		char *f = xasprintf("%s/%s", p, e->d_name);
+		struct stat st;
+		if (lstat(f, &st) == 0 && S_ISREG(st.st_mode))
+			name_add(l, xasprintf("%s/%s", sub, e->d_name));
+		free(f);
+	}
+	if (d != NULL)
+		closedir(d);
+	free(p);
+}
+
 char *checksum_member_dir(const char *dir, const char *manifest, char **cause)
 {
 	DIR *d = opendir(dir);
@@ -103,39 +138,31 @@ char *checksum_member_dir(const char *dir, const char *manifest, char **cause)
 		*cause = xasprintf("%s: %s", dir, strerror(errno));
 		return NULL;
 	}
-	char **names = NULL;
-	size_t n = 0, cap = 0;
+	struct name_list l = { NULL, 0, 0 };
 	struct dirent *e;
 	while ((e = readdir(d)) != NULL) {
 		if (e->d_name[0] == '.' || strcmp(e->d_name, manifest) == 0)
 			continue;
-		char *p = xasprintf("%s/%s", dir, e->d_name), *name = NULL;
+		char *p = xasprintf("%s/%s", dir, e->d_name);
+		char *m = xasprintf("%s/manifest.json", p);
 		struct stat st;
 		if (lstat(p, &st) == 0 && S_ISREG(st.st_mode))
-			name = xstrdup(e->d_name);
-		else if (S_ISDIR(st.st_mode)) {
-			char *m = xasprintf("%s/manifest.json", p);
-			if (access(m, F_OK) == 0)
-				name = xasprintf("%s/manifest.json", e->d_name);
-			free(m);
-		}
+			name_add(&l, xstrdup(e->d_name));
+		else if (S_ISDIR(st.st_mode) && access(m, F_OK) == 0)
+			add_member_files(&l, dir, e->d_name);
+		free(m);
 		free(p);
-		if (name == NULL)
-			continue;
-		if (n + 2 > cap)
-			names = xreallocarray(names, cap = 2 * cap + 16, sizeof *names);
-		names[n++] = name;
 	}
 	closedir(d);
-	if (n > 0)
-		qsort(names, n, sizeof *names, cmp_str);
-	names = xreallocarray(names, n + 1, sizeof *names);
-	names[n] = NULL;
-	char *m = checksum_member(dir, (const char *const *)names, cause);
-	for (size_t i = 0; i < n; i++)
-		free(names[i]);
-	free(names);
-	return m;
+	if (l.n > 0)
+		qsort(l.names, l.n, sizeof *l.names, cmp_str);
+	l.names = xreallocarray(l.names, l.n + 1, sizeof *l.names);
+	l.names[l.n] = NULL;
+	char *sums = checksum_member(dir, (const char *const *)l.names, cause);
+	for (size_t i = 0; i < l.n; i++)
+		free(l.names[i]);
+	free(l.names);
+	return sums;
 }
 
 char *checksum_manifest_text(const char *dir, const char *manifest, const char *text, char **cause)

@@ -16,8 +16,9 @@ int checksum_file(const char *path, char out[CHECKSUM_TEXT], char **cause);
  * *cause when one cannot be read.  Caller frees. */
 char *checksum_member(const char *dir, const char *const *names, char **cause);
 /* checksum_member for every regular file of DIR but MANIFEST and names
- * starting with '.', and for the manifest.json of each subdirectory (a
- * family's members, whose own manifests list their files), in name order. */
+ * starting with '.', and for the data files of each subdirectory that holds
+ * a manifest.json (a family's members: "m0000/brdf.exr"; not the member
+ * manifests, which hold run times), in name order. */
 char *checksum_member_dir(const char *dir, const char *manifest, char **cause);
 /* MANIFEST's text with the checksums of DIR's files (checksum_member_dir)
  * added; NULL and *cause.  Caller frees. */
