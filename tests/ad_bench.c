@@ -8,6 +8,11 @@
  * and tolerance 1e-6 and prints the actual table RMS error of the 1e-3
  * solve against that (the estimate should be above it).
  *   usage: ad_bench [--check] [PRESET ...]   (default: paper fair-oily)
+ * --slab A,TAU,G,N,Q,REPS times REPS solves of one slab (albedo A, optical
+ * thickness TAU, anisotropy G, index N in air, normal incidence, the m = 0
+ * order only, Q nodes per unit cosine, with and without the error estimate)
+ * and prints R (specular included) and T (unscattered included), as Prahl's
+ * `ad` reports UR1 and UT1 (scripts/bench-iad.sh compares the two).
  * Built by `make check` but not run by it: timings are not tests. */
 #include "config.h"
 
@@ -15,6 +20,7 @@
 #include <stdio.h>
 #include <stdlib.h>
 #include <string.h>
+#include <time.h>
 #ifdef _OPENMP
 #include <omp.h>
 #endif
@@ -37,6 +43,10 @@ static int solve(const struct slab *s, int threads, double tol, int nq, struct a
 	o.tol = tol;
 	o.n_quad = nq;
 	o.threads = threads;
+	if (nq >= 64)
+		o.dtau_frac = 1.0 / 128.0;	/* the reference: the thinnest start, whatever the default */
+	else if (getenv("AD_DTAU_FRAC"))
+		o.dtau_frac = atof(getenv("AD_DTAU_FRAC"));
 	if (ad_solve(s, OPTICS_FRESNEL_EXACT, th, NTI, &o, r, &cause)) {
 		fprintf(stderr, "ad_bench: %s\n", cause);
 		free(cause);
@@ -132,8 +142,65 @@ static int bench(const char *name, int check)
 	return fail ? -1 : 0;
 }
 
+static double cpu_seconds(void)
+{
+	struct timespec t;
+	clock_gettime(CLOCK_PROCESS_CPUTIME_ID, &t);
+	return (double)t.tv_sec + 1e-9 * (double)t.tv_nsec;
+}
+
+/* One slab REPS times (see the top); prints R, T and CPU ms per solve. */
+static int bench_slab(const char *spec)
+{
+	double a, tau, g, n;
+	int q, reps;
+	if (sscanf(spec, "%lf,%lf,%lf,%lf,%d,%d", &a, &tau, &g, &n, &q, &reps) != 6 || reps < 1) {
+		fprintf(stderr, "ad_bench: --slab wants A,TAU,G,N,Q,REPS\n");
+		return -1;
+	}
+	struct slab s;
+	char *cause = NULL;
+	struct layer l = { .d = 1.0, .n = n, .mu_a = tau * (1.0 - a), .mu_s = tau * a, .g = g };
+	slab_init(&s, 1.0, 1.0);
+	if (slab_add(&s, &l, &cause) || slab_check(&s, &cause)) {
+		fprintf(stderr, "ad_bench: %s\n", cause);
+		return -1;
+	}
+	slab_prepare(&s);
+	for (int est = 1; est >= 0; est--) {
+		struct ad_opts o;
+		struct ad_result r;
+		double th = 0.0;
+		ad_opts_default(&o);
+		o.n_quad = q;
+		o.max_orders = 1;
+		o.threads = 1;
+		o.error_estimate = est;
+		o.n_to = o.n_phi = 1;
+		if (getenv("AD_DTAU_FRAC"))
+			o.dtau_frac = atof(getenv("AD_DTAU_FRAC"));
+		double c0 = cpu_seconds();
+		for (int k = 0; k < reps; k++) {
+			if (ad_solve(&s, OPTICS_FRESNEL_EXACT, &th, 1, &o, &r, &cause)) {
+				fprintf(stderr, "ad_bench: %s\n", cause);
+				return -1;
+			}
+			if (k + 1 < reps)
+				ad_result_free(&r);
+		}
+		double ms = 1e3 * (cpu_seconds() - c0) / reps;
+		printf("q %d estimate %d R %.8f T %.8f Rerr %.2e Terr %.2e nodes %d doublings %ld ms_per_solve %.4f\n",
+		    q, est, r.beam[0].rsp + r.beam[0].rd.v, r.beam[0].tt.v, r.beam[0].rd.err, r.beam[0].tt.err, r.n_nodes,
+		    r.doublings, ms);
+		ad_result_free(&r);
+	}
+	return 0;
+}
+
 int main(int argc, char **argv)
 {
+	if (argc == 3 && strcmp(argv[1], "--slab") == 0)
+		return bench_slab(argv[2]) ? 1 : 0;
 	int check = 0, n = 0;
 	const char *names[64];
 	for (int i = 1; i < argc; i++) {

@@ -52,8 +52,8 @@ ch = lambda t, d: struct.pack('>I', len(d)) + t + d + struct.pack('>I', zlib.crc
 open(sys.argv[1], 'wb').write(b'\x89PNG\r\n\x1a\n' + ch(b'IHDR', struct.pack('>IIBBBBB', w, h, 8, 0, 0, 0, 0))
     + ch(b'IDAT', zlib.compress(raw)) + ch(b'IEND', b''))
 PY
-"$B" maps edit --maps "$tmpd/u0" --set dermis.blood=0.1 --mask "$tmpd/right.png" --out "$tmpd/painted" --quiet 2>/dev/null
-if render painted "$tmpd/painted"; then
+"$B" maps edit --maps "$tmpd/u0" --set dermis.blood=0.1 --mask "$tmpd/right.png" --out "$tmpd/painted-maps" --quiet 2>/dev/null
+if render painted "$tmpd/painted-maps"; then
 	check "painted blood: right half redder, each half its member's pixels" python3 - "$tmpd" <<'PY'
 import struct, sys, zlib
 def read(path):

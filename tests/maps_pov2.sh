@@ -57,12 +57,12 @@ png(sys.argv[1] + '/right.png', lambda x, y: x >= 8)
 png(sys.argv[1] + '/bottom.png', lambda x, y: y >= 8)
 PY
 "$B" maps edit --maps "$tmpd/u0" --set epidermis.melanin=0.1 --mask "$tmpd/right.png" --out "$tmpd/q1" --quiet 2>/dev/null
-"$B" maps edit --maps "$tmpd/q1" --set dermis.blood=0.1 --mask "$tmpd/bottom.png" --out "$tmpd/quad" --quiet 2>/dev/null
+"$B" maps edit --maps "$tmpd/q1" --set dermis.blood=0.1 --mask "$tmpd/bottom.png" --out "$tmpd/quad-maps" --quiet 2>/dev/null
 # Between the nodes: t = 0.3 on the log melanin axis, 0.6 on the blood axis.
 mel=$(python3 -c 'print(repr(0.01 * 10 ** 0.3))') bl=$(python3 -c 'print(repr(0.005 + 0.6 * 0.095))')
 "$B" maps new --family "$fam" --size 16x16 --set epidermis.melanin="$mel" --set dermis.blood="$bl" \
-	--out "$tmpd/mid" --quiet
-if render quad "$tmpd/quad" && render mid "$tmpd/mid"; then
+	--out "$tmpd/mid-maps" --quiet
+if render quad "$tmpd/quad-maps" && render mid "$tmpd/mid-maps"; then
 	check "each quadrant its member's pixels; between the nodes the bilinear blend" python3 - "$tmpd" <<'PY'
 import struct, sys, zlib
 def read(path):

@@ -35,8 +35,8 @@
 #include "export/source.h"
 #include "io/pngio.h"
 #include "export/pov/littable.h"
-#include "export/pov/placement.h"
-#include "export/pov/scene.h"
+#include "scene/placement.h"
+#include "scene/scene.h"
 #include "base/util.h"
 
 static float *load(const char *path, int *w, int *h)

@@ -20,8 +20,8 @@
 #include "export/pov/povfiles.h"
 #include "export/pov/separable.h"
 #include "export/pov/strategy.h"
-#include "export/pov/placement.h"
-#include "export/pov/scene.h"
+#include "scene/placement.h"
+#include "scene/scene.h"
 #include "base/util.h"
 
 /* Lambert with albedo (0.5, 0.4, 0.3) plus a term in delta_phi, so a wrong

@@ -8,12 +8,14 @@
 #include <stdlib.h>
 #include <string.h>
 
+#include "base/budget.h"
 #include "base/check.h"
 #include "base/util.h"
 #include "bake/bakefile.h"
 #include "bake/checkpoint.h"
 #include "engine/ad_solver.h"
 #include "engine/mc.h"
+#include "engine/solvers.h"
 #include "skin/colour.h"
 #include "skin/preset.h"
 
@@ -47,9 +49,11 @@ static int not_solved(const struct brdf_entry *e)
 	return e->method == NULL;
 }
 
+/* Filled by a method that gives no Rd(r) (solver_ops.provides). */
 static int no_radial(const struct brdf_entry *e)
 {
-	return e->method != NULL && strcmp(e->method, "mc") != 0;
+	const struct solver_ops *ops = solvers_find(e->method);
+	return ops != NULL && !(ops->provides & SOLVER_RADIAL);
 }
 
 /* Solve p restricted to the n wavelengths w[] (all angles) with ops into t. */
@@ -193,6 +197,65 @@ static int bake_ad(const struct bake_spec *s, const struct solver_problem *p, co
 	return 0;
 }
 
+/* Monte Carlo alone. */
+static int bake_mc(const struct bake_spec *s, const struct solver_problem *p, const struct solver_run *run,
+    struct bake_result *r, char **cause)
+{
+	struct mc_settings mc;
+	mc_from_spec(s, &mc);
+	if (solver_solve(&mc_solver, &mc, p, run, &r->table, cause) != 0)
+		return -1;
+	r->solver = mc_solver.name;
+	return 0;
+}
+
+/* The table of bake.h: one row per method. */
+static const struct bake_method_row {
+	struct bake_method_info info;
+	int (*solve)(const struct bake_spec *s, const struct solver_problem *p, const struct solver_run *run,
+	    struct bake_result *r, char **cause);
+} bake_methods[] = {
+	{ { "auto", BAKE_SOLVER_AUTO, "ad, and mc for the wavelengths where ad cannot meet its tolerance" }, bake_ad },
+	{ { "ad", BAKE_SOLVER_AD, "adding-doubling (engine/ad_solver.h)" }, bake_ad },
+	{ { "mc", BAKE_SOLVER_MC, "Monte Carlo (engine/mc.h)" }, bake_mc },
+};
+#define N_METHODS ((int)(sizeof bake_methods / sizeof bake_methods[0]))
+
+const struct bake_method_info *bake_method_at(int i)
+{
+	if (i < 0 || i >= N_METHODS)
+		return NULL;
+	return &bake_methods[i].info;
+}
+
+const struct bake_method_info *bake_method_of(int id)
+{
+	for (int i = 0; i < N_METHODS; i++)
+		if ((int)bake_methods[i].info.id == id)
+			return &bake_methods[i].info;
+	CHECK(!"a bake method of the table");
+	return NULL;
+}
+
+const struct bake_method_info *bake_method_named(const char *name)
+{
+	for (int i = 0; i < N_METHODS; i++)
+		if (strcmp(bake_methods[i].info.name, name) == 0)
+			return &bake_methods[i].info;
+	return NULL;
+}
+
+const char *bake_method_choices(void)
+{
+	static char buf[128];
+	if (buf[0] == '\0')
+		for (int i = 0; i < N_METHODS; i++) {
+			size_t n = strlen(buf);
+			snprintf(buf + n, sizeof buf - n, "%s%s", i ? "|" : "", bake_methods[i].info.name);
+		}
+	return buf;
+}
+
 static int bake_solve(const struct bake_spec *s, const struct solver_run *run, struct bake_result *r, char **cause);
 
 /* With a checkpoint (bake.h): open it, run, say what it restored and
@@ -238,13 +301,8 @@ static int bake_solve(const struct bake_spec *s, const struct solver_run *run0, 
 		.fresnel = s->opts.fresnel, .target_error = s->target_error,
 	};
 	struct solver_run run = *run0;
-	if (s->method == BAKE_SOLVER_MC) {
-		struct mc_settings mc;
-		mc_from_spec(s, &mc);
-		if (solver_solve(&mc_solver, &mc, &p, &run, &r->table, cause) != 0)
-			return -1;
-		r->solver = mc_solver.name;
-	} else if (bake_ad(s, &p, &run, r, cause) != 0) {
+	const struct bake_method_row *m = (const struct bake_method_row *)bake_method_of(s->method);
+	if (m->solve(s, &p, &run, r, cause) != 0) {
 		bake_result_free(r);
 		return -1;
 	}
@@ -331,11 +389,26 @@ void bake_spec_axes(struct bake_spec *s, const double *wl_nm, int n_wl, const do
 		s->theta_i[k] = n_theta > 0 ? theta_deg[k] * M_PI / 180.0 : 0.5 * M_PI * k / s->n_ti;
 }
 
+int bake_budget(const struct bake_spec *s, int n_bakes, const char *out, char **cause)
+{
+	double cells = (double)s->n_wl * s->n_ti * s->n_to * s->n_phi;
+	char *what = n_bakes > 1 ? xasprintf("a family of %d members of %d wavelengths x %d angles x %dx%d", n_bakes,
+	    s->n_wl, s->n_ti, s->n_to, s->n_phi) : xasprintf("a bake of %d wavelengths x %d angles x %dx%d", s->n_wl, s->n_ti,
+	    s->n_to, s->n_phi);
+	int rc = budget_check(what, BAKE_MEM_PER_CELL * cells * (n_bakes > 1 ? 2 : 1) + 64e6,
+	    BAKE_DISK_PER_CELL * cells * n_bakes, out, "lower --resolution, --theta-nodes or the number of wavelengths"
+	    " (or of members)", cause);
+	free(what);
+	return rc;
+}
+
 int bake_preset_to_dir(struct bake_spec *s, const struct skin_params *p, const char *label, const char *out,
     const char *command, struct bake_result *r, char **cause)
 {
 	s->checkpoint_out = out;
 	memset(r, 0, sizeof *r);
+	if (bake_budget(s, 1, out, cause) != 0)
+		return -1;
 	/* Rank 0 takes the output (and its lock) before the work: a target that
 	 * is not a bake, or one another bake is writing, fails now. */
 	struct outdir od;
@@ -343,7 +416,7 @@ int bake_preset_to_dir(struct bake_spec *s, const struct skin_params *p, const c
 		return -1;
 	if (bake_run(s, r, cause) != 0) {
 		if (s->rank == 0)
-			outdir_abort(&od);
+			outdir_fail(&od, cause);
 		return -1;
 	}
 	if (s->rank != 0)
@@ -353,7 +426,7 @@ int bake_preset_to_dir(struct bake_spec *s, const struct skin_params *p, const c
 		.rgb_from_wl = m, .rgb_note = bake_rgb_weights(s, m), .command = command };
 	int rc = bake_write_files(outdir_path(&od), s, r, &meta, cause) != 0 ? -2 : 0;
 	if (rc != 0)
-		outdir_abort(&od);
+		outdir_fail(&od, cause);
 	else if (outdir_commit(&od, cause) != 0 || checkpoint_remove(out, cause) != 0)
 		rc = -2;
 	free(m);

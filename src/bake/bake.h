@@ -42,6 +42,26 @@
 /* The method of a bake (0 = Monte Carlo, as before there was a choice). */
 enum bake_method { BAKE_SOLVER_MC = 0, BAKE_SOLVER_AD, BAKE_SOLVER_AUTO };
 
+/* The bake methods, in one table (bake_methods[] in bake.c): each row is a
+ * name (for --solver, the manifest's solver.requested and family.json's
+ * bake.requested), its enum value, a phrase for --help, and the function
+ * that solves a spec with it (in bake.c, using the engine's methods of
+ * engine/solvers.h).  Rows in the order --solver lists them, the default
+ * first. */
+struct bake_method_info {
+	const char *name;
+	enum bake_method id;
+	const char *help;
+};
+/* Row i, or NULL past the last. */
+const struct bake_method_info *bake_method_at(int i);
+/* The row of method ID (CHECKed). */
+const struct bake_method_info *bake_method_of(int id);
+/* The row named NAME, or NULL. */
+const struct bake_method_info *bake_method_named(const char *name);
+/* The names joined by '|', as OPT_ENUM choices ("auto|ad|mc"). */
+const char *bake_method_choices(void);
+
 struct bake_spec {
 	int n_wl;				/* wavelengths, 1..BAKE_MAX_WL */
 	double wl_nm[BAKE_MAX_WL];		/* [nm] */
@@ -124,6 +144,16 @@ void bake_spec_axes(struct bake_spec *s, const double *wl_nm, int n_wl, const do
  * stacks; for Monte Carlo, check that the photon budget covers the first
  * round.  The preset (caller frees with preset_free), or NULL and *cause. */
 struct skin_params *bake_spec_preset(struct bake_spec *s, const char *name, const char *pfile, char **cause);
+/* Estimated needs per table cell (wavelength x theta_i x theta_o x
+ * delta_phi): measured about 30 bytes of memory (tables, tallies, the
+ * writer's planes) and 10 bytes of files (12 uncompressed); with margin. */
+#define BAKE_MEM_PER_CELL 64.0
+#define BAKE_DISK_PER_CELL 16.0
+/* N_BAKES bakes of s's size (a family: members held packed as well) fit in
+ * memory and under out on disk (base/budget.h)?  0, or -1 and *cause with
+ * the numbers and the options that lower them.  bake_preset_to_dir and
+ * family_bake call it before any work. */
+int bake_budget(const struct bake_spec *s, int n_bakes, const char *out, char **cause);
 /* The single bake of preset p (label names it in the manifest) into the
  * directory out: bake_run with its checkpoint beside out, then on rank 0
  * the directory (bakefile.h) and the checkpoint removed.  0; -1 and *cause

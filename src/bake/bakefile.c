@@ -187,7 +187,7 @@ int bake_write(const char *dir, const struct bake_spec *s, const struct bake_res
 	if (outdir_begin(&od, dir, &bake_outdir_kind, cause) != 0)
 		return -1;
 	if (bake_write_files(outdir_path(&od), s, r, m, cause) != 0) {
-		outdir_abort(&od);
+		outdir_fail(&od, cause);
 		return -1;
 	}
 	return outdir_commit(&od, cause);
@@ -209,6 +209,7 @@ void bake_free(struct bake *b)
 	free(b->fr_err);
 	free(b->fr_rgb);
 	free(b->albedo);
+	free(b->rd_r_rgb);
 	free(b->albedo_rgb);
 	free(b->rgb_from_wl);
 	free(b->stack);

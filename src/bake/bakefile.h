@@ -43,6 +43,9 @@ struct bake {
 	struct specular_stack *stack;	/* [n_wl] clear top stack for the specular Fresnel */
 	double *sss_radius_cm;	/* [n_wl] mean exit radius of the diffuse light at normal incidence [cm] */
 	double sss_radius_rgb_cm[3];
+	int n_r;		/* radial bins of rd_r_rgb (0: the manifest has no profile) */
+	double dr_cm;		/* their width [cm] */
+	double *rd_r_rgb;	/* [3][n_r] linear sRGB Rd(r) at the first incidence node [1/cm^2], or NULL */
 };
 
 struct bake_spec;

@@ -14,6 +14,7 @@
 #include "base/srgb.h"
 #include "base/checksum.h"
 #include "base/util.h"
+#include "io/json.h"
 #include "io/pngio.h"
 #include "skin/preset.h"
 
@@ -121,10 +122,7 @@ void family_free(struct family *f)
 
 static json_object *jarr(const double *v, int n)
 {
-	json_object *a = json_object_new_array_ext(n);
-	for (int i = 0; i < n; i++)
-		json_object_array_add(a, json_object_new_double(v[i]));
-	return a;
+	return json_num_array(v, n);
 }
 
 static void add(json_object *o, const char *key, json_object *v)
@@ -167,24 +165,23 @@ static json_object *spec_json(const struct family *f)
 	add(o, "n_theta_o", json_object_new_int(s->n_to));
 	add(o, "n_delta_phi", json_object_new_int(s->n_phi));
 	add(o, "n_r", json_object_new_int(s->n_r));
-	add(o, "dr_cm", json_object_new_double(s->dr));
+	add(o, "dr_cm", json_num(s->dr));
 	add(o, "fresnel", json_object_new_string(s->opts.fresnel == OPTICS_FRESNEL_SCHLICK ? "schlick" : "exact"));
 	add(o, "estimator", json_object_new_string(s->nee ? "nee" : "bins"));
-	add(o, "seed", json_object_new_int64((int64_t)s->seed));
+	add(o, "seed", json_object_new_uint64(s->seed));
 	add(o, "batch_photons", json_object_new_int64(s->batch_photons));
 	add(o, "min_batches", json_object_new_int(s->min_batches));
-	add(o, "target_error", json_object_new_double(s->target_error));
+	add(o, "target_error", json_num(s->target_error));
 	add(o, "max_photons", json_object_new_int64(s->max_photons));
-	add(o, "roulette_w", json_object_new_double(s->opts.roulette_w));
-	add(o, "roulette_chance", json_object_new_double(s->opts.roulette_chance));
+	add(o, "roulette_w", json_num(s->opts.roulette_w));
+	add(o, "roulette_chance", json_num(s->opts.roulette_chance));
 	add(o, "max_steps", json_object_new_int64(s->opts.max_steps));
 	/* The solver asked for and its settings, so that a reader (an off-node
 	 * bake, family_bake_at's users) bakes as the members were baked. */
-	add(o, "requested", json_object_new_string(s->method == BAKE_SOLVER_MC ? "mc" : s->method == BAKE_SOLVER_AD ? "ad"
-	    : "auto"));
-	add(o, "ad_tol", json_object_new_double(s->ad_tol));
+	add(o, "requested", json_object_new_string(bake_method_of(s->method)->name));
+	add(o, "ad_tol", json_num(s->ad_tol));
 	add(o, "ad_quad", json_object_new_int(s->ad_quad));
-	add(o, "radial_error", json_object_new_double(s->radial_error));
+	add(o, "radial_error", json_num(s->radial_error));
 	add(o, "radial_photons", json_object_new_int64(s->radial_photons));
 	return o;
 }
@@ -208,8 +205,8 @@ static json_object *member_json(const struct family *f, int m)
 	add(o, "albedo_rgb", jarr(fm->albedo_rgb, 3));
 	add(o, "albedo_lab", jarr(fm->albedo_lab, 3));
 	add(o, "sss_radius_rgb_cm", jarr(fm->sss_radius_rgb_cm, 3));
-	add(o, "rms_rel_err", json_object_new_double(fm->rms_rel_err));
-	add(o, "seconds", json_object_new_double(fm->seconds));
+	add(o, "rms_rel_err", json_num(fm->rms_rel_err));
+	add(o, "seconds", json_num(fm->seconds));
 	return o;
 }
 
@@ -235,18 +232,18 @@ static char *index_text(const struct family *f, const char *command)
 		json_object_array_add(w, jarr(f->rgb_from_wl + c * f->n_wl, f->n_wl));
 	add(o, "rgb_from_wl", w);
 	json_object *al = json_object_new_object();
-	add(al, "theta_i_deg", json_object_new_double(f->albedo_theta_i * 180.0 / M_PI));
+	add(al, "theta_i_deg", json_num(f->albedo_theta_i * 180.0 / M_PI));
 	add(al, "definition", json_object_new_string("directional-hemispherical diffuse albedo (specular excluded) at "
 	    "theta_i_deg; albedo_rgb in linear sRGB (Rec. 709, D65, CIE 1931 2-degree), albedo_lab CIELAB with the "
 	    "sRGB white (D65); sss_radius_rgb_cm the mean exit radius per R, G, B (bake manifest radial section)"));
 	add(o, "albedo", al);
 	add(o, "bake", spec_json(f));
-	add(o, "rms_rel_err", json_object_new_double(f->rms_rel_err));
+	add(o, "rms_rel_err", json_num(f->rms_rel_err));
 	json_object *mem = json_object_new_array_ext(f->n_members);
 	for (int m = 0; m < f->n_members; m++)
 		json_object_array_add(mem, member_json(f, m));
 	add(o, "members", mem);
-	char *text = xstrdup(json_object_to_json_string_ext(o, JSON_C_TO_STRING_PRETTY | JSON_C_TO_STRING_NOSLASHESCAPE));
+	char *text = json_text(o, JSON_PRETTY);
 	json_object_put(o);
 	return text;
 }

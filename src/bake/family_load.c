@@ -15,6 +15,7 @@
 
 #include "base/checksum.h"
 #include "base/util.h"
+#include "io/json.h"
 
 /* Every read names the file and the field. */
 struct rd {
@@ -36,13 +37,10 @@ static json_object *get(const struct rd *r, json_object *o, const char *field, c
 
 static int get_num(const struct rd *r, json_object *o, const char *field, const char *key, double *out)
 {
-	json_object *v;
-	if (!json_object_object_get_ex(o, key, &v) ||
-	    !(json_object_is_type(v, json_type_double) || json_object_is_type(v, json_type_int))) {
+	if (json_get_num(o, key, out) != 0) {
 		*r->cause = xasprintf("%s: field %s%s%s is missing or not a number", r->path, field, *field ? "." : "", key);
 		return -1;
 	}
-	*out = json_object_get_double(v);
 	return 0;
 }
 
@@ -57,12 +55,10 @@ static int arr_nums(const struct rd *r, json_object *a, const char *label, doubl
 		return -1;
 	}
 	for (int i = 0; i < k; i++) {
-		json_object *v = json_object_array_get_idx(a, (size_t)i);
-		if (!(json_object_is_type(v, json_type_double) || json_object_is_type(v, json_type_int))) {
+		if (json_to_num(json_object_array_get_idx(a, (size_t)i), &out[i]) != 0) {
 			*r->cause = xasprintf("%s: field %s[%d] is not a number", r->path, label, i);
 			return -1;
 		}
-		out[i] = json_object_get_double(v);
 	}
 	if (n_out)
 		*n_out = k;
@@ -141,6 +137,9 @@ static int read_spec(const struct rd *r, json_object *o, struct family *f)
 	for (int i = 0; i < s->n_ti; i++)
 		s->theta_i[i] = th[i] * M_PI / 180.0;
 	s->n_to = (int)x[0], s->n_phi = (int)x[1], s->n_r = (int)x[2], s->dr = x[3], s->seed = (uint64_t)x[4];
+	json_object *sv;
+	if (json_object_object_get_ex(b, "seed", &sv) && json_object_is_type(sv, json_type_int))
+		s->seed = json_object_get_uint64(sv);	/* exact: seeds go to 2^64-1 */
 	s->batch_photons = (long)x[5], s->min_batches = (int)x[6], s->target_error = x[7], s->max_photons = (long)x[8];
 	transport_opts_default(&s->opts);
 	s->opts.roulette_w = x[9], s->opts.roulette_chance = x[10], s->opts.max_steps = (long)x[11];
@@ -161,7 +160,13 @@ static int read_spec(const struct rd *r, json_object *o, struct family *f)
 	s->method = BAKE_SOLVER_MC;
 	if (json_object_object_get_ex(b, "requested", &v) && json_object_is_type(v, json_type_string)) {
 		const char *q = json_object_get_string(v);
-		s->method = !strcmp(q, "ad") ? BAKE_SOLVER_AD : !strcmp(q, "auto") ? BAKE_SOLVER_AUTO : BAKE_SOLVER_MC;
+		const struct bake_method_info *m = bake_method_named(q);
+		if (m == NULL) {
+			*r->cause = xasprintf("%s: field bake.requested = '%s' is not one of %s", r->path, q,
+			    bake_method_choices());
+			return -1;
+		}
+		s->method = m->id;
 		double y[4] = { 0 };
 		static const char *k2[] = { "ad_tol", "ad_quad", "radial_error", "radial_photons" };
 		for (int i = 0; i < 4; i++)
@@ -283,7 +288,7 @@ struct family *family_load(const char *dir, char **cause)
 		*cause = xasprintf("%s: not a family directory (%s: %s)", dir, path, strerror(errno));
 		goto fail;
 	}
-	o = json_object_from_file(path);
+	o = json_load(path);
 	if (o == NULL || !json_object_is_type(o, json_type_object)) {
 		*cause = xasprintf("%s: not a skinbake family index (corrupt JSON)", path);
 		goto fail;

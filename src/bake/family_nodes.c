@@ -90,13 +90,18 @@ int family_place_nodes(struct family_plan *pl, char **cause)
 	*ps = pl->spec;
 	ps->n_ti = 1;
 	ps->n_to = ps->n_phi = 1;
-	ps->n_r = 1;
+	ps->n_r = 0;	/* colours only: no Rd(r) run */
 	ps->rank = 0, ps->n_ranks = 1, ps->allreduce = NULL, ps->progress = NULL;
 	/* The pilot wants colours to about 1 %; Monte Carlo gets there with small batches. */
 	if (ps->batch_photons > 1000)
 		ps->batch_photons = 1000;
 	if (ps->target_error < 0.01)
 		ps->target_error = 0.01;
+	/* Adding-doubling at 8 nodes per unit cosine: albedos to about 1e-4. */
+	if (ps->method != BAKE_SOLVER_MC && ps->ad_quad == 0) {
+		ps->ad_quad = 8;
+		ps->ad_tol = 0.01;
+	}
 	int rc = 0;
 	for (int a = 0; a < pl->n_axes && rc == 0; a++)
 		if (pl->axis[a].spacing == FAMILY_SPACING_DE)

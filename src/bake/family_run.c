@@ -15,6 +15,7 @@
 #include "base/util.h"
 #include "bake/checkpoint.h"
 #include "bake/manifest.h"
+#include "engine/solvers.h"
 #include "skin/colour.h"
 #include "skin/preset.h"
 
@@ -59,7 +60,7 @@ struct skin_params *family_params(const struct skin_params *base, const struct f
 
 static size_t entry_len(const struct bake_spec *s)
 {
-	return 3 + 2 * (5 + SLAB_MAX_LAYERS + 2) + 2 * (size_t)s->n_to * s->n_phi + 2 * (size_t)s->n_r + 7;
+	return 3 + 2 * (6 + SLAB_MAX_LAYERS + 2) + 2 * (size_t)s->n_to * s->n_phi + 2 * (size_t)s->n_r + 7;
 }
 
 static size_t pack_len(const struct bake_spec *s)
@@ -67,15 +68,58 @@ static size_t pack_len(const struct bake_spec *s)
 	return 1 + SOLVER_NAME_MAX + 8 + (size_t)s->n_wl * s->n_ti * entry_len(s) + (size_t)s->n_wl * (2 + CAUSE_MAX);
 }
 
-/* The entry's method as a number (the names are static strings). */
+/* The entry's method as a number: 1 + its index in engine/solvers.h's
+ * table, 0 for none (the names are static strings). */
 static double method_code(const char *m)
 {
-	return m == NULL ? 0.0 : strcmp(m, "mc") == 0 ? 1.0 : strcmp(m, "ad") == 0 ? 2.0 : 3.0;
+	if (m == NULL)
+		return 0.0;
+	return 1.0 + solvers_index(m);
 }
 
 static const char *method_name(double c)
 {
-	return c == 1.0 ? "mc" : c == 2.0 ? "ad" : c == 3.0 ? "?" : NULL;
+	int i = (int)c - 1;
+	if (i < 0)
+		return NULL;
+	return solvers[i]->name;
+}
+
+static int by_name(const void *a, const void *b)
+{
+	return strcmp(*(const char *const *)a, *(const char *const *)b);
+}
+
+/* The methods that made a table (bake_result.solver: "mc", "ad", "ad+mc",
+ * names of engine/solvers.h joined by '+' in alphabetical order) as a bit
+ * mask over that table, and back into buf[SOLVER_NAME_MAX + 1]. */
+static double solver_mask(const char *joined)
+{
+	unsigned mask = 0;
+	char buf[SOLVER_NAME_MAX + 1];
+	snprintf(buf, sizeof buf, "%s", joined);
+	char *save = NULL;
+	for (char *t = strtok_r(buf, "+", &save); t != NULL; t = strtok_r(NULL, "+", &save)) {
+		int i = solvers_index(t);
+		CHECK(i >= 0);
+		mask |= 1u << i;
+	}
+	return (double)mask;
+}
+
+static void solver_joined(unsigned mask, char *buf)
+{
+	const char *names[8];
+	int n = 0;
+	for (int i = 0; solvers[i] != NULL && n < 8; i++)
+		if (mask & (1u << i))
+			names[n++] = solvers[i]->name;
+	qsort(names, (size_t)n, sizeof names[0], by_name);
+	buf[0] = '\0';
+	for (int i = 0; i < n; i++) {
+		size_t len = strlen(buf);
+		snprintf(buf + len, SOLVER_NAME_MAX + 1 - len, "%s%s", i ? "+" : "", names[i]);
+	}
 }
 
 static void put_text(double **p, const char *t)
@@ -113,8 +157,9 @@ static void pack(const struct bake_spec *s, const struct bake_result *r, double 
 {
 	double *p = v;
 	*p++ = 1.0;	/* status: baked */
-	for (int i = 0; i < SOLVER_NAME_MAX; i++)
-		*p++ = i < (int)strlen(r->solver) ? (double)(unsigned char)r->solver[i] : 0.0;
+	*p++ = solver_mask(r->solver);
+	for (int i = 1; i < SOLVER_NAME_MAX; i++)
+		*p++ = 0.0;	/* room kept: the record's length is unchanged */
 	*p++ = r->table.rms_rel_err, *p++ = r->table.target_met, *p++ = (double)r->table.photons, *p++ = r->table.seconds;
 	*p++ = (double)r->table.pilot_photons, *p++ = r->ad_tol, *p++ = (double)r->radial_photons, *p++ = r->radial_seconds;
 	size_t nb = (size_t)s->n_to * s->n_phi;
@@ -125,6 +170,7 @@ static void pack(const struct bake_spec *s, const struct bake_result *r, double 
 		for (int k = 0; k < SLAB_MAX_LAYERS + 2; k++)
 			put_est(&p, e->a[k]);
 		put_est(&p, e->lost);
+		put_est(&p, e->facet_loss);
 		memcpy(p, e->fr, nb * sizeof(double)), p += nb;
 		memcpy(p, e->fr_err, nb * sizeof(double)), p += nb;
 		for (int k = 0; k < s->n_r; k++)
@@ -147,9 +193,17 @@ static void unpack(const struct bake_spec *s, const double *v, char *solver, str
 {
 	const double *p = v + 1;
 	memset(r, 0, sizeof *r);
-	for (int i = 0; i < SOLVER_NAME_MAX; i++)
-		solver[i] = (char)p[i];
-	solver[SOLVER_NAME_MAX] = '\0';
+	int n_solvers = 0;
+	while (solvers[n_solvers] != NULL)
+		n_solvers++;
+	if (p[0] < (double)(1u << n_solvers)) {
+		solver_joined((unsigned)p[0], solver);
+	} else {
+		/* A checkpoint from before the mask kept the name's characters. */
+		for (int i = 0; i < SOLVER_NAME_MAX; i++)
+			solver[i] = (char)p[i];
+		solver[SOLVER_NAME_MAX] = '\0';
+	}
 	p += SOLVER_NAME_MAX;
 	r->solver = solver;
 	struct solver_problem pr = { .n_wl = s->n_wl, .wl_nm = s->wl_nm, .slab = s->slab, .n_ti = s->n_ti,
@@ -168,6 +222,7 @@ static void unpack(const struct bake_spec *s, const double *v, char *solver, str
 		for (int k = 0; k < SLAB_MAX_LAYERS + 2; k++)
 			e->a[k] = get_est(&p);
 		e->lost = get_est(&p);
+		e->facet_loss = get_est(&p);
 		memcpy(e->fr, p, nb * sizeof(double)), p += nb;
 		memcpy(e->fr_err, p, nb * sizeof(double)), p += nb;
 		for (int k = 0; k < s->n_r; k++)
@@ -207,7 +262,7 @@ static int stage_open(struct outdir *od, const char *dir, const struct skin_para
 	free(ini);
 	free(ip);
 	if (rc != 0)
-		outdir_abort(od);
+		outdir_fail(od, cause);
 	return rc;
 }
 
@@ -426,6 +481,8 @@ int family_bake(const struct family_plan *pl, const char *dir, struct family **o
 		*out = NULL;
 	if (count_members(pl, &n_members, cause) != 0)
 		return -1;
+	if (bake_budget(&pl->spec, n_members, dir, cause) != 0)
+		return -1;
 	/* The output and its lock first: a second run on DIR is refused
 	 * before it reads DIR.checkpoint, which the first is writing. */
 	struct outdir od;
@@ -439,7 +496,7 @@ int family_bake(const struct family_plan *pl, const char *dir, struct family **o
 	struct checkpoint *ck = family_ckpt_open(pl, f, dir, &n_done, cause);
 	if (ck == NULL) {
 		if (rank == 0)
-			outdir_abort(&od);
+			outdir_fail(&od, cause);
 		family_free(f);
 		return -1;
 	}
@@ -496,7 +553,7 @@ int family_bake(const struct family_plan *pl, const char *dir, struct family **o
 		rc = family_write_index(stage, f, pl->command, cause) || outdir_commit(&od, cause) ||
 		    checkpoint_remove(dir, cause) ? -2 : 0;
 	if (rank == 0 && rc != 0)
-		outdir_abort(&od);
+		outdir_fail(&od, cause);
 	if (rc == 0 && rank == 0 && out) {
 		family_ckpt_note(f, ck);
 		f->dir = xstrdup(dir);

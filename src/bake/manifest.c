@@ -12,22 +12,20 @@
 #include "base/check.h"
 #include "base/util.h"
 #include "engine/ad_solver.h"
+#include "io/json.h"
 
 /* ---- writer ---- */
 
 static json_object *jarr(const double *v, int n)
 {
-	json_object *a = json_object_new_array_ext(n);
-	for (int i = 0; i < n; i++)
-		json_object_array_add(a, json_object_new_double(v[i]));
-	return a;
+	return json_num_array(v, n);
 }
 
 static json_object *jarr_deg(const double *v, int n)
 {
 	json_object *a = json_object_new_array_ext(n);
 	for (int i = 0; i < n; i++)
-		json_object_array_add(a, json_object_new_double(v[i] * 180.0 / M_PI));
+		json_object_array_add(a, json_num(v[i] * 180.0 / M_PI));
 	return a;
 }
 
@@ -96,8 +94,8 @@ static json_object *specular_info(const struct bake_spec *s, const struct bake_r
 {
 	json_object *sp = json_object_new_object();
 	add(sp, "model", jstr("GGX microfacet (Walter et al. 2007), Smith masking, facet reflectance of the clear top stack"));
-	add(sp, "alpha", json_object_new_double(m->roughness));
-	add(sp, "ior", json_object_new_double(m->ior));
+	add(sp, "alpha", json_num(m->roughness));
+	add(sp, "ior", json_num(m->ior));
 	add(sp, "fresnel", jstr(s->opts.fresnel == OPTICS_FRESNEL_SCHLICK ? "schlick" : "exact"));
 	json_object *stacks = json_object_new_array();
 	for (int w = 0; w < s->n_wl; w++)
@@ -111,18 +109,20 @@ static json_object *layers_info(const struct bake_spec *s)
 	json_object *layers = json_object_new_array();
 	for (int w = 0; w < s->n_wl; w++) {
 		json_object *lw = json_object_new_object();
-		add(lw, "wavelength_nm", json_object_new_double(s->wl_nm[w]));
-		add(lw, "n_above", json_object_new_double(s->slab[w].n_above));
-		add(lw, "n_below", json_object_new_double(s->slab[w].n_below));
+		add(lw, "wavelength_nm", json_num(s->wl_nm[w]));
+		add(lw, "n_above", json_num(s->slab[w].n_above));
+		add(lw, "n_below", json_num(s->slab[w].n_below));
 		json_object *ls = json_object_new_array();
 		for (int i = 1; i <= s->slab[w].n_layers; i++) {
 			const struct layer *l = &s->slab[w].layer[i];
 			json_object *lo = json_object_new_object();
-			add(lo, "d_cm", isinf(l->d) ? jstr("inf") : json_object_new_double(l->d));
-			add(lo, "n", json_object_new_double(l->n));
-			add(lo, "mua_per_cm", json_object_new_double(l->mu_a));
-			add(lo, "mus_per_cm", json_object_new_double(l->mu_s));
-			add(lo, "g", json_object_new_double(l->g));
+			add(lo, "d_cm", isinf(l->d) ? jstr("inf") : json_num(l->d));
+			add(lo, "n", json_num(l->n));
+			add(lo, "mua_per_cm", json_num(l->mu_a));
+			add(lo, "mus_per_cm", json_num(l->mu_s));
+			add(lo, "g", json_num(l->g));
+			if (l->rough > 0.0)
+				add(lo, "rough_top", json_num(l->rough));
 			json_object_array_add(ls, lo);
 		}
 		add(lw, "layers", ls);
@@ -135,9 +135,9 @@ static json_object *layers_info(const struct bake_spec *s)
 static json_object *radial_info(const struct bake_spec *s, const struct bake_result *r, const struct bake_meta *m)
 {
 	json_object *rad = json_object_new_object();
-	add(rad, "dr_cm", json_object_new_double(s->dr));
+	add(rad, "dr_cm", json_num(s->dr));
 	add(rad, "n_r", json_object_new_int(s->n_r));
-	add(rad, "theta_i_deg", json_object_new_double(s->theta_i[0] * 180.0 / M_PI));
+	add(rad, "theta_i_deg", json_num(s->theta_i[0] * 180.0 / M_PI));
 	add(rad, "units", jstr("Rd(r) [1/cm^2]; radius [cm]"));
 	json_object *prof = json_object_new_array(), *prof_e = json_object_new_array();
 	for (int w = 0; w < s->n_wl; w++) {
@@ -154,8 +154,8 @@ static json_object *radial_info(const struct bake_spec *s, const struct bake_res
 	    "relative error is above target_rel_err" : "Monte Carlo, the table's jobs at theta_i_deg"));
 	add(rad, "photons", json_object_new_int64(r->radial_photons > 0 ? r->radial_photons : r->table.entry[0].photons));
 	if (r->radial_photons > 0)
-		add(rad, "target_rel_err", json_object_new_double(s->radial_error > 0.0 ? s->radial_error : BAKE_RADIAL_ERROR));
-	add(rad, "seconds", json_object_new_double(r->radial_seconds));
+		add(rad, "target_rel_err", json_num(s->radial_error > 0.0 ? s->radial_error : BAKE_RADIAL_ERROR));
+	add(rad, "seconds", json_num(r->radial_seconds));
 	/* Per RGB channel: the wavelengths' radii weighted by |rgb_from_wl|. */
 	double rr[3];
 	for (int c = 0; c < 3; c++) {
@@ -177,11 +177,10 @@ static json_object *radial_info(const struct bake_spec *s, const struct bake_res
 /* Which method made the table, how, and what its errors mean. */
 static json_object *solver_info(const struct bake_spec *s, const struct bake_result *r)
 {
-	static const char *requested[] = { "mc", "ad", "auto" };
 	json_object *so = json_object_new_object();
 	add(so, "name", jstr(r->solver));
-	add(so, "requested", jstr(requested[s->method]));
-	add(so, "rms_rel_err", json_object_new_double(r->table.rms_rel_err));
+	add(so, "requested", jstr(bake_method_of(s->method)->name));
+	add(so, "rms_rel_err", json_num(r->table.rms_rel_err));
 	add(so, "error", jstr("fr_err, albedo_err and rms_rel_err of entries made by mc: standard errors (batch means); "
 	    "by ad: the adding-doubling error estimates (|X_N - X_N/2| from a solve at half the quadrature nodes, scaled up "
 	    "where convergence is slow, plus the Fourier series' tail: bounds, not standard errors; src/engine/ad.h); "
@@ -191,11 +190,11 @@ static json_object *solver_info(const struct bake_spec *s, const struct bake_res
 		ad_solver_settings_default(&d);
 		json_object *ad = json_object_new_object();
 		add(ad, "method", jstr("adding-doubling, Fourier series in delta_phi (src/engine/ad.h)"));
-		add(ad, "tol", json_object_new_double(r->ad_tol));
+		add(ad, "tol", json_num(r->ad_tol));
 		add(ad, "n_quad", s->ad_quad > 0 ? json_object_new_int(s->ad_quad) : jstr("auto"));
 		add(ad, "n_quad_max", json_object_new_int(d.ad.n_quad_max));
-		add(ad, "dtau_frac", json_object_new_double(d.ad.dtau_frac));
-		add(ad, "dm_terms", json_object_new_double(d.ad.dm_terms));
+		add(ad, "dtau_frac", json_num(d.ad.dtau_frac));
+		add(ad, "dm_terms", json_num(d.ad.dm_terms));
 		add(ad, "max_orders", json_object_new_int(d.ad.max_orders));
 		add(so, "ad", ad);
 	}
@@ -203,7 +202,7 @@ static json_object *solver_info(const struct bake_spec *s, const struct bake_res
 	for (int w = 0; r->fallback_cause && w < s->n_wl; w++)
 		if (r->fallback_cause[w]) {
 			json_object *f = json_object_new_object();
-			add(f, "wavelength_nm", json_object_new_double(s->wl_nm[w]));
+			add(f, "wavelength_nm", json_num(s->wl_nm[w]));
 			add(f, "cause", jstr(r->fallback_cause[w]));
 			json_object_array_add(fb, f);
 		}
@@ -214,15 +213,15 @@ static json_object *solver_info(const struct bake_spec *s, const struct bake_res
 static json_object *settings_info(const struct bake_spec *s, const struct bake_result *r)
 {
 	json_object *st = json_object_new_object();
-	add(st, "seed", json_object_new_int64((int64_t)s->seed));
+	add(st, "seed", json_object_new_uint64(s->seed));
 	const struct brdf_entry *e = &r->table.entry[0];
 	long bp = s->batch_photons > 0 || e->batches == 0 ? s->batch_photons : e->photons / e->batches;
 	add(st, "batch_photons", json_object_new_int64(bp));
 	add(st, "min_batches", json_object_new_int(s->min_batches));
-	add(st, "target_error", json_object_new_double(s->target_error));
+	add(st, "target_error", json_num(s->target_error));
 	add(st, "max_photons", json_object_new_int64(s->max_photons));
-	add(st, "roulette_w", json_object_new_double(s->opts.roulette_w));
-	add(st, "roulette_chance", json_object_new_double(s->opts.roulette_chance));
+	add(st, "roulette_w", json_num(s->opts.roulette_w));
+	add(st, "roulette_chance", json_num(s->opts.roulette_chance));
 	add(st, "max_steps", json_object_new_int64(s->opts.max_steps));
 	return st;
 }
@@ -232,8 +231,8 @@ static json_object *result_info(const struct bake_result *r)
 	json_object *res = json_object_new_object();
 	add(res, "photons", json_object_new_int64(r->table.photons));
 	add(res, "pilot_photons", json_object_new_int64(r->table.pilot_photons));
-	add(res, "seconds", json_object_new_double(r->table.seconds));
-	add(res, "rms_rel_err", json_object_new_double(r->table.rms_rel_err));
+	add(res, "seconds", json_num(r->table.seconds));
+	add(res, "rms_rel_err", json_num(r->table.rms_rel_err));
 	add(res, "target_met", json_object_new_boolean(r->table.target_met));
 	return res;
 }
@@ -244,8 +243,8 @@ static json_object *entries_info(const struct bake_result *r)
 	for (int j = 0; j < r->table.n_wl * r->table.n_ti; j++) {
 		const struct brdf_entry *b = &r->table.entry[j];
 		json_object *jo = json_object_new_object();
-		add(jo, "wavelength_nm", json_object_new_double(b->wl_nm));
-		add(jo, "theta_i_deg", json_object_new_double(b->theta_i * 180.0 / M_PI));
+		add(jo, "wavelength_nm", json_num(b->wl_nm));
+		add(jo, "theta_i_deg", json_num(b->theta_i * 180.0 / M_PI));
 		add(jo, "solver", jstr(b->method ? b->method : ""));
 		add(jo, "photons", json_object_new_int64(b->photons));
 		add(jo, "batches", json_object_new_int64(b->batches));
@@ -253,14 +252,16 @@ static json_object *entries_info(const struct bake_result *r)
 			add(jo, "n_quad", json_object_new_int(b->n_quad));
 			add(jo, "fourier_orders", json_object_new_int(b->n_orders));
 		}
-		add(jo, "Rsp", json_object_new_double(b->rsp));
-		add(jo, "albedo", json_object_new_double(b->albedo.v));
-		add(jo, "albedo_err", json_object_new_double(b->albedo.err));
-		add(jo, "Rd_unscattered", json_object_new_double(b->rd_unscat.v));
-		add(jo, "Tt", json_object_new_double(b->tt.v));
-		add(jo, "A", json_object_new_double(b->a_total.v));
-		add(jo, "lost", json_object_new_double(b->lost.v));
-		add(jo, "rms_rel_err", json_object_new_double(b->rms_rel_err));
+		add(jo, "Rsp", json_num(b->rsp));
+		add(jo, "albedo", json_num(b->albedo.v));
+		add(jo, "albedo_err", json_num(b->albedo.err));
+		add(jo, "Rd_unscattered", json_num(b->rd_unscat.v));
+		add(jo, "Tt", json_num(b->tt.v));
+		add(jo, "A", json_num(b->a_total.v));
+		add(jo, "lost", json_num(b->lost.v));
+		if (b->facet_loss.v > 0.0)
+			add(jo, "facet_loss", json_num(b->facet_loss.v));
+		add(jo, "rms_rel_err", json_num(b->rms_rel_err));
 		json_object_array_add(jobs, jo);
 	}
 	return jobs;
@@ -286,7 +287,7 @@ char *bake_manifest_text(const struct bake_spec *s, const struct bake_result *r,
 	add(o, "settings", settings_info(s, r));
 	add(o, "result", result_info(r));
 	add(o, "jobs", entries_info(r));
-	char *text = xstrdup(json_object_to_json_string_ext(o, JSON_C_TO_STRING_PRETTY | JSON_C_TO_STRING_NOSLASHESCAPE));
+	char *text = json_text(o, JSON_PRETTY);
 	json_object_put(o);
 	return text;
 }
@@ -303,14 +304,31 @@ static int jnum_array(json_object *o, const char *key, double **out, int *n, cha
 	*n = (int)json_object_array_length(a);
 	*out = xcalloc((size_t)(*n > 0 ? *n : 1), sizeof(double));
 	for (int i = 0; i < *n; i++)
-		(*out)[i] = json_object_get_double(json_object_array_get_idx(a, (size_t)i));
+		if (json_to_num(json_object_array_get_idx(a, (size_t)i), &(*out)[i]) != 0) {
+			*cause = xasprintf("%s: '%s'[%d] is not a number", path, key, i);
+			free(*out);
+			*out = NULL;
+			return -1;
+		}
 	return 0;
 }
 
+/* Member KEY of O, or DFLT when it is missing or not a finite number. */
 static double jnum(json_object *o, const char *key, double dflt)
 {
-	json_object *v;
-	return json_object_object_get_ex(o, key, &v) ? json_object_get_double(v) : dflt;
+	double x;
+	if (json_get_num(o, key, &x) != 0)
+		return dflt;
+	return x;
+}
+
+/* The N numbers of array ROW into OUT; -1 when one is not a finite number. */
+static int jrow(json_object *row, double *out, int n)
+{
+	for (int i = 0; i < n; i++)
+		if (json_to_num(json_object_array_get_idx(row, (size_t)i), &out[i]) != 0)
+			return -1;
+	return 0;
 }
 
 /* The table axes, converted to radians. */
@@ -353,8 +371,10 @@ static int read_rgb(json_object *o, struct bake *b, const char *mpath, char **ca
 			*cause = xasprintf("%s: rgb_from_wl row %d has the wrong length", mpath, c);
 			return -1;
 		}
-		for (int w = 0; w < b->n_wl; w++)
-			b->rgb_from_wl[c * b->n_wl + w] = json_object_get_double(json_object_array_get_idx(row, (size_t)w));
+		if (jrow(row, &b->rgb_from_wl[c * b->n_wl], b->n_wl) != 0) {
+			*cause = xasprintf("%s: rgb_from_wl row %d holds a value that is not a number", mpath, c);
+			return -1;
+		}
 	}
 	return 0;
 }
@@ -386,10 +406,40 @@ static int read_specular(json_object *o, struct bake *b, const char *mpath, char
 		}
 		b->stack[w].n = k;
 		b->stack[w].model = model;
-		for (int i = 0; i < k; i++)
-			b->stack[w].n_list[i] = json_object_get_double(json_object_array_get_idx(row, (size_t)i));
+		if (jrow(row, b->stack[w].n_list, k) != 0) {
+			*cause = xasprintf("%s: specular.stack_n[%d] holds a value that is not a number", mpath, w);
+			return -1;
+		}
 	}
 	return 0;
+}
+
+/* The radial profile in linear sRGB (rgb_from_wl applied to Rd(r) per
+ * wavelength); left NULL when the manifest has none or it is malformed. */
+static void read_radial_profile(json_object *rad, struct bake *b)
+{
+	json_object *prof;
+	int n_r = (int)jnum(rad, "n_r", 0);
+	double dr = jnum(rad, "dr_cm", 0);
+	if (!json_object_object_get_ex(rad, "rd_r", &prof) || !json_object_is_type(prof, json_type_array) ||
+	    (int)json_object_array_length(prof) != b->n_wl || n_r < 1 || n_r > 100000 || !(dr > 0 && dr < 100))
+		return;
+	double *rgb = xcalloc((size_t)(3 * n_r), sizeof(double));
+	for (int w = 0; w < b->n_wl; w++) {
+		json_object *row = json_object_array_get_idx(prof, (size_t)w);
+		if (!json_object_is_type(row, json_type_array) || (int)json_object_array_length(row) != n_r) {
+			free(rgb);
+			return;
+		}
+		for (int i = 0; i < n_r; i++) {
+			double v = json_object_get_double(json_object_array_get_idx(row, (size_t)i));
+			for (int c = 0; c < 3; c++)
+				rgb[c * n_r + i] += b->rgb_from_wl[c * b->n_wl + w] * v;
+		}
+	}
+	b->n_r = n_r;
+	b->dr_cm = dr;
+	b->rd_r_rgb = rgb;
 }
 
 /* Subsurface radii: optional (0 when the manifest has none). */
@@ -415,6 +465,7 @@ static void read_radial(json_object *o, struct bake *b, const char *mpath)
 		free(tmp);
 	}
 	free(ignored);
+	read_radial_profile(rad, b);
 }
 
 int bake_manifest_read(const char *dir, struct bake *b, char **cause)
@@ -426,7 +477,7 @@ int bake_manifest_read(const char *dir, struct bake *b, char **cause)
 		*cause = xasprintf("%s: not a bake directory (%s: %s)", dir, mpath, strerror(errno));
 		goto out;
 	}
-	o = json_object_from_file(mpath);
+	o = json_load(mpath);
 	if (o == NULL || !json_object_object_get_ex(o, "format", &v) || !json_object_is_type(v, json_type_string) ||
 	    strcmp(json_object_get_string(v), "skinbake-bake") != 0) {
 		*cause = xasprintf("%s: not a skinbake bake manifest (corrupt JSON or wrong format)", mpath);
@@ -462,7 +513,7 @@ static int read_stack(json_object *lw, struct slab *s, int w, const char *mpath,
 	for (size_t i = 0; i < json_object_array_length(ls); i++) {
 		json_object *lo = json_object_array_get_idx(ls, i), *d;
 		struct layer l = { INFINITY, jnum(lo, "n", 1.0), jnum(lo, "mua_per_cm", 0.0), jnum(lo, "mus_per_cm", 0.0),
-			jnum(lo, "g", 0.0) };
+			jnum(lo, "g", 0.0), jnum(lo, "rough_top", 0.0) };
 		if (json_object_object_get_ex(lo, "d_cm", &d) && !json_object_is_type(d, json_type_string))
 			l.d = json_object_get_double(d);
 		char *why = NULL;
@@ -509,7 +560,7 @@ int bake_provenance_read(const char *dir, struct bake_provenance *p, char **caus
 	char *mpath = xasprintf("%s/manifest.json", dir);
 	json_object *o = NULL, *v, *so, *sp, *layers;
 	int rc = -1;
-	if (bake_manifest_read(dir, b, cause) != 0 || (o = json_object_from_file(mpath)) == NULL)
+	if (bake_manifest_read(dir, b, cause) != 0 || (o = json_load(mpath)) == NULL)
 		goto out;
 	p->n_wl = b->n_wl;
 	p->n_ti = b->n_ti;
@@ -521,7 +572,7 @@ int bake_provenance_read(const char *dir, struct bake_provenance *p, char **caus
 	    strcmp(json_object_get_string(v), "schlick") == 0)
 		p->fresnel = OPTICS_FRESNEL_SCHLICK;
 	if (json_object_object_get_ex(o, "settings", &v))
-		p->seed = (uint64_t)jnum(v, "seed", 1.0);
+		p->seed = json_object_object_get_ex(v, "seed", &so) ? json_object_get_uint64(so) : 1;	/* exact */
 	if (!json_object_object_get_ex(o, "layers", &layers) || (int)json_object_array_length(layers) != p->n_wl) {
 		*cause = xasprintf("%s: layers do not match the wavelengths", mpath);
 		goto out;

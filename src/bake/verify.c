@@ -13,6 +13,7 @@
 #include "base/check.h"
 #include "base/util.h"
 #include "engine/mc.h"
+#include "io/json.h"
 
 enum { MC_BATCHES = 32 };
 
@@ -220,10 +221,6 @@ void verify_result_free(struct verify_result *r)
 
 /* ---- reports ---- */
 
-static json_object *jnum(double v)
-{
-	return isfinite(v) ? json_object_new_double(v) : NULL;
-}
 
 char *verify_json(const char *dir, const struct verify_result *r)
 {
@@ -238,24 +235,24 @@ char *verify_json(const char *dir, const struct verify_result *r)
 		const double v[] = { c->wl_nm, c->theta_i_deg, c->theta_o_deg, c->dphi_deg, c->f_bake, c->e_bake, c->f_mc,
 			c->e_mc, c->z, c->dof, c->z_n };
 		for (size_t j = 0; j < sizeof v / sizeof v[0]; j++)
-			json_object_object_add(jc, k[j], jnum(v[j]));	/* dof: null when exact */
+			json_object_object_add(jc, k[j], json_num(v[j]));	/* dof: null when exact */
 		json_object_array_add(cells, jc);
 	}
 	json_object_object_add(o, "cells", cells);
 	json_object_object_add(s, "cells", json_object_new_int(r->n_cells));
 	json_object_object_add(s, "pairs", json_object_new_int(r->n_pairs));
 	json_object_object_add(s, "photons", json_object_new_int64(r->photons));
-	json_object_object_add(s, "seconds", jnum(r->seconds));
-	json_object_object_add(s, "mean_z2", jnum(r->mean_z2));
-	json_object_object_add(s, "max_abs_z", jnum(r->max_abs_z));
-	json_object_object_add(s, "frac_beyond_3sigma", jnum(r->frac_3sigma));
-	json_object_object_add(s, "mean_z_normal2", jnum(r->mean_zn2));
-	json_object_object_add(s, "max_abs_z_normal", jnum(r->max_abs_zn));
-	json_object_object_add(s, "mean_z2_limit", jnum(r->mean_z2_limit));
-	json_object_object_add(s, "max_abs_z_limit", jnum(r->max_z_limit));
+	json_object_object_add(s, "seconds", json_num(r->seconds));
+	json_object_object_add(s, "mean_z2", json_num(r->mean_z2));
+	json_object_object_add(s, "max_abs_z", json_num(r->max_abs_z));
+	json_object_object_add(s, "frac_beyond_3sigma", json_num(r->frac_3sigma));
+	json_object_object_add(s, "mean_z_normal2", json_num(r->mean_zn2));
+	json_object_object_add(s, "max_abs_z_normal", json_num(r->max_abs_zn));
+	json_object_object_add(s, "mean_z2_limit", json_num(r->mean_z2_limit));
+	json_object_object_add(s, "max_abs_z_limit", json_num(r->max_z_limit));
 	json_object_object_add(s, "consistent", json_object_new_boolean(r->consistent));
 	json_object_object_add(o, "summary", s);
-	char *text = xstrdup(json_object_to_json_string_ext(o, JSON_C_TO_STRING_PLAIN | JSON_C_TO_STRING_NOSLASHESCAPE));
+	char *text = json_text(o, JSON_PLAIN);
 	json_object_put(o);
 	return text;
 }

@@ -59,4 +59,5 @@ int cmd_export_pov(int argc, char **argv);
 int cmd_export_blender(int argc, char **argv);
 int cmd_maps(int argc, char **argv);
 int cmd_verify(int argc, char **argv);
+int cmd_scene(int argc, char **argv);
 #endif

@@ -75,7 +75,7 @@ int cmd_bake(int argc, char **argv)
 	vary.n = 0;
 	const char *preset = NULL, *pfile = NULL, *out = NULL;
 	int quiet = 0, nodes, fresnel, est, solver;
-	long seed;
+	uint64_t seed;
 	const struct opt opts[] = {
 		{ "preset", OPT_STRING, &preset, "NAME", .flags = OPT_REQUIRED, .excl = "preset-file",
 		  .help = "a shipped preset (skinbake presets lists them)" },
@@ -94,7 +94,7 @@ int cmd_bake(int argc, char **argv)
 		  .help = "incidence angles 90*k/N deg (k = 0 .. N-1), N" },
 		{ "resolution", OPT_CUSTOM, &s, "TxP", "18x18", .fn = parse_resolution,
 		  .help = "theta_o bands x delta_phi bins over [0, 90] x [0, 180] deg, each in [1, 360]" },
-		{ "solver", OPT_ENUM, &solver, .def = "auto", .choices = "auto|ad|mc", .help = "adding-doubling (ad), Monte "
+		{ "solver", OPT_ENUM, &solver, .def = "auto", .choices = bake_method_choices(), .help = "adding-doubling (ad), Monte "
 		  "Carlo (mc), or ad with mc, said on stderr, for the wavelengths where ad cannot meet --ad-tol (auto)" },
 		{ "ad-tol", OPT_DOUBLE, &s.ad_tol, "E", "0.001", .lo = 1e-6, .hi = 0.1,
 		  .help = "ad: estimated RMS relative error of the table to reach (or --target-error when smaller)" },
@@ -116,7 +116,7 @@ int cmd_bake(int argc, char **argv)
 		{ "fresnel", OPT_ENUM, &fresnel, .def = "exact", .choices = "exact|schlick", .help = "boundary reflectance model" },
 		{ "estimator", OPT_ENUM, &est, .def = "nee", .choices = "nee|bins", .help = "mc: how the table is scored: "
 		  "next-event estimation toward every bin (nee), or binning the escaping photons (bins), both unbiased" },
-		{ "seed", OPT_LONG, &seed, "N", "1", .lo = 0, .hi = (double)LONG_MAX, .help = "mc: random seed" },
+		{ "seed", OPT_U64, &seed, "N", "1", .help = "mc: random seed (exact)" },
 		{ "threads", OPT_INT, &s.threads, "N", "0", .lo = 0, .hi = 1024, .help = "OpenMP threads (0 = all cores)" },
 		{ "quiet", OPT_FLAG, &quiet, .help = "no summary on stdout" },
 		{ "resume", OPT_FLAG, &s.resume, .help = "go on from DIR.checkpoint (none: from the start; a "
@@ -140,7 +140,7 @@ int cmd_bake(int argc, char **argv)
 		return opt_error(&x, "--target-error = %g is out of range [0.001, 1] (or 0)", s.target_error);
 	bake_spec_axes(&s, wl.v, wl.n, th.v, th.n, nodes);
 	s.opts.fresnel = fresnel == 0 ? OPTICS_FRESNEL_EXACT : OPTICS_FRESNEL_SCHLICK;
-	s.method = (int[]){ BAKE_SOLVER_AUTO, BAKE_SOLVER_AD, BAKE_SOLVER_MC }[solver];
-	s.nee = est == 0, s.seed = (uint64_t)seed, s.min_batches = 8, s.n_ranks = 1;
+	s.method = bake_method_at(solver)->id;
+	s.nee = est == 0, s.seed = seed, s.min_batches = 8, s.n_ranks = 1;
 	return run(&s, preset, pfile, out, quiet, &vary, argc, argv);
 }

@@ -10,6 +10,7 @@
 #include "cli/cli.h"
 #include "cli/opt.h"
 #include "base/util.h"
+#include "io/json.h"
 
 int cmd_eval(int argc, char **argv)
 {
@@ -58,14 +59,16 @@ int cmd_eval(int argc, char **argv)
 		for (int k = 0; k < 5; k++) {
 			json_object *a = json_object_new_array();
 			for (int i = 0; i < n; i++)
-				json_object_array_add(a, json_object_new_double(vals[k][i]));
+				json_object_array_add(a, json_num(vals[k][i]));
 			json_object_object_add(o, keys[k], a);
 		}
 		json_object *a = json_object_new_array();
 		for (int c = 0; c < 3; c++)
-			json_object_array_add(a, json_object_new_double(rgb[c]));
+			json_object_array_add(a, json_num(rgb[c]));
 		json_object_object_add(o, "rgb_total", a);
-		printf("%s\n", json_object_to_json_string_ext(o, JSON_C_TO_STRING_PLAIN));
+		char *text = json_text(o, JSON_PLAIN);
+		printf("%s\n", text);
+		free(text);
 		json_object_put(o);
 	} else {
 		printf("skinbake eval: %s at theta_in %g, theta_out %g, delta_phi %g degrees [1/sr]\n", dir, ti, to, ph);

@@ -1,6 +1,5 @@
-/* skinbake simulate: one Monte Carlo run (or an adding-doubling solve) on a
- * layer stack given on the command line; a readable table or one JSON object
- * on stdout. */
+/* skinbake simulate: one Monte Carlo run (or an adding-doubling solve) on a layer
+ * stack given on the command line; a readable table or one JSON object on stdout. */
 #include "config.h"
 
 #include <limits.h>
@@ -14,7 +13,7 @@
 #include "engine/sim_report.h"
 #include "base/util.h"
 
-/* --layer d=CM,n=N,mua=1/CM,mus=1/CM,g=G, top layer first. */
+/* --layer d=CM,n=N,mua=1/CM,mus=1/CM,g=G,rough=ALPHA, top layer first. */
 static const struct opt_key layer_keys[] = {
 	{ "d", OPT_DOUBLE, offsetof(struct layer, d), .lo = 0, .hi = INFINITY, .unit = "cm",
 	  .flags = OPT_REQUIRED | OPT_LO_OPEN | OPT_HI_OPEN | OPT_INF, .help = "thickness (the last layer may be inf)" },
@@ -25,6 +24,8 @@ static const struct opt_key layer_keys[] = {
 	  .help = "scattering coefficient" },
 	{ "g", OPT_DOUBLE, offsetof(struct layer, g), "0", .lo = -1, .hi = 1, .flags = OPT_LO_OPEN | OPT_HI_OPEN,
 	  .help = "Henyey-Greenstein anisotropy" },
+	{ "rough", OPT_DOUBLE, offsetof(struct layer, rough), "0", .lo = 0, .hi = 1,
+	  .help = "GGX alpha of the boundary on the layer's top (0 = smooth; mc only)" },
 	{ NULL },
 };
 
@@ -51,7 +52,7 @@ int cmd_simulate(int argc, char **argv)
 	sim_config_default(&c);
 	struct layers ls = { 0 };
 	double na, nbw, th, tos, phs, tol;
-	long seed;
+	uint64_t seed;
 	int json = 0, fresnel, solver, n_quad = 0;
 	char *cause = NULL;
 	const struct opt opts[] = {
@@ -68,7 +69,7 @@ int cmd_simulate(int argc, char **argv)
 		{ "ad-quad", OPT_INT, &n_quad, "N", "0", .lo = 0, .hi = 1024, .help = "ad: quadrature nodes per unit "
 		  "cosine, 4 or more (0 = the fewest from 16 up, doubling, that meet --ad-tol)" },
 		{ "photons", OPT_LONG, &c.photons, "N", "1e6", .lo = 1, .hi = 1e12, .help = "mc: photons" },
-		{ "seed", OPT_LONG, &seed, "N", "1", .lo = 0, .hi = (double)LONG_MAX, .help = "mc: random seed" },
+		{ "seed", OPT_U64, &seed, "N", "1", .help = "mc: random seed (exact)" },
 		{ "threads", OPT_INT, &c.threads, "N", "0", .lo = 0, .hi = 1024, .help = "OpenMP threads (0 = all cores)" },
 		{ "batches", OPT_INT, &c.batches, "N", "32", .lo = 2, .hi = 100000,
 		  .help = "mc: independent batches for standard errors" },
@@ -107,7 +108,7 @@ int cmd_simulate(int argc, char **argv)
 		free(cause);
 		return rc;
 	}
-	c.seed = (uint64_t)seed;
+	c.seed = seed;
 	c.opts.fresnel = fresnel == 0 ? OPTICS_FRESNEL_EXACT : OPTICS_FRESNEL_SCHLICK;
 	slab_init(&c.slab, na, nbw);
 	for (int i = 0; i < ls.n; i++)

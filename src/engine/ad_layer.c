@@ -21,7 +21,14 @@
 size_t ad_layer_work(int n, int ne)
 {
 	size_t nn = (size_t)n * (size_t)(n + ne);
-	return (size_t)n * (size_t)n + 4 * nn + 2 * (size_t)n + (size_t)ne;
+	return (size_t)n * (size_t)n + 4 * nn + 3 * (size_t)n + (size_t)ne;
+}
+
+/* The last n doubles of the workspace: sqrt(mu_i w_i), the flux weights of
+ * max_transmittance, set once per layer (the rest is scratch). */
+static double *flux_weights(int n, int ne, double *work)
+{
+	return work + ad_layer_work(n, ne) - (size_t)n;
 }
 
 /* The diamond start for optical thickness dt: R, T and the beams' columns
@@ -65,8 +72,8 @@ static int diamond(const struct ad_layer_in *in, double dt, double *R, double *T
 			y2[i] = sp - sm;
 		}
 	}
-	if (LAPACKE_dgesv(LAPACK_COL_MAJOR, n, nc, A1, n, piv, Y1, n) != 0 ||
-	    LAPACKE_dgesv(LAPACK_COL_MAJOR, n, nc, A2, n, piv, Y2, n) != 0)
+	if (LAPACKE_dgesv_work(LAPACK_COL_MAJOR, n, nc, A1, n, piv, Y1, n) != 0 ||
+	    LAPACKE_dgesv_work(LAPACK_COL_MAJOR, n, nc, A2, n, piv, Y2, n) != 0)
 		return -1;
 	/* Y1 = X1 [I | s+ + s-] = [T + R + I | x + y]/..., see ad_layer.h. */
 	for (int j = 0; j < nc; j++)
@@ -84,14 +91,15 @@ static int diamond(const struct ad_layer_in *in, double dt, double *R, double *T
 }
 
 /* out = base + sign * T (I -+ R)^-1 [T | v]: Cholesky of A = I -+ R, an LU
- * factorization if that fails.  Y, A, piv are scratch. */
+ * factorization if that fails.  Y, A, piv are scratch.  (LAPACKE's _work
+ * calls: the plain ones scan every input for NaNs, 2 % of a solve.) */
 static int half_step(int n, int nc, const double *R, const double *T, double sign, double *Y, double *A,
     int *piv, double *out)
 {
 	for (int j = 0; j < n; j++)
 		for (int i = 0; i < n; i++)
 			A[i + (size_t)n * j] = (i == j) - sign * R[i + (size_t)n * j];
-	if (LAPACKE_dpotrf(LAPACK_COL_MAJOR, 'L', n, A, n) == 0) {
+	if (LAPACKE_dpotrf_work(LAPACK_COL_MAJOR, 'L', n, A, n) == 0) {
 		/* T (L L^T)^-1 Y = (L^-1 T)^T (L^-1 Y), T symmetric. */
 		cblas_dtrsm(CblasColMajor, CblasLeft, CblasLower, CblasNoTrans, CblasNonUnit, n, nc, 1.0, A, n, Y, n);
 		cblas_dgemm(CblasColMajor, CblasTrans, CblasNoTrans, n, nc, n, sign, Y, n, Y, n, 1.0, out, n);
@@ -100,7 +108,7 @@ static int half_step(int n, int nc, const double *R, const double *T, double sig
 	for (int j = 0; j < n; j++)
 		for (int i = 0; i < n; i++)
 			A[i + (size_t)n * j] = (i == j) - sign * R[i + (size_t)n * j];
-	if (LAPACKE_dgesv(LAPACK_COL_MAJOR, n, nc, A, n, piv, Y, n) != 0)
+	if (LAPACKE_dgesv_work(LAPACK_COL_MAJOR, n, nc, A, n, piv, Y, n) != 0)
 		return -1;
 	cblas_dgemm(CblasColMajor, CblasNoTrans, CblasNoTrans, n, nc, n, sign, T, n, Y, n, 1.0, out, n);
 	return 0;
@@ -144,17 +152,18 @@ static int double_once(int n, int ne, double *R, double *T, double *d, double *w
 	return 0;
 }
 
-/* Largest transmittance of any node or beam (flux per incident flux). */
-static double max_transmittance(const struct ad_layer_in *in, const double *T, const double *d)
+/* Largest transmittance of any node or beam (flux per incident flux); a
+ * holds sqrt(mu_i w_i). */
+static double max_transmittance(const struct ad_layer_in *in, const double *a, const double *T, const double *d)
 {
 	const int n = in->n;
 	double m = 0.0;
 	for (int j = 0; j < n + in->ne; j++) {
-		double sum = j < n ? 0.0 : fabs(d[j - n]);
-		double aj = j < n ? sqrt(in->mu[j] * in->w[j]) : 1.0;
+		double sum = 0.0;
+		const double *tj = T + (size_t)n * j;
 		for (int i = 0; i < n; i++)
-			sum += sqrt(in->mu[i] * in->w[i]) * fabs(T[i + (size_t)n * j]) / aj;
-		m = fmax(m, sum);
+			sum += a[i] * fabs(tj[i]);
+		m = fmax(m, j < n ? sum / a[j] : sum + fabs(d[j - n]));
 	}
 	return m;
 }
@@ -172,12 +181,15 @@ int ad_layer_solve(const struct ad_layer_in *in, struct ad_layer_out *out, doubl
 	}
 	out->doublings = 0;
 	out->t_drop = 0.0;
+	double *a = flux_weights(n, ne, work);
+	for (int i = 0; i < n; i++)
+		a[i] = sqrt(in->mu[i] * in->w[i]);
 	if (diamond(in, dt, R, T, d, work)) {
 		*cause = xasprintf("adding-doubling: the starting layer's matrix is singular (LAPACK dgesv)");
 		return -1;
 	}
 	for (int k = 0; semi || k < steps; k++) {
-		double tmax = max_transmittance(in, T, d);
+		double tmax = max_transmittance(in, a, T, d);
 		if (tmax < AD_T_NEGLIGIBLE) {
 			/* Opaque: further doublings change R by O(T^2). */
 			out->t_drop = tmax;

@@ -17,7 +17,7 @@
 
 /* Quantities kept per batch, in this order: the totals, absorption per
  * layer, then the exit bins and the radial bins. */
-enum { Q_RD, Q_RDU, Q_TT, Q_A, Q_LOST, Q_AL, Q_NSCAL = Q_AL + SLAB_MAX_LAYERS + 2 };
+enum { Q_RD, Q_RDU, Q_TT, Q_A, Q_LOST, Q_RSP, Q_FLOSS, Q_AL, Q_NSCAL = Q_AL + SLAB_MAX_LAYERS + 2 };
 
 struct mc_state {
 	struct solver_problem p;	/* arrays borrowed from the caller */
@@ -51,6 +51,8 @@ static void batch_values(const struct mc_state *m, const struct tally *t, double
 	}
 	q[Q_A] = a * inv;
 	q[Q_LOST] = t->lost * inv;
+	q[Q_RSP] = t->rsp * inv;
+	q[Q_FLOSS] = t->facet_loss * inv;
 	int ne = g->n_theta * g->n_phi;
 	for (int i = 0; i < ne; i++)
 		q[Q_NSCAL + i] = t->exit[i] * inv;
@@ -153,7 +155,9 @@ static void run_units(struct mc_state *m, const struct solver_run *run, long nu,
 				continue;
 			int j = uj[u];
 			tally_zero(&t, g);
-			transport_run(&p->slab[j / p->n_ti], &m->ln[j], &m->opts, g, m->st.nee ? &ne : NULL, m->st.seed,
+			/* nee follows smooth refraction: rough stacks score their escapes. */
+			const struct slab *sl = &p->slab[j / p->n_ti];
+			transport_run(sl, &m->ln[j], &m->opts, g, m->st.nee && !sl->rough_any ? &ne : NULL, m->st.seed,
 			    m->st.stream0 + (uint32_t)j, (uint64_t)m->offset + (uint64_t)ub[u] * (uint64_t)bp, (uint64_t)bp, &t);
 			batch_values(m, &t, vals + (size_t)u * (size_t)(nq + 1));
 			vals[(size_t)u * (size_t)(nq + 1) + nq] = t.events;
@@ -321,7 +325,7 @@ static void fill_entry(const struct mc_state *m, int j, struct brdf_entry *o)
 	o->batches = a->batches;
 	o->photons = a->batches * m->bp;
 	o->events = m->events[j];
-	o->rsp = m->ln[j].rsp;
+	o->rsp = m->ln[j].rsp + batchstat_mean(a, Q_RSP);	/* + 0 unless the top is rough */
 	o->albedo = (struct estimate){ batchstat_mean(a, Q_RD) - batchstat_mean(a, Q_RDU), batchstat_err(a, Q_RD) };
 	o->rd_unscat = est(a, Q_RDU);
 	o->tt = est(a, Q_TT);
@@ -329,6 +333,7 @@ static void fill_entry(const struct mc_state *m, int j, struct brdf_entry *o)
 	for (int i = 0; i < SLAB_MAX_LAYERS + 2; i++)
 		o->a[i] = est(a, Q_AL + i);
 	o->lost = est(a, Q_LOST);
+	o->facet_loss = est(a, Q_FLOSS);
 	double dth = 0.5 * M_PI / g->n_theta;
 	for (int it = 0; it < g->n_theta; it++) {
 		double co = tally_cos_omega(it * dth, (it + 1) * dth, M_PI / g->n_phi);

@@ -66,7 +66,7 @@ void sim_run(const struct sim_config *c, struct sim_result *res,
 	res->grid = *g;
 
 	/* Gather per-batch scalars in batch order, then reduce. */
-	enum { RD, RDU, TT, TTU, LOST, NSCAL };
+	enum { RD, RDU, TT, TTU, LOST, RSP, FLOSS, NSCAL };
 	int na = SLAB_MAX_LAYERS + 2, nsc = NSCAL + na;
 	double *sc = xcalloc((size_t)nb * (size_t)nsc, sizeof *sc);
 	for (int b = 0; b < nb; b++) {
@@ -76,6 +76,8 @@ void sim_run(const struct sim_config *c, struct sim_result *res,
 		row[TT] = bt[b].tt;
 		row[TTU] = bt[b].tt_unscat;
 		row[LOST] = bt[b].lost;
+		row[RSP] = bt[b].rsp;
+		row[FLOSS] = bt[b].facet_loss;
 		for (int i = 0; i < na; i++)
 			row[NSCAL + i] = bt[b].a[i];
 		res->events += bt[b].events;
@@ -85,7 +87,13 @@ void sim_run(const struct sim_config *c, struct sim_result *res,
 	res->tt = batchstat_weighted(sc + TT, nsc, bn, nb, c->photons);
 	res->tt_unscat = batchstat_weighted(sc + TTU, nsc, bn, nb, c->photons);
 	res->lost = batchstat_weighted(sc + LOST, nsc, bn, nb, c->photons);
-	double bal = res->rsp + res->rd.v + res->tt.v + res->lost.v;
+	if (c->slab.rough_top) {
+		struct estimate e = batchstat_weighted(sc + RSP, nsc, bn, nb, c->photons);
+		res->rsp += e.v;
+		res->rsp_err = e.err;
+	}
+	res->facet_loss = batchstat_weighted(sc + FLOSS, nsc, bn, nb, c->photons);
+	double bal = res->rsp + res->rd.v + res->tt.v + res->lost.v + res->facet_loss.v;
 	for (int i = 0; i < na; i++) {
 		res->a[i] = batchstat_weighted(sc + NSCAL + i, nsc, bn, nb, c->photons);
 		bal += res->a[i].v;

@@ -25,9 +25,11 @@ struct sim_result {
 	long photons;
 	double seconds;		/* wall time of the run [s] */
 	double events;		/* scattering events in total */
-	double rsp;		/* exact, no error */
-	/* Fractions of the incident power with their standard errors. */
-	struct estimate rd, rd_unscat, tt, tt_unscat, lost;
+	double rsp;		/* exact, no error (smooth top); a Monte Carlo mean with rsp_err (rough top) */
+	double rsp_err;		/* standard error of rsp, 0 for a smooth top */
+	/* Fractions of the incident power with their standard errors; facet_loss
+	 * is what the rough boundaries' single-scattering microfacets lose. */
+	struct estimate rd, rd_unscat, tt, tt_unscat, lost, facet_loss;
 	struct estimate a[SLAB_MAX_LAYERS + 2];	/* index as in struct slab */
 	int n_layers;
 	struct tally_grid grid;

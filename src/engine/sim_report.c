@@ -9,19 +9,16 @@
 #include <string.h>
 
 #include "base/util.h"
+#include "io/json.h"
 
 /* JSON has no NaN: a value that cannot be estimated (e.g. the error of a
  * single batch) is null. */
-static json_object *jnum(double v)
-{
-	return isfinite(v) ? json_object_new_double(v) : NULL;
-}
 
 static json_object *jarray(const double *v, int n)
 {
 	json_object *a = json_object_new_array_ext(n);
 	for (int i = 0; i < n; i++)
-		json_object_array_add(a, jnum(v[i]));
+		json_object_array_add(a, json_num(v[i]));
 	return a;
 }
 
@@ -33,21 +30,27 @@ static void add(json_object *o, const char *key, json_object *v)
 /* The totals, Rsp to the balance. */
 static void add_totals(json_object *o, const struct sim_result *r)
 {
-	add(o, "Rsp", jnum(r->rsp));
-	add(o, "Rd", jnum(r->rd.v));
-	add(o, "Rd_err", jnum(r->rd.err));
-	add(o, "Rd_unscattered", jnum(r->rd_unscat.v));
-	add(o, "Rd_unscattered_err", jnum(r->rd_unscat.err));
-	add(o, "Tt", jnum(r->tt.v));
-	add(o, "Tt_err", jnum(r->tt.err));
-	add(o, "Tt_unscattered", jnum(r->tt_unscat.v));
+	add(o, "Rsp", json_num(r->rsp));
+	add(o, "Rd", json_num(r->rd.v));
+	add(o, "Rd_err", json_num(r->rd.err));
+	add(o, "Rd_unscattered", json_num(r->rd_unscat.v));
+	add(o, "Rd_unscattered_err", json_num(r->rd_unscat.err));
+	add(o, "Tt", json_num(r->tt.v));
+	add(o, "Tt_err", json_num(r->tt.err));
+	add(o, "Tt_unscattered", json_num(r->tt_unscat.v));
 	double a[SLAB_MAX_LAYERS], ae[SLAB_MAX_LAYERS];
 	for (int i = 0; i < r->n_layers; i++)
 		a[i] = r->a[i + 1].v, ae[i] = r->a[i + 1].err;
 	add(o, "A", jarray(a, r->n_layers));
 	add(o, "A_err", jarray(ae, r->n_layers));
-	add(o, "lost", jnum(r->lost.v));
-	add(o, "balance", jnum(r->balance));
+	add(o, "lost", json_num(r->lost.v));
+	if (r->rsp_err > 0.0 || r->facet_loss.v > 0.0) {
+		/* Rough boundaries only, so smooth stacks' reports stay as they were. */
+		add(o, "Rsp_err", json_num(r->rsp_err));
+		add(o, "facet_loss", json_num(r->facet_loss.v));
+		add(o, "facet_loss_err", json_num(r->facet_loss.err));
+	}
+	add(o, "balance", json_num(r->balance));
 }
 
 /* brdf_az, brdf and Rd_r. */
@@ -92,25 +95,25 @@ char *sim_report_json(const struct sim_config *c, const struct sim_result *r, co
 	json_object *o = json_object_new_object();
 	if (ad) {
 		add(o, "solver", json_object_new_string("ad"));
-		add(o, "seconds", jnum(r->seconds));
-		add(o, "theta_in_deg", jnum(c->theta_in * 180.0 / M_PI));
+		add(o, "seconds", json_num(r->seconds));
+		add(o, "theta_in_deg", json_num(c->theta_in * 180.0 / M_PI));
 		add_totals(o, r);
-		add(o, "tol", jnum(ad->tol));
+		add(o, "tol", json_num(ad->tol));
 		add(o, "n_quad", json_object_new_int(ad->n_quad));
 		add(o, "fourier_orders", json_object_new_int(ad->n_orders));
-		add(o, "rms_rel_err", jnum(ad->rms_rel_err));
+		add(o, "rms_rel_err", json_num(ad->rms_rel_err));
 	} else {
 		add(o, "photons", json_object_new_int64(r->photons));
-		add(o, "seconds", jnum(r->seconds));
-		add(o, "theta_in_deg", jnum(c->theta_in * 180.0 / M_PI));
+		add(o, "seconds", json_num(r->seconds));
+		add(o, "theta_in_deg", json_num(c->theta_in * 180.0 / M_PI));
 		add(o, "seed", json_object_new_int64((int64_t)c->seed));
 		add_totals(o, r);
-		add(o, "scattering_events", jnum(r->events));
-		add(o, "photons_per_second", jnum(r->photons / r->seconds));
-		add(o, "events_per_second", jnum(r->events / r->seconds));
+		add(o, "scattering_events", json_num(r->events));
+		add(o, "photons_per_second", json_num(r->photons / r->seconds));
+		add(o, "events_per_second", json_num(r->events / r->seconds));
 	}
 	add_tables(o, r);
-	char *s = xstrdup(json_object_to_json_string_ext(o, JSON_C_TO_STRING_PLAIN | JSON_C_TO_STRING_NOSLASHESCAPE));
+	char *s = json_text(o, JSON_PLAIN);
 	json_object_put(o);
 	return s;
 }
@@ -126,7 +129,10 @@ void sim_report_table(FILE *fp, const struct sim_config *c, const struct sim_res
 		    (unsigned long long)c->seed, r->seconds, r->photons / r->seconds, r->events / r->seconds);
 	const char *err = ad ? "error est." : "std.err";
 	fprintf(fp, "  %-18s %12s %12s\n", "quantity", "value", err);
-	fprintf(fp, "  %-18s %12.6f %12s\n", "Rsp", r->rsp, "exact");
+	if (r->rsp_err > 0.0)
+		fprintf(fp, "  %-18s %12.6f %12.2e\n", "Rsp", r->rsp, r->rsp_err);
+	else
+		fprintf(fp, "  %-18s %12.6f %12s\n", "Rsp", r->rsp, "exact");
 	fprintf(fp, "  %-18s %12.6f %12.2e\n", "Rd", r->rd.v, r->rd.err);
 	fprintf(fp, "  %-18s %12.6f %12.2e\n", "  unscattered", r->rd_unscat.v, r->rd_unscat.err);
 	fprintf(fp, "  %-18s %12.6f %12.2e\n", "Tt", r->tt.v, r->tt.err);
@@ -137,6 +143,8 @@ void sim_report_table(FILE *fp, const struct sim_config *c, const struct sim_res
 		fprintf(fp, "  %-18s %12.6f %12.2e\n", name, r->a[i].v, r->a[i].err);
 	}
 	fprintf(fp, "  %-18s %12.3g\n", "lost", r->lost.v);
+	if (r->facet_loss.v > 0.0)
+		fprintf(fp, "  %-18s %12.6f %12.2e\n", "facet loss", r->facet_loss.v, r->facet_loss.err);
 	fprintf(fp, "  %-18s %12.3g\n", "balance - 1", r->balance);
 	fprintf(fp, "\n  azimuth-averaged diffuse BRDF [1/sr]\n  %-18s %12s %12s\n", "theta_out [deg]", "fr", err);
 	for (int i = 0; i < r->grid.n_theta; i++) {

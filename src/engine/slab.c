@@ -68,6 +68,11 @@ int slab_check(const struct slab *s, char **cause)
 			*cause = xasprintf("layer %d: g = %g is out of range (-1, 1)", i, l->g);
 			return -1;
 		}
+		if (!(l->rough >= 0.0 && l->rough <= 1.0)) {
+			*cause = xasprintf("layer %d: rough = %g is out of range [0, 1] (GGX alpha of its top boundary)", i,
+			    l->rough);
+			return -1;
+		}
 		if (isinf(l->d) && l->mu_a == 0.0 && l->mu_s == 0.0) {
 			*cause = xasprintf("layer %d: a semi-infinite layer must absorb or scatter (mua = mus = 0)", i);
 			return -1;
@@ -94,6 +99,14 @@ void slab_prepare(struct slab *s)
 			s->first_turbid = i;
 	}
 	s->z_top[n + 1] = z;
+	s->rough_top = 0;
+	s->rough_any = 0;
+	for (int i = 1; i <= n; i++) {
+		if (L[i].rough > 0.0)
+			s->rough_any = 1;
+		if (L[i].rough > 0.0 && i <= s->first_turbid)
+			s->rough_top = 1;
+	}
 	s->z_bot[n + 1] = INFINITY;
 	for (int i = 0; i <= n + 1; i++) {
 		s->mu_t[i] = L[i].mu_a + L[i].mu_s;

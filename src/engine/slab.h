@@ -12,6 +12,8 @@ struct layer {
 	double mu_a;	/* absorption coefficient [1/cm], >= 0 */
 	double mu_s;	/* scattering coefficient [1/cm], >= 0 */
 	double g;	/* Henyey-Greenstein anisotropy [-], in (-1, 1) */
+	double rough;	/* GGX alpha of the boundary on this layer's top (to the layer above) [-]:
+			 * 0 = smooth, (0, 1] = a rough interface (engine/microfacet.h) */
 };
 
 struct slab {
@@ -30,6 +32,8 @@ struct slab {
 	double cos_crit_up[SLAB_MAX_LAYERS + 2];	/* critical cosine into the layer above, 0 if none */
 	double cos_crit_down[SLAB_MAX_LAYERS + 2];	/* critical cosine into the layer below */
 	int first_turbid;	/* first layer with mu_t > 0, or n_layers+1 if none */
+	int rough_top;		/* 1 if a boundary above the first turbid layer is rough */
+	int rough_any;		/* 1 if any boundary is rough */
 };
 
 /* Start an empty stack with the given ambient indices. */

@@ -62,9 +62,9 @@ void solver_buf_get(struct solver_buf *b, void *v, size_t n)
 /* The estimates of an entry in one order, for put and get. */
 static struct estimate *entry_estimates(struct brdf_entry *e, int *n)
 {
-	static_assert(offsetof(struct brdf_entry, lost) - offsetof(struct brdf_entry, albedo) ==
-	    (SLAB_MAX_LAYERS + 6) * sizeof(struct estimate), "estimates of brdf_entry are contiguous");
-	*n = SLAB_MAX_LAYERS + 7;
+	static_assert(offsetof(struct brdf_entry, facet_loss) - offsetof(struct brdf_entry, albedo) ==
+	    (SLAB_MAX_LAYERS + 7) * sizeof(struct estimate), "estimates of brdf_entry are contiguous");
+	*n = SLAB_MAX_LAYERS + 8;
 	return &e->albedo;
 }
 

@@ -67,7 +67,8 @@ struct solver_run {
 struct brdf_entry {
 	double wl_nm;		/* [nm] */
 	double theta_i;		/* [rad] */
-	double rsp;		/* specular reflectance of the smooth top and clear layers on top (exact) [-] */
+	double rsp;		/* specular reflectance of the top and clear layers on top [-] (exact when
+				 * smooth; Monte Carlo, error in albedo's, when rough) */
 	struct estimate albedo;	/* directional-hemispherical diffuse albedo (scattered light) [-];
 				 * Monte Carlo states the error of all returned light here */
 	struct estimate rd_unscat;	/* returned without scattering below the clear top [-] */
@@ -75,6 +76,8 @@ struct brdf_entry {
 	struct estimate a_total;	/* absorbed in all layers [-] */
 	struct estimate a[SLAB_MAX_LAYERS + 2];	/* absorbed per layer, index as in struct slab [-] */
 	struct estimate lost;	/* ended by a guard of the method (e.g. step cap) [-] */
+	struct estimate facet_loss;	/* shadowed and masked at rough boundaries: what the
+				 * single-scattering microfacet model loses (engine/microfacet.h) [-] */
 	double *fr, *fr_err;	/* [n_theta * n_phi] diffuse BRDF bin means and errors [1/sr],
 				 * row-major [theta_o][delta_phi] */
 	double *rd_r, *rd_r_err;	/* [n_r] radial profile Rd(r) [1/cm^2], NULL without radial bins */

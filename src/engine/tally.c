@@ -63,6 +63,8 @@ void tally_add(struct tally *dst, const struct tally *src, const struct tally_gr
 	dst->tt += src->tt;
 	dst->tt_unscat += src->tt_unscat;
 	dst->lost += src->lost;
+	dst->rsp += src->rsp;
+	dst->facet_loss += src->facet_loss;
 	dst->events += src->events;
 	for (int i = 0; i < SLAB_MAX_LAYERS + 2; i++)
 		dst->a[i] += src->a[i];

@@ -20,6 +20,9 @@ struct tally {
 	double tt;		/* weight leaving the bottom */
 	double tt_unscat;	/* part of tt that never scattered */
 	double lost;		/* weight ended by a guard (step cap, stuck photon) */
+	double rsp;		/* reflected by the top without entering the first turbid layer
+				 * (rough boundaries on top; smooth ones give struct launch's rsp) */
+	double facet_loss;	/* shadowed or masked at rough boundaries (single-scattering microfacets) */
 	double a[SLAB_MAX_LAYERS + 2];	/* absorbed per layer (index as in struct slab) */
 	double events;		/* scattering events (a count, for throughput) */
 	double *exit;		/* [n_theta * n_phi] scattered weight leaving the top */

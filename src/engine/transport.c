@@ -20,6 +20,7 @@
 
 #include <math.h>
 
+#include "engine/microfacet.h"
 #include "engine/phase.h"
 #include "base/rng.h"
 
@@ -34,6 +35,12 @@ void transport_opts_default(struct transport_opts *o)
 void transport_launch(const struct slab *s, double theta_in, enum optics_fresnel model, struct launch *ln)
 {
 	const struct layer *L = s->layer;
+	if (s->rough_top) {
+		/* The walk crosses the rough top itself, from just above it. */
+		*ln = (struct launch){ .rsp = 0.0, .w0 = 1.0, .layer = 0, .z = 0.0, .ux = sin(theta_in),
+			.uz = cos(theta_in) };
+		return;
+	}
 	int k = s->first_turbid;	/* n_layers + 1 when all clear: then down to the ambient below */
 	double n_list[SLAB_MAX_LAYERS + 2], ct;
 	for (int j = 0; j <= k; j++)
@@ -91,6 +98,7 @@ struct photon {
 	int l;	/* current layer */
 	int scattered;	/* scattered at least once */
 	int direct;	/* flying straight on since the last scattering (what nee scores) */
+	int entered;	/* has reached the first turbid layer (else a return is specular) */
 	long steps;	/* interactions so far */
 };
 
@@ -109,6 +117,7 @@ static inline void launch(struct photon *ph, const struct launch *ln)
 	ph->l = ln->layer;
 	ph->scattered = 0;
 	ph->direct = 0;
+	ph->entered = ln->layer > 0;
 	ph->steps = 0;
 }
 
@@ -145,6 +154,27 @@ static inline int guard(struct photon *ph, const struct transport_opts *o, struc
 	return 0;
 }
 
+/* Rough crossing from layer l into nb (microfacet.h): a facet normal from
+ * the visible normals, reflection or refraction on it, the weight times
+ * G1 of the new direction (what it shadows is booked as facet_loss).  The
+ * frame has the incident side up: wi = -u with z toward the side the
+ * photon comes from.  Sets the new direction; returns 1 when reflected. */
+static int rough_cross(struct photon *ph, const struct slab *s, const struct transport_opts *o, int l, int nb,
+    double alpha, struct rng *r, struct tally *t)
+{
+	const struct microfacet mf = { MICROFACET_GGX, alpha, o->fresnel };
+	double wi[3] = { -ph->ux, -ph->uy, fabs(ph->uz) }, wo[3];
+	double u1 = rng_uniform(r), u2 = rng_uniform(r), u3 = rng_uniform(r);
+	double g = microfacet_sample(&mf, s->layer[l].n, s->layer[nb].n, wi, u1, u2, u3, wo);
+	double side = ph->uz > 0.0 ? 1.0 : -1.0;
+	t->facet_loss += ph->w * (1.0 - g);
+	ph->w *= g;
+	ph->ux = wo[0];
+	ph->uy = wo[1];
+	ph->uz = -side * wo[2];
+	return wo[2] > 0.0;
+}
+
 /* Boundary: move to the boundary ahead keeping the unused optical depth,
  * then reflect (total internal reflection or Fresnel) or refract (Snell in
  * cosines) into the next layer; leaving the top is scored, leaving the
@@ -174,25 +204,40 @@ static inline int boundary(struct photon *ph, const struct slab *s, const struct
 	double ci = up ? -ph->uz : ph->uz;
 	double crit = up ? s->cos_crit_up[l] : s->cos_crit_down[l];
 	int reflect;
-	double ct = ci;
-	if (ci <= crit)
+	double ct = ci, alpha = up ? L[l].rough : L[nb].rough;
+	if (alpha > 0.0) {
+		reflect = rough_cross(ph, s, o, l, nb, alpha, r, t);
+		if (ph->w == 0.0)
+			return 1;	/* shadowed: all of it is in facet_loss */
+		ct = fabs(ph->uz);
+		if (reflect && l == 0) {
+			t->rsp += ph->w;	/* off the rough top from above */
+			return 1;
+		}
+	} else if (ci <= crit)
 		reflect = 1;	/* total internal reflection */
 	else {
 		double rf = optics_fresnel(o->fresnel, L[l].n, L[nb].n, ci, &ct);
 		reflect = rf > 0.0 && rng_uniform(r) < rf;
 	}
 	if (reflect) {
-		ph->uz = -ph->uz;
+		if (alpha == 0.0)
+			ph->uz = -ph->uz;
 		if (l >= s->first_turbid)
 			ph->direct = 0;	/* back into the turbid layers: nee did not count this path */
 		return guard(ph, o, t);
 	}
-	double eta = L[l].n / L[nb].n;
-	ph->ux *= eta;
-	ph->uy *= eta;
-	ph->uz = up ? -ct : ct;
+	if (alpha == 0.0) {
+		double eta = L[l].n / L[nb].n;
+		ph->ux *= eta;
+		ph->uy *= eta;
+		ph->uz = up ? -ct : ct;
+	}
 	if (nb == 0) {
-		score_top(grid, t, ph->w, ph->scattered, !(nee && ph->direct), ph->ux, ph->uy, ct, ph->x, ph->y);
+		if (!ph->entered)
+			t->rsp += ph->w;	/* back out of clear layers on top: specular */
+		else
+			score_top(grid, t, ph->w, ph->scattered, !(nee && ph->direct), ph->ux, ph->uy, ct, ph->x, ph->y);
 		return 1;
 	}
 	if (nb == s->n_layers + 1) {
@@ -202,6 +247,8 @@ static inline int boundary(struct photon *ph, const struct slab *s, const struct
 		return 1;
 	}
 	ph->l = nb;
+	if (nb >= s->first_turbid)
+		ph->entered = 1;
 	return 0;
 }
 

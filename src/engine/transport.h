@@ -11,7 +11,7 @@
 #include "engine/nee.h"
 
 struct transport_opts {
-	enum optics_fresnel fresnel;	/* model at every boundary */
+	enum optics_fresnel fresnel;	/* model at every boundary (per facet at rough ones) */
 	double roulette_w;		/* weight below which roulette plays [-], >= 0 */
 	double roulette_chance;		/* survival probability in roulette [-], (0, 1] */
 	long max_steps;			/* interactions per photon before the guard ends it */
@@ -21,7 +21,9 @@ struct transport_opts {
 struct launch {
 	double rsp;	/* specular reflectance of the top surface and any clear layers on top [-] */
 	double w0;	/* weight entering the first turbid layer = 1 - rsp */
-	int layer;	/* first turbid layer; n_layers + 1 when the stack is all clear */
+	int layer;	/* first turbid layer; n_layers + 1 when the stack is all clear;
+			 * 0 (the ambient above) when a boundary on top is rough: the
+			 * walk then crosses the top itself and scores rsp in the tally */
 	double z;	/* entry depth [cm] */
 	double ux, uz;	/* direction cosines in that layer (uy = 0: incidence plane is xz) */
 };
@@ -34,7 +36,10 @@ void transport_opts_default(struct transport_opts *o);
 /* Specular reflection at the top and the entry state.  A clear layer (no
  * absorption or scattering) on top is crossed analytically: its incoherent
  * multiple reflections count into rsp, the MCML and adding-doubling
- * convention.  theta_in in [0, pi/2) [rad]; s prepared. */
+ * convention.  With a rough boundary on top (s->rough_top) the photons
+ * start above the surface instead (rsp = 0, w0 = 1) and what comes back
+ * without entering the first turbid layer is the tally's rsp.
+ * theta_in in [0, pi/2) [rad]; s prepared. */
 void transport_launch(const struct slab *s, double theta_in, enum optics_fresnel model, struct launch *ln);
 
 /* Trace photons first .. first+count-1 of (seed, stream) and add their

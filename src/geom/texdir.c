@@ -9,12 +9,14 @@
 #include <stdlib.h>
 #include <string.h>
 
+#include "base/budget.h"
 #include "base/check.h"
 #include "base/checksum.h"
 #include "base/outdir.h"
 #include "base/srgb.h"
 #include "base/util.h"
 #include "io/exrio.h"
+#include "io/json.h"
 #include "io/pngio.h"
 
 static const char *NORMAL_CONVENTION = "OpenGL +Y";
@@ -244,8 +246,8 @@ static json_object *jrange(const char *file, struct stats s)
 {
 	json_object *c = json_object_new_object();
 	json_object_object_add(c, "file", json_object_new_string(file));
-	json_object_object_add(c, "height_min_um", json_object_new_double(s.lo * 1e4));
-	json_object_object_add(c, "height_max_um", json_object_new_double(s.hi * 1e4));
+	json_object_object_add(c, "height_min_um", json_num(s.lo * 1e4));
+	json_object_object_add(c, "height_max_um", json_num(s.hi * 1e4));
 	return c;
 }
 
@@ -258,18 +260,18 @@ static int write_manifest(const struct outputs *o, const struct relief *r, struc
 	json_object_object_add(m, "kind", json_object_new_string("skinbake texture"));
 	json_object_object_add(m, "skinbake_version", json_object_new_string(PACKAGE_VERSION));
 	json_object_object_add(m, "site", json_object_new_string(cfg->site));
-	json_object_object_add(m, "seed", json_object_new_int64((int64_t)cfg->seed));
+	json_object_object_add(m, "seed", json_object_new_uint64(cfg->seed));
 	json_object_object_add(m, "size_px", json_object_new_int64(cfg->size));
-	json_object_object_add(m, "tile_mm", json_object_new_double(tile_mm));
-	json_object_object_add(m, "pixel_um", json_object_new_double(tile_mm * 1000 / (double)cfg->size));
-	json_object_object_add(m, "height_min_um", json_object_new_double(sh.lo * 1e4));
-	json_object_object_add(m, "height_max_um", json_object_new_double(sh.hi * 1e4));
+	json_object_object_add(m, "tile_mm", json_num(tile_mm));
+	json_object_object_add(m, "pixel_um", json_num(tile_mm * 1000 / (double)cfg->size));
+	json_object_object_add(m, "height_min_um", json_num(sh.lo * 1e4));
+	json_object_object_add(m, "height_max_um", json_num(sh.hi * 1e4));
 	json_object_object_add(m, "height_encoding", json_object_new_string(
 	    "height.png: 16-bit gray, 0 = height_min_um, 65535 = height_max_um, linear; "
 	    "heights relative to the undisturbed surface"));
 	/* POV-Ray bump_map scale (docs pov.md section 4): range * pixels / tile. */
 	json_object_object_add(m, "pov_bump_size",
-	    json_object_new_double((sh.hi - sh.lo) * 10 * (double)cfg->size / tile_mm));
+	    json_num((sh.hi - sh.lo) * 10 * (double)cfg->size / tile_mm));
 	json_object_object_add(m, "normal_convention", json_object_new_string(NORMAL_CONVENTION));
 	json_object_object_add(m, "normal_encoding", json_object_new_string(NORMAL_CONVENTION_LONG));
 	json_object_object_add(m, "row0", json_object_new_string("top of the image = +y end of the tile"));
@@ -285,8 +287,8 @@ static int write_manifest(const struct outputs *o, const struct relief *r, struc
 			if (*c == '-')
 				*c = '_';
 		double v = sites_get(cfg, &p[i]);
-		json_object_object_add(par, key, p[i].type == SITES_REAL ? json_object_new_double(v)
-		    : json_object_new_int64((int64_t)v));
+		json_object_object_add(par, key, p[i].type == SITES_REAL ? json_num(v)
+		    : p[i].type == SITES_SEED ? json_object_new_uint64(cfg->seed) : json_object_new_int64((int64_t)v));
 		json_object_object_add(units, key, json_object_new_string(p[i].unit));
 	}
 	json_object_object_add(m, "parameters", par);
@@ -299,10 +301,10 @@ static int write_manifest(const struct outputs *o, const struct relief *r, struc
 		json_object_object_add(l, "level", json_object_new_int(k + 1));
 		json_object_object_add(l, "junctions", json_object_new_int(li.points));
 		json_object_object_add(l, "furrows", json_object_new_int(3 * li.points));
-		json_object_object_add(l, "cell_mm", json_object_new_double(li.cell * 10));
-		json_object_object_add(l, "width_um", json_object_new_double(li.width * 1e4));
-		json_object_object_add(l, "depth_um", json_object_new_double(li.depth * 1e4));
-		json_object_object_add(l, "ridge_um", json_object_new_double(li.ridge * 1e4));
+		json_object_object_add(l, "cell_mm", json_num(li.cell * 10));
+		json_object_object_add(l, "width_um", json_num(li.width * 1e4));
+		json_object_object_add(l, "depth_um", json_num(li.depth * 1e4));
+		json_object_object_add(l, "ridge_um", json_num(li.ridge * 1e4));
 		json_object_array_add(lv, l);
 	}
 	json_object_object_add(m, "furrow_levels", lv);
@@ -320,8 +322,9 @@ static int write_manifest(const struct outputs *o, const struct relief *r, struc
 		json_object_array_add(fl, json_object_new_string(files[i]));
 	json_object_object_add(m, "files", fl);
 
-	int rc = checksum_write_manifest(o->dir, "manifest.json", json_object_to_json_string_ext(m,
-	    JSON_C_TO_STRING_PRETTY | JSON_C_TO_STRING_NOSLASHESCAPE), cause);
+	char *text = json_text(m, JSON_PRETTY);
+	int rc = checksum_write_manifest(o->dir, "manifest.json", text, cause);
+	free(text);
 	json_object_put(m);
 	return rc;
 }
@@ -373,25 +376,23 @@ static int write_files(const char *dir, const struct texture_config *cfg, const 
 	return write_manifest(&o, r, sh, sp, sf, cause);
 }
 
-int texdir_write(const char *dir, const struct texture_config *cfg, const struct relief *r,
-    const struct texdir_maps *m, char **cause)
-{
-	struct outdir od;
-	if (outdir_begin(&od, dir, &texdir_outdir_kind, cause) != 0)
-		return -1;
-	if (write_files(outdir_path(&od), cfg, r, m, cause) != 0) {
-		outdir_abort(&od);
-		return -1;
-	}
-	return outdir_commit(&od, cause);
-}
-
 /* The steps in the order the command reports them; the output (and its
  * lock) is taken first, nothing is written before the relief has been
  * placed. */
 int texdir_make(const char *dir, const struct texture_config *cfg, struct texdir_made *made, char **cause)
 {
 	memset(made, 0, sizeof *made);
+	/* Measured: peak memory about 40 bytes per pixel (the six float maps
+	 * and the writers' buffers), files about 27 bytes per pixel. */
+	double npx = (double)cfg->size * (double)cfg->size;
+	char *what = xasprintf("texture --size %ld", cfg->size);
+	int e = budget_check(what, TEXDIR_MEM_PER_PX * npx + 16e6, TEXDIR_DISK_PER_PX * npx, dir,
+	    "lower --size (a quarter of the pixels at half the size)", cause);
+	free(what);
+	if (e != 0) {
+		made->refused = 1;
+		return -1;
+	}
 	struct outdir od;
 	if (outdir_begin(&od, dir, &texdir_outdir_kind, cause) != 0) {
 		made->refused = 1;
@@ -400,7 +401,7 @@ int texdir_make(const char *dir, const struct texture_config *cfg, struct texdir
 	double t0 = util_now();
 	struct relief *r = relief_new(&cfg->relief, cfg->seed, cause);
 	if (r == NULL) {
-		outdir_abort(&od);
+		outdir_fail(&od, cause);
 		return -1;
 	}
 	made->n_pores = relief_n_pores(r);
@@ -412,7 +413,7 @@ int texdir_make(const char *dir, const struct texture_config *cfg, struct texdir
 	double t2 = util_now();
 	int rc = write_files(outdir_path(&od), cfg, r, &m, cause);
 	if (rc != 0)
-		outdir_abort(&od);
+		outdir_fail(&od, cause);
 	else
 		rc = outdir_commit(&od, cause);
 	made->t_place = t1 - t0;
@@ -529,7 +530,7 @@ static int check_manifest(const char *dir, const struct texdir *t, char **cause)
 		return 0;
 	}
 	fclose(f);
-	json_object *m = json_object_from_file(mp), *v;
+	json_object *m = json_load(mp), *v;
 	int rc = -1;
 	char px[32];
 	snprintf(px, sizeof px, "%d px", t->w);

@@ -16,6 +16,7 @@
 #include "base/check.h"
 #include "base/srgb.h"
 #include "base/util.h"
+#include "io/json.h"
 #include "skin/colour.h"
 
 #define REG 0.01	/* pull toward the axis middle, CIELAB units per unit of normalised coordinate */
@@ -532,18 +533,18 @@ char *maps_fit_summary_json(const struct maps_fit_summary *s, const struct maps_
 	json_object *j = json_object_new_object();
 	json_object_object_add(j, "albedo", json_object_new_string(albedo));
 	json_object_object_add(j, "input", json_object_new_string(o->input_linear ? "linear sRGB" : "sRGB-encoded"));
-	json_object_object_add(j, "max_de2000", json_object_new_double(o->max_de));
+	json_object_object_add(j, "max_de2000", json_num(o->max_de));
 	json_object_object_add(j, "texels", json_object_new_int64(s->texels));
 	json_object_object_add(j, "fitted", json_object_new_int64(s->fitted));
 	json_object_object_add(j, "matched", json_object_new_int64(s->matched));
 	json_object_object_add(j, "unmatched", json_object_new_int64(s->unmatched));
 	json_object_object_add(j, "not_fitted", json_object_new_int64(s->texels - s->fitted));
 	json_object_object_add(j, "distinct_colours", json_object_new_int64(s->unique));
-	json_object_object_add(j, "de2000_median", json_object_new_double(s->de_median));
-	json_object_object_add(j, "de2000_p95", json_object_new_double(s->de_p95));
-	json_object_object_add(j, "de2000_max", json_object_new_double(s->de_max));
-	json_object_object_add(j, "seconds", json_object_new_double(s->seconds));
-	char *text = xstrdup(json_object_to_json_string_ext(j, JSON_C_TO_STRING_PLAIN | JSON_C_TO_STRING_NOSLASHESCAPE));
+	json_object_object_add(j, "de2000_median", json_num(s->de_median));
+	json_object_object_add(j, "de2000_p95", json_num(s->de_p95));
+	json_object_object_add(j, "de2000_max", json_num(s->de_max));
+	json_object_object_add(j, "seconds", json_num(s->seconds));
+	char *text = json_text(j, JSON_PLAIN);
 	json_object_put(j);
 	return text;
 }

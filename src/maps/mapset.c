@@ -14,6 +14,7 @@
 #include "base/outdir.h"
 #include "base/checksum.h"
 #include "base/util.h"
+#include "io/json.h"
 #include "maps/image.h"
 
 struct mapset *mapset_new(const struct family *f, int w, int h, const double *x)
@@ -86,7 +87,7 @@ static void add(json_object *o, const char *k, json_object *v)
 
 static json_object *num(double v)
 {
-	return json_object_new_double(v);
+	return json_num(v);
 }
 
 /* One float map: 16-bit PNG of (v - lo) / (hi - lo), or float EXR. */
@@ -182,7 +183,7 @@ static char *index_text(const struct mapset *m)
 		add(o, "status", e);
 	}
 	if (m->fit) {
-		json_object *f = json_tokener_parse(m->fit);
+		json_object *f = json_parse(m->fit);
 		if (f)
 			add(o, "fit", f);
 	}
@@ -190,7 +191,7 @@ static char *index_text(const struct mapset *m)
 	for (int i = 0; i < m->n_history; i++)
 		json_object_array_add(h, json_object_new_string(m->history[i]));
 	add(o, "history", h);
-	char *text = xstrdup(json_object_to_json_string_ext(o, JSON_C_TO_STRING_PRETTY | JSON_C_TO_STRING_NOSLASHESCAPE));
+	char *text = json_text(o, JSON_PRETTY);
 	json_object_put(o);
 	return text;
 }
@@ -237,7 +238,7 @@ int mapset_write(const char *dir, const struct mapset *m, char **cause)
 	if (outdir_begin(&od, dir, &mapset_outdir_kind, cause) != 0)
 		return -1;
 	if (write_all(outdir_path(&od), m, cause) != 0) {
-		outdir_abort(&od);
+		outdir_fail(&od, cause);
 		return -1;
 	}
 	return outdir_commit(&od, cause);
@@ -254,12 +255,7 @@ static const char *jstr(json_object *o, const char *k)
 
 static int jnum(json_object *o, const char *k, double *out)
 {
-	json_object *v;
-	if (!json_object_object_get_ex(o, k, &v) ||
-	    !(json_object_is_type(v, json_type_double) || json_object_is_type(v, json_type_int)))
-		return -1;
-	*out = json_object_get_double(v);
-	return 0;
+	return json_get_num(o, k, out) == 0 ? 0 : -1;
 }
 
 /* A map file of the directory: its size must be maps.json's. */
@@ -336,7 +332,7 @@ static int read_extras(const char *dir, json_object *o, struct mapset *m, int pn
 		free(s);
 	}
 	if (json_object_object_get_ex(o, "fit", &e))
-		m->fit = xstrdup(json_object_to_json_string_ext(e, JSON_C_TO_STRING_PLAIN));
+		m->fit = json_text(e, JSON_PLAIN);
 	if (json_object_object_get_ex(o, "history", &h) && json_object_is_type(h, json_type_array))
 		for (size_t i = 0; i < json_object_array_length(h); i++)
 			mapset_add_history(m, json_object_get_string(json_object_array_get_idx(h, i)));
@@ -354,7 +350,7 @@ struct mapset *mapset_read(const char *dir, char **cause)
 		*cause = xasprintf("%s: not a maps directory (%s: %s)", dir, path, strerror(errno));
 		goto fail;
 	}
-	if ((o = json_object_from_file(path)) == NULL || !json_object_is_type(o, json_type_object)) {
+	if ((o = json_load(path)) == NULL || !json_object_is_type(o, json_type_object)) {
 		*cause = xasprintf("%s: not a skinbake maps index (corrupt JSON)", path);
 		goto fail;
 	}

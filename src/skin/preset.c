@@ -303,6 +303,8 @@ double preset_surface_ior(const struct skin_params *p)
 
 double preset_surface_roughness(const struct skin_params *p)
 {
+	if (p->roughness_top > 0.0)
+		return p->roughness_top;	/* one surface for the lobe and the transport */
 	return tissue_layer_present(p, SKIN_SEBUM) ? p->roughness_sebum : p->roughness_skin;
 }
 

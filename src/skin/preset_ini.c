@@ -63,6 +63,8 @@ char *preset_to_ini(const struct skin_params *p)
 		}
 		const char *base = k->layer < 0 ? (const char *)p : (const char *)&p->layer[k->layer];
 		double x = *(const double *)(base + k->off);
+		if (k->kind == K_ROUGH && x == 0.0)
+			continue;	/* smooth: the text of presets from before roughness */
 		switch (k->kind) {
 		case K_TEXT:
 			cat(&s, "%s = %s\n", k->name, *(char *const *)(base + k->off));
@@ -105,7 +107,7 @@ void preset_print_keys(FILE *fp)
 		const struct preset_key *k = &preset_key_table[i];
 		char full[64], rng[64];
 		snprintf(full, sizeof full, "%s.%s", k->section, k->name);
-		if (k->kind == K_NUM || k->kind == K_LEN || k->kind == K_IOR || k->kind == K_ANISO)
+		if (k->kind == K_NUM || k->kind == K_ROUGH || k->kind == K_LEN || k->kind == K_IOR || k->kind == K_ANISO)
 			snprintf(rng, sizeof rng, "[%g, %g]%s", k->lo, k->hi, k->kind == K_LEN ? " | inf" : "");
 		else if (k->kind == K_WL)
 			snprintf(rng, sizeof rng, "[%g, %g]", k->lo, k->hi);

@@ -85,6 +85,15 @@ const struct preset_key preset_key_table[] = {
 	  "GGX alpha of bare skin" },
 	{ "surface", "roughness_sebum", K_NUM, NONE, POFF(roughness_sebum), 0.01, 1, "", "0.25",
 	  "GGX alpha of the sebum-covered surface" },
+	{ "surface", "roughness", K_ROUGH, NONE, POFF(roughness_top), 0, 1, "", "0",
+	  "GGX alpha of the top boundary in the subsurface transport: light enters and leaves through "
+	  "microfacets (Walter 2007, Smith G); 0 = smooth; > 0 is also the specular lobe's alpha" },
+	{ "epidermis", "top_roughness", K_ROUGH, SKIN_EPIDERMIS, LOFF(rough_top), 0, 1, "", "0",
+	  "GGX alpha of the boundary under the sebum film (needs a film); 0 = smooth" },
+	{ "dermis", "top_roughness", K_ROUGH, SKIN_DERMIS, LOFF(rough_top), 0, 1, "", "0",
+	  "GGX alpha of the epidermis-dermis boundary; 0 = smooth" },
+	{ "subcutis", "top_roughness", K_ROUGH, SKIN_SUBCUTIS, LOFF(rough_top), 0, 1, "", "0",
+	  "GGX alpha of the dermis-subcutis boundary (needs a subcutis); 0 = smooth" },
 };
 #define N_KEYS ((int)(sizeof preset_key_table / sizeof preset_key_table[0]))
 _Static_assert(sizeof preset_key_table / sizeof preset_key_table[0] <= PRESET_MAX_KEYS, "struct preset_ctx.seen is too small");
@@ -244,6 +253,7 @@ int preset_key_set(struct preset_ctx *c, int ki, const char *v)
 
 	switch (k->kind) {
 	case K_NUM:
+	case K_ROUGH:
 	case K_LEN:
 	case K_IOR:
 	case K_ANISO:
@@ -464,7 +474,7 @@ void preset_key_info(int i, struct preset_key_info *out)
 {
 	const struct preset_key *k = &preset_key_table[i];
 	*out = (struct preset_key_info){ k->section, k->name, k->unit, k->lo, k->hi, k->layer, k->off,
-		k->kind == K_NUM || k->kind == K_LEN || k->kind == K_IOR || k->kind == K_ANISO };
+		k->kind == K_NUM || k->kind == K_ROUGH || k->kind == K_LEN || k->kind == K_IOR || k->kind == K_ANISO };
 }
 
 int preset_key_count(void)

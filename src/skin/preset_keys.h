@@ -53,7 +53,8 @@ enum preset_key_kind {
 	K_TEXT,		/* name or description */
 	K_MODEL,	/* chromophores | tables */
 	K_WL,		/* wavelength list */
-	K_BASE		/* start from a built-in preset */
+	K_BASE,		/* start from a built-in preset */
+	K_ROUGH		/* a roughness in [lo, hi], left out of the resolved text when 0 */
 };
 struct preset_key {
 	const char *section;

@@ -62,6 +62,17 @@ int tissue_check(const struct skin_params *p, char **cause)
 		*cause = xasprintf("no wavelengths: set [skin] wavelengths");
 		return -1;
 	}
+	/* A layer's top roughness needs a boundary under another layer. */
+	if (p->layer[SKIN_EPIDERMIS].rough_top > 0.0 && !tissue_layer_present(p, SKIN_SEBUM)) {
+		*cause = xasprintf("epidermis.top_roughness = %g but there is no sebum film above the epidermis "
+		    "(sebum.thickness = 0): its top is the surface, set [surface] roughness", p->layer[SKIN_EPIDERMIS].rough_top);
+		return -1;
+	}
+	if (p->layer[SKIN_SUBCUTIS].rough_top > 0.0 && !tissue_layer_present(p, SKIN_SUBCUTIS)) {
+		*cause = xasprintf("subcutis.top_roughness = %g but the preset has no subcutis (subcutis.thickness = 0)",
+		    p->layer[SKIN_SUBCUTIS].rough_top);
+		return -1;
+	}
 	for (int i = 0; i < p->n_override; i++) {
 		const struct skin_override *o = &p->override[i];
 		for (int l = 0; l < SKIN_N_LAYERS; l++) {
@@ -171,6 +182,7 @@ int tissue_slab(const struct skin_params *p, double wl_nm, struct slab *out, cha
 			continue;
 		if (tissue_layer_optics(p, id, wl_nm, &ls[nl], cause) != 0)
 			return -1;
+		ls[nl].rough = nl == 0 ? p->roughness_top : p->layer[id].rough_top;
 		nl++;
 	}
 	slab_init(out, 1.0, ls[nl - 1].n);

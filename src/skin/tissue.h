@@ -40,6 +40,8 @@ struct skin_layer_params {
 	double eumelanin;	/* epidermis: eumelanin share of melanin, rest pheomelanin [-] */
 	double blood;		/* dermis, subcutis: blood volume fraction [-] */
 	double so2;		/* dermis, subcutis: blood oxygen saturation [-] */
+	double rough_top;	/* epidermis, dermis, subcutis: GGX alpha of the boundary to the
+				 * layer above [-]; 0 = smooth (the surface's is roughness_top) */
 };
 
 /* Values that replace the computed ones at one wavelength; NAN = keep. */
@@ -61,6 +63,8 @@ struct skin_params {
 	struct skin_layer_params layer[SKIN_N_LAYERS];
 	double roughness_skin;	/* GGX alpha of the bare skin surface [-] */
 	double roughness_sebum;	/* GGX alpha of the sebum-covered surface [-] */
+	double roughness_top;	/* GGX alpha of the top boundary in the subsurface transport [-];
+				 * 0 = smooth; > 0 is also the specular lobe's alpha */
 	int n_override;
 	struct skin_override *override;	/* [n_override], ascending wl */
 };

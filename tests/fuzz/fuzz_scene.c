@@ -4,8 +4,8 @@
 
 #include <stdlib.h>
 
-#include "export/pov/placement.h"
-#include "export/pov/scene.h"
+#include "scene/placement.h"
+#include "scene/scene.h"
 
 int LLVMFuzzerTestOneInput(const uint8_t *data, size_t size)
 {

@@ -18,7 +18,7 @@
 #define SKINBAKE_MESH2_H
 #include <stdio.h>
 
-#include "export/pov/scene.h"
+#include "scene/scene.h"
 #include "geom/mesh.h"
 
 /* How the UVs map to the tile: per UV island (triangles connected through

@@ -15,7 +15,7 @@
 #include "export/pov/bumpmap.h"
 #include "export/pov/povfiles.h"
 #include "export/pov/pov_maps.h"
-#include "export/pov/placement.h"
+#include "scene/placement.h"
 #include "export/pov/povscene.h"
 #include "geom/mesh.h"
 #include "export/pov/strategy.h"
@@ -211,6 +211,25 @@ static char *base_from_scene(const char *path)
 	return r;
 }
 
+/* What a scene file's reader refuses, for --light/--camera: a direction of
+ * zero length. */
+static int check_parts(const struct scene *s, char **cause)
+{
+	for (int i = 0; i < s->n_lights; i++) {
+		const struct scene_light *l = &s->lights[i];
+		double d = hypot(hypot(l->position[0] - l->point_at[0], l->position[1] - l->point_at[1]),
+		    l->position[2] - l->point_at[2]);
+		if (l->type == SCENE_LIGHT_PARALLEL && d < 1e-9)
+			return *cause = xasprintf("--light %s: position %g:%g:%g and point_at coincide (a parallel light "
+			    "shines from position toward point_at, default 0:0:0)", l->name, l->position[0], l->position[1],
+			    l->position[2]), -1;
+	}
+	const double *c = s->camera.location, *a = s->camera.look_at;
+	if (hypot(hypot(c[0] - a[0], c[1] - a[1]), c[2] - a[2]) < 1e-9)
+		return *cause = xasprintf("--camera: location %g:%g:%g and look_at coincide", c[0], c[1], c[2]), -1;
+	return 0;
+}
+
 /* The scene: from the file, or synthetic from --light/--camera; then the
  * strategy override and the checks that need the scene. */
 static struct scene *make_scene(const struct povexport_options *o, char **cause)
@@ -224,16 +243,9 @@ static struct scene *make_scene(const struct povexport_options *o, char **cause)
 	} else {
 		if (o->cmdline->n_lights == 0 || !o->have_camera)
 			return *cause = xstrdup("give --scene FILE, or --light SPEC and --camera SPEC (see --help)"), NULL;
-		s = xcalloc(1, sizeof *s);
-		*s = *o->cmdline;
-		s->path = xstrdup("the command line");
-		s->width = 320, s->height = 240, s->unit_mm = 10;
-		if (o->unit_mm > 0)
-			s->unit_mm = o->unit_mm;
-		s->n_skins = 1;
-		snprintf(s->skins[0].name, sizeof s->skins[0].name, "skin");
-		s->skins[0].preset = xstrdup("(from the bake)");
-		s->skins[0].bumps = 1;
+		s = scene_from_parts(o->cmdline, o->unit_mm);
+		if (check_parts(s, cause) != 0)
+			goto bad;
 	}
 	if (o->width > 0)
 		s->width = o->width, s->height = o->height;
@@ -480,7 +492,7 @@ static int write_all(const struct povexport_options *o, const struct scene *s, c
 	if (povfiles_write(s, in->ps, &po, stage, &rep, cause) != 0 || write_extras(s, stage, base, in, cause) != 0 ||
 	    povfiles_write_index(stage, cause) != 0) {
 		povfiles_report_free(&rep);
-		outdir_abort(&od);
+		outdir_fail(&od, cause);
 		return -2;
 	}
 	if (outdir_commit(&od, cause) != 0) {

@@ -7,7 +7,7 @@
 #define SKINBAKE_POVEXPORT_H
 #include <stdio.h>
 
-#include "export/pov/scene.h"
+#include "scene/scene.h"
 
 #define POVEXPORT_MAX_BIND (SCENE_MAX_SKINS + 1)
 

@@ -9,7 +9,7 @@
 #include <stddef.h>
 
 #include "export/pov/littable.h"
-#include "export/pov/scene.h"
+#include "scene/scene.h"
 
 /* Everything the exporter knows about one skin of the scene. */
 struct pov_maps;

@@ -10,7 +10,7 @@
 
 #include "geom/mesh.h"
 
-#include "export/pov/placement.h"
+#include "scene/placement.h"
 #include "export/pov/vec3.h"
 
 /* One surface point: the exact two-light radiance and the mixture table's. */

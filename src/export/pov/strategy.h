@@ -7,7 +7,7 @@
 #ifndef SKINBAKE_STRATEGY_H
 #define SKINBAKE_STRATEGY_H
 #include "export/pov/littable.h"
-#include "export/pov/scene.h"
+#include "scene/scene.h"
 
 /* The scene's choice, or for AUTO one whose error for the scene's lights and
  * camera is below 1 %: key for one light (exact with the light-view angle

@@ -2,7 +2,7 @@
  * (left-handed, +y up, units of the scene). */
 #ifndef SKINBAKE_PLACEMENT_H
 #define SKINBAKE_PLACEMENT_H
-#include "export/pov/scene.h"
+#include "scene/scene.h"
 
 /* Unit direction from a point toward the light (parallel: constant). */
 void placement_light_dir(const struct scene_light *l, const double p[3], double out[3]);

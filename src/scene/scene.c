@@ -4,7 +4,7 @@
  * are read in scene_keys.c; this file loads and makes the whole-file checks. */
 #include "config.h"
 
-#include "export/pov/scene.h"
+#include "scene/scene.h"
 
 #include <errno.h>
 #include <ini.h>
@@ -17,8 +17,8 @@
 #include "base/util.h"
 #include "geom/mesh.h"
 #include "io/inifile.h"
-#include "export/pov/placement.h"
-#include "export/pov/scene_parse.h"
+#include "scene/placement.h"
+#include "scene/scene_parse.h"
 
 int scene_fail(struct scene_parse *p, const char *fmt, ...)
 {
@@ -197,4 +197,21 @@ int scene_find_skin(const struct scene *s, const char *name)
 		if (!strcmp(s->skins[i].name, name))
 			return i;
 	return -1;
+}
+
+struct scene *scene_from_parts(const struct scene *parts, double unit_mm)
+{
+	struct scene *s = xcalloc(1, sizeof *s);
+	*s = *parts;
+	s->path = xstrdup("the command line");
+	s->width = 320;
+	s->height = 240;
+	s->unit_mm = 10;
+	if (unit_mm > 0)
+		s->unit_mm = unit_mm;
+	s->n_skins = 1;
+	snprintf(s->skins[0].name, sizeof s->skins[0].name, "skin");
+	s->skins[0].preset = xstrdup("(from the bake)");
+	s->skins[0].bumps = 1;
+	return s;
 }

@@ -3,7 +3,7 @@
 #ifndef SKINBAKE_SCENE_PARSE_H
 #define SKINBAKE_SCENE_PARSE_H
 #include "io/inifile.h"
-#include "export/pov/scene.h"
+#include "scene/scene.h"
 
 struct scene_parse {
 	struct scene *s;

@@ -3,7 +3,7 @@
  * repeats and unknown keys and sections refused, naming file and line. */
 #include "config.h"
 
-#include "export/pov/scene_parse.h"
+#include "scene/scene_parse.h"
 
 #include <math.h>
 #include <stdio.h>
@@ -104,6 +104,12 @@ static char *resolve(const struct scene *s, const char *v)
 
 static const char *shape_names[] = { "sphere", "box", "plane", "patch", "hand", "head", "mesh" };
 static const char *strategy_names[] = { "auto", "key", "mixture", "passes", "separable" };
+static const char *material_names[] = { "skin", "lambert", "phong", "plain", "model" };
+
+const char *scene_material_name(enum scene_material m)
+{
+	return material_names[m];
+}
 
 const char *scene_shape_name(enum scene_shape sh)
 {

@@ -89,6 +89,11 @@ struct scene {
  * unknown sections/keys and bad values) on failure.  Caller frees. */
 struct scene *scene_load(const char *path, char **cause);
 void scene_free(struct scene *s);
+/* A scene without a file: the lights and camera of PARTS (given on a
+ * command line; PARTS owns no strings), 320x240 px, unit_mm UNIT_MM (10
+ * when 0), one skin "skin" with bump maps, no objects (the exporter adds
+ * its own).  Caller frees with scene_free. */
+struct scene *scene_from_parts(const struct scene *parts, double unit_mm);
 /* The skin index named NAME, or -1. */
 int scene_find_skin(const struct scene *s, const char *name);
 /* Whether n is a section name: 1 to 31 of [A-Za-z0-9_]. */
@@ -96,4 +101,5 @@ int scene_valid_name(const char *n);
 /* Names of enum values, as written in scene files. */
 const char *scene_shape_name(enum scene_shape sh);
 const char *scene_strategy_name(enum scene_strategy st);
+const char *scene_material_name(enum scene_material m);
 #endif

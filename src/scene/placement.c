@@ -3,7 +3,7 @@
  * their files' right-handed coordinates placed there. */
 #include "config.h"
 
-#include "export/pov/placement.h"
+#include "scene/placement.h"
 
 #include <math.h>
 #include <string.h>

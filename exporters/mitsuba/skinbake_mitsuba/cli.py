@@ -1,0 +1,122 @@
+"""Command line of skinbake_mitsuba. Bad input: a message naming the option, the
+value and the allowed range on stderr, exit status 2, no output."""
+import argparse
+import json
+import math
+import sys
+import time
+
+from . import stack as stk
+from . import variant
+
+USAGE_ERROR = 2
+
+
+class UsageError(Exception):
+    pass
+
+
+class _Parser(argparse.ArgumentParser):
+    def error(self, message):
+        raise UsageError(message)
+
+
+def _floats(text, name, lo, hi, unit):
+    out = []
+    for item in text.split(","):
+        try:
+            v = float(item)
+        except ValueError:
+            raise UsageError("%s: '%s' is not a number" % (name, item)) from None
+        if not (lo <= v <= hi):
+            raise UsageError("%s %g is outside [%g, %g] %s" % (name, v, lo, hi, unit))
+        out.append(v)
+    return out
+
+
+def _int_range(name, v, lo, hi):
+    if not (lo <= v <= hi):
+        raise UsageError("%s %d is outside [%d, %d]" % (name, v, lo, hi))
+
+
+def _slab_parser(sub):
+    p = sub.add_parser("slab", help="measure Rd(theta), Rd(r) rings and BRDF points of a flat "
+                       "layer stack with Mitsuba's volumetric path tracer (JSON on stdout)")
+    p.add_argument("--layer", action="append", required=True,
+                   help="d=CM,n=..,mua=1/CM,mus=1/CM,g=.. as skinbake simulate, top first")
+    p.add_argument("--n-above", type=float, default=1.0, help="index above (default 1)")
+    p.add_argument("--n-below", type=float, default=None, help="index below (default: last layer's)")
+    p.add_argument("--theta-in", default="", help="incidence angles for Rd, deg in [0, 89], comma separated")
+    p.add_argument("--rings", default="", help="ring edges in cm (ascending, from 0), comma separated")
+    p.add_argument("--band", action="append", default=[],
+                   help="THETA_VIEW,THETA_LO,THETA_HI in deg: the azimuthal-mean BRDF between the view "
+                   "and light from the polar band (repeat; the band must not hold the view angle)")
+    p.add_argument("--spp", type=int, default=4096, help="paths per batch in [16, 1e7]")
+    p.add_argument("--batches", type=int, default=8, help="independent batches in [2, 1000]")
+    p.add_argument("--variant", default=None, help="Mitsuba variant (default llvm_ad_mono, else scalar)")
+    return p
+
+
+def _check_slab(a):
+    try:
+        layers = [stk.parse_layer(s) for s in a.layer]
+    except ValueError as e:
+        raise UsageError(str(e)) from None
+    for name, v in (("--n-above", a.n_above), ("--n-below", a.n_below)):
+        if v is not None and not (1.0 <= v <= 10.0):
+            raise UsageError("%s %g is outside [1, 10]" % (name, v))
+    if any(math.isinf(ly.d) for ly in layers):
+        raise UsageError("--layer d=inf: the slab needs finite layers (use a thick last layer)")
+    _int_range("--spp", a.spp, 16, 10 ** 7)
+    _int_range("--batches", a.batches, 2, 1000)
+    thetas = _floats(a.theta_in, "--theta-in", 0.0, 89.0, "deg") if a.theta_in else []
+    rings = _floats(a.rings, "--rings", 0.0, stk.HALF_WIDTH_CM / 4, "cm") if a.rings else []
+    if rings and (rings[0] != 0.0 or any(r1 <= r0 for r0, r1 in zip(rings, rings[1:]))):
+        raise UsageError("--rings %s: edges must start at 0 and ascend" % a.rings)
+    points = []
+    for text in a.band:
+        v = _floats(text, "--band", 0.0, 90.0, "deg")
+        if len(v) != 3 or v[0] >= 89.0 or v[1] >= v[2] or v[1] <= v[0] <= v[2]:
+            raise UsageError("--band %s: needs THETA_VIEW,THETA_LO,THETA_HI with theta_view < 89, "
+                             "theta_lo < theta_hi and theta_view outside the band" % text)
+        points.append(v)
+    return layers, thetas, rings, points
+
+
+def cmd_slab(a):
+    layers, thetas, rings, points = _check_slab(a)
+    used = variant.choose("mono", a.variant)
+    from . import measure
+    t0 = time.time()
+    out = {"variant": used, "spp": a.spp, "batches": a.batches,
+           "max_depth": stk.max_depth(layers), "rd": [], "rings": [], "brdf": []}
+    for th in thetas:
+        rd, err, rsp = measure.rd_theta(layers, th, a.spp, a.batches, a.n_above, a.n_below)
+        out["rd"].append({"theta_in_deg": th, "Rd": rd, "Rd_err": err, "Rsp": rsp})
+    for r0, r1 in zip(rings, rings[1:]):
+        v, err = measure.rd_ring(layers, r0, r1, a.spp, a.batches, a.n_above, a.n_below)
+        out["rings"].append({"r0_cm": r0, "r1_cm": r1, "power": v, "power_err": err})
+    for tv, lo, hi in points:
+        v, err = measure.brdf_band(layers, tv, lo, hi, a.spp, a.batches, a.n_above, a.n_below)
+        out["brdf"].append({"theta_view_deg": tv, "theta_lo_deg": lo, "theta_hi_deg": hi,
+                            "fr": v, "fr_err": err})
+    out["seconds"] = time.time() - t0
+    json.dump(out, sys.stdout)
+    sys.stdout.write("\n")
+    return 0
+
+
+def main(argv):
+    parser = _Parser(prog="python -m skinbake_mitsuba",
+                     description="Mitsuba 3 renders for skinbake: volumetric ground truth and table BSDF")
+    sub = parser.add_subparsers(dest="command")
+    _slab_parser(sub)
+    try:
+        a = parser.parse_args(argv)
+        if a.command is None:
+            parser.print_help(sys.stderr)
+            return USAGE_ERROR
+        return {"slab": cmd_slab}[a.command](a)
+    except UsageError as e:
+        sys.stderr.write("skinbake_mitsuba: %s\n" % e)
+        return USAGE_ERROR

@@ -1,0 +1,140 @@
+#!/bin/sh
+# Speed benchmarks (issue 28), in CPU seconds (user + system): the machine is shared, so wall
+# times say little.  Each figure is the smallest CPU time of REPS runs (default 3).
+#   1. One adding-doubling solve (one slab, normal incidence, the m = 0 order only) against Scott
+#      Prahl's `ad` (iad) at equal accuracy, both against the converged answer.  iad is built
+#      with -O2 from its public source when IAD_SRC names a checkout of github.com/scottprahl/iad
+#      (its code never enters this repository; scripts/iad_time.c calls its ez_RT); without it,
+#      that part is skipped.  The whole `simulate --solver ad` command against `ad`'s command.
+#   2. `bake --preset paper` and the 16-wavelength presets by adding-doubling, with the share of
+#      the Rd(r) Monte Carlo run (the same bake with --radial-photons 100 --radial-error 1).
+#   3. The family pilot and a small family.
+# Prints one markdown section.  Builds tests/ad_bench when it is missing.
+set -eu
+SKINBAKE=${SKINBAKE:-./skinbake}
+top_builddir=${top_builddir:-.}
+top_srcdir=${top_srcdir:-.}
+REPS=${REPS:-3}
+ADB="$top_builddir/tests/ad_bench"
+[ -x "$ADB" ] || make -C "$top_builddir" tests/ad_bench >/dev/null
+W=$(mktemp -d "${TMPDIR:-/tmp}/skinbake-bench-speed.XXXXXX")
+trap 'rm -rf "$W"' EXIT INT TERM
+
+# cpu CMD...: smallest user + system seconds of REPS runs of CMD (output discarded).
+cpu() {
+	best=
+	i=0
+	while [ $i -lt "$REPS" ]; do
+		/usr/bin/time -f "%U %S" -o "$W/t" "$@" >/dev/null 2>&1
+		c=$(awk '{ printf "%.3f", $1 + $2 }' "$W/t")
+		best=$(awk -v a="$c" -v b="${best:-1e99}" 'BEGIN { print (a < b ? a : b) }')
+		i=$((i + 1))
+	done
+	echo "$best"
+}
+# field KEY LINE: the value after KEY in a "key value key value" line
+field() { echo "$2" | awk -v k="$1" '{ for (i = 1; i < NF; i++) if ($i == k) print $(i + 1) }'; }
+
+echo "## Speed (CPU seconds)"
+echo
+echo "Machine: $(nproc) cores, $(date -u +%Y-%m-%d), load average $(cut -d' ' -f1-3 /proc/loadavg) at the start."
+echo "Command: \`make bench\` (scripts/bench-speed.sh; \`IAD_SRC=DIR\` for the comparison with iad)."
+echo "Every time is the smallest CPU time (user + system) of $REPS runs."
+echo
+
+# ---- 1. one solve against Prahl's ad ----
+SLAB="0.9 10 0.9 1.4"
+echo "### One adding-doubling solve against Prahl's \`ad\`"
+echo
+echo "Slab: albedo 0.9, optical thickness 10, g 0.9, index 1.4 in air, normal incidence, m = 0 only."
+echo "Errors against skinbake at 64 nodes per unit cosine (R = specular + diffuse reflectance, T = total"
+echo "transmittance, as \`ad\` reports UR1 and UT1). skinbake's time per solve is given without and with its"
+echo "error estimate (the second solve at half the nodes; iad has none)."
+echo
+ref=$(OMP_NUM_THREADS=1 "$ADB" --slab "0.9,10,0.9,1.4,64,2" | awk '$4 == 0')
+R0=$(field R "$ref")
+T0=$(field T "$ref")
+echo "| code | nodes per hemisphere | R | T | error R | error T | ms per solve | ms with estimate |"
+echo "|---|---|---|---|---|---|---|---|"
+# minms FILE EST: the line of FILE (estimate EST for ad_bench) with the smallest ms per solve
+minms() { awk -v e="$2" '(e == "" || $4 == e) && (best == "" || $NF < m) { m = $NF; best = $0 } END { print best }' "$1"; }
+for q in 16 18 32; do
+	: >"$W/sb"
+	i=0
+	while [ $i -lt "$REPS" ]; do
+		OMP_NUM_THREADS=1 "$ADB" --slab "0.9,10,0.9,1.4,$q,200" >>"$W/sb"
+		i=$((i + 1))
+	done
+	a=$(minms "$W/sb" 0)
+	b=$(minms "$W/sb" 1)
+	echo "$a $b" | awk -v r0="$R0" -v t0="$T0" -v q="$q" '{ printf "| skinbake --ad-quad %d | %d | %.8f | %.8f | %.1e | %.1e | %.3f | %.3f |\n",
+	    q, $14, $6, $8, ($6 > r0 ? $6 - r0 : r0 - $6), ($8 > t0 ? $8 - t0 : t0 - $8), $18, $36 }'
+	eval "SB_$q=\$(field ms_per_solve \"\$a\")"
+done
+IAD_MS=
+if [ -n "${IAD_SRC:-}" ] && [ -f "$IAD_SRC/src/ad_prime.c" ]; then
+	# Compiled file by file (its Makefile would rerun ctangle on a copy).
+	mkdir "$W/iad"
+	printf 'char *Version = "iad";\nchar *VersionShort = "iad";\n' >"$W/iad/version.c"
+	for f in ad_bound ad_doubl ad_frsnl ad_globl ad_matrx ad_phase ad_prime ad_radau ad_start ad_cone \
+		ad_layers nr_zbrak nr_amoeb nr_amotr nr_brent nr_gaulg nr_mnbrk nr_rtsaf nr_util nr_hj nr_zbrent; do
+		cc -O2 -fno-common -fsigned-char -DNDEBUG -I"$IAD_SRC/src" -c "$IAD_SRC/src/$f.c" -o "$W/iad/$f.o"
+	done
+	cc -O2 -c "$W/iad/version.c" -o "$W/iad/version.o"
+	cc -O2 -fno-common -fsigned-char -DNDEBUG -I"$IAD_SRC/src" -o "$W/iad/ad" "$IAD_SRC/src/ad_main.c" \
+		"$W"/iad/*.o -lm
+	cc -O2 -o "$W/iad/iad_time" "$top_srcdir/scripts/iad_time.c" "$W"/iad/*.o -lm
+	for q in 16 32 64; do
+		: >"$W/it"
+		i=0
+		while [ $i -lt "$REPS" ]; do
+			"$W/iad/iad_time" $SLAB $q 200 >>"$W/it"
+			i=$((i + 1))
+		done
+		l=$(minms "$W/it" "")
+		echo "$l" | awk -v r0="$R0" -v t0="$T0" -v q="$q" '{ printf "| iad ad -q %d | %d | %.8f | %.8f | %.1e | %.1e | %.3f | - |\n",
+		    q, q, $4, $6, ($4 > r0 ? $4 - r0 : r0 - $4), ($6 > t0 ? $6 - t0 : t0 - $6), $8 }'
+		[ "$q" = 32 ] && IAD_MS=$(field ms_per_solve "$l")
+	done
+	echo
+	echo "At equal accuracy (skinbake at 18 nodes per unit cosine is at least as accurate as iad at 32"
+	echo "quadrature points in both R and T): iad $IAD_MS ms, skinbake $SB_18 ms per solve:"
+	echo "**$(awk -v a="$IAD_MS" -v b="$SB_18" 'BEGIN { printf "%.2f", a / b }') x** faster (goal >= 2)."
+	echo
+	SIM="$SKINBAKE simulate --layer d=1,n=1.4,mua=1,mus=9,g=0.9 --solver ad --ad-quad 18 --threads 1"
+	c_sb=$(cpu sh -c "for i in 1 2 3 4 5 6 7 8 9 10; do $SIM; done")
+	c_ad=$(cpu sh -c "for i in 1 2 3 4 5 6 7 8 9 10; do $W/iad/ad -a 0.9 -b 10 -g 0.9 -n 1.4 -q 32; done")
+	c_v=$(cpu sh -c "for i in 1 2 3 4 5 6 7 8 9 10; do $SKINBAKE --version; done")
+	echo "Whole commands (10 runs each, CPU per run): \`$SIM\` (all Fourier orders, 18 x 36 bins)"
+	echo "$(awk -v a="$c_sb" 'BEGIN { printf "%.1f", a * 100 }') ms; \`ad -a 0.9 -b 10 -g 0.9 -n 1.4 -q 32\`"
+	echo "$(awk -v a="$c_ad" 'BEGIN { printf "%.1f", a * 100 }') ms; \`skinbake --version\` (start-up alone)"
+	echo "$(awk -v a="$c_v" 'BEGIN { printf "%.1f", a * 100 }') ms."
+else
+	echo
+	echo "(iad not built: set IAD_SRC to a checkout of github.com/scottprahl/iad.)"
+fi
+echo
+
+# ---- 2. bakes ----
+echo "### Bakes by adding-doubling"
+echo
+echo "\`skinbake bake --preset NAME --solver ad --threads 1 --out DIR --quiet\`; \"no Rd(r)\" adds"
+echo "\`--radial-photons 100 --radial-error 1\` (the radial Monte Carlo run at its minimum), so the"
+echo "difference is the Rd(r) run's CPU time. \"estimated\" is the table's RMS error estimate."
+echo
+echo "| preset | CPU [s] | CPU no Rd(r) [s] | Rd(r) share | estimated |"
+echo "|---|---|---|---|---|"
+for p in ${BENCH_PRESETS:-paper fair-oily dark-dry}; do
+	full=$(cpu "$SKINBAKE" bake --preset "$p" --solver ad --threads 1 --out "$W/b" --quiet)
+	bare=$(cpu "$SKINBAKE" bake --preset "$p" --solver ad --threads 1 --out "$W/b" --quiet \
+		--radial-photons 100 --radial-error 1)
+	est=$(python3 -c "import json; print('%.3g' % json.load(open('$W/b/manifest.json'))['result']['rms_rel_err'])")
+	echo "| $p | $full | $bare | $(awk -v a="$full" -v b="$bare" 'BEGIN { printf "%.0f %%", (a > 0 ? 100 * (a - b) / a : 0) }') | $est |"
+done
+echo
+
+# ---- 3. family ----
+echo "### A small family"
+echo
+F="$SKINBAKE bake --preset fair-oily --vary epidermis.melanin=0.005:0.3:2 --vary dermis.blood=0.005:0.1:2 --threads 1 --quiet --out $W/f"
+echo "\`$(echo "$F" | sed "s|$W/f|FAM|")\` (4 members and the two 17-point pilots): $(REPS=1 cpu $F) s CPU."
