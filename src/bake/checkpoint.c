@@ -46,7 +46,6 @@ static uint64_t fnv(uint64_t h, const void *v, size_t n)
 	return h;
 }
 #define FNV0 0xcbf29ce484222325ULL
-#define HASH(h, x) ((h) = fnv((h), &(x), sizeof(x)))
 
 char *checkpoint_path(const char *out)
 {
@@ -56,30 +55,9 @@ char *checkpoint_path(const char *out)
 	return xasprintf("%.*s.checkpoint", (int)n, out);
 }
 
-uint64_t checkpoint_identity(const struct bake_spec *s)
+uint64_t checkpoint_seed(void)
 {
-	uint64_t h = fnv(FNV0, MAGIC, sizeof MAGIC);
-	HASH(h, s->n_wl);
-	for (int w = 0; w < s->n_wl; w++) {
-		const struct slab *sl = &s->slab[w];
-		HASH(h, s->wl_nm[w]);
-		HASH(h, sl->n_layers);
-		HASH(h, sl->n_above);
-		HASH(h, sl->n_below);
-		for (int i = 0; i < sl->n_layers + 2; i++) {
-			const struct layer *l = &sl->layer[i];
-			HASH(h, l->d), HASH(h, l->n), HASH(h, l->mu_a), HASH(h, l->mu_s), HASH(h, l->g);
-		}
-	}
-	HASH(h, s->n_ti);
-	for (int k = 0; k < s->n_ti; k++)
-		HASH(h, s->theta_i[k]);
-	HASH(h, s->n_to), HASH(h, s->n_phi), HASH(h, s->n_r), HASH(h, s->dr);
-	HASH(h, s->opts.fresnel), HASH(h, s->opts.roulette_w), HASH(h, s->opts.roulette_chance), HASH(h, s->opts.max_steps);
-	HASH(h, s->method), HASH(h, s->ad_tol), HASH(h, s->ad_quad), HASH(h, s->radial_error), HASH(h, s->radial_photons);
-	HASH(h, s->seed), HASH(h, s->batch_photons), HASH(h, s->min_batches), HASH(h, s->target_error);
-	HASH(h, s->max_photons), HASH(h, s->nee);
-	return h;
+	return fnv(FNV0, MAGIC, sizeof MAGIC);
 }
 
 /* The whole file in memory; NULL and *cause. */
@@ -304,10 +282,9 @@ static struct checkpoint *open_id(const char *out, uint64_t id, const char *unit
 	return c;
 }
 
-struct checkpoint *checkpoint_open(const char *out, const struct bake_spec *s, int resume, int write, double every_s,
-    char **cause)
+struct checkpoint *checkpoint_open(const char *out, uint64_t id, int resume, int write, double every_s, char **cause)
 {
-	return open_id(out, checkpoint_identity(s), "solver run", resume, write, every_s, cause);
+	return open_id(out, id, "solver run", resume, write, every_s, cause);
 }
 
 uint64_t checkpoint_hash(uint64_t h, const void *v, size_t n)

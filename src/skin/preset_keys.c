@@ -10,7 +10,6 @@
 #include <string.h>
 
 #include "base/util.h"
-#include "skin/preset.h"
 #include "skin/spectra.h"
 #define NONE (-1)
 #define LOFF(f) offsetof(struct skin_layer_params, f)
@@ -88,6 +87,9 @@ const struct preset_key preset_key_table[] = {
 	{ "surface", "roughness", K_ROUGH, NONE, POFF(roughness_top), 0, 1, "", "0",
 	  "GGX alpha of the top boundary in the subsurface transport: light enters and leaves through "
 	  "microfacets (Walter 2007, Smith G); 0 = smooth; > 0 is also the specular lobe's alpha" },
+	{ "surface", "multiple_scattering", K_ROUGH, NONE, POFF(facet_ms), 0, 1, "", "0",
+	  "1: light meets the rough boundaries' microfacets as often as it hits them (Heitz 2016 random "
+	  "walk, energy conserving); 0: once (Walter 2007; what shadowing and masking stop is lost)" },
 	{ "epidermis", "top_roughness", K_ROUGH, SKIN_EPIDERMIS, LOFF(rough_top), 0, 1, "", "0",
 	  "GGX alpha of the boundary under the sebum film (needs a film); 0 = smooth" },
 	{ "dermis", "top_roughness", K_ROUGH, SKIN_DERMIS, LOFF(rough_top), 0, 1, "", "0",
@@ -339,7 +341,7 @@ int preset_key_set(struct preset_ctx *c, int ki, const char *v)
 			return -1;
 		}
 		char *cause = NULL;
-		struct skin_params *b = preset_load_base(v, c->depth + 1, &cause);
+		struct skin_params *b = c->load_base(v, c->depth + 1, &cause);
 		if (b == NULL) {
 			preset_ctx_err(c, "skin.base = %s: %s", v, cause);
 			free(cause);
@@ -462,12 +464,6 @@ void preset_apply_defaults(struct skin_params *p)
 			fatalx("preset defaults: %s", c.err);
 	}
 	free(c.ov_seen);
-}
-
-int preset_parse_wavelengths(const char *s, double *wl, char **cause)
-{
-	int n = 0;
-	return preset_wavelengths_parse(s, wl, &n, cause) == 0 ? n : -1;
 }
 
 void preset_key_info(int i, struct preset_key_info *out)
