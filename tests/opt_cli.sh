@@ -180,7 +180,7 @@ bad "bake --spectral and --wavelengths" "--wavelengths and --spectral exclude ea
 bad "bake --preset and --preset-file" "--preset and --preset-file exclude each other" bake --preset paper --preset-file "$tmpd/file" --out "$tmpd/new"
 bad "bake without a preset" "give one of --preset, --preset-file" bake --out "$tmpd/new"
 bad "bake without --out" "--out is required" bake --preset paper
-bad "bake --seed beyond 2^63-1" "--seed = 9223372036854775808 is out of range [0, 2^63-1]" bake --preset paper --seed 9223372036854775808 --out "$tmpd/new"
+bad "bake --seed beyond 2^64-1" "--seed = 18446744073709551616 is out of range [0, 2^64-1]" bake --preset paper --seed 18446744073709551616 --out "$tmpd/new"
 bad "bake --fresnel unknown" "--fresnel = 'fast' is not one of exact, schlick" bake --preset paper --fresnel fast --out "$tmpd/new"
 bad "bake --solver unknown" "--solver = 'dom' is not one of auto, ad, mc" bake --preset paper --solver dom --out "$tmpd/new"
 bad "simulate --solver ad with an mc option" "--photons applies to --solver mc only" simulate --layer d=1,mua=1,mus=1 --solver ad --photons 100
@@ -352,14 +352,14 @@ hand simulate "  --roulette-chance P    mc: roulette survival probability in (0,
 hand bake "  --theta-nodes N        incidence angles 90*k/N deg (k = 0 .. N-1), N in [1, 90] (not with --theta-in; default the exit nodes below 90 deg: T-1 angles 45 (1 - cos(180 k/(T-1))) deg for --resolution TxP (T >= 3; else N = 10))"
 hand bake "  --theta-in LIST        incidence angles, comma-separated, each in [0, 90) deg, at most 90 (not with --theta-nodes)"
 hand bake "  --r-step CM            radial bin of Rd(r) in [1e-6, 10] cm (default 0.002)"
-hand bake "  --seed N               mc: random seed in [0, 2^63-1] (default 1)"
+hand bake "  --seed N               mc: random seed (exact) in [0, 2^64-1] (default 1)"
 hand bake "  --solver auto|ad|mc    adding-doubling (ad), Monte Carlo (mc), or ad with mc, said on stderr, for the wavelengths where ad cannot meet --ad-tol (auto) (default auto)"
 hand verify "  --cells N              table cells to recompute, each by a Monte Carlo re-run of its own (independent cells) in [1, 100000] (default 32)"
 hand eval "  --phi DEG              azimuth difference: 0 back toward the light, 180 the mirror side in [0, 360] deg (required)"
 hand export_blender "  --sun-strength E       sun irradiance for the importer's demo scene, in (0, 1e6] W/m^2 (default 3)"
 hand export_blender "  --lut-cos N            cosine nodes per axis of brdf_lut.exr, in [8, 1024] (default 64)"
 hand texture "  --size N               edge length of the square maps in [16, 16384] px (default 1024)"
-hand texture "  --seed N               random seed in [0, 9007199254740992] (default 1)"
+hand texture "  --seed N               random seed (exact) in [0, 2^64-1] (default 1)"
 
 echo "# $nbad bad command lines tried in this file"
 tap_done

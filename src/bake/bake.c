@@ -8,6 +8,7 @@
 #include <stdlib.h>
 #include <string.h>
 
+#include "base/budget.h"
 #include "base/check.h"
 #include "base/util.h"
 #include "bake/checkpoint.h"
@@ -441,6 +442,19 @@ void bake_spec_axes(struct bake_spec *s, const double *wl_nm, int n_wl, const do
 	s->n_ti = n_theta > 0 ? n_theta : nodes > 0 ? nodes : 10;
 	for (int k = 0; k < s->n_ti; k++)
 		s->theta_i[k] = n_theta > 0 ? theta_deg[k] * M_PI / 180.0 : 0.5 * M_PI * k / s->n_ti;
+}
+
+int bake_budget(const struct bake_spec *s, int n_bakes, const char *out, char **cause)
+{
+	double cells = (double)s->n_wl * s->n_ti * s->n_to * s->n_phi;
+	char *what = n_bakes > 1 ? xasprintf("a family of %d members of %d wavelengths x %d angles x %dx%d", n_bakes,
+	    s->n_wl, s->n_ti, s->n_to, s->n_phi) : xasprintf("a bake of %d wavelengths x %d angles x %dx%d", s->n_wl, s->n_ti,
+	    s->n_to, s->n_phi);
+	int rc = budget_check(what, BAKE_MEM_PER_CELL * cells * (n_bakes > 1 ? 2 : 1) + 64e6,
+	    BAKE_DISK_PER_CELL * cells * n_bakes, out, "lower --resolution, --theta-nodes or the number of wavelengths"
+	    " (or of members)", cause);
+	free(what);
+	return rc;
 }
 
 void bake_nodes_theta(int n, double *theta)

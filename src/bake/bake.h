@@ -153,6 +153,16 @@ void bake_spec_axes(struct bake_spec *s, const double *wl_nm, int n_wl, const do
  * stacks; for Monte Carlo, check that the photon budget covers the first
  * round.  The preset (caller frees with preset_free), or NULL and *cause. */
 struct skin_params *bake_spec_preset(struct bake_spec *s, const char *name, const char *pfile, char **cause);
+/* Estimated needs per table cell (wavelength x theta_i x theta_o x
+ * delta_phi): measured about 30 bytes of memory (tables, tallies, the
+ * writer's planes) and 10 bytes of files (12 uncompressed); with margin. */
+#define BAKE_MEM_PER_CELL 64.0
+#define BAKE_DISK_PER_CELL 16.0
+/* N_BAKES bakes of s's size (a family: members held packed as well) fit in
+ * memory and under out on disk (base/budget.h)?  0, or -1 and *cause with
+ * the numbers and the options that lower them.  bake_preset_to_dir and
+ * family_bake call it before any work. */
+int bake_budget(const struct bake_spec *s, int n_bakes, const char *out, char **cause);
 /* The table's nodes where it holds point values (adding-doubling entries,
  * bake_spec_points): n >= 2 angles theta_k = pi/4 (1 - cos(k pi / (n - 1)))
  * [rad] over [0, pi/2], both ends included (Chebyshev-Lobatto in theta:

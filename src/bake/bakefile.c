@@ -190,7 +190,7 @@ int bake_write(const char *dir, const struct bake_spec *s, const struct bake_res
 	if (outdir_begin(&od, dir, &bake_outdir_kind, cause) != 0)
 		return -1;
 	if (bake_write_files(outdir_path(&od), s, r, m, cause) != 0) {
-		outdir_abort(&od);
+		outdir_fail(&od, cause);
 		return -1;
 	}
 	return outdir_commit(&od, cause);
@@ -328,6 +328,8 @@ int bake_preset_to_dir(struct bake_spec *s, const struct skin_params *p, const c
 {
 	s->checkpoint_out = out;
 	memset(r, 0, sizeof *r);
+	if (bake_budget(s, 1, out, cause) != 0)
+		return -1;
 	/* Rank 0 takes the output (and its lock) before the work: a target that
 	 * is not a bake, or one another bake is writing, fails now. */
 	struct outdir od;
@@ -335,7 +337,7 @@ int bake_preset_to_dir(struct bake_spec *s, const struct skin_params *p, const c
 		return -1;
 	if (bake_run(s, r, cause) != 0) {
 		if (s->rank == 0)
-			outdir_abort(&od);
+			outdir_fail(&od, cause);
 		return -1;
 	}
 	if (s->rank != 0)
@@ -345,7 +347,7 @@ int bake_preset_to_dir(struct bake_spec *s, const struct skin_params *p, const c
 		.rgb_from_wl = m, .rgb_note = bake_rgb_weights(s, m), .command = command };
 	int rc = bake_write_files(outdir_path(&od), s, r, &meta, cause) != 0 ? -2 : 0;
 	if (rc != 0)
-		outdir_abort(&od);
+		outdir_fail(&od, cause);
 	else if (outdir_commit(&od, cause) != 0 || checkpoint_remove(out, cause) != 0)
 		rc = -2;
 	free(m);

@@ -168,7 +168,7 @@ static json_object *spec_json(const struct family *f)
 	add(o, "dr_cm", json_num(s->dr));
 	add(o, "fresnel", json_object_new_string(s->opts.fresnel == OPTICS_FRESNEL_SCHLICK ? "schlick" : "exact"));
 	add(o, "estimator", json_object_new_string(s->nee ? "nee" : "bins"));
-	add(o, "seed", json_object_new_int64((int64_t)s->seed));
+	add(o, "seed", json_object_new_uint64(s->seed));
 	add(o, "batch_photons", json_object_new_int64(s->batch_photons));
 	add(o, "min_batches", json_object_new_int(s->min_batches));
 	add(o, "target_error", json_num(s->target_error));

@@ -137,6 +137,9 @@ static int read_spec(const struct rd *r, json_object *o, struct family *f)
 	for (int i = 0; i < s->n_ti; i++)
 		s->theta_i[i] = th[i] * M_PI / 180.0;
 	s->n_to = (int)x[0], s->n_phi = (int)x[1], s->n_r = (int)x[2], s->dr = x[3], s->seed = (uint64_t)x[4];
+	json_object *sv;
+	if (json_object_object_get_ex(b, "seed", &sv) && json_object_is_type(sv, json_type_int))
+		s->seed = json_object_get_uint64(sv);	/* exact: seeds go to 2^64-1 */
 	s->batch_photons = (long)x[5], s->min_batches = (int)x[6], s->target_error = x[7], s->max_photons = (long)x[8];
 	transport_opts_default(&s->opts);
 	s->opts.roulette_w = x[9], s->opts.roulette_chance = x[10], s->opts.max_steps = (long)x[11];

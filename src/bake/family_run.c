@@ -262,7 +262,7 @@ static int stage_open(struct outdir *od, const char *dir, const struct skin_para
 	free(ini);
 	free(ip);
 	if (rc != 0)
-		outdir_abort(od);
+		outdir_fail(od, cause);
 	return rc;
 }
 
@@ -481,6 +481,8 @@ int family_bake(const struct family_plan *pl, const char *dir, struct family **o
 		*out = NULL;
 	if (count_members(pl, &n_members, cause) != 0)
 		return -1;
+	if (bake_budget(&pl->spec, n_members, dir, cause) != 0)
+		return -1;
 	/* The output and its lock first: a second run on DIR is refused
 	 * before it reads DIR.checkpoint, which the first is writing. */
 	struct outdir od;
@@ -494,7 +496,7 @@ int family_bake(const struct family_plan *pl, const char *dir, struct family **o
 	struct checkpoint *ck = family_ckpt_open(pl, f, dir, &n_done, cause);
 	if (ck == NULL) {
 		if (rank == 0)
-			outdir_abort(&od);
+			outdir_fail(&od, cause);
 		family_free(f);
 		return -1;
 	}
@@ -551,7 +553,7 @@ int family_bake(const struct family_plan *pl, const char *dir, struct family **o
 		rc = family_write_index(stage, f, pl->command, cause) || outdir_commit(&od, cause) ||
 		    checkpoint_remove(dir, cause) ? -2 : 0;
 	if (rank == 0 && rc != 0)
-		outdir_abort(&od);
+		outdir_fail(&od, cause);
 	if (rc == 0 && rank == 0 && out) {
 		family_ckpt_note(f, ck);
 		f->dir = xstrdup(dir);

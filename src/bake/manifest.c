@@ -226,7 +226,7 @@ static json_object *solver_info(const struct bake_spec *s, const struct bake_res
 static json_object *settings_info(const struct bake_spec *s, const struct bake_result *r)
 {
 	json_object *st = json_object_new_object();
-	add(st, "seed", json_object_new_int64((int64_t)s->seed));
+	add(st, "seed", json_object_new_uint64(s->seed));
 	const struct brdf_entry *e = &r->table.entry[0];
 	long bp = s->batch_photons > 0 || e->batches == 0 ? s->batch_photons : e->photons / e->batches;
 	add(st, "batch_photons", json_object_new_int64(bp));
@@ -618,7 +618,7 @@ int bake_provenance_read(const char *dir, struct bake_provenance *p, char **caus
 	    strcmp(json_object_get_string(v), "schlick") == 0)
 		p->fresnel = OPTICS_FRESNEL_SCHLICK;
 	if (json_object_object_get_ex(o, "settings", &v))
-		p->seed = (uint64_t)jnum(v, "seed", 1.0);
+		p->seed = json_object_object_get_ex(v, "seed", &so) ? json_object_get_uint64(so) : 1;	/* exact */
 	if (!json_object_object_get_ex(o, "layers", &layers) || (int)json_object_array_length(layers) != p->n_wl) {
 		*cause = xasprintf("%s: layers do not match the wavelengths", mpath);
 		goto out;

@@ -175,9 +175,49 @@ char *checksum_manifest_text(const char *dir, const char *manifest, const char *
 	return t;
 }
 
+/* Length of the valid UTF-8 sequence at s (1-4), or 0. */
+static int utf8_len(const unsigned char *s)
+{
+	int n = s[0] < 0x80 ? 1 : s[0] >= 0xC2 && s[0] <= 0xDF ? 2 : s[0] >= 0xE0 && s[0] <= 0xEF ? 3
+	    : s[0] >= 0xF0 && s[0] <= 0xF4 ? 4 : 0;
+	for (int i = 1; i < n; i++)
+		if ((s[i] & 0xC0) != 0x80)
+			return 0;
+	if ((n == 3 && s[0] == 0xE0 && s[1] < 0xA0) || (n == 3 && s[0] == 0xED && s[1] >= 0xA0) ||
+	    (n == 4 && s[0] == 0xF0 && s[1] < 0x90) || (n == 4 && s[0] == 0xF4 && s[1] >= 0x90))
+		return 0;	/* overlong, surrogate, beyond U+10FFFF */
+	return n;
+}
+
+/* TEXT (JSON) with every byte that is not UTF-8 written as the characters
+ * \xHH (an escaped backslash in JSON): a path of any bytes, e.g. a
+ * non-UTF-8 --out in "command", stays readable and the file stays JSON
+ * that strict readers (Python's json, import_skin.py) take.  JSON syntax
+ * is ASCII, so such bytes are only inside strings.  Caller frees. */
+static char *utf8_safe(const char *text)
+{
+	size_t n = strlen(text), k = 0;
+	char *out = xmalloc(5 * n + 1);
+	for (const unsigned char *s = (const unsigned char *)text; *s;) {
+		int len = utf8_len(s);
+		if (len == 0) {
+			k += (size_t)sprintf(out + k, "\\\\x%02X", *s);
+			s++;
+			continue;
+		}
+		memcpy(out + k, s, (size_t)len);
+		k += (size_t)len;
+		s += len;
+	}
+	out[k] = '\0';
+	return out;
+}
+
 int checksum_write_manifest(const char *dir, const char *manifest, const char *text, char **cause)
 {
-	char *t = checksum_manifest_text(dir, manifest, text, cause);
+	char *safe = utf8_safe(text);
+	char *t = checksum_manifest_text(dir, manifest, safe, cause);
+	free(safe);
 	if (t == NULL)
 		return -1;
 	char *path = xasprintf("%s/%s", dir, manifest);

@@ -23,7 +23,8 @@ char *checksum_member_dir(const char *dir, const char *manifest, char **cause);
 /* MANIFEST's text with the checksums of DIR's files (checksum_member_dir)
  * added; NULL and *cause.  Caller frees. */
 char *checksum_manifest_text(const char *dir, const char *manifest, const char *text, char **cause);
-/* Write DIR/MANIFEST (all or nothing, base/util.h outfile) holding TEXT
+/* Write DIR/MANIFEST (all or nothing, base/util.h outfile) holding TEXT,
+ * bytes that are not UTF-8 written as the text \\xHH,
  * with the checksums of DIR's files added: call it when every other file
  * is written.  -1 and *cause. */
 int checksum_write_manifest(const char *dir, const char *manifest, const char *text, char **cause);

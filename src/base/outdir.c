@@ -474,3 +474,17 @@ void outdir_abort(struct outdir *o)
 		remove_tree(o->staging);
 	outdir_free(o);
 }
+
+void outdir_fail(struct outdir *o, char **cause)
+{
+	char *m = cause ? *cause : NULL, *at;
+	size_t n = o->staging ? strlen(o->staging) : 0;
+	while (m != NULL && n > 0 && (at = strstr(m, o->staging)) != NULL) {
+		char *r = xasprintf("%.*s%s%s", (int)(at - m), m, o->target, at + n);
+		free(m);
+		m = r;
+	}
+	if (cause)
+		*cause = m;
+	outdir_abort(o);
+}

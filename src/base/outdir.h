@@ -72,6 +72,10 @@ int outdir_commit(struct outdir *o, char **cause);
 /* Remove the staging directory and what is in it, release the lock, free
  * o's names.  For the error paths of writers; a no-op after commit. */
 void outdir_abort(struct outdir *o);
+/* outdir_abort after a failure whose *cause (may be NULL) names files in
+ * the staging directory: they are named by the target instead, which is
+ * what the user gave. */
+void outdir_fail(struct outdir *o, char **cause);
 /* Remove the staging and retired directories of dead runs beside TARGET
  * (the retired set is renamed back when the target is missing: it was
  * complete).  Returns how many were found; outdir_begin calls it. */

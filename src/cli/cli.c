@@ -6,11 +6,24 @@
 #include <math.h>
 #include <stdarg.h>
 #include <stdlib.h>
+#include <errno.h>
 #include <string.h>
 #include <unistd.h>
 
 #include "cli/opt.h"
 #include "base/util.h"
+
+/* What went to stdout is output too: a write error there (a full disk,
+ * /dev/full) is a failure with its cause, never exit status 0. */
+static int close_stdout(int rc)
+{
+	errno = 0;
+	if (fflush(stdout) != 0 || ferror(stdout)) {
+		fprintf(stderr, "skinbake: writing the standard output failed: %s\n", errno ? strerror(errno) : "I/O error");
+		return rc == CLI_EXIT_OK ? CLI_EXIT_FAIL : rc;
+	}
+	return rc;
+}
 
 #ifdef SKINBAKE_MPI
 #include <mpi.h>
@@ -96,7 +109,7 @@ int main(int argc, char **argv)
 	cli_par.allreduce = mpi_allreduce;
 	if (cli_par.rank != 0 && freopen("/dev/null", "w", stdout) == NULL)
 		fatalx("cannot silence stdout on rank %d", cli_par.rank);
-	int rc = cli_main(argc, argv);
+	int rc = close_stdout(cli_main(argc, argv));
 	/* A rank that failed on bad input must not leave the others waiting. */
 	int worst = rc;
 	MPI_Allreduce(&rc, &worst, 1, MPI_INT, MPI_MAX, MPI_COMM_WORLD);
@@ -106,7 +119,7 @@ int main(int argc, char **argv)
 #else
 int main(int argc, char **argv)
 {
-	return cli_main(argc, argv);
+	return close_stdout(cli_main(argc, argv));
 }
 #endif
 

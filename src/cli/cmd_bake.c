@@ -76,7 +76,7 @@ int cmd_bake(int argc, char **argv)
 	vary.n = 0;
 	const char *preset = NULL, *pfile = NULL, *out = NULL;
 	int quiet = 0, nodes = 0, fresnel, est, solver;
-	long seed;
+	uint64_t seed;
 	const struct opt opts[] = {
 		{ "preset", OPT_STRING, &preset, "NAME", .flags = OPT_REQUIRED, .excl = "preset-file",
 		  .help = "a shipped preset (skinbake presets lists them)" },
@@ -118,7 +118,7 @@ int cmd_bake(int argc, char **argv)
 		{ "fresnel", OPT_ENUM, &fresnel, .def = "exact", .choices = "exact|schlick", .help = "boundary reflectance model" },
 		{ "estimator", OPT_ENUM, &est, .def = "nee", .choices = "nee|bins", .help = "mc: how the table is scored: "
 		  "next-event estimation toward every bin (nee), or binning the escaping photons (bins), both unbiased" },
-		{ "seed", OPT_LONG, &seed, "N", "1", .lo = 0, .hi = (double)LONG_MAX, .help = "mc: random seed" },
+		{ "seed", OPT_U64, &seed, "N", "1", .help = "mc: random seed (exact)" },
 		{ "threads", OPT_INT, &s.threads, "N", "0", .lo = 0, .hi = 1024, .help = "OpenMP threads (0 = all cores)" },
 		{ "quiet", OPT_FLAG, &quiet, .help = "no summary on stdout" },
 		{ "resume", OPT_FLAG, &s.resume, .help = "go on from DIR.checkpoint (none: from the start; a "
@@ -143,6 +143,6 @@ int cmd_bake(int argc, char **argv)
 	bake_spec_axes(&s, wl.v, wl.n, th.v, th.n, nodes);
 	s.opts.fresnel = fresnel == 0 ? OPTICS_FRESNEL_EXACT : OPTICS_FRESNEL_SCHLICK;
 	s.method = bake_method_at(solver)->id;
-	s.nee = est == 0, s.seed = (uint64_t)seed, s.min_batches = 8, s.n_ranks = 1;
+	s.nee = est == 0, s.seed = seed, s.min_batches = 8, s.n_ranks = 1;
 	return run(&s, preset, pfile, out, quiet, &vary, argc, argv);
 }

@@ -52,7 +52,7 @@ int cmd_simulate(int argc, char **argv)
 	sim_config_default(&c);
 	struct layers ls = { 0 };
 	double na, nbw, th, tos, phs, tol;
-	long seed;
+	uint64_t seed;
 	int json = 0, fresnel, solver, n_quad = 0;
 	char *cause = NULL;
 	const struct opt opts[] = {
@@ -69,7 +69,7 @@ int cmd_simulate(int argc, char **argv)
 		{ "ad-quad", OPT_INT, &n_quad, "N", "0", .lo = 0, .hi = 1024, .help = "ad: quadrature nodes per unit "
 		  "cosine, 4 or more (0 = the fewest from 16 up, doubling, that meet --ad-tol)" },
 		{ "photons", OPT_LONG, &c.photons, "N", "1e6", .lo = 1, .hi = 1e12, .help = "mc: photons" },
-		{ "seed", OPT_LONG, &seed, "N", "1", .lo = 0, .hi = (double)LONG_MAX, .help = "mc: random seed" },
+		{ "seed", OPT_U64, &seed, "N", "1", .help = "mc: random seed (exact)" },
 		{ "threads", OPT_INT, &c.threads, "N", "0", .lo = 0, .hi = 1024, .help = "OpenMP threads (0 = all cores)" },
 		{ "batches", OPT_INT, &c.batches, "N", "32", .lo = 2, .hi = 100000,
 		  .help = "mc: independent batches for standard errors" },
@@ -108,7 +108,7 @@ int cmd_simulate(int argc, char **argv)
 		free(cause);
 		return rc;
 	}
-	c.seed = (uint64_t)seed;
+	c.seed = seed;
 	c.opts.fresnel = fresnel == 0 ? OPTICS_FRESNEL_EXACT : OPTICS_FRESNEL_SCHLICK;
 	slab_init(&c.slab, na, nbw);
 	for (int i = 0; i < ls.n; i++)

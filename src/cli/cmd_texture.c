@@ -73,7 +73,8 @@ int cmd_texture(int argc, char **argv)
 	for (int i = 0; i < np && N_FIXED + i < OPT_MAX - 1; i++) {
 		const struct texture_param *p = &params[i];
 		snprintf(defs[i], sizeof defs[i], "%.10g", sites_get(&cfg, p));
-		opts[N_FIXED + i] = (struct opt){ p->key, p->type == SITES_REAL ? OPT_DOUBLE : OPT_LONG, NULL,
+		opts[N_FIXED + i] = (struct opt){ p->key, p->type == SITES_REAL ? OPT_DOUBLE : p->type == SITES_SEED ? OPT_U64
+			: OPT_LONG, NULL,
 			p->type == SITES_REAL ? "X" : "N", .def_note = defs[i], .lo = p->lo, .hi = p->hi,
 			.unit = strcmp(p->unit, "1") ? p->unit : NULL, .help = p->help };
 	}

@@ -14,7 +14,7 @@ int cmd_verify(int argc, char **argv)
 	struct verify_opts o;
 	verify_opts_default(&o);
 	const char *dir;
-	long seed;
+	uint64_t seed;
 	int json = 0;
 	const struct opt opts[] = {
 		{ "bake", OPT_PATH_IN, &dir, "DIR", .flags = OPT_REQUIRED | OPT_DIR,
@@ -23,7 +23,7 @@ int cmd_verify(int argc, char **argv)
 		  .help = "table cells to recompute, each by a Monte Carlo re-run of its own (independent cells)" },
 		{ "photons", OPT_LONG, &o.photons, "N", "5e4", .lo = 1000, .hi = 1e10,
 		  .help = "Monte Carlo photons per re-run (about 1.4% error per bin of paper's 18 x 18 table)" },
-		{ "seed", OPT_LONG, &seed, "N", "20261", .lo = 0, .hi = (double)LONG_MAX,
+		{ "seed", OPT_U64, &seed, "N", "20261",
 		  .help = "random seed of the re-runs (re-run k uses N + k; choose one other than the bake's)" },
 		{ "threads", OPT_INT, &o.threads, "N", "0", .lo = 0, .hi = 1024, .help = "OpenMP threads (0 = all cores)" },
 		{ "json", OPT_FLAG, &json, .help = "one JSON object: bake, solver, cells[] (z per cell) and summary" },
@@ -40,7 +40,7 @@ int cmd_verify(int argc, char **argv)
 	struct opt_ctx x;
 	if (opt_parse(&x, &cmd, argc, argv) != 0)
 		return x.exit;
-	o.seed = (uint64_t)seed;
+	o.seed = seed;
 	struct cli_progress pr;
 	cli_progress_start(&pr, "verify");
 	o.progress = cli_progress_update, o.progress_user = &pr;

@@ -6,6 +6,7 @@
 #include <assert.h>
 #include <math.h>
 #include <stdarg.h>
+#include <stdint.h>
 #include <stdlib.h>
 #include <string.h>
 
@@ -175,6 +176,14 @@ static int apply(struct opt_ctx *x, const struct opt *o, const char *v)
 		else if (o->dest)
 			*(int *)o->dest = (int)l;
 		return 0;
+	case OPT_U64: {
+		unsigned long long u;
+		if (opt_u64(x, label, v, &u) != 0)
+			return -1;
+		if (o->dest)
+			*(uint64_t *)o->dest = (uint64_t)u;
+		return 0;
+	}
 	case OPT_ENUM:
 		if ((i = choice(o->choices, v)) < 0)
 			return bad_choice(x, label, v, o->choices);

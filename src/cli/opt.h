@@ -59,6 +59,7 @@ enum opt_type {
 	OPT_DOUBLE,	/* decimal number in the range; dest double */
 	OPT_LONG,	/* whole number (1e6 allowed) in the range; dest long */
 	OPT_INT,	/* as OPT_LONG; dest int */
+	OPT_U64,	/* whole number in [0, 2^64-1], exact (seeds); dest uint64_t; .lo, .hi unused */
 	OPT_STRING,	/* any non-empty text; dest const char * (points into argv) */
 	OPT_ENUM,	/* one of .choices "a|b|c"; dest int, the index of the choice */
 	OPT_LIST,	/* comma list of numbers, each in the range; dest struct opt_list */
@@ -164,6 +165,9 @@ int opt_double(const struct opt_ctx *x, const char *label, const char *s, double
     unsigned flags, const char *unit, double *out);
 int opt_long(const struct opt_ctx *x, const char *label, const char *s, double lo, double hi,
     unsigned flags, const char *unit, long *out);
+/* A whole number in [0, 2^64-1] exactly (digits are read as an integer, not
+ * through a double; 9.2e18 and 1e6 forms are taken when whole). */
+int opt_u64(const struct opt_ctx *x, const char *label, const char *s, unsigned long long *out);
 int opt_path_in(const struct opt_ctx *x, const char *label, const char *path, unsigned flags);
 /* As opt_path_in; a short HINT (what was expected) ends the message. */
 int opt_path_in_hint(const struct opt_ctx *x, const char *label, const char *path, unsigned flags,

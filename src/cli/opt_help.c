@@ -126,8 +126,10 @@ static void describe(FILE *fp, const struct opt *o)
 	    : o->type == OPT_FLAG ? NULL : o->type == OPT_PATH_IN || o->type == OPT_PATH_OUT ? "PATH" : "X";
 	snprintf(head, sizeof head, "  --%s%s%s", o->name, meta ? " " : "", meta ? meta : "");
 	cat(t, sizeof t, o->help);
-	if (o->type == OPT_DOUBLE || o->type == OPT_LONG || o->type == OPT_INT || o->type == OPT_LIST) {
-		opt_range_text(r, sizeof r, o->lo, o->hi, o->flags, o->unit);
+	if (o->type == OPT_DOUBLE || o->type == OPT_LONG || o->type == OPT_INT || o->type == OPT_LIST ||
+	    o->type == OPT_U64) {
+		opt_range_text(r, sizeof r, o->type == OPT_U64 ? 0 : o->lo, o->type == OPT_U64 ? 18446744073709551616.0 : o->hi,
+		    o->type == OPT_U64 ? 0 : o->flags, o->unit);
 		cat(t, sizeof t, o->type != OPT_LIST ? " in " : o->flags & OPT_STEPS ? ", comma-separated, "
 		    "START:STOP:STEP for a range, each in " : ", comma-separated, each in ");
 		cat_nb(t, sizeof t, r);

@@ -60,6 +60,10 @@ static void fmt_num(char *b, size_t n, double v)
 		snprintf(b, n, "2^63-1");
 		return;
 	}
+	if (v == 18446744073709551616.0) {
+		snprintf(b, n, "2^64-1");
+		return;
+	}
 	if (v == floor(v) && fabs(v) < 1e6) {
 		snprintf(b, n, "%.0f", v);
 		return;
@@ -146,10 +150,31 @@ int opt_long(const struct opt_ctx *x, const char *label, const char *s, double l
 			return opt_error(x, "%s = %s is out of range %s", label, s, r), -1;
 		*out = l;
 	} else {
-		if (fabs(v) >= 9.2e18)
+		if (fabs(v) >= 9223372036854775808.0)	/* 2^63: (long)v would be undefined */
 			return opt_error(x, "%s = %s is out of range %s", label, s, r), -1;
 		*out = (long)v;
 	}
+	return 0;
+}
+
+int opt_u64(const struct opt_ctx *x, const char *label, const char *s, unsigned long long *out)
+{
+	double v;
+	int integer;
+	const double two64 = 18446744073709551616.0;
+	if (number(x, label, s, 0, two64, 0, NULL, "whole decimal number", &v, &integer) != 0)
+		return -1;
+	if (v != floor(v) || (!integer && v >= two64))
+		return opt_error(x, "%s = %s is not a whole number in [0, 2^64-1]", label, s), -1;
+	if (!integer) {
+		*out = (unsigned long long)v;	/* exact: a double below 2^64 that is whole */
+		return 0;
+	}
+	errno = 0;
+	unsigned long long u = strtoull(s, NULL, 10);
+	if (errno == ERANGE || strchr(s, '-') != NULL)
+		return opt_error(x, "%s = %s is out of range [0, 2^64-1]", label, s), -1;
+	*out = u;
 	return 0;
 }
 

@@ -13,6 +13,7 @@
 #include <stdio.h>
 #include <stdlib.h>
 #include <string.h>
+#include <sys/stat.h>
 
 #include "base/util.h"
 
@@ -222,8 +223,28 @@ static char *format_error(const char *path)
 	return xasprintf("%s: not a model libassimp can read: %s", path, aiGetErrorString());
 }
 
+/* Vertices a renderer can take: finite, and far below float's 3.4e38
+ * (POV-Ray's limit for coordinates is about 1e7 scene units; 1e30 leaves
+ * room and still refuses the overflowed 1e39 -> inf of a text file). */
+#define MESH_MAX_COORD 1e30
+
+static int check_vertices(const struct mesh *m, const char *path, char **cause)
+{
+	for (int v = 0; v < m->n_vertices; v++)
+		for (int i = 0; i < 3; i++)
+			if (!isfinite(m->position[v][i]) || fabs(m->position[v][i]) > MESH_MAX_COORD) {
+				*cause = xasprintf("%s: vertex %d has %c = %g; mesh coordinates must be finite and within "
+				    "[-%g, %g]", path, v, "xyz"[i], m->position[v][i], MESH_MAX_COORD, MESH_MAX_COORD);
+				return -1;
+			}
+	return 0;
+}
+
 struct mesh *mesh_load(const char *path, const char *name, char **cause)
 {
+	struct stat st;
+	if (stat(path, &st) == 0 && S_ISDIR(st.st_mode))
+		return *cause = xasprintf("%s is a directory, not a model file", path), NULL;
 	FILE *fp = fopen(path, "rb");
 	if (fp == NULL)
 		return *cause = xasprintf("%s: %s", path, strerror(errno)), NULL;
@@ -249,6 +270,11 @@ struct mesh *mesh_load(const char *path, const char *name, char **cause)
 		else
 			*cause = xasprintf("%s: no triangles in the file", path);
 		free(list);
+		aiReleaseImport(sc);
+		mesh_free(m);
+		return NULL;
+	}
+	if (check_vertices(m, path, cause) != 0) {
 		aiReleaseImport(sc);
 		mesh_free(m);
 		return NULL;

@@ -151,7 +151,7 @@ static const struct site sites[] = {
 #define R(field) offsetof(struct texture_config, relief.field)
 static const struct texture_param params[] = {
 	{ "size", "px", 1, 16, 16384, SITES_LONG, F(size), "edge length of the square maps" },
-	{ "seed", "1", 1, 0, 9007199254740992.0, SITES_SEED, F(seed), "random seed" },
+	{ "seed", "1", 1, 0, 18446744073709551615.0, SITES_SEED, F(seed), "random seed (exact)" },
 	{ "tile-mm", "mm", 0.1, 0.5, 500, SITES_REAL, R(tile), "edge length of the tile on the skin" },
 	{ "pore-density", "1/mm^2", 100, 0, 100, SITES_REAL, R(pore_density), "pores per area" },
 	{ "pore-radius", "um", 1e-4, 1, 5000, SITES_REAL, R(pore_radius),
@@ -258,6 +258,17 @@ int sites_set(struct texture_config *cfg, const struct texture_param *p, const c
 {
 	double x;
 	const char *unit = strcmp(p->unit, "1") == 0 ? "" : p->unit;
+	if (p->type == SITES_SEED && value[0] >= '0' && value[0] <= '9' && strspn(value, "0123456789") == strlen(value)) {
+		/* Digits: exact, not through a double (2^53 + 1 stays itself). */
+		errno = 0;
+		unsigned long long u = strtoull(value, NULL, 10);
+		if (errno == ERANGE) {
+			*cause = xasprintf("%s = %s is out of range [0, 18446744073709551615]", label, value);
+			return -1;
+		}
+		*(uint64_t *)(void *)((char *)cfg + p->offset) = u;
+		return 0;
+	}
 	if (util_parse_decimal(value, &x) != 0) {
 		*cause = xasprintf("%s = '%s' is not a decimal number in [%.15g, %.15g]%s%s", label, value, p->lo, p->hi,
 		    *unit ? " " : "", unit);
@@ -284,6 +295,10 @@ int sites_set(struct texture_config *cfg, const struct texture_param *p, const c
 		*(int *)(void *)field = (int)x;
 		break;
 	case SITES_SEED:
+		if (x >= 18446744073709551616.0) {
+			*cause = xasprintf("%s = %s is out of range [0, 18446744073709551615]", label, value);
+			return -1;
+		}
 		*(uint64_t *)(void *)field = (uint64_t)x;
 		break;
 	}
@@ -441,7 +456,9 @@ char *sites_ini_text(const struct texture_config *cfg)
 		for (char *c = key; *c; c++)
 			if (*c == '-')
 				*c = '_';
-		char *t = xasprintf("%s%s = %.17g\n", s, key, sites_get(cfg, &p[i]));
+		char *t = p[i].type == SITES_SEED
+		    ? xasprintf("%s%s = %llu\n", s, key, (unsigned long long)*(const uint64_t *)(const void *)((const char *)cfg + p[i].offset))
+		    : xasprintf("%s%s = %.17g\n", s, key, sites_get(cfg, &p[i]));
 		free(s);
 		s = t;
 	}

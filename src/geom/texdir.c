@@ -9,6 +9,7 @@
 #include <stdlib.h>
 #include <string.h>
 
+#include "base/budget.h"
 #include "base/check.h"
 #include "base/checksum.h"
 #include "base/outdir.h"
@@ -259,7 +260,7 @@ static int write_manifest(const struct outputs *o, const struct relief *r, struc
 	json_object_object_add(m, "kind", json_object_new_string("skinbake texture"));
 	json_object_object_add(m, "skinbake_version", json_object_new_string(PACKAGE_VERSION));
 	json_object_object_add(m, "site", json_object_new_string(cfg->site));
-	json_object_object_add(m, "seed", json_object_new_int64((int64_t)cfg->seed));
+	json_object_object_add(m, "seed", json_object_new_uint64(cfg->seed));
 	json_object_object_add(m, "size_px", json_object_new_int64(cfg->size));
 	json_object_object_add(m, "tile_mm", json_num(tile_mm));
 	json_object_object_add(m, "pixel_um", json_num(tile_mm * 1000 / (double)cfg->size));
@@ -287,7 +288,7 @@ static int write_manifest(const struct outputs *o, const struct relief *r, struc
 				*c = '_';
 		double v = sites_get(cfg, &p[i]);
 		json_object_object_add(par, key, p[i].type == SITES_REAL ? json_num(v)
-		    : json_object_new_int64((int64_t)v));
+		    : p[i].type == SITES_SEED ? json_object_new_uint64(cfg->seed) : json_object_new_int64((int64_t)v));
 		json_object_object_add(units, key, json_object_new_string(p[i].unit));
 	}
 	json_object_object_add(m, "parameters", par);
@@ -375,25 +376,23 @@ static int write_files(const char *dir, const struct texture_config *cfg, const 
 	return write_manifest(&o, r, sh, sp, sf, cause);
 }
 
-int texdir_write(const char *dir, const struct texture_config *cfg, const struct relief *r,
-    const struct texdir_maps *m, char **cause)
-{
-	struct outdir od;
-	if (outdir_begin(&od, dir, &texdir_outdir_kind, cause) != 0)
-		return -1;
-	if (write_files(outdir_path(&od), cfg, r, m, cause) != 0) {
-		outdir_abort(&od);
-		return -1;
-	}
-	return outdir_commit(&od, cause);
-}
-
 /* The steps in the order the command reports them; the output (and its
  * lock) is taken first, nothing is written before the relief has been
  * placed. */
 int texdir_make(const char *dir, const struct texture_config *cfg, struct texdir_made *made, char **cause)
 {
 	memset(made, 0, sizeof *made);
+	/* Measured: peak memory about 40 bytes per pixel (the six float maps
+	 * and the writers' buffers), files about 27 bytes per pixel. */
+	double npx = (double)cfg->size * (double)cfg->size;
+	char *what = xasprintf("texture --size %ld", cfg->size);
+	int e = budget_check(what, TEXDIR_MEM_PER_PX * npx + 16e6, TEXDIR_DISK_PER_PX * npx, dir,
+	    "lower --size (a quarter of the pixels at half the size)", cause);
+	free(what);
+	if (e != 0) {
+		made->refused = 1;
+		return -1;
+	}
 	struct outdir od;
 	if (outdir_begin(&od, dir, &texdir_outdir_kind, cause) != 0) {
 		made->refused = 1;
@@ -402,7 +401,7 @@ int texdir_make(const char *dir, const struct texture_config *cfg, struct texdir
 	double t0 = util_now();
 	struct relief *r = relief_new(&cfg->relief, cfg->seed, cause);
 	if (r == NULL) {
-		outdir_abort(&od);
+		outdir_fail(&od, cause);
 		return -1;
 	}
 	made->n_pores = relief_n_pores(r);
@@ -414,7 +413,7 @@ int texdir_make(const char *dir, const struct texture_config *cfg, struct texdir
 	double t2 = util_now();
 	int rc = write_files(outdir_path(&od), cfg, r, &m, cause);
 	if (rc != 0)
-		outdir_abort(&od);
+		outdir_fail(&od, cause);
 	else
 		rc = outdir_commit(&od, cause);
 	made->t_place = t1 - t0;

@@ -51,11 +51,10 @@ char *texdir_resolution_notes(const struct texture_config *cfg, const struct rel
  * "skinbake texture" and the maps above. */
 extern const struct outdir_kind texdir_outdir_kind;
 
-/* Write every file above into DIR (created if needed) through base/outdir.h
- * (all or nothing, one swap); -1 and *cause (caller frees) on an I/O
- * failure or when DIR is not a texture directory or is being written. */
-int texdir_write(const char *dir, const struct texture_config *cfg, const struct relief *r,
-    const struct texdir_maps *m, char **cause);
+/* Estimated needs per pixel of a tile (budget check of texdir_make):
+ * measured 37-49 bytes of memory and 26-27 bytes of files at 1024 and 2048 px. */
+#define TEXDIR_MEM_PER_PX 48.0
+#define TEXDIR_DISK_PER_PX 28.0
 
 /* What texdir_make did, for the command's summary. */
 struct texdir_made {
@@ -63,11 +62,13 @@ struct texdir_made {
 	double h_min, h_max;	/* lowest and highest point of the height map [cm] */
 	double t_place, t_render, t_write;	/* wall time of each step [s] */
 	char *notes;		/* texdir_resolution_notes, or NULL; caller frees */
-	int refused;		/* 1: the output directory was refused (outdir_begin), nothing done */
+	int refused;		/* 1: DIR or the size was refused before any work (exit status 2) */
 };
 
 /* All of `skinbake texture` after its options: place the relief of cfg,
- * render the maps at cfg->size and write DIR (texdir_write).  Nothing is
+ * render the maps at cfg->size and write DIR through base/outdir.h (all or
+ * nothing, one swap; refused when DIR is not a texture directory, is being
+ * written, or the size does not fit the memory or disk: made->refused).  Nothing is
  * written when placing fails.  -1 and *cause (caller frees) on failure;
  * made->notes may be set either way. */
 int texdir_make(const char *dir, const struct texture_config *cfg, struct texdir_made *made, char **cause);

@@ -25,15 +25,37 @@ static exr_result_t guarded_compress(exr_encode_pipeline_t *e)
 	return r;
 }
 
+/* The library's first message of a write (e.g. "... No space left on
+ * device"), kept for *cause instead of printed. */
+struct exr_msg {
+	char text[256];
+};
+
+/* The handler runs with the context locked (no exr_get_user_data there),
+ * and writers run in parallel threads: a thread's own message buffer. */
+static _Thread_local struct exr_msg *write_msg;
+
+static void keep_first(exr_const_context_t ctx, exr_result_t code, const char *msg)
+{
+	(void)ctx;
+	(void)code;
+	if (write_msg != NULL && write_msg->text[0] == '\0')
+		snprintf(write_msg->text, sizeof write_msg->text, "%s", msg);
+}
+
 int exrio_write(const char *path, int w, int h, int nch, const char *const *names,
     const float *const *planes, int nattr, const struct exr_attr_kv *attrs, char **cause)
 {
 	exr_context_t f;
 	exr_context_initializer_t init = EXR_DEFAULT_CONTEXT_INITIALIZER;
+	struct exr_msg msg = { "" };
+	init.error_handler_fn = keep_first;
+	write_msg = &msg;
 	int part, rc = -1;
 	char *tmp = util_tmp_name(path);
 	if (exr_start_write(&f, tmp, EXR_WRITE_FILE_DIRECTLY, &init) != EXR_ERR_SUCCESS) {
-		*cause = xasprintf("%s: cannot write EXR", path);
+		*cause = xasprintf("%s: cannot write EXR%s%s", path, msg.text[0] ? ": " : "", msg.text);
+		write_msg = NULL;
 		free(tmp);
 		return -1;
 	}
@@ -88,11 +110,12 @@ done:
 	if (exr_finish(&f) != EXR_ERR_SUCCESS)
 		rc = -1;
 	if (rc != 0) {
-		*cause = xasprintf("%s: writing the EXR failed", path);
+		*cause = xasprintf("%s: writing the EXR failed%s%s", path, msg.text[0] ? ": " : "", msg.text);
 		unlink(tmp);
 	} else
 		rc = util_commit_tmp(tmp, path, cause);
 	free(tmp);
+	write_msg = NULL;
 	return rc;
 }
 

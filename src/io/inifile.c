@@ -25,8 +25,7 @@ static char *msg(const char *origin, int line, const char *fmt, ...)
  * mark, as libinih skips them): 1 when it is "[NAME]" with at most blanks
  * and a ';' or '#' comment after it, and NAME into name[size] as libinih
  * takes it; 0 for other lines; -1 (message in f->error) for a header with
- * other text after ']'.  A '[' line without ']' is left to libinih, which
- * reports it as a syntax error. */
+ * other text after ']' or without ']'. */
 static int header(struct inifile *f, const char *s, char *name, size_t size)
 {
 	if (f->line == 1 && strncmp(s, "\xEF\xBB\xBF", 3) == 0)
@@ -36,8 +35,13 @@ static int header(struct inifile *f, const char *s, char *name, size_t size)
 	if (*s != '[')
 		return 0;
 	const char *end = strchr(s + 1, ']');
-	if (end == NULL)
-		return 0;
+	if (end == NULL) {
+		/* Said here: libinih would carry on under the previous section
+		 * and a later key would be reported instead (given twice). */
+		f->bad_header = f->line;
+		f->error = msg(f->origin, f->line, "the section header '%s' is not closed (']' missing)", s);
+		return -1;
+	}
 	snprintf(name, size, "%.*s", (int)(end - s - 1), s + 1);
 	const char *t = end + 1;
 	while (*t == ' ' || *t == '\t')

@@ -92,13 +92,15 @@ int pngio_write(const char *path, int w, int h, int channels, int bits, const ui
 	unsigned char *volatile row = xmalloc(rowlen);
 	png_structp png = png_create_write_struct(PNG_LIBPNG_VER_STRING, NULL, on_error, on_warning);
 	png_infop info = png ? png_create_info_struct(png) : NULL;
+	errno = 0;
 	if (!info || setjmp(png_jmpbuf(png))) {
+		int e = errno;	/* libpng's write stops at the failed fwrite: its cause */
 		png_destroy_write_struct(&png, &info);
 		fclose(fp);
 		unlink(tmp);
 		free(tmp);
 		free(row);
-		*cause = xasprintf("%s: writing the PNG failed", path);
+		*cause = xasprintf("%s: writing the PNG failed%s%s", path, e ? ": " : "", e ? strerror(e) : "");
 		return -1;
 	}
 	png_init_io(png, fp);

@@ -238,7 +238,7 @@ int mapset_write(const char *dir, const struct mapset *m, char **cause)
 	if (outdir_begin(&od, dir, &mapset_outdir_kind, cause) != 0)
 		return -1;
 	if (write_all(outdir_path(&od), m, cause) != 0) {
-		outdir_abort(&od);
+		outdir_fail(&od, cause);
 		return -1;
 	}
 	return outdir_commit(&od, cause);

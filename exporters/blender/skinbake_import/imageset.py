@@ -1,5 +1,6 @@
 """Reading an image set: manifest.json checked against the schema (schema.py), every file's
 structure checked (imagefiles.py), then the images loaded into Blender at the stated sizes."""
+import hashlib
 import json
 import math
 import os
@@ -43,6 +44,7 @@ def read_manifest(directory):
     if ver not in schema.FORMAT_VERSIONS:
         raise ImageSetError(f"{path}: format_version {ver!r} is not supported by import_skin.py "
                             f"{schema.VERSION} (supported: {', '.join(map(str, schema.FORMAT_VERSIONS))})")
+    _check_sums(m, directory, path)
     for key, (lo, hi) in schema.NUMBERS.items():
         _number(m, key, lo, hi, path)
     for key, hi in schema.TRIPLES.items():
@@ -85,6 +87,31 @@ def read_manifest(directory):
         _check_family(m, directory, path, nc, nphi)
     m["_dir"] = directory
     return m
+
+
+def _check_sums(m, directory, path):
+    """Each file the manifest's "checksums" lists (skinbake writes it: {"NAME": "sha256:HEX"}) still
+    has that SHA-256: a file changed or damaged since the export is refused before it is used.
+    Sets from before the checksums have none; nothing to check then."""
+    sums = m.get("checksums")
+    if sums is None:
+        return
+    if not isinstance(sums, dict):
+        raise ImageSetError(f"{path}: \"checksums\" is {sums!r}, expected an object of \"FILE\": \"sha256:HEX\"")
+    for name, want in sums.items():
+        if not isinstance(want, str) or not want.startswith("sha256:") or len(want) != 71 or \
+                os.path.isabs(name) or ".." in name:
+            raise ImageSetError(f"{path}: checksums.{name} is {want!r}, expected a file of the set with "
+                                "\"sha256:\" and 64 hex digits")
+        p = os.path.join(directory, name)
+        try:
+            with open(p, "rb") as f:
+                have = "sha256:" + hashlib.sha256(f.read()).hexdigest()
+        except OSError as e:
+            raise ImageSetError(f"{p}: {e.strerror} (listed in manifest.json checksums)") from None
+        if have != want:
+            raise ImageSetError(f"{p} has changed since its manifest was written ({have} there, {want} "
+                                "expected): the file was edited or damaged; export the set again")
 
 
 def _is_number(x):

@@ -23,6 +23,7 @@
 #include "base/check.h"
 #include "base/checksum.h"
 #include "base/util.h"
+#include "io/json.h"
 
 void blender_options_default(struct blender_options *o)
 {
@@ -389,8 +390,10 @@ static json_object *manifest_build(const struct brdf_source *m, const struct ble
 
 static int write_manifest(const char *dir, json_object *j, char **cause)
 {
-	const char *s = json_object_to_json_string_ext(j, JSON_C_TO_STRING_PRETTY | JSON_C_TO_STRING_NOSLASHESCAPE);
-	return checksum_write_manifest(dir, "manifest.json", s, cause);
+	char *s = json_text(j, JSON_PRETTY);
+	int rc = checksum_write_manifest(dir, "manifest.json", s, cause);
+	free(s);
+	return rc;
 }
 
 static int write_rgb_exr(const char *path, int w, int h, const float *rgb, int nattr,
@@ -481,7 +484,7 @@ int blender_write(const struct blender_set *s, const char *dir, char **cause)
 	if (outdir_begin(&od, dir, &blender_outdir_kind, cause) != 0)
 		return -1;
 	if (blender_write_files(s, outdir_path(&od), cause) != 0) {
-		outdir_abort(&od);
+		outdir_fail(&od, cause);
 		return -2;
 	}
 	return outdir_commit(&od, cause) != 0 ? -2 : 0;

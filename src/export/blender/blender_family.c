@@ -228,7 +228,7 @@ int blender_family_export(struct family *f, const struct mapset *m, const struct
 	    write_rgb(dir, "sss_radius_map.exr", m->w, m->h, rad, "mean exit radius per R, G, B [m]", cause) ||
 	    blender_write_files(set, dir, cause) ? -2 : 0;
 	if (rc == -2)
-		outdir_abort(&od);
+		outdir_fail(&od, cause);
 	else if (rc == 0 && outdir_commit(&od, cause) != 0)
 		rc = -2;
 	free(lut);

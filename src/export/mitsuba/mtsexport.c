@@ -7,6 +7,7 @@
 
 #include <json-c/json.h>
 
+#include "base/checksum.h"
 #include "base/util.h"
 #include "export/mitsuba/meshply.h"
 #include "geom/mesh.h"
@@ -132,9 +133,9 @@ static int write_all(const struct scene *s, const struct mts_options *o, const c
 	if (rc != 0)
 		return -1;
 	struct json_object *j = manifest(s, o);
-	path = xasprintf("%s/manifest.json", dir);
-	rc = json_save(path, j, JSON_PRETTY, cause);
-	free(path);
+	char *text = json_text(j, JSON_PRETTY);
+	rc = checksum_write_manifest(dir, "manifest.json", text, cause);	/* SHA-256 of each file (issue 23) */
+	free(text);
 	json_object_put(j);
 	return rc;
 }
@@ -147,7 +148,7 @@ int mts_export(const struct scene *s, const struct mts_options *o, char **cause)
 	if (outdir_begin(&od, o->out, &mts_outdir_kind, cause) != 0)
 		return -1;
 	if (write_all(s, o, outdir_path(&od), cause) != 0) {
-		outdir_abort(&od);
+		outdir_fail(&od, cause);
 		return -1;
 	}
 	return outdir_commit(&od, cause);

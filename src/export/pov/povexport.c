@@ -212,6 +212,21 @@ static char *base_from_scene(const char *path)
 	return r;
 }
 
+/* As a scene file's reader: no light or camera pointing at itself. */
+static int check_parts(const struct scene *s, char **cause)
+{
+	const double *c = s->camera.location, *a = s->camera.look_at;
+	for (int i = 0; i < s->n_lights; i++) {
+		const double *p = s->lights[i].position, *q = s->lights[i].point_at;
+		if (s->lights[i].type == SCENE_LIGHT_PARALLEL && hypot(hypot(p[0] - q[0], p[1] - q[1]), p[2] - q[2]) < 1e-9)
+			return *cause = xasprintf("--light %s: position %g:%g:%g and point_at coincide (default 0:0:0)",
+			    s->lights[i].name, p[0], p[1], p[2]), -1;
+	}
+	if (hypot(hypot(c[0] - a[0], c[1] - a[1]), c[2] - a[2]) < 1e-9)
+		return *cause = xasprintf("--camera: location and look_at coincide"), -1;
+	return 0;
+}
+
 /* The scene: from the file, or synthetic from --light/--camera; then the
  * strategy override and the checks that need the scene. */
 static struct scene *make_scene(const struct povexport_options *o, char **cause)
@@ -226,6 +241,8 @@ static struct scene *make_scene(const struct povexport_options *o, char **cause)
 		if (o->cmdline->n_lights == 0 || !o->have_camera)
 			return *cause = xstrdup("give --scene FILE, or --light SPEC and --camera SPEC (see --help)"), NULL;
 		s = scene_from_parts(o->cmdline, o->unit_mm);
+		if (check_parts(s, cause) != 0)
+			goto bad;
 	}
 	if (o->width > 0)
 		s->width = o->width, s->height = o->height;
@@ -513,7 +530,7 @@ static int write_all(const struct povexport_options *o, const struct scene *s, c
 	if (povfiles_write(s, in->ps, &po, stage, &rep, cause) != 0 || write_extras(s, stage, base, in, cause) != 0 ||
 	    povfiles_write_index(stage, cause) != 0) {
 		povfiles_report_free(&rep);
-		outdir_abort(&od);
+		outdir_fail(&od, cause);
 		return -2;
 	}
 	if (outdir_commit(&od, cause) != 0) {
@@ -528,17 +545,14 @@ static int write_all(const struct povexport_options *o, const struct scene *s, c
 /* --out may be replaced by an export, and is none of the inputs. */
 static int check_out(const struct povexport_options *o, char **cause)
 {
-	const char *in[2 * POVEXPORT_MAX_BIND + 5];
+	const char *in[2 * POVEXPORT_MAX_BIND + 5] = { NULL }, *more[] = { o->scene_path, o->family, o->maps, o->data_dir };
 	int n = 0;
-	for (int i = 0; i < o->n_bakes + o->n_texs; i++) {
-		const char *b = i < o->n_bakes ? o->bakes[i] : o->texs[i - o->n_bakes], *eq = strchr(b, '=');
-		in[n++] = eq ? eq + 1 : b;
+	for (int i = 0; i < o->n_bakes + o->n_texs + 4; i++) {
+		const char *b = i < o->n_bakes ? o->bakes[i] : i < o->n_bakes + o->n_texs ? o->texs[i - o->n_bakes]
+		    : more[i - o->n_bakes - o->n_texs], *eq = b ? strchr(b, '=') : NULL;
+		if (b)
+			in[n++] = i < o->n_bakes + o->n_texs && eq ? eq + 1 : b;
 	}
-	const char *more[] = { o->scene_path, o->family, o->maps, o->data_dir };
-	for (int i = 0; i < 4; i++)
-		if (more[i])
-			in[n++] = more[i];
-	in[n] = NULL;
 	return outdir_check(o->out, &povfiles_outdir_kind, in, cause);
 }
 

@@ -15,6 +15,7 @@
 
 #include "base/checksum.h"
 #include "base/util.h"
+#include "io/json.h"
 #include "export/pov/mesh2.h"
 #include "export/pov/povinc.h"
 #include "export/pov/povscene.h"
@@ -258,8 +259,9 @@ int povfiles_write_index(const char *dir, char **cause)
 		closedir(d);
 	json_object_array_sort(files, cmp_names);
 	json_object_object_add(j, "files", files);
-	int rc = checksum_write_manifest(dir, "manifest.json", json_object_to_json_string_ext(j, JSON_C_TO_STRING_PRETTY |
-	    JSON_C_TO_STRING_NOSLASHESCAPE), cause);
+	char *text = json_text(j, JSON_PRETTY);
+	int rc = checksum_write_manifest(dir, "manifest.json", text, cause);
+	free(text);
 	json_object_put(j);
 	return rc;
 }
