@@ -27,6 +27,14 @@ searched by Nelder-Mead in their logarithms; with adding-doubling (no bake to
 save) all four are in one Nelder-Mead.  Each is run once with and once
 without sebum.
 
+With --rough (issue 21) the roughness is also the GGX alpha of the top
+boundary in the subsurface transport ([surface] roughness): light enters and
+leaves the skin through the microfacets, so every roughness needs its own
+bake and, with Monte Carlo, the roughness joins the simplex as with
+adding-doubling.  --multiple makes the facets scatter light as often as it
+meets them ([surface] multiple_scattering = 1).  --sebum on|off fits one of
+the two films only.
+
 Monte Carlo noise (with --solver ad the errors are the solver's estimates,
 about 1e-4 relative, and the same formulas hold): the objective is the mean over the points of
 r_i^2 - e_i^2, with r_i = (f_i - y_i) / y_i the relative error and e_i the
@@ -98,23 +106,26 @@ class Model:
                 "[sebum]\nthickness = %g\n"
                 "[epidermis]\nmelanin = %.6g\nmusp500 = %.6g\n"
                 "[dermis]\nblood = %.6g\nmusp500 = %.6g\n"
-                "[surface]\nroughness_skin = %.4g\nroughness_sebum = %.4g\n"
+                "[surface]\nroughness_skin = %.4g\nroughness_sebum = %.4g\n%s"
                 % (base, SEBUM_ON_CM if q["sebum"] else 0, q["melanin"], BASE_EPI_MUSP500 * q["scatter"],
-                   q["blood"], BASE_DERM_MUSP500 * q["scatter"], alpha, alpha))
+                   q["blood"], BASE_DERM_MUSP500 * q["scatter"], alpha, alpha,
+                   ("roughness = %.4g\n" % alpha if self.a.rough else "")
+                   + ("multiple_scattering = 1\n" if self.a.multiple else "")))
 
     def bake(self, q):
         """Bake the Monte Carlo part (cached: roughness does not enter it)."""
-        key = (q["sebum"], round(q["melanin"], 7), round(q["blood"], 7), round(q["scatter"], 6))
+        key = (q["sebum"], round(q["melanin"], 7), round(q["blood"], 7), round(q["scatter"], 6),
+               round(q["alpha"], 6) if self.a.rough else 0)
         if key in self.cache:
             return self.cache[key]
         d = os.path.join(self.a.out, "bake%04d" % len(self.cache))
         ini = d + ".ini"
         with open(ini, "w") as f:
-            f.write(self.preset_ini(q, 0.3))
+            f.write(self.preset_ini(q, q["alpha"] if self.a.rough else 0.3))
         cmd = [self.a.skinbake, "bake", "--preset-file", ini, "--out", d,
                "--theta-in", ",".join("%g" % t for t in TRAIN_THETA_I), "--wavelengths", "470,550,656",
                "--target-error", str(self.a.target_error), "--batch-photons", str(self.a.batch_photons),
-               "--seed", "1", "--threads", str(self.a.threads), "--quiet"]
+               "--seed", "1", "--threads", str(self.a.threads), "--quiet", "--solver", "mc"]
         subprocess.run(cmd, check=True)
         with open(os.path.join(d, "manifest.json")) as f:
             self.seconds += json.load(f)["result"]["seconds"]
@@ -258,6 +269,13 @@ def main():
     ap.add_argument("--max-evals", type=int, default=None, help="evaluations per simplex (default 60 mc, 400 ad)")
     ap.add_argument("--log", default=None, help="also write the evaluation log here (TSV)")
     ap.add_argument("--blood-max", type=float, default=None, help="upper bound of the blood fraction (default 0.07)")
+    ap.add_argument("--rough", action="store_true",
+                    help="the roughness is also the transport's rough top boundary ([surface] roughness)")
+    ap.add_argument("--multiple", action="store_true",
+                    help="with --rough: light scatters on the facets until it leaves (Heitz 2016)")
+    ap.add_argument("--sebum", default="both", choices=("on", "off", "both"), help="films to fit")
+    ap.add_argument("--start", default=None,
+                    help="starting point melanin,blood,scatter,alpha (default 0.025,0.02,1,0.35)")
     a = ap.parse_args()
     if a.blood_max is not None:
         BOUNDS["blood"] = (BOUNDS["blood"][0], a.blood_max)
@@ -300,16 +318,18 @@ def main():
         pen = sum(max(0.0, abs(xi - math.log(min(max(math.exp(xi), BOUNDS[kk][0]), BOUNDS[kk][1]))))
                   for xi, kk in zip(x, ("melanin", "blood", "scatter", "alpha")))
         return j + pen, sd
-    x0 = [math.log(0.025), math.log(0.02), math.log(1.0)]     # medium skin, scattering as measured
+    st = [float(v) for v in a.start.split(",")] if a.start else [0.025, 0.02, 1.0, 0.35]
+    x0 = [math.log(st[0]), math.log(st[1]), math.log(st[2])]     # medium skin, scattering as measured
     steps = [math.log(3.0), math.log(3.0), math.log(1.5)]
-    if a.solver == "ad":
-        x0.append(math.log(0.35))
+    joint = a.solver == "ad" or a.rough      # the roughness needs its own solve or bake
+    if joint:
+        x0.append(math.log(st[3]))
         steps.append(math.log(1.5))
     best = None
-    for sebum in (1, 0):
+    for sebum in {"on": (1,), "off": (0,), "both": (1, 0)}[a.sebum]:
         x, (j, sd), n = nelder_mead(lambda xx: f(xx, sebum), x0, steps, 3.0, a.max_evals)
         q = to_params(x, sebum)
-        if a.solver == "ad":
+        if joint:
             j, sd = objective(points, *model.model_brdf(q))
         else:
             q["alpha"], (j, sd) = best_alpha(model, q, points)

@@ -10,6 +10,7 @@
 #include <math.h>
 
 #include "engine/microfacet.h"
+#include "engine/optics.h"
 #include "base/rng.h"
 
 static const double pairs[][2] = { { 1.0, 1.5 }, { 1.5, 1.0 }, { 1.0, 1.44 }, { 1.44, 1.0 }, { 1.5, 1.44 } };
@@ -254,6 +255,90 @@ static void test_energy(void **state)
 	}
 }
 
+static double uni(void *r)
+{
+	return rng_uniform(r);
+}
+
+/* The first order of the walk in closed form: on the uniform-height
+ * microsurface the first hit has c = C1(h) with P(c < x) = x^(1 + Li), and
+ * the ray leaves with probability c^Lo after reflection, (1 - c)^Lo after
+ * refraction; so the height-correlated Smith terms (Heitz 2014) replace
+ * G1(wo): (1 + Li) / (1 + Li + Lo) and (1 + Li) B(1 + Li, 1 + Lo).  The
+ * facet-normal quadrature of microfacet_albedo with these. */
+static void first_order(const struct microfacet *m, double ni, double nt, double ci, double *R, double *T)
+{
+	double wi[3] = { sqrt(1.0 - ci * ci), 0.0, ci }, li = microfacet_lambda(m, ci), a2 = m->alpha * m->alpha;
+	enum { NM = 400, NP = 200 };
+	*R = *T = 0.0;
+	for (int a = 0; a < NM; a++)
+		for (int b = 0; b < NP; b++) {
+			double sv = (a + 0.5) / NM, u = 1.0 - sv * sv, c2 = (1.0 - u) / (1.0 + (a2 - 1.0) * u), h[3], wo[3], ct;
+			dir(sqrt(c2), 2.0 * M_PI * (b + 0.5) / NP, h);
+			double ih = wi[0] * h[0] + wi[1] * h[1] + wi[2] * h[2];
+			if (ih <= 0.0)
+				continue;
+			double F = optics_fresnel(m->fresnel, ni, nt, ih, &ct), w = 2.0 * sv * ih / (ci * h[2]) / (NM * NP);
+			for (int k = 0; k < 3; k++)
+				wo[k] = 2.0 * ih * h[k] - wi[k];
+			if (wo[2] > 0.0)
+				*R += w * F / (1.0 + li + microfacet_lambda(m, wo[2]));
+			if (F >= 1.0)
+				continue;
+			for (int k = 0; k < 3; k++)
+				wo[k] = (ni / nt * ih - ct) * h[k] - ni / nt * wi[k];
+			if (wo[2] < 0.0) {
+				double lo = microfacet_lambda(m, wo[2]);
+				*T += w * (1.0 - F) * exp(lgamma(1.0 + li) + lgamma(1.0 + lo) - lgamma(2.0 + li + lo));
+			}
+		}
+}
+
+/* The multiple-scattering walk (Heitz 2016): its light that leaves after
+ * one bounce is first_order's (which checks the heights and the visible
+ * normals), nothing is lost, every direction is a unit vector; prints
+ * what the higher orders add back. */
+static void test_multiple_scattering(void **state)
+{
+	(void)state;
+	const double alphas[] = { 0.05, 0.35, 0.8 }, ths[] = { 0, 60, 85 };
+	print_message("# GGX multiple scattering: R, T (orders >= 2 in parentheses), n_i -> n_t, theta:\n");
+	for (int p = 0; p < 4; p++)
+		for (int ia = 0; ia < 3; ia++)
+			for (int k = 0; k < 3; k++) {
+				struct microfacet m = { MICROFACET_GGX, alphas[ia], OPTICS_FRESNEL_EXACT };
+				double ni = pairs[p][0], nt = pairs[p][1], wi[3];
+				dir(cos(ths[k] * M_PI / 180.0), 0.0, wi);
+				enum { N = 300000 };
+				double s1[2] = { 0, 0 }, sm[2] = { 0, 0 };
+				struct rng r;
+				rng_seed(&r, 5, (uint32_t)(p * 10 + ia), (uint64_t)k);
+				for (int i = 0; i < N; i++) {
+					double wo[3];
+					int order;
+					double w = microfacet_sample_ms(&m, ni, nt, wi, uni, &r, wo, &order);
+					assert_true(w == 1.0);
+					assert_true(fabs(wo[0] * wo[0] + wo[1] * wo[1] + wo[2] * wo[2] - 1.0) < 1e-9);
+					int side = wo[2] < 0.0;
+					if (order == 1)
+						s1[side] += 1.0;
+					else
+						sm[side] += 1.0;
+				}
+				double R, T;
+				first_order(&m, ni, nt, cos(ths[k] * M_PI / 180.0), &R, &T);
+				double want[2] = { R, T };
+				for (int side = 0; side < 2; side++) {
+					double mean = s1[side] / N, se = sqrt(mean * (1.0 - mean) / N);
+					if (fabs(mean - want[side]) > 4.0 * se + 2e-4)
+						fail_msg("pair %d alpha %g theta %g side %d: first order %g, single scattering %g (se %g)",
+						    p, alphas[ia], ths[k], side, mean, want[side], se);
+				}
+				print_message("#   %.2f -> %.2f alpha %.2f theta %2.0f: R %.4f (%.4f) T %.4f (%.4f)\n", ni, nt,
+				    alphas[ia], ths[k], (s1[0] + sm[0]) / N, sm[0] / N, (s1[1] + sm[1]) / N, sm[1] / N);
+			}
+}
+
 int main(void)
 {
 	const struct CMUnitTest tests[] = {
@@ -264,6 +349,7 @@ int main(void)
 		cmocka_unit_test(test_sampling_bands),
 		cmocka_unit_test(test_smooth_limit),
 		cmocka_unit_test(test_energy),
+		cmocka_unit_test(test_multiple_scattering),
 	};
 	return cmocka_run_group_tests(tests, NULL, NULL);
 }

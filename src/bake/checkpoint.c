@@ -10,6 +10,7 @@
 #include <sys/stat.h>
 #include <unistd.h>
 
+#include "base/lock.h"
 #include "base/util.h"
 
 static const char MAGIC[] = "skinbake checkpoint 1\n";
@@ -34,6 +35,7 @@ struct checkpoint {
 	const char *unit;	/* what a record is, for the note: "solver run" or "member" */
 	char *note, *error;
 	struct solver_ckpt hooks;
+	struct lock *lock;	/* held while this process writes the file (base/lock.h) */
 };
 
 static uint64_t fnv(uint64_t h, const void *v, size_t n)
@@ -66,12 +68,19 @@ static unsigned char *slurp(const char *path, size_t *len, char **cause)
 		*cause = xasprintf("%s: %s", path, strerror(errno));
 		return NULL;
 	}
-	size_t cap = 1 << 16, n = 0, got;
+	/* A regular file, read up to its size: a device or FIFO in its place
+	 * (/dev/zero) would be read without end. */
+	struct stat st;
+	if (fstat(fileno(f), &st) != 0 || !S_ISREG(st.st_mode)) {
+		fclose(f);
+		*cause = xasprintf("%s is not a regular file; remove it to bake from the start", path);
+		return NULL;
+	}
+	size_t cap = (size_t)st.st_size + 1, n = 0, got;
 	unsigned char *b = xmalloc(cap);
-	while ((got = fread(b + n, 1, cap - n, f)) > 0)
-		if ((n += got) == cap)
-			b = xreallocarray(b, cap *= 2, 1);
-	int bad = ferror(f);
+	while (n < cap && (got = fread(b + n, 1, cap - n, f)) > 0)
+		n += got;
+	int bad = ferror(f) || n == cap;	/* grew while read: not a checkpoint at rest */
 	fclose(f);
 	if (bad) {
 		free(b);
@@ -258,6 +267,11 @@ static struct checkpoint *open_id(const char *out, uint64_t id, const char *unit
 	c->write = write;
 	c->every_s = every_s;
 	c->hooks = (struct solver_ckpt){ hook_restore, hook_save, c };
+	/* One writer per checkpoint: a bake still running is never resumed. */
+	if (write && (c->lock = lock_take(c->path, cause)) == NULL) {
+		checkpoint_close(c);
+		return NULL;
+	}
 	struct stat st;
 	int there = stat(c->path, &st) == 0;
 	if (there && !resume)
@@ -350,6 +364,7 @@ void checkpoint_close(struct checkpoint *c)
 	free(c->tmp);
 	free(c->note);
 	free(c->error);
+	lock_release(c->lock);
 	free(c);
 }
 

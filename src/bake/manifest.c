@@ -57,6 +57,12 @@ static void add_axes(json_object *o, const struct bake_spec *s)
 	for (int i = 0; i < np; i++)
 		e[i] = 180.0 * (i + 0.5) / np;
 	add(o, "delta_phi_centres_deg", jarr(e, np));
+	if (bake_spec_points(s)) {	/* where adding-doubling entries hold point values */
+		bake_nodes_theta(nto, e);
+		add(o, "theta_o_nodes_deg", jarr_deg(e, nto));
+		bake_nodes_phi(np, e);
+		add(o, "delta_phi_nodes_deg", jarr_deg(e, np));
+	}
 	free(e);
 }
 
@@ -70,6 +76,14 @@ static json_object *table_info(const struct bake_spec *s, const struct bake_resu
 	add(t, "column", jstr("delta_phi bin index"));
 	add(t, "value", jstr("diffuse (subsurface) BRDF [1/sr]: mean over the (theta_o, delta_phi) bin at the theta_i node; "
 	    "delta_phi = 0 back toward the light, 180 the mirror side"));
+	json_object *vals = json_object_new_array();
+	for (int w = 0; w < s->n_wl; w++) {	/* "points" at the nodes (adding-doubling) or "bins" (means) */
+		const char *m = r->table.entry[w * s->n_ti].method;
+		json_object_array_add(vals, jstr(bake_spec_points(s) && m && strcmp(m, "ad") == 0 ? "points" : "bins"));
+	}
+	add(t, "values", vals);
+	add(t, "values_note", jstr("per wavelength: 'bins' as 'value' says; 'points': the BRDF at the theta_i node, "
+	    "theta_o_nodes_deg[row], delta_phi_nodes_deg[column]; at theta_i 90 deg it is 0 (nothing enters at grazing)"));
 	add(t, "channels", jstr(strcmp(r->solver, "mc") == 0 ? "fr.<WL>nm and fr_err.<WL>nm (standard error)"
 	    : "fr.<WL>nm and fr_err.<WL>nm (its error estimate: see solver.error)"));
 	return t;
@@ -120,8 +134,10 @@ static json_object *layers_info(const struct bake_spec *s)
 			add(lo, "mua_per_cm", json_num(l->mu_a));
 			add(lo, "mus_per_cm", json_num(l->mu_s));
 			add(lo, "g", json_num(l->g));
-			if (l->rough > 0.0)
+			if (l->rough > 0.0) {
 				add(lo, "rough_top", json_num(l->rough));
+				add(lo, "rough_multiple", json_num(s->slab[w].rough_ms));
+			}
 			json_object_array_add(ls, lo);
 		}
 		add(lw, "layers", ls);

@@ -188,6 +188,36 @@ static void read_radial(json_object *o, struct bake *b, const char *mpath)
 	read_radial_profile(rad, b);
 }
 
+/* Point values (issue 26; absent in older bakes: all bin means). */
+static int read_points(json_object *o, struct bake *b, const char *mpath, char **cause)
+{
+	json_object *t, *vals;
+	int nt = 0, np = 0, any = 0, bad = -1;
+	if (!json_object_object_get_ex(o, "table", &t) || !json_object_object_get_ex(t, "values", &vals))
+		return 0;
+	b->points = xcalloc((size_t)b->n_wl, sizeof(int));
+	for (int w = 0; w < b->n_wl && bad < 0; w++) {
+		const char *v = json_object_get_string(json_object_array_get_idx(vals, (size_t)w));
+		b->points[w] = v && strcmp(v, "points") == 0;
+		bad = b->points[w] || (v && strcmp(v, "bins") == 0) ? -1 : w;
+		any |= b->points[w];
+	}
+	if (bad >= 0 || (int)json_object_array_length(vals) != b->n_wl) {
+		*cause = xasprintf("%s: table.values must list 'points' or 'bins' for each of the %d wavelengths", mpath, b->n_wl);
+		return -1;
+	}
+	if (any && (jnum_array(o, "theta_o_nodes_deg", &b->theta_o_nodes, &nt, cause, mpath) ||
+	    jnum_array(o, "delta_phi_nodes_deg", &b->phi_nodes, &np, cause, mpath)))
+		return -1;
+	if (any && (nt != b->n_to || np != b->n_phi)) {
+		*cause = xasprintf("%s: %d x %d nodes for a %d x %d table", mpath, nt, np, b->n_to, b->n_phi);
+		return -1;
+	}
+	for (int i = 0; i < nt + np; i++)
+		*(i < nt ? &b->theta_o_nodes[i] : &b->phi_nodes[i - nt]) *= M_PI / 180.0;
+	return 0;
+}
+
 int bake_manifest_read(const char *dir, struct bake *b, char **cause)
 {
 	char *mpath = xasprintf("%s/manifest.json", dir);
@@ -209,7 +239,8 @@ int bake_manifest_read(const char *dir, struct bake *b, char **cause)
 	}
 	if (json_object_object_get_ex(o, "preset", &v) && json_object_is_type(v, json_type_string))
 		b->preset = xstrdup(json_object_get_string(v));
-	if (read_axes(o, b, mpath, cause) || read_rgb(o, b, mpath, cause) || read_specular(o, b, mpath, cause))
+	if (read_axes(o, b, mpath, cause) || read_rgb(o, b, mpath, cause) || read_specular(o, b, mpath, cause) ||
+	    read_points(o, b, mpath, cause))
 		goto out;
 	read_radial(o, b, mpath);
 	rc = 0;
@@ -234,6 +265,8 @@ static int read_stack(json_object *lw, struct slab *s, int w, const char *mpath,
 		json_object *lo = json_object_array_get_idx(ls, i), *d;
 		struct layer l = { INFINITY, jnum(lo, "n", 1.0), jnum(lo, "mua_per_cm", 0.0), jnum(lo, "mus_per_cm", 0.0),
 			jnum(lo, "g", 0.0), jnum(lo, "rough_top", 0.0) };
+		if (jnum(lo, "rough_multiple", 0.0) == 1.0)
+			s->rough_ms = 1;
 		if (json_object_object_get_ex(lo, "d_cm", &d) && !json_object_is_type(d, json_type_string))
 			l.d = json_object_get_double(d);
 		char *why = NULL;

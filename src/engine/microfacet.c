@@ -216,3 +216,106 @@ void microfacet_albedo(const struct microfacet *m, double n_i, double n_t, doubl
 	*R = r / ((double)n_mu * n_phi);
 	*T = t / ((double)n_mu * n_phi);
 }
+
+/* The microsurface of the Smith model with uniformly distributed heights
+ * in [-1, 1] (Heitz, Hanika, d'Eon & Dachsbacher, "Multiple-scattering
+ * microfacet BSDFs with the Smith model", SIGGRAPH 2016, sections 3-5):
+ * C1(h) is the height's cumulative distribution; a ray at height h going
+ * up (w.z > 0) escapes with probability C1(h)^Lambda(w), the Smith G1 at
+ * that height. */
+static double c1(double h)
+{
+	return fmin(1.0, fmax(0.0, 0.5 * (h + 1.0)));
+}
+
+static double inv_c1(double u)
+{
+	return fmax(-1.0, fmin(1.0, 2.0 * u - 1.0));
+}
+
+/* The next height at which the ray (direction w, from height h) meets the
+ * microsurface, or INFINITY when it leaves (Heitz 2016, eq. 9 inverted). */
+static double next_height(const struct microfacet *m, const double w[3], double h, double u)
+{
+	if (w[2] > 0.9999)
+		return INFINITY;
+	if (w[2] < -0.9999)
+		return inv_c1(u * c1(h));
+	if (fabs(w[2]) < 1e-4)
+		return h;
+	double lam = microfacet_lambda(m, w[2]);
+	if (w[2] > 0.0) {
+		double g1 = pow(c1(h), lam);
+		if (u > 1.0 - g1)
+			return INFINITY;
+		return inv_c1(c1(h) / pow(1.0 - u, 1.0 / lam));
+	}
+	/* Going down it always meets the surface: Lambda(-w) = -1 - Lambda(w). */
+	return inv_c1(c1(h) * pow(1.0 - u, 1.0 / (1.0 + lam)));
+}
+
+/* A GGX visible normal for a direction v on either side of the surface:
+ * in the unit-roughness configuration the visible normals are v + c
+ * normalised, c uniform on the spherical cap c.z >= -v.z (Dupuy & Benyoub,
+ * "Sound and complete visible normal sampling", 2023), then unstretched. */
+static void ggx_visible_normal_any(double alpha, const double v[3], double u1, double u2, double mo[3])
+{
+	double vs[3] = { alpha * v[0], alpha * v[1], v[2] };
+	normalize3(vs);
+	double phi = 2.0 * M_PI * u1, z = (1.0 - u2) * (1.0 + vs[2]) - vs[2];
+	double st = sqrt(fmax(0.0, 1.0 - z * z));
+	double h[3] = { st * cos(phi) + vs[0], st * sin(phi) + vs[1], z + vs[2] };
+	mo[0] = alpha * h[0];
+	mo[1] = alpha * h[1];
+	mo[2] = fmax(1e-12, h[2]);
+	normalize3(mo);
+}
+
+double microfacet_sample_ms(const struct microfacet *m, double n_i, double n_t, const double wi[3],
+    double (*uniform)(void *), void *rng, double wo[3], int *order)
+{
+	if (n_i == n_t) {
+		for (int k = 0; k < 3; k++)
+			wo[k] = -wi[k];
+		return 1.0;
+	}
+	/* d: travel direction, h: height, both with z toward the side of
+	 * incidence; inside the other medium the walk runs mirrored (cs). */
+	double d[3] = { -wi[0], -wi[1], -wi[2] }, h = 2.0;
+	int outside = 1;
+	for (int k = 0; k < MICROFACET_MAX_BOUNCES; k++) {
+		double sg = outside ? 1.0 : -1.0, dc[3] = { d[0], d[1], sg * d[2] };
+		double hc = next_height(m, dc, sg * h, uniform(rng));
+		if (isinf(hc)) {
+			for (int j = 0; j < 3; j++)
+				wo[j] = d[j];
+			if (order)
+				*order = k;
+			return 1.0;
+		}
+		h = sg * hc;
+		double v[3] = { -dc[0], -dc[1], -dc[2] }, mn[3], ct;
+		double u1 = uniform(rng), u2 = uniform(rng), u3 = uniform(rng);
+		ggx_visible_normal_any(m->alpha, v, u1, u2, mn);
+		double vm = dot3(v, mn), n1 = outside ? n_i : n_t, n2 = outside ? n_t : n_i;
+		if (vm <= 0.0)
+			vm = 1e-12;	/* rounding at the cap's edge */
+		double F = facet_fresnel(m, n1, n2, vm, &ct);
+		if (u3 < F) {
+			for (int j = 0; j < 3; j++)
+				dc[j] = 2.0 * vm * mn[j] - v[j];
+		} else {
+			double eta = n1 / n2;
+			for (int j = 0; j < 3; j++)
+				dc[j] = (eta * vm - ct) * mn[j] - eta * v[j];
+			normalize3(dc);
+			outside = !outside;
+		}
+		d[0] = dc[0];
+		d[1] = dc[1];
+		d[2] = sg * dc[2];
+	}
+	if (order)
+		*order = MICROFACET_MAX_BOUNCES;
+	return 0.0;	/* stuck on the surface: vanishingly rare, booked as lost */
+}

@@ -59,6 +59,18 @@ double microfacet_bsdf(const struct microfacet *m, double n_i, double n_t, const
 double microfacet_sample(const struct microfacet *m, double n_i, double n_t, const double wi[3], double u1,
     double u2, double u3, double wo[3]);
 
+/* The multiple-scattering alternative to microfacet_sample (GGX only):
+ * the random walk on the Smith microsurface of Heitz, Hanika, d'Eon &
+ * Dachsbacher (SIGGRAPH 2016) with uniform heights, which reflects or
+ * refracts at every facet it meets until it leaves on either side; nothing
+ * is shadowed away, so the weight is 1 (0 after MICROFACET_MAX_BOUNCES
+ * bounces, which does not happen in practice).  uniform(rng) gives the
+ * numbers in (0, 1).  The bounces taken go to *order (may be NULL); the
+ * light leaving after one bounce is microfacet_sample's. */
+#define MICROFACET_MAX_BOUNCES 256
+double microfacet_sample_ms(const struct microfacet *m, double n_i, double n_t, const double wi[3],
+    double (*uniform)(void *), void *rng, double wo[3], int *order);
+
 /* Directional albedo from wi at incidence cosine cos_i: the reflected (R)
  * and transmitted (T) fractions of the power, by a deterministic product
  * quadrature of the BSDF over the outgoing sphere with n_mu x n_phi points

@@ -87,11 +87,9 @@ void sim_run(const struct sim_config *c, struct sim_result *res,
 	res->tt = batchstat_weighted(sc + TT, nsc, bn, nb, c->photons);
 	res->tt_unscat = batchstat_weighted(sc + TTU, nsc, bn, nb, c->photons);
 	res->lost = batchstat_weighted(sc + LOST, nsc, bn, nb, c->photons);
-	if (c->slab.rough_top) {
-		struct estimate e = batchstat_weighted(sc + RSP, nsc, bn, nb, c->photons);
-		res->rsp += e.v;
-		res->rsp_err = e.err;
-	}
+	struct estimate rsp_mc = batchstat_weighted(sc + RSP, nsc, bn, nb, c->photons);	/* 0 unless the top is rough */
+	res->rsp += rsp_mc.v;
+	res->rsp_err = rsp_mc.err;
 	res->facet_loss = batchstat_weighted(sc + FLOSS, nsc, bn, nb, c->photons);
 	double bal = res->rsp + res->rd.v + res->tt.v + res->lost.v + res->facet_loss.v;
 	for (int i = 0; i < na; i++) {

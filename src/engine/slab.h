@@ -34,6 +34,8 @@ struct slab {
 	int first_turbid;	/* first layer with mu_t > 0, or n_layers+1 if none */
 	int rough_top;		/* 1 if a boundary above the first turbid layer is rough */
 	int rough_any;		/* 1 if any boundary is rough */
+	int rough_ms;		/* set by the caller: 1 = rough boundaries scatter light as often as it
+				 * meets their facets (microfacet_sample_ms), 0 = once (the rest is lost) */
 };
 
 /* Start an empty stack with the given ambient indices. */

@@ -155,9 +155,15 @@ static inline int guard(struct photon *ph, const struct transport_opts *o, struc
 	return 0;
 }
 
+static double uniform_of(void *r)
+{
+	return rng_uniform(r);
+}
+
 /* Rough crossing from layer l into nb (microfacet.h): a facet normal from
  * the visible normals, reflection or refraction on it, the weight times
- * G1 of the new direction (what it shadows is booked as facet_loss).  The
+ * G1 of the new direction (what it shadows is booked as facet_loss); or,
+ * with s->rough_ms, the walk over the facets until the light leaves.  The
  * frame has the incident side up: wi = -u with z toward the side the
  * photon comes from.  Sets the new direction; returns 1 when reflected. */
 static int rough_cross(struct photon *ph, const struct slab *s, const struct transport_opts *o, int l, int nb,
@@ -165,8 +171,13 @@ static int rough_cross(struct photon *ph, const struct slab *s, const struct tra
 {
 	const struct microfacet mf = { MICROFACET_GGX, alpha, o->fresnel };
 	double wi[3] = { -ph->ux, -ph->uy, fabs(ph->uz) }, wo[3];
-	double u1 = rng_uniform(r), u2 = rng_uniform(r), u3 = rng_uniform(r);
-	double g = microfacet_sample(&mf, s->layer[l].n, s->layer[nb].n, wi, u1, u2, u3, wo);
+	double g;
+	if (s->rough_ms)
+		g = microfacet_sample_ms(&mf, s->layer[l].n, s->layer[nb].n, wi, uniform_of, r, wo, NULL);
+	else {
+		double u1 = rng_uniform(r), u2 = rng_uniform(r), u3 = rng_uniform(r);
+		g = microfacet_sample(&mf, s->layer[l].n, s->layer[nb].n, wi, u1, u2, u3, wo);
+	}
 	double side = ph->uz > 0.0 ? 1.0 : -1.0;
 	t->facet_loss += ph->w * (1.0 - g);
 	ph->w *= g;

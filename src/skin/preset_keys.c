@@ -87,6 +87,9 @@ const struct preset_key preset_key_table[] = {
 	{ "surface", "roughness", K_ROUGH, NONE, POFF(roughness_top), 0, 1, "", "0",
 	  "GGX alpha of the top boundary in the subsurface transport: light enters and leaves through "
 	  "microfacets (Walter 2007, Smith G); 0 = smooth; > 0 is also the specular lobe's alpha" },
+	{ "surface", "multiple_scattering", K_ROUGH, NONE, POFF(facet_ms), 0, 1, "", "0",
+	  "1: light meets the rough boundaries' microfacets as often as it hits them (Heitz 2016 random "
+	  "walk, energy conserving); 0: once (Walter 2007; what shadowing and masking stop is lost)" },
 	{ "epidermis", "top_roughness", K_ROUGH, SKIN_EPIDERMIS, LOFF(rough_top), 0, 1, "", "0",
 	  "GGX alpha of the boundary under the sebum film (needs a film); 0 = smooth" },
 	{ "dermis", "top_roughness", K_ROUGH, SKIN_DERMIS, LOFF(rough_top), 0, 1, "", "0",

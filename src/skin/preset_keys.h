@@ -57,7 +57,7 @@ enum preset_key_kind {
 	K_MODEL,	/* chromophores | tables */
 	K_WL,		/* wavelength list */
 	K_BASE,		/* start from a built-in preset */
-	K_ROUGH		/* a roughness in [lo, hi], left out of the resolved text when 0 */
+	K_ROUGH		/* a rough-surface number in [lo, hi], left out of the resolved text when 0 */
 };
 struct preset_key {
 	const char *section;

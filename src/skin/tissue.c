@@ -68,6 +68,10 @@ int tissue_check(const struct skin_params *p, char **cause)
 		    "(sebum.thickness = 0): its top is the surface, set [surface] roughness", p->layer[SKIN_EPIDERMIS].rough_top);
 		return -1;
 	}
+	if (p->facet_ms != 0.0 && p->facet_ms != 1.0) {
+		*cause = xasprintf("surface.multiple_scattering = %g: must be 0 or 1", p->facet_ms);
+		return -1;
+	}
 	if (p->layer[SKIN_SUBCUTIS].rough_top > 0.0 && !tissue_layer_present(p, SKIN_SUBCUTIS)) {
 		*cause = xasprintf("subcutis.top_roughness = %g but the preset has no subcutis (subcutis.thickness = 0)",
 		    p->layer[SKIN_SUBCUTIS].rough_top);
@@ -186,6 +190,7 @@ int tissue_slab(const struct skin_params *p, double wl_nm, struct slab *out, cha
 		nl++;
 	}
 	slab_init(out, 1.0, ls[nl - 1].n);
+	out->rough_ms = p->facet_ms == 1.0;
 	for (int i = 0; i < nl; i++)
 		if (slab_add(out, &ls[i], cause) != 0)
 			return -1;

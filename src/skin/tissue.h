@@ -65,6 +65,8 @@ struct skin_params {
 	double roughness_sebum;	/* GGX alpha of the sebum-covered surface [-] */
 	double roughness_top;	/* GGX alpha of the top boundary in the subsurface transport [-];
 				 * 0 = smooth; > 0 is also the specular lobe's alpha */
+	double facet_ms;	/* 1 = light scatters on the rough boundaries' facets until it leaves
+				 * (Heitz 2016), 0 = once (Walter 2007, the rest booked as lost) */
 	int n_override;
 	struct skin_override *override;	/* [n_override], ascending wl */
 };

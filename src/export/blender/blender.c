@@ -21,6 +21,7 @@
 #include "io/pngio.h"
 #include "geom/texdir.h"
 #include "base/check.h"
+#include "base/checksum.h"
 #include "base/util.h"
 
 void blender_options_default(struct blender_options *o)
@@ -72,15 +73,17 @@ float *blender_lut(const struct brdf_source *m, int n_cos, int n_phi)
 	return lut;
 }
 
-/* a(theta) of channel c, linear between nodes, clamped at the ends. */
+/* a(theta) of channel c, linear between nodes, held below the first, and
+ * past the last linear to 0 at 90 deg (nothing enters a smooth surface at
+ * grazing; a bake's albedo curve was held there before issue 26). */
 static double albedo_at(const struct brdf_source *m, int c, double theta)
 {
 	const double *t = m->theta_albedo, *a = m->albedo_rgb + (size_t)c * (size_t)m->n_albedo;
 	int n = m->n_albedo;
-	if (n == 1 || theta <= t[0])
+	if (theta <= t[0] && (n > 1 || t[0] >= M_PI / 2))
 		return a[0];
 	if (theta >= t[n - 1])
-		return a[n - 1];
+		return t[n - 1] < M_PI / 2 ? a[n - 1] * fmax(0.0, (M_PI / 2 - theta) / (M_PI / 2 - t[n - 1])) : a[n - 1];
 	int i = 0;
 	while (i < n - 2 && theta > t[i + 1])
 		i++;
@@ -384,18 +387,10 @@ static json_object *manifest_build(const struct brdf_source *m, const struct ble
 	return j;
 }
 
-static int write_manifest(const char *path, json_object *j, char **cause)
+static int write_manifest(const char *dir, json_object *j, char **cause)
 {
-	struct outfile of;
-	if (outfile_open(&of, path, cause) != 0)
-		return -1;
 	const char *s = json_object_to_json_string_ext(j, JSON_C_TO_STRING_PRETTY | JSON_C_TO_STRING_NOSLASHESCAPE);
-	if (fputs(s, of.fp) == EOF || fputc('\n', of.fp) == EOF) {
-		*cause = xasprintf("%s: %s", path, strerror(errno));
-		outfile_abort(&of);
-		return -1;
-	}
-	return outfile_commit(&of, cause);
+	return checksum_write_manifest(dir, "manifest.json", s, cause);
 }
 
 static int write_rgb_exr(const char *path, int w, int h, const float *rgb, int nattr,
@@ -543,8 +538,8 @@ int blender_write_files(const struct blender_set *s, const char *dir, char **cau
 		goto out;
 	free(path);
 	/* The manifest goes last: its presence marks a complete image set. */
-	path = xasprintf("%s/manifest.json", dir);
-	if (write_manifest(path, s->manifest, cause) != 0)
+	path = NULL;
+	if (write_manifest(dir, s->manifest, cause) != 0)
 		goto out;
 	rc = 0;
 out:

@@ -5,6 +5,7 @@
 #ifndef SKINBAKE_POVTYPES_H
 #define SKINBAKE_POVTYPES_H
 #include "export/pov/littable.h"
+#include "export/pov/povsss.h"
 #include "scene/scene.h"
 
 /* Everything the exporter knows about one skin of the scene. */
@@ -18,6 +19,7 @@ struct pov_skin {
 	double tile_units;	/* tile edge [scene units] */
 	const struct pov_maps *maps;	/* a family blended by maps (export/pov/pov_maps.h), or NULL */
 	int maps_uv;		/* the maps follow the mesh UVs (else a planar projection) */
+	struct pov_sss sss;	/* translucent mode: the subsurface layer under the remainder (povsss.h) */
 };
 
 struct pov_options {
@@ -27,6 +29,7 @@ struct pov_options {
 	int n_mix;		/* mixture-table nodes per axis */
 	int write_scene;	/* 0: only the include (no objects) */
 	const char *shapes_inc;	/* file name of the shape macros in the output dir, or NULL */
+	int sss_samples;	/* translucent skins: POV-Ray's subsurface samples (0: no translucent skin) */
 };
 
 /* What povfiles_write decided and measured, for the CLI to print. */
