@@ -7,6 +7,12 @@
 # starts at column 0 and its body is a '{' alone on a line through the next
 # '}' alone on a line; its length counts from the signature's first line to
 # that '}'.  One TAP line per rule and file, then probes that the rules bite.
+# Packing is flagged too (tests/check_packed.py): a comma-operator chain
+# (a statement of several expressions joined by commas) in any file but
+# those of COMMA_OK fails; lines over 100 columns beyond the count that
+# tests/data/long_lines.txt records per file (lower it as files are
+# unpacked; a new file has none) are listed as TODO lines: reported, not
+# failed, while the branches in flight merge (then make them fail).
 . "$top_srcdir/tests/tap.sh"
 MAX_FILE=600
 MAX_CMD=150
@@ -48,6 +54,31 @@ for f in $(find . -name '*.c' | sed 's|^\./||' | LC_ALL=C sort); do
 	w=$(why "$f")
 	if [ -z "$w" ]; then ok "$f: sizes within the rules"; else fail "$f:$w"; fi
 done
+
+# Packing: comma chains and lines over 100 columns (see the top).
+COMMA_OK="engine/ad_order.c engine/ad_solver.c engine/mc.c engine/sim_report.c geom/mesh.c geom/sites.c maps/edit.c
+maps/fit.c maps/image.c maps/mapset.c"
+python3 "$top_srcdir/tests/check_packed.py" $(find . -name '*.[ch]' | sed 's|^\./||' | LC_ALL=C sort) >"$tmpd/packed"
+for f in $(cut -d: -f1 "$tmpd/packed" | LC_ALL=C sort -u); do
+	n=$(grep -c "^$f:[0-9]*: long" "$tmpd/packed")
+	allowed=$(awk -v f="$f" '$1 == f { print $2 }' "$top_srcdir/tests/data/long_lines.txt")
+	if [ "$n" -gt "${allowed:-0}" ]; then
+		# Reported, not failed, while eight branches still merge: a TODO line.
+		tap_n=$((tap_n + 1))
+		echo "not ok $tap_n - $f: $n lines over 100 columns (tests/data/long_lines.txt has ${allowed:-0}) # TODO unpack"
+	fi
+	c=$(grep "^$f:[0-9]*: comma" "$tmpd/packed" | cut -d: -f2 | tr '\n' ' ')
+	case " $(echo $COMMA_OK) " in
+	*" $f "*) ;;
+	*) [ -z "$c" ] || fail "$f: comma-operator chains on lines $c(one statement per line)" ;;
+	esac
+done
+ok "no comma chains or lines over 100 columns beyond the recorded ones"
+printf '/* probe. */\nvoid f(int *a, int *b)\n{\n\t*a = 1, *b = 2;\n\tint x = 1, y = 2;\n\treturn g(a, b), 0;\n}\n' >"$tmpd/comma.c"
+check "comma chains are caught, declarations are not" \
+    test "$(python3 "$top_srcdir/tests/check_packed.py" "$tmpd/comma.c" | tr '\n' ' ')" = "$tmpd/comma.c:4: comma $tmpd/comma.c:6: comma "
+printf '/* %0101d */\n' 0 >"$tmpd/longline.c"
+check "a line of 107 columns is caught" test -n "$(python3 "$top_srcdir/tests/check_packed.py" "$tmpd/longline.c")"
 
 # Probes: each rule catches a planted violation, and a function of exactly
 # MAX_FUNC lines passes.

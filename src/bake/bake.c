@@ -269,17 +269,36 @@ uint64_t bake_spec_identity(const struct bake_spec *s)
 		HASH(h, sl->n_below);
 		for (int i = 0; i < sl->n_layers + 2; i++) {
 			const struct layer *l = &sl->layer[i];
-			HASH(h, l->d), HASH(h, l->n), HASH(h, l->mu_a), HASH(h, l->mu_s), HASH(h, l->g);
+			HASH(h, l->d);
+			HASH(h, l->n);
+			HASH(h, l->mu_a);
+			HASH(h, l->mu_s);
+			HASH(h, l->g);
+			HASH(h, l->rough);
 		}
 	}
 	HASH(h, s->n_ti);
 	for (int k = 0; k < s->n_ti; k++)
 		HASH(h, s->theta_i[k]);
-	HASH(h, s->n_to), HASH(h, s->n_phi), HASH(h, s->n_r), HASH(h, s->dr);
-	HASH(h, s->opts.fresnel), HASH(h, s->opts.roulette_w), HASH(h, s->opts.roulette_chance), HASH(h, s->opts.max_steps);
-	HASH(h, s->method), HASH(h, s->ad_tol), HASH(h, s->ad_quad), HASH(h, s->radial_error), HASH(h, s->radial_photons);
-	HASH(h, s->seed), HASH(h, s->batch_photons), HASH(h, s->min_batches), HASH(h, s->target_error);
-	HASH(h, s->max_photons), HASH(h, s->nee);
+	HASH(h, s->n_to);
+	HASH(h, s->n_phi);
+	HASH(h, s->n_r);
+	HASH(h, s->dr);
+	HASH(h, s->opts.fresnel);
+	HASH(h, s->opts.roulette_w);
+	HASH(h, s->opts.roulette_chance);
+	HASH(h, s->opts.max_steps);
+	HASH(h, s->method);
+	HASH(h, s->ad_tol);
+	HASH(h, s->ad_quad);
+	HASH(h, s->radial_error);
+	HASH(h, s->radial_photons);
+	HASH(h, s->seed);
+	HASH(h, s->batch_photons);
+	HASH(h, s->min_batches);
+	HASH(h, s->target_error);
+	HASH(h, s->max_photons);
+	HASH(h, s->nee);
 	return h;
 }
 

@@ -119,8 +119,10 @@ static int load(struct checkpoint *c, char **cause)
 		return -1;
 	}
 	solver_buf_get(&in, &n, sizeof n);
-	if (n > len)
-		in.bad = 1, n = 0;
+	if (n > len) {
+		in.bad = 1;
+		n = 0;
+	}
 	c->rec = xcalloc(n ? n : 1, sizeof *c->rec);
 	c->cap = n ? (int)n : 1;
 	for (uint32_t i = 0; i < n && !in.bad; i++) {
@@ -163,7 +165,8 @@ static int write_all(int fd, const void *v, size_t n)
 			continue;
 		if (k <= 0)
 			return -1;
-		p += k, n -= (size_t)k;
+		p += k;
+		n -= (size_t)k;
 	}
 	return 0;
 }
@@ -188,10 +191,14 @@ static int save_file(struct checkpoint *c, char **cause)
 	int fd = open(c->tmp, O_WRONLY | O_CREAT | O_TRUNC | O_CLOEXEC, 0644);
 	int rc = fd < 0 || write_all(fd, b.p, b.len) != 0 || fsync(fd) != 0 ? -1 : 0;
 	int err = errno;
-	if (fd >= 0 && close(fd) != 0 && rc == 0)
-		rc = -1, err = errno;
-	if (rc == 0 && rename(c->tmp, c->path) != 0)
-		rc = -1, err = errno;
+	if (fd >= 0 && close(fd) != 0 && rc == 0) {
+		rc = -1;
+		err = errno;
+	}
+	if (rc == 0 && rename(c->tmp, c->path) != 0) {
+		rc = -1;
+		err = errno;
+	}
 	free(b.p);
 	if (rc != 0) {
 		unlink(c->tmp);

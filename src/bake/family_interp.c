@@ -185,7 +185,10 @@ struct bake *family_bake_at(const struct family *f, const double *x)
 	struct bake *b = xcalloc(1, sizeof *b);
 	b->dir = xasprintf("%s (interpolated)", f->dir);
 	b->preset = xstrdup(b0->preset ? b0->preset : "");
-	b->n_wl = b0->n_wl, b->n_ti = b0->n_ti, b->n_to = b0->n_to, b->n_phi = b0->n_phi;
+	b->n_wl = b0->n_wl;
+	b->n_ti = b0->n_ti;
+	b->n_to = b0->n_to;
+	b->n_phi = b0->n_phi;
 	b->wl_nm = dup(b0->wl_nm, b->n_wl);
 	b->theta_i = dup(b0->theta_i, b->n_ti);
 	b->theta_o = dup(b0->theta_o, b->n_to);

@@ -136,13 +136,22 @@ static int read_spec(const struct rd *r, json_object *o, struct family *f)
 			return -1;
 	for (int i = 0; i < s->n_ti; i++)
 		s->theta_i[i] = th[i] * M_PI / 180.0;
-	s->n_to = (int)x[0], s->n_phi = (int)x[1], s->n_r = (int)x[2], s->dr = x[3], s->seed = (uint64_t)x[4];
+	s->n_to = (int)x[0];
+	s->n_phi = (int)x[1];
+	s->n_r = (int)x[2];
+	s->dr = x[3];
+	s->seed = (uint64_t)x[4];
 	json_object *sv;
 	if (json_object_object_get_ex(b, "seed", &sv) && json_object_is_type(sv, json_type_int))
 		s->seed = json_object_get_uint64(sv);	/* exact: seeds go to 2^64-1 */
-	s->batch_photons = (long)x[5], s->min_batches = (int)x[6], s->target_error = x[7], s->max_photons = (long)x[8];
+	s->batch_photons = (long)x[5];
+	s->min_batches = (int)x[6];
+	s->target_error = x[7];
+	s->max_photons = (long)x[8];
 	transport_opts_default(&s->opts);
-	s->opts.roulette_w = x[9], s->opts.roulette_chance = x[10], s->opts.max_steps = (long)x[11];
+	s->opts.roulette_w = x[9];
+	s->opts.roulette_chance = x[10];
+	s->opts.max_steps = (long)x[11];
 	if (s->n_ti < 1 || s->n_to < 1 || s->n_phi < 1) {
 		*r->cause = xasprintf("%s: field bake has an empty table (theta_i, n_theta_o, n_delta_phi)", r->path);
 		return -1;
@@ -172,7 +181,10 @@ static int read_spec(const struct rd *r, json_object *o, struct family *f)
 		for (int i = 0; i < 4; i++)
 			if (get_num(r, b, "bake", k2[i], &y[i]))
 				return -1;
-		s->ad_tol = y[0], s->ad_quad = (int)y[1], s->radial_error = y[2], s->radial_photons = (long)y[3];
+		s->ad_tol = y[0];
+		s->ad_quad = (int)y[1];
+		s->radial_error = y[2];
+		s->radial_photons = (long)y[3];
 	}
 	s->n_wl = f->n_wl;
 	memcpy(s->wl_nm, f->wl_nm, sizeof(double) * (size_t)f->n_wl);

@@ -91,7 +91,10 @@ int family_place_nodes(struct family_plan *pl, char **cause)
 	ps->n_ti = 1;
 	ps->n_to = ps->n_phi = 1;
 	ps->n_r = 0;	/* colours only: no Rd(r) run */
-	ps->rank = 0, ps->n_ranks = 1, ps->allreduce = NULL, ps->progress = NULL;
+	ps->rank = 0;
+	ps->n_ranks = 1;
+	ps->allreduce = NULL;
+	ps->progress = NULL;
 	/* The pilot wants colours to about 1 %; Monte Carlo gets there with small batches. */
 	if (ps->batch_photons > 1000)
 		ps->batch_photons = 1000;

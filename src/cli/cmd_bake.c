@@ -9,13 +9,12 @@
 #include "bake/bake.h"
 #include "bake/bakefile.h"
 #include "bake/summary.h"
+#include "cli/bake_cmd.h"
 #include "cli/cli.h"
 #include "cli/cmd_bake_family.h"
 #include "cli/opt.h"
 #include "skin/preset.h"
 #include "base/util.h"
-
-static const char *CMD = "bake";
 
 /* --resolution TxP. */
 static int parse_resolution(struct opt_ctx *x, const struct opt *o, const char *v)
@@ -24,46 +23,19 @@ static int parse_resolution(struct opt_ctx *x, const struct opt *o, const char *
 	long a, b;
 	char *c = xstrdup(v), *p = strchr(c, 'x');
 	int rc = -1;
-	if (p == NULL)
+	if (p == NULL) {
 		opt_error(x, "--resolution = '%s' is not TxP (theta_o bands x delta_phi bins)", v);
-	else if ((*p = '\0', opt_long(x, "--resolution: T", c, 1, 360, 0, NULL, &a) == 0) &&
-	    opt_long(x, "--resolution: P", p + 1, 1, 360, 0, NULL, &b) == 0)
-		s->n_to = (int)a, s->n_phi = (int)b, rc = 0;
-	free(c);
-	return rc;
-}
-
-/* After the options: the preset's layer stacks, the bake, the directory. */
-static int run(struct bake_spec *s, const char *preset, const char *pfile, const char *out, int quiet,
-    const struct bake_vary *vary, int argc, char **argv)
-{
-	char *cause = NULL, *cmdline = cli_command_line(argc, argv);
-	const char *label = preset ? preset : pfile;
-	struct skin_params *p = bake_spec_preset(s, preset, pfile, &cause);
-	int rc = CLI_EXIT_OK;
-	if (p == NULL)
-		rc = cli_usage_error(CMD, "%s", cause);
-	else if (vary->n > 0)
-		rc = bake_family_run(s, p, label, out, vary, quiet, cmdline);
-	else {
-		s->rank = cli_par.rank, s->n_ranks = cli_par.size, s->allreduce = cli_par.allreduce;
-		struct cli_progress pr;
-		cli_progress_start(&pr, "bake");
-		s->progress = cli_progress_update, s->progress_user = &pr;
-		struct bake_result r;
-		int e = bake_preset_to_dir(s, p, label, out, cmdline, &r, &cause);
-		cli_progress_end(&pr);
-		if (e != -1 && cli_par.rank == 0)
-			bake_summary_notes(stderr, &r);	/* fallbacks are never silent, even with --quiet */
-		if (e != 0)
-			rc = e == -1 ? cli_usage_error(CMD, "%s", cause) : cli_fail(CMD, "%s", cause);
-		else if (!quiet && cli_par.rank == 0)
-			bake_summary(stdout, s, &r, label, out);
-		bake_result_free(&r);	/* zeroed when the bake failed */
+		free(c);
+		return -1;
 	}
-	free(cause);
-	free(cmdline);
-	preset_free(p);
+	*p = '\0';
+	if (opt_long(x, "--resolution: T", c, 1, 360, 0, NULL, &a) == 0 &&
+	    opt_long(x, "--resolution: P", p + 1, 1, 360, 0, NULL, &b) == 0) {
+		s->n_to = (int)a;
+		s->n_phi = (int)b;
+		rc = 0;
+	}
+	free(c);
 	return rc;
 }
 
@@ -143,6 +115,9 @@ int cmd_bake(int argc, char **argv)
 	bake_spec_axes(&s, wl.v, wl.n, th.v, th.n, nodes);
 	s.opts.fresnel = fresnel == 0 ? OPTICS_FRESNEL_EXACT : OPTICS_FRESNEL_SCHLICK;
 	s.method = bake_method_at(solver)->id;
-	s.nee = est == 0, s.seed = seed, s.min_batches = 8, s.n_ranks = 1;
-	return run(&s, preset, pfile, out, quiet, &vary, argc, argv);
+	s.nee = est == 0;
+	s.seed = seed;
+	s.min_batches = 8;
+	s.n_ranks = 1;
+	return bake_cmd_run(&s, preset, pfile, out, quiet, &vary, argc, argv);
 }

@@ -16,15 +16,19 @@ int bake_vary_parse(struct opt_ctx *x, const struct opt *o, const char *v)
 {
 	struct bake_vary *bv = o->dest;
 	const char *eq = strchr(v, '=');
-	if (eq == NULL || eq == v || (size_t)(eq - v) >= sizeof bv->axis[0].key)
-		return opt_error(x, "--vary = '%s' is not KEY=LO:HI:N[:SPACING] or KEY=V1,V2,...", v), -1;
+	if (eq == NULL || eq == v || (size_t)(eq - v) >= sizeof bv->axis[0].key) {
+		opt_error(x, "--vary = '%s' is not KEY=LO:HI:N[:SPACING] or KEY=V1,V2,...", v);
+		return -1;
+	}
 	char key[sizeof bv->axis[0].key], label[96];
 	memcpy(key, v, (size_t)(eq - v));
 	key[eq - v] = '\0';
 	snprintf(label, sizeof label, "--vary %s", key);
 	for (int a = 0; a < bv->n; a++)
-		if (strcmp(bv->axis[a].key, key) == 0)
-			return opt_error(x, "--vary %s is given twice (one axis per key)", key), -1;
+		if (strcmp(bv->axis[a].key, key) == 0) {
+			opt_error(x, "--vary %s is given twice (one axis per key)", key);
+			return -1;
+		}
 	char *spec = xstrdup(eq + 1), *save = NULL, *cause = NULL;
 	double lo = 0, hi = 0, list[FAMILY_MAX_NODES];
 	long n = 0;

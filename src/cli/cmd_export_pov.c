@@ -10,61 +10,9 @@
 
 #include "cli/cli.h"
 #include "cli/opt.h"
+#include "cli/opt_scene.h"
 #include "export/pov/littable.h"
 #include "export/pov/povexport.h"
-
-/* --light and --camera: the keys of the scene file's [light] and [camera]. */
-struct light_spec {
-	int type;	/* 0 parallel, 1 point (staged: the field is an enum) */
-	struct scene_light l;
-};
-static const struct opt_key light_keys[] = {
-	{ "type", OPT_ENUM, offsetof(struct light_spec, type), "parallel", .choices = "parallel|point", .help = "light type" },
-	{ "position", OPT_VEC3, offsetof(struct light_spec, l.position), .lo = -1e9, .hi = 1e9, .flags = OPT_REQUIRED,
-	  .help = "point: the light; parallel: a point on the light side" },
-	{ "point_at", OPT_VEC3, offsetof(struct light_spec, l.point_at), "0:0:0", .lo = -1e9, .hi = 1e9,
-	  .help = "parallel: shines from position toward here" },
-	{ "color", OPT_VEC3, offsetof(struct light_spec, l.color), "1:1:1", .lo = 0, .hi = 1e6,
-	  .help = "irradiance at normal incidence, linear RGB" },
-	{ "name", OPT_STRING, offsetof(struct light_spec, l.name), .size = SCENE_NAME_MAX, .help = "default L1, L2, ..." },
-	{ NULL },
-};
-static const struct opt_key camera_keys[] = {
-	{ "type", OPT_ENUM, offsetof(struct scene_camera, ortho), .choices = "perspective|orthographic",
-	  .flags = OPT_REQUIRED, .help = "projection" },
-	{ "location", OPT_VEC3, offsetof(struct scene_camera, location), .lo = -1e9, .hi = 1e9, .flags = OPT_REQUIRED,
-	  .help = "camera position" },
-	{ "look_at", OPT_VEC3, offsetof(struct scene_camera, look_at), "0:0:0", .lo = -1e9, .hi = 1e9, .help = "target" },
-	{ "angle", OPT_DOUBLE, offsetof(struct scene_camera, angle), "40", .lo = 1, .hi = 170, .unit = "deg",
-	  .help = "perspective: horizontal field of view" },
-	{ "width", OPT_DOUBLE, offsetof(struct scene_camera, width), "2.4", .lo = 0, .hi = 1e9, .flags = OPT_LO_OPEN,
-	  .help = "orthographic: view width in units" },
-	{ NULL },
-};
-
-static int add_light(struct opt_ctx *x, const struct opt *o, const char *v)
-{
-	struct scene *s = o->dest;
-	struct light_spec k = { .l = { .area_samples = 5 } };
-	snprintf(k.l.name, sizeof k.l.name, "L%d", s->n_lights + 1);
-	if (opt_keys(x, "--light", v, light_keys, &k) != 0)
-		return -1;
-	if (!scene_valid_name(k.l.name))
-		return opt_error(x, "--light name = '%s' is not a name (letters, digits, _)", k.l.name), -1;
-	k.l.type = k.type ? SCENE_LIGHT_POINT : SCENE_LIGHT_PARALLEL;
-	s->lights[s->n_lights++] = k.l;
-	return 0;
-}
-
-static int set_camera(struct opt_ctx *x, const struct opt *o, const char *v)
-{
-	struct scene_camera *c = &((struct scene *)o->dest)->camera;
-	*c = (struct scene_camera){ 0 };
-	if (opt_keys(x, "--camera", v, camera_keys, c) != 0)
-		return -1;
-	c->angle *= M_PI / 180;
-	return 0;
-}
 
 /* --bake/--textures [SKIN=]DIR, once per skin. */
 static int bind(struct opt_ctx *x, const struct opt *o, const char *v)
@@ -90,9 +38,9 @@ int cmd_export_pov(int argc, char **argv)
 	const struct opt opts[] = {
 		{ "scene", OPT_PATH_IN, &po.scene_path, "FILE", .flags = OPT_FILE, .excl = "light|camera|unit-mm",
 		  .help = "scene file (scenes/README.md): writes BASE.inc, .pov, .ini" },
-		{ "light", OPT_CUSTOM, &cl, "SPEC", .flags = OPT_REPEAT, .max = SCENE_MAX_LIGHTS, .keys = light_keys,
-		  .fn = add_light, .excl = "scene", .help = "without --scene, once per light: KEY=VALUE,..." },
-		{ "camera", OPT_CUSTOM, &cl, "SPEC", .keys = camera_keys, .fn = set_camera, .excl = "scene",
+		{ "light", OPT_CUSTOM, &cl, "SPEC", .flags = OPT_REPEAT, .max = SCENE_MAX_LIGHTS, .keys = opt_scene_light_keys,
+		  .fn = opt_scene_light, .excl = "scene", .help = "without --scene, once per light: KEY=VALUE,..." },
+		{ "camera", OPT_CUSTOM, &cl, "SPEC", .keys = opt_scene_camera_keys, .fn = opt_scene_camera, .excl = "scene",
 		  .help = "without --scene (then only the include is written): KEY=VALUE,..." },
 		{ "bake", OPT_CUSTOM, &po, "[SKIN=]DIR", .flags = OPT_REPEAT, .max = POVEXPORT_MAX_BIND, .fn = bind, .excl = "family",
 		  .def_note = "the scene skin's bake = DIR", .help = "`skinbake bake` output for skin SKIN (bare: every skin)" },
@@ -130,7 +78,8 @@ int cmd_export_pov(int argc, char **argv)
 	struct opt_ctx x;
 	if (opt_parse(&x, &cmd, argc, argv) != 0)
 		return x.exit;
-	po.have_camera = opt_given(&x, "camera"), po.bump_filter = filter == 0;
+	po.have_camera = opt_given(&x, "camera");
+	po.bump_filter = filter == 0;
 	po.lights = opt_given(&x, "lights") ? opt_text(&x, "lights") : NULL;
 	if (!po.family != !po.maps)
 		return opt_error(&x, "--family and --maps go together");

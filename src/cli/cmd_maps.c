@@ -64,10 +64,14 @@ static int kv_parse(struct opt_ctx *x, const struct opt *o, const char *v, enum 
 {
 	struct kv_list *l = o->dest;
 	const char *eq = strchr(v, '=');
-	if (eq == NULL || eq == v || (size_t)(eq - v) >= sizeof l->op[0].key)
-		return opt_error(x, "--%s = '%s' is not KEY=VALUE", o->name, v), -1;
-	if (l->n == (int)(sizeof l->op / sizeof l->op[0]))
-		return opt_error(x, "more than %d edits", l->n), -1;
+	if (eq == NULL || eq == v || (size_t)(eq - v) >= sizeof l->op[0].key) {
+		opt_error(x, "--%s = '%s' is not KEY=VALUE", o->name, v);
+		return -1;
+	}
+	if (l->n == (int)(sizeof l->op / sizeof l->op[0])) {
+		opt_error(x, "more than %d edits", l->n);
+		return -1;
+	}
 	char label[96];
 	snprintf(label, sizeof label, "--%s %.*s", o->name, (int)(eq - v), v);
 	double lo = kind == MAPS_SCALE ? 0 : -1e300, hi = kind == MAPS_SCALE ? 100 : 1e300;

@@ -24,8 +24,10 @@ static int parse_size(struct opt_ctx *x, const struct opt *o, const char *v)
 		    ? -1 : 0;
 	}
 	free(c);
-	if (rc == 0)
-		wh[0] = (int)a, wh[1] = (int)b;
+	if (rc == 0) {
+		wh[0] = (int)a;
+		wh[1] = (int)b;
+	}
 	return rc;
 }
 

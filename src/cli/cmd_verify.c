@@ -43,7 +43,8 @@ int cmd_verify(int argc, char **argv)
 	o.seed = seed;
 	struct cli_progress pr;
 	cli_progress_start(&pr, "verify");
-	o.progress = cli_progress_update, o.progress_user = &pr;
+	o.progress = cli_progress_update;
+	o.progress_user = &pr;
 	struct verify_result r;
 	char *cause = NULL;
 	int rc = verify_bake(dir, &o, &r, &cause);

@@ -54,7 +54,8 @@ static int bad_choice(const struct opt_ctx *x, const char *label, const char *s,
 			list[k++] = *p;
 	}
 	list[k] = '\0';
-	return opt_error(x, "%s = '%s' is not one of %s", label, s, list), -1;
+	opt_error(x, "%s = '%s' is not one of %s", label, s, list);
+	return -1;
 }
 
 static int cmp_double(const void *a, const void *b)
@@ -81,10 +82,14 @@ static int list_add(const struct opt_ctx *x, const char *label, const struct opt
 {
 	int max = o->max > 0 && o->max < OPT_LIST_MAX ? o->max : OPT_LIST_MAX;
 	for (int i = 0; (o->flags & OPT_UNIQUE) && i < l->n; i++)
-		if (l->v[i] == d)
-			return opt_error(x, "%s: %.15g is listed twice", label, d), -1;
-	if (l->n == max)
-		return opt_error(x, "%s = '%s' has more than %d values", label, v, max), -1;
+		if (l->v[i] == d) {
+			opt_error(x, "%s: %.15g is listed twice", label, d);
+			return -1;
+		}
+	if (l->n == max) {
+		opt_error(x, "%s = '%s' has more than %d values", label, v, max);
+		return -1;
+	}
 	l->v[l->n++] = d;
 	return 0;
 }
@@ -96,8 +101,10 @@ static int list_steps(const struct opt_ctx *x, const char *label, const struct o
 	char *c1 = strchr(p, ':'), *c2 = strchr(c1 + 1, ':'), sl[96];
 	double a, b, st;
 	long w;
-	if (c2 == NULL || strchr(c2 + 1, ':') != NULL)
-		return opt_error(x, "%s: '%s' is not START:STOP:STEP", label, p), -1;
+	if (c2 == NULL || strchr(c2 + 1, ':') != NULL) {
+		opt_error(x, "%s: '%s' is not START:STOP:STEP", label, p);
+		return -1;
+	}
 	*c1 = *c2 = '\0';
 	snprintf(sl, sizeof sl, "%s: STEP", label);
 	if (list_number(x, label, o, p, &a) || list_number(x, label, o, c1 + 1, &b))
@@ -108,8 +115,10 @@ static int list_steps(const struct opt_ctx *x, const char *label, const struct o
 		st = (double)w;
 	} else if (opt_double(x, sl, c2 + 1, 0, INFINITY, OPT_LO_OPEN | OPT_HI_OPEN, o->unit, &st) != 0)
 		return -1;
-	if (b < a)
-		return opt_error(x, "%s: %s:%s:%s has STOP < START", label, p, c1 + 1, c2 + 1), -1;
+	if (b < a) {
+		opt_error(x, "%s: %s:%s:%s has STOP < START", label, p, c1 + 1, c2 + 1);
+		return -1;
+	}
 	long cnt = (long)floor((b - a) / st + 1e-9) + 1;	/* as preset_parse_wavelengths */
 	for (long i = 0; i < cnt; i++)
 		if (list_add(x, label, o, v, a + st * (double)i, l) != 0)
@@ -199,8 +208,10 @@ static int apply(struct opt_ctx *x, const struct opt *o, const char *v)
 			return -1;
 		goto text;
 	case OPT_STRING:
-		if (*v == '\0')
-			return opt_error(x, "%s: empty value", label), -1;
+		if (*v == '\0') {
+			opt_error(x, "%s: empty value", label);
+			return -1;
+		}
 text:
 		if (o->dest)
 			*(const char **)o->dest = v;
@@ -251,8 +262,10 @@ static int key_value(const struct opt_ctx *x, const char *label, const struct op
 		*(int *)(void *)dest = i;
 		return 0;
 	case OPT_STRING:
-		if (*v == '\0' || strlen(v) >= k->size)
-			return opt_error(x, "%s = '%s' must have 1 to %zu characters", kl, v, k->size - 1), -1;
+		if (*v == '\0' || strlen(v) >= k->size) {
+			opt_error(x, "%s = '%s' must have 1 to %zu characters", kl, v, k->size - 1);
+			return -1;
+		}
 		memcpy(dest, v, strlen(v) + 1);
 		return 0;
 	case OPT_VEC3: {
@@ -373,18 +386,23 @@ static int check_groups(struct opt_ctx *x, const struct opt *opts)
 		int other = 0;
 		for (int j = 0; opts[j].name; j++)
 			if (j != i && listed(o->excl, opts[j].name) && x->count[j]) {
-				if (x->count[i])
-					return opt_error(x, "--%s and --%s exclude each other", o->name, opts[j].name), -1;
+				if (x->count[i]) {
+					opt_error(x, "--%s and --%s exclude each other", o->name, opts[j].name);
+					return -1;
+				}
 				other = 1;
 			}
 		if ((o->flags & OPT_REQUIRED) && !x->count[i] && !other) {
-			if (o->excl == NULL)
-				return opt_error(x, "--%s is required (see skinbake %s --help)", o->name, x->cmd->name), -1;
+			if (o->excl == NULL) {
+				opt_error(x, "--%s is required (see skinbake %s --help)", o->name, x->cmd->name);
+				return -1;
+			}
 			char alt[160];
 			size_t k = 0;
 			for (const char *p = o->excl; *p && k + 4 < sizeof alt; p++)
 				k += (size_t)snprintf(alt + k, sizeof alt - k, "%s", *p == '|' ? ", --" : (char[2]){ *p, 0 });
-			return opt_error(x, "give one of --%s, --%s (see skinbake %s --help)", o->name, alt, x->cmd->name), -1;
+			opt_error(x, "give one of --%s, --%s (see skinbake %s --help)", o->name, alt, x->cmd->name);
+			return -1;
 		}
 	}
 	return 0;
@@ -400,8 +418,10 @@ static int scan(struct opt_ctx *x, const struct opt *opts, int argc, char **argv
 	for (int a = 1; a < argc; a++) {
 		const char *s = argv[a];
 		if (only_args || s[0] != '-' || s[1] == '\0') {
-			if (x->n_args == x->cmd->max_args)
-				return opt_error(x, "unexpected argument '%s' (see skinbake %s --help)", s, x->cmd->name), -1;
+			if (x->n_args == x->cmd->max_args) {
+				opt_error(x, "unexpected argument '%s' (see skinbake %s --help)", s, x->cmd->name);
+				return -1;
+			}
 			x->args[x->n_args++] = s;
 			continue;
 		}
@@ -419,15 +439,19 @@ static int scan(struct opt_ctx *x, const struct opt *opts, int argc, char **argv
 			    s, x->cmd->name), -1;
 		const char *v = NULL;
 		if (opts[i].type == OPT_FLAG) {
-			if (eq)
-				return opt_error(x, "--%s takes no value", opts[i].name), -1;
+			if (eq) {
+				opt_error(x, "--%s takes no value", opts[i].name);
+				return -1;
+			}
 		} else if (eq)
 			v = eq + 1;
 		else if (a + 1 < argc && !(argv[a + 1][0] == '-' && argv[a + 1][1] == '-' &&
 		    (find(opts, argv[a + 1] + 2, strlen(argv[a + 1] + 2)) >= 0 || strcmp(argv[a + 1], "--help") == 0)))
 			v = argv[++a];
-		else
-			return opt_error(x, "--%s needs a value (see skinbake %s --help)", opts[i].name, x->cmd->name), -1;
+		else {
+			opt_error(x, "--%s needs a value (see skinbake %s --help)", opts[i].name, x->cmd->name);
+			return -1;
+		}
 		occ[*n_occ] = i;
 		val[(*n_occ)++] = v;
 	}

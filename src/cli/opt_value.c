@@ -115,12 +115,16 @@ static int number(const struct opt_ctx *x, const char *label, const char *s, dou
 		*out = INFINITY;
 		return 0;
 	}
-	if (!decimal(s, integer))
-		return opt_error(x, "%s = '%s' is not a %s in %s", label, s, what, r), -1;
+	if (!decimal(s, integer)) {
+		opt_error(x, "%s = '%s' is not a %s in %s", label, s, what, r);
+		return -1;
+	}
 	errno = 0;
 	double v = strtod(s, NULL);
-	if (!isfinite(v) || !in_range(v, lo, hi, flags))
-		return opt_error(x, "%s = %s is out of range %s", label, s, r), -1;
+	if (!isfinite(v) || !in_range(v, lo, hi, flags)) {
+		opt_error(x, "%s = %s is out of range %s", label, s, r);
+		return -1;
+	}
 	*out = v;
 	return 0;
 }
@@ -141,17 +145,23 @@ int opt_long(const struct opt_ctx *x, const char *label, const char *s, double l
 	if (number(x, label, s, lo, hi, flags & ~OPT_INF, unit, "whole decimal number", &v, &integer) != 0)
 		return -1;
 	opt_range_text(r, sizeof r, lo, hi, flags, unit);
-	if (v != floor(v))
-		return opt_error(x, "%s = %s is not a whole number in %s", label, s, r), -1;
+	if (v != floor(v)) {
+		opt_error(x, "%s = %s is not a whole number in %s", label, s, r);
+		return -1;
+	}
 	if (integer) {	/* exact beyond 2^53, e.g. seeds */
 		errno = 0;
 		long l = strtol(s, NULL, 10);
-		if (errno == ERANGE)
-			return opt_error(x, "%s = %s is out of range %s", label, s, r), -1;
+		if (errno == ERANGE) {
+			opt_error(x, "%s = %s is out of range %s", label, s, r);
+			return -1;
+		}
 		*out = l;
 	} else {
-		if (fabs(v) >= 9223372036854775808.0)	/* 2^63: (long)v would be undefined */
-			return opt_error(x, "%s = %s is out of range %s", label, s, r), -1;
+		if (fabs(v) >= 9223372036854775808.0) {	/* 2^63: (long)v would be undefined */
+			opt_error(x, "%s = %s is out of range %s", label, s, r);
+			return -1;
+		}
 		*out = (long)v;
 	}
 	return 0;
@@ -185,8 +195,10 @@ int opt_path_in_hint(const struct opt_ctx *x, const char *label, const char *pat
 {
 	struct stat st;
 	const char *why = NULL;
-	if (*path == '\0')
-		return opt_error(x, "%s: empty path", label), -1;
+	if (*path == '\0') {
+		opt_error(x, "%s: empty path", label);
+		return -1;
+	}
 	if (stat(path, &st) != 0)
 		why = strerror(errno);
 	else if ((flags & OPT_DIR) && !S_ISDIR(st.st_mode))
@@ -211,17 +223,25 @@ int opt_path_in(const struct opt_ctx *x, const char *label, const char *path, un
 int opt_path_out(const struct opt_ctx *x, const char *label, const char *path)
 {
 	struct stat st;
-	if (*path == '\0')
-		return opt_error(x, "%s: empty path (give a directory)", label), -1;
+	if (*path == '\0') {
+		opt_error(x, "%s: empty path (give a directory)", label);
+		return -1;
+	}
 	if (stat(path, &st) == 0) {
-		if (!S_ISDIR(st.st_mode))
-			return opt_error(x, "%s = '%s' exists and is not a directory", label, path), -1;
-		if (access(path, W_OK | X_OK) != 0)
-			return opt_error(x, "%s = '%s' is not writable: %s", label, path, strerror(errno)), -1;
+		if (!S_ISDIR(st.st_mode)) {
+			opt_error(x, "%s = '%s' exists and is not a directory", label, path);
+			return -1;
+		}
+		if (access(path, W_OK | X_OK) != 0) {
+			opt_error(x, "%s = '%s' is not writable: %s", label, path, strerror(errno));
+			return -1;
+		}
 		return 0;
 	}
-	if (errno != ENOENT)
-		return opt_error(x, "%s = '%s': %s", label, path, strerror(errno)), -1;
+	if (errno != ENOENT) {
+		opt_error(x, "%s = '%s': %s", label, path, strerror(errno));
+		return -1;
+	}
 	char *parent = xstrdup(path);
 	size_t n = strlen(parent);
 	while (n > 1 && parent[n - 1] == '/')

@@ -27,16 +27,20 @@ void placement_bounds(const struct scene_object *o, double lo[3], double hi[3])
 	double r;
 	switch (o->shape) {
 	case SCENE_SPHERE:
-		for (int i = 0; i < 3; i++)
-			lo[i] = o->center[i] - o->radius, hi[i] = o->center[i] + o->radius;
+		for (int i = 0; i < 3; i++) {
+			lo[i] = o->center[i] - o->radius;
+			hi[i] = o->center[i] + o->radius;
+		}
 		return;
 	case SCENE_BOX:
 	case SCENE_PATCH:
 		r = 0.5 * sqrt(o->size[0] * o->size[0] + o->size[1] * o->size[1] + o->size[2] * o->size[2]);
 		break;
 	case SCENE_PLANE:
-		for (int i = 0; i < 3; i++)
-			lo[i] = -1e3, hi[i] = 1e3;
+		for (int i = 0; i < 3; i++) {
+			lo[i] = -1e3;
+			hi[i] = 1e3;
+		}
 		return;
 	case SCENE_MESH:
 		memcpy(lo, o->mesh_lo, sizeof o->mesh_lo);
@@ -54,16 +58,23 @@ void placement_bounds(const struct scene_object *o, double lo[3], double hi[3])
 	const double *c = o->shape == SCENE_BOX || o->shape == SCENE_PATCH ? o->center : o->translate;
 	for (int i = 0; i < 3; i++) {
 		double ci = c[i] + (o->shape == SCENE_BOX || o->shape == SCENE_PATCH ? o->translate[i] : 0);
-		lo[i] = ci - r, hi[i] = ci + r;
+		lo[i] = ci - r;
+		hi[i] = ci + r;
 	}
 }
 void placement_dir(const struct scene_object *o, const double d[3], double out[3])
 {
 	/* POV-Ray's rotate: about x, then y, then z (left-handed). */
 	double a = o->rotate[0], b = o->rotate[1], c = o->rotate[2], t[3], u[3];
-	t[0] = d[0], t[1] = d[1] * cos(a) - d[2] * sin(a), t[2] = d[1] * sin(a) + d[2] * cos(a);
-	u[0] = t[0] * cos(b) + t[2] * sin(b), u[1] = t[1], u[2] = -t[0] * sin(b) + t[2] * cos(b);
-	out[0] = u[0] * cos(c) - u[1] * sin(c), out[1] = u[0] * sin(c) + u[1] * cos(c), out[2] = u[2];
+	t[0] = d[0];
+	t[1] = d[1] * cos(a) - d[2] * sin(a);
+	t[2] = d[1] * sin(a) + d[2] * cos(a);
+	u[0] = t[0] * cos(b) + t[2] * sin(b);
+	u[1] = t[1];
+	u[2] = -t[0] * sin(b) + t[2] * cos(b);
+	out[0] = u[0] * cos(c) - u[1] * sin(c);
+	out[1] = u[0] * sin(c) + u[1] * cos(c);
+	out[2] = u[2];
 }
 void placement_point(const struct scene_object *o, const double p[3], double out[3])
 {

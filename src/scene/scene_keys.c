@@ -22,7 +22,8 @@ static int repeated(struct scene_parse *p, const char *section, const char *k)
 	for (int i = 0; i < p->n_seen; i++)
 		if (!strcmp(p->seen[i], sk)) {
 			free(sk);
-			return scene_fail(p, "[%s]: %s is given twice (first on line %d)", section, k, p->seen_line[i]), 1;
+			scene_fail(p, "[%s]: %s is given twice (first on line %d)", section, k, p->seen_line[i]);
+			return 1;
 		}
 	p->seen = xreallocarray(p->seen, (size_t)p->n_seen + 1, sizeof *p->seen);
 	p->seen_line = xreallocarray(p->seen_line, (size_t)p->n_seen + 1, sizeof *p->seen_line);
@@ -48,10 +49,14 @@ static int parse_vec(const char *v, int n, double *out)
 
 static int parse_bool(const char *v, int *out)
 {
-	if (!strcasecmp(v, "on") || !strcasecmp(v, "yes") || !strcasecmp(v, "true") || !strcmp(v, "1"))
-		return *out = 1, 0;
-	if (!strcasecmp(v, "off") || !strcasecmp(v, "no") || !strcasecmp(v, "false") || !strcmp(v, "0"))
-		return *out = 0, 0;
+	if (!strcasecmp(v, "on") || !strcasecmp(v, "yes") || !strcasecmp(v, "true") || !strcmp(v, "1")) {
+		*out = 1;
+		return 0;
+	}
+	if (!strcasecmp(v, "off") || !strcasecmp(v, "no") || !strcasecmp(v, "false") || !strcmp(v, "0")) {
+		*out = 0;
+		return 0;
+	}
 	return -1;
 }
 
@@ -59,18 +64,24 @@ static int parse_bool(const char *v, int *out)
 static int num(struct scene_parse *p, const char *key, const char *v, double lo, double hi, double *out)
 {
 	double x;
-	if (util_parse_decimal(v, &x) != 0)
-		return scene_fail(p, "%s = '%s' is not a decimal number in [%g, %g]", key, v, lo, hi), -1;
-	if (x < lo || x > hi)
-		return scene_fail(p, "%s = %s is out of range [%g, %g]", key, v, lo, hi), -1;
+	if (util_parse_decimal(v, &x) != 0) {
+		scene_fail(p, "%s = '%s' is not a decimal number in [%g, %g]", key, v, lo, hi);
+		return -1;
+	}
+	if (x < lo || x > hi) {
+		scene_fail(p, "%s = %s is out of range [%g, %g]", key, v, lo, hi);
+		return -1;
+	}
 	*out = x;
 	return 0;
 }
 
 static int vec(struct scene_parse *p, const char *key, const char *v, double *out)
 {
-	if (parse_vec(v, 3, out) != 0)
-		return scene_fail(p, "%s = '%s' is not three numbers 'x y z'", key, v), -1;
+	if (parse_vec(v, 3, out) != 0) {
+		scene_fail(p, "%s = '%s' is not three numbers 'x y z'", key, v);
+		return -1;
+	}
 	return 0;
 }
 
@@ -79,15 +90,19 @@ static int color(struct scene_parse *p, const char *key, const char *v, double *
 	if (vec(p, key, v, out) != 0)
 		return -1;
 	for (int i = 0; i < 3; i++)
-		if (out[i] < 0 || out[i] > 1e6)
-			return scene_fail(p, "%s = '%s': components must be in [0, 1e6]", key, v), -1;
+		if (out[i] < 0 || out[i] > 1e6) {
+			scene_fail(p, "%s = '%s': components must be in [0, 1e6]", key, v);
+			return -1;
+		}
 	return 0;
 }
 
 static int boolean(struct scene_parse *p, const char *key, const char *v, int *out)
 {
-	if (parse_bool(v, out) != 0)
-		return scene_fail(p, "%s = '%s' is not on/off", key, v), -1;
+	if (parse_bool(v, out) != 0) {
+		scene_fail(p, "%s = '%s' is not on/off", key, v);
+		return -1;
+	}
 	return 0;
 }
 

@@ -51,43 +51,71 @@ static int load_mesh(struct scene_parse *p, struct scene_object *o)
 static int validate(struct scene_parse *p)
 {
 	struct scene *s = p->s;
-	if (!p->have_camera)
-		return p->err = xasprintf("%s: no [camera] section", s->path), -1;
+	if (!p->have_camera) {
+		p->err = xasprintf("%s: no [camera] section", s->path);
+		return -1;
+	}
 	p->in.line = p->cam_line;
-	if (!(p->cam_has & CAM_TYPE))
-		return scene_fail(p, "[camera]: type is required (orthographic or perspective)"), -1;
-	if (s->camera.ortho && !(p->cam_has & CAM_WIDTH))
-		return scene_fail(p, "[camera]: an orthographic camera needs width"), -1;
-	if (!s->camera.ortho && !(p->cam_has & CAM_ANGLE))
-		return scene_fail(p, "[camera]: a perspective camera needs angle"), -1;
-	if (dist3(s->camera.location, s->camera.look_at) < 1e-9)
-		return scene_fail(p, "[camera]: location and look_at coincide"), -1;
-	if (s->n_lights == 0)
-		return p->err = xasprintf("%s: no [light NAME] section", s->path), -1;
+	if (!(p->cam_has & CAM_TYPE)) {
+		scene_fail(p, "[camera]: type is required (orthographic or perspective)");
+		return -1;
+	}
+	if (s->camera.ortho && !(p->cam_has & CAM_WIDTH)) {
+		scene_fail(p, "[camera]: an orthographic camera needs width");
+		return -1;
+	}
+	if (!s->camera.ortho && !(p->cam_has & CAM_ANGLE)) {
+		scene_fail(p, "[camera]: a perspective camera needs angle");
+		return -1;
+	}
+	if (dist3(s->camera.location, s->camera.look_at) < 1e-9) {
+		scene_fail(p, "[camera]: location and look_at coincide");
+		return -1;
+	}
+	if (s->n_lights == 0) {
+		p->err = xasprintf("%s: no [light NAME] section", s->path);
+		return -1;
+	}
 	for (int i = 0; i < s->n_lights; i++) {
 		struct scene_light *l = &s->lights[i];
 		p->in.line = p->light_line[i];
-		if (l->type == SCENE_LIGHT_PARALLEL && dist3(l->position, l->point_at) < 1e-9)
-			return scene_fail(p, "[light %s]: position and point_at coincide", l->name), -1;
+		if (l->type == SCENE_LIGHT_PARALLEL && dist3(l->position, l->point_at) < 1e-9) {
+			scene_fail(p, "[light %s]: position and point_at coincide", l->name);
+			return -1;
+		}
 	}
-	if (s->n_objects == 0)
-		return p->err = xasprintf("%s: no [object NAME] section", s->path), -1;
+	if (s->n_objects == 0) {
+		p->err = xasprintf("%s: no [object NAME] section", s->path);
+		return -1;
+	}
 	for (int i = 0; i < s->n_skins; i++)
-		if (s->skins[i].preset == NULL)
-			return p->err = xasprintf("%s: [skin %s]: preset is required", s->path, s->skins[i].name), -1;
+		if (s->skins[i].preset == NULL) {
+			p->err = xasprintf("%s: [skin %s]: preset is required", s->path, s->skins[i].name);
+			return -1;
+		}
 	for (int i = 0; i < s->n_objects; i++) {
 		struct scene_object *o = &s->objects[i];
 		p->in.line = p->obj_line[i];
-		if (!(p->obj_has[i] & OBJ_SHAPE))
-			return scene_fail(p, "[object %s]: shape is required", o->name), -1;
-		if (o->shape == SCENE_SPHERE && !(p->obj_has[i] & OBJ_RADIUS))
-			return scene_fail(p, "[object %s]: a sphere needs radius", o->name), -1;
-		if (o->shape == SCENE_PLANE && !(p->obj_has[i] & OBJ_NORMAL))
-			return scene_fail(p, "[object %s]: a plane needs normal", o->name), -1;
-		if (o->shape == SCENE_MESH && !(p->obj_has[i] & OBJ_FILE))
-			return scene_fail(p, "[object %s]: a mesh needs file = PATH (a model libassimp reads)", o->name), -1;
-		if (o->shape != SCENE_MESH && (p->obj_has[i] & (OBJ_FILE | OBJ_MESH)))
-			return scene_fail(p, "[object %s]: file, mesh and subdivide are only for shape = mesh", o->name), -1;
+		if (!(p->obj_has[i] & OBJ_SHAPE)) {
+			scene_fail(p, "[object %s]: shape is required", o->name);
+			return -1;
+		}
+		if (o->shape == SCENE_SPHERE && !(p->obj_has[i] & OBJ_RADIUS)) {
+			scene_fail(p, "[object %s]: a sphere needs radius", o->name);
+			return -1;
+		}
+		if (o->shape == SCENE_PLANE && !(p->obj_has[i] & OBJ_NORMAL)) {
+			scene_fail(p, "[object %s]: a plane needs normal", o->name);
+			return -1;
+		}
+		if (o->shape == SCENE_MESH && !(p->obj_has[i] & OBJ_FILE)) {
+			scene_fail(p, "[object %s]: a mesh needs file = PATH (a model libassimp reads)", o->name);
+			return -1;
+		}
+		if (o->shape != SCENE_MESH && (p->obj_has[i] & (OBJ_FILE | OBJ_MESH))) {
+			scene_fail(p, "[object %s]: file, mesh and subdivide are only for shape = mesh", o->name);
+			return -1;
+		}
 		if (o->shape == SCENE_MESH && load_mesh(p, o) != 0)
 			return -1;
 		if (o->material == SCENE_MAT_MODEL && o->shape != SCENE_MESH)
@@ -110,8 +138,10 @@ static int validate(struct scene_parse *p)
 			return scene_fail(p, "[object %s]: material %s needs a [skin NAME] section", o->name,
 			    o->material == SCENE_MAT_SKIN ? "skin" : o->material == SCENE_MAT_LAMBERT ? "lambert" : "phong"),
 			    -1;
-		else
-			return scene_fail(p, "[object %s]: several skins: say which with skin = NAME", o->name), -1;
+		else {
+			scene_fail(p, "[object %s]: several skins: say which with skin = NAME", o->name);
+			return -1;
+		}
 	}
 	return 0;
 }

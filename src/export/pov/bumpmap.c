@@ -81,7 +81,8 @@ uint16_t *bumpmap_filter(const uint16_t *px, int n, double h_min, double h_max, 
 {
 	int m = n / f;
 	double *h = xmalloc(sizeof(double) * (size_t)m * m), scale = (h_max - h_min) / 65535.0;
-	*o_min = INFINITY, *o_max = -INFINITY;
+	*o_min = INFINITY;
+	*o_max = -INFINITY;
 	for (int y = 0; y < m; y++)
 		for (int x = 0; x < m; x++) {
 			double sum = 0;

@@ -68,7 +68,8 @@ double littable_dphi(double theta_i, double theta_o, double cos_gamma)
 void littable_cos_gamma_range(const struct pov_light *l, const struct pov_view *v, const double lo[3],
     const double hi[3], double *cmin, double *cmax)
 {
-	*cmin = 2, *cmax = -2;
+	*cmin = 2;
+	*cmax = -2;
 	for (int i = 0; i <= 8; i++)
 		for (int j = 0; j <= 8; j++)
 			for (int k = 0; k <= 8; k++) {
@@ -93,7 +94,8 @@ int littable_axis(const double *hint, int n_hint, int n, double *out)
 	for (int i = 1; i < m; i++)
 		for (int j = i; j > 0 && out[j - 1] > out[j]; j--) {
 			double t = out[j];
-			out[j] = out[j - 1], out[j - 1] = t;
+			out[j] = out[j - 1];
+			out[j - 1] = t;
 		}
 	int u = 1;
 	for (int i = 1; i < m; i++)
@@ -213,7 +215,8 @@ int littable_write_key(FILE *fp, const char *name, const struct pov_brdf *f, con
 	/* Uniform nodes in the pattern value 0.5 + 0.5 cos(gamma), padded a
 	 * little so the sampled range is covered. */
 	double vlo = 0.5 + 0.5 * cmin, vhi = 0.5 + 0.5 * cmax, pad = 0.02 * (vhi - vlo) + 1e-5;
-	vlo = fmax(0, vlo - pad), vhi = fmin(1, vhi + pad);
+	vlo = fmax(0, vlo - pad);
+	vhi = fmin(1, vhi + pad);
 	fprintf(fp, " // gamma axis: %.4f to %.4f deg over %d nodes\n ", acos(2 * vhi - 1) * 180 / M_PI,
 	    acos(2 * vlo - 1) * 180 / M_PI, n_gamma);
 	gamma_function(fp, l, v);

@@ -40,8 +40,10 @@ void mesh2_uvmap_make(const struct mesh *m, struct mesh2_uvmap *u)
 	if (m->uv == NULL)
 		return;
 	int *parent = xmalloc(sizeof(int) * (size_t)m->n_vertices), *id = xmalloc(sizeof(int) * (size_t)m->n_vertices);
-	for (int v = 0; v < m->n_vertices; v++)
-		parent[v] = v, id[v] = -1;
+	for (int v = 0; v < m->n_vertices; v++) {
+		parent[v] = v;
+		id[v] = -1;
+	}
 	for (int t = 0; t < m->n_triangles; t++) {
 		int a = root(parent, m->triangle[t][0]);
 		for (int j = 1; j < 3; j++) {
@@ -86,8 +88,10 @@ int mesh2_bump_matrix(const struct mesh *m, const struct mesh2_uvmap *u, int t, 
 	double area = tri_area(m, t, n);
 	const double *p0 = m->position[tri[0]], *q0 = m->uv[tri[0]];
 	double e1[3], e2[3];
-	for (int i = 0; i < 3; i++)
-		e1[i] = m->position[tri[1]][i] - p0[i], e2[i] = m->position[tri[2]][i] - p0[i];
+	for (int i = 0; i < 3; i++) {
+		e1[i] = m->position[tri[1]][i] - p0[i];
+		e2[i] = m->position[tri[2]][i] - p0[i];
+	}
 	/* Texture coordinates in tiles: x = u s, y = v s. */
 	double du1 = (m->uv[tri[1]][0] - q0[0]) * s, dv1 = (m->uv[tri[1]][1] - q0[1]) * s;
 	double du2 = (m->uv[tri[2]][0] - q0[0]) * s, dv2 = (m->uv[tri[2]][1] - q0[1]) * s;
@@ -127,9 +131,11 @@ void mesh2_visible(const struct mesh *m, const struct scene_camera *c, double as
 			const double *p = m->position[m->triangle[t][j]];
 			double e[3] = { p[0] - ctr[0], p[1] - ctr[1], p[2] - ctr[2] }, toc[3];
 			rad = fmax(rad, sqrt(vec3_dot(e, e)));
-			if (c->ortho)
-				toc[0] = -d[0], toc[1] = -d[1], toc[2] = -d[2];
-			else
+			if (c->ortho) {
+				toc[0] = -d[0];
+				toc[1] = -d[1];
+				toc[2] = -d[2];
+			} else
 				vec3_unit_toward(p, c->location, toc);
 			facing = fmax(facing, vec3_dot(toc, m->normal[m->triangle[t][j]]));
 		}

@@ -24,8 +24,10 @@ static double axis_t(const struct family_axis *a, double x)
 static void reach(const struct family_axis *a, const struct maps_param *p, size_t n, int *i0, int *i1)
 {
 	float vmin = p->v[0], vmax = p->v[0];
-	for (size_t i = 1; i < n; i++)
-		vmin = p->v[i] < vmin ? p->v[i] : vmin, vmax = p->v[i] > vmax ? p->v[i] : vmax;
+	for (size_t i = 1; i < n; i++) {
+		vmin = p->v[i] < vmin ? p->v[i] : vmin;
+		vmax = p->v[i] > vmax ? p->v[i] : vmax;
+	}
 	*i0 = 0;
 	while (*i0 < a->n - 1 && a->node[*i0 + 1] <= vmin)
 		(*i0)++;

@@ -96,10 +96,18 @@ static char *find_shapes(const char *data_dir, const char *scene_path)
 static void rotated_face_normal(const struct scene_object *o, double n[3])
 {
 	double a = o->rotate[0], b = o->rotate[1], c = o->rotate[2], t[3];
-	n[0] = 0, n[1] = 0, n[2] = -1;
-	t[0] = n[0], t[1] = n[1] * cos(a) - n[2] * sin(a), t[2] = n[1] * sin(a) + n[2] * cos(a);
-	n[0] = t[0] * cos(b) + t[2] * sin(b), n[1] = t[1], n[2] = -t[0] * sin(b) + t[2] * cos(b);
-	t[0] = n[0] * cos(c) - n[1] * sin(c), t[1] = n[0] * sin(c) + n[1] * cos(c), t[2] = n[2];
+	n[0] = 0;
+	n[1] = 0;
+	n[2] = -1;
+	t[0] = n[0];
+	t[1] = n[1] * cos(a) - n[2] * sin(a);
+	t[2] = n[1] * sin(a) + n[2] * cos(a);
+	n[0] = t[0] * cos(b) + t[2] * sin(b);
+	n[1] = t[1];
+	n[2] = -t[0] * sin(b) + t[2] * cos(b);
+	t[0] = n[0] * cos(c) - n[1] * sin(c);
+	t[1] = n[0] * sin(c) + n[1] * cos(c);
+	t[2] = n[2];
 	memcpy(n, t, sizeof t);
 }
 
@@ -233,19 +241,25 @@ static struct scene *make_scene(const struct povexport_options *o, char **cause)
 {
 	struct scene *s;
 	if (o->scene_path != NULL) {
-		if (o->cmdline->n_lights > 0 || o->have_camera)
-			return *cause = xstrdup("--scene and --light/--camera exclude each other"), NULL;
+		if (o->cmdline->n_lights > 0 || o->have_camera) {
+			*cause = xstrdup("--scene and --light/--camera exclude each other");
+			return NULL;
+		}
 		if ((s = scene_load(o->scene_path, cause)) == NULL)
 			return NULL;
 	} else {
-		if (o->cmdline->n_lights == 0 || !o->have_camera)
-			return *cause = xstrdup("give --scene FILE, or --light SPEC and --camera SPEC (see --help)"), NULL;
+		if (o->cmdline->n_lights == 0 || !o->have_camera) {
+			*cause = xstrdup("give --scene FILE, or --light SPEC and --camera SPEC (see --help)");
+			return NULL;
+		}
 		s = scene_from_parts(o->cmdline, o->unit_mm);
 		if (check_parts(s, cause) != 0)
 			goto bad;
 	}
-	if (o->width > 0)
-		s->width = o->width, s->height = o->height;
+	if (o->width > 0) {
+		s->width = o->width;
+		s->height = o->height;
+	}
 	if (o->scene_path != NULL && o->unit_mm > 0) {
 		*cause = xstrdup("--unit-mm is for --light/--camera: a scene file sets unit_mm in [scene]");
 		goto bad;

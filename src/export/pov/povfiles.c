@@ -65,9 +65,13 @@ static int write_mesh(FILE *fp, const struct scene *s, const struct pov_skin *sk
 			struct mesh2_textures tex = { .tile_units = skins[o->skin].tile_units, .uv = &uv, .on = on };
 			char *pre, *post, *plain;
 			povscene_mesh_texture(s, o, st, n > 1 ? k : -1, &pre, &post, &plain);
-			tex.pre = pre, tex.post = post, tex.plain = plain;
+			tex.pre = pre;
+			tex.post = post;
+			tex.plain = plain;
 			nb = mesh2_write(fp, name, o->mesh, n > 1 ? povscene_inset(s, k) : 0, &tex);
-			free(pre), free(post), free(plain);
+			free(pre);
+			free(post);
+			free(plain);
 		} else
 			mesh2_write(fp, name, o->mesh, n > 1 ? povscene_inset(s, k) : 0, NULL);
 		free(name);
@@ -212,8 +216,10 @@ static int cmp_names(const void *a, const void *b)
 int povfiles_copy(const char *src, const char *dst, char **cause)
 {
 	FILE *in = fopen(src, "rb");
-	if (in == NULL)
-		return *cause = xasprintf("%s: %s", src, strerror(errno)), -1;
+	if (in == NULL) {
+		*cause = xasprintf("%s: %s", src, strerror(errno));
+		return -1;
+	}
 	struct outfile o;
 	if (outfile_open(&o, dst, cause) != 0) {
 		fclose(in);
@@ -227,7 +233,8 @@ int povfiles_copy(const char *src, const char *dst, char **cause)
 	fclose(in);
 	if (err) {
 		outfile_abort(&o);
-		return *cause = xasprintf("%s: read error", src), -1;
+		*cause = xasprintf("%s: read error", src);
+		return -1;
 	}
 	return outfile_commit(&o, cause);
 }

@@ -203,9 +203,10 @@ void povscene_mesh_texture(const struct scene *s, const struct scene_object *o, 
 	char *pig, *fin;
 	if (layer >= 0)
 		skin_names(s, sn, st, povscene_layer_light(s, layer) + 1, 1, &pig, &fin);
-	else if (st == SCENE_LIGHTS_PASSES) /* frames: declared per frame in BASE.pov */
-		pig = xasprintf("SKIN_%s_PassPigment", sn), fin = xasprintf("SKIN_%s_PassFinish", sn);
-	else
+	else if (st == SCENE_LIGHTS_PASSES) {	/* frames: declared per frame in BASE.pov */
+		pig = xasprintf("SKIN_%s_PassPigment", sn);
+		fin = xasprintf("SKIN_%s_PassFinish", sn);
+	} else
 		skin_names(s, sn, st, 0, 0, &pig, &fin);
 	int rest = layer >= 0 ? s->n_lights - 1 - layer : 0;
 	if (rest > 0) {

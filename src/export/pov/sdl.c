@@ -42,13 +42,19 @@ char *sdl_ident(const char *base)
 void sdl_align(FILE *fp, const double d[3])
 {
 	double up[3] = { 0, 1, 0 }, u[3], w[3], n;
-	if (fabs(d[1]) > 0.99)
-		up[1] = 0, up[2] = 1;
-	u[0] = up[1] * d[2] - up[2] * d[1], u[1] = up[2] * d[0] - up[0] * d[2], u[2] = up[0] * d[1] - up[1] * d[0];
+	if (fabs(d[1]) > 0.99) {
+		up[1] = 0;
+		up[2] = 1;
+	}
+	u[0] = up[1] * d[2] - up[2] * d[1];
+	u[1] = up[2] * d[0] - up[0] * d[2];
+	u[2] = up[0] * d[1] - up[1] * d[0];
 	n = sqrt(vec3_dot(u, u));
 	for (int i = 0; i < 3; i++)
 		u[i] /= n;
-	w[0] = d[1] * u[2] - d[2] * u[1], w[1] = d[2] * u[0] - d[0] * u[2], w[2] = d[0] * u[1] - d[1] * u[0];
+	w[0] = d[1] * u[2] - d[2] * u[1];
+	w[1] = d[2] * u[0] - d[0] * u[2];
+	w[2] = d[0] * u[1] - d[1] * u[0];
 	fprintf(fp, " matrix <" SDL_G "," SDL_G "," SDL_G ", " SDL_G "," SDL_G "," SDL_G ", " SDL_G "," SDL_G "," SDL_G
 		    ", 0,0,0>",
 	    u[0], u[1], u[2], w[0], w[1], w[2], d[0], d[1], d[2]);

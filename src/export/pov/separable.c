@@ -72,10 +72,16 @@ void separable_fit(const struct pov_brdf *f, struct pov_separable *out)
 	double e1 = sep_error(t, x1, out->a, &norm, &mr), e2 = sep_error(t, x2, out->a, &norm, &mr);
 	for (int it = 0; it < 40; it++) {
 		if (e1 < e2) {
-			hi = x2, x2 = x1, e2 = e1, x1 = hi - gr * (hi - lo);
+			hi = x2;
+			x2 = x1;
+			e2 = e1;
+			x1 = hi - gr * (hi - lo);
 			e1 = sep_error(t, x1, out->a, &norm, &mr);
 		} else {
-			lo = x1, x1 = x2, e1 = e2, x2 = lo + gr * (hi - lo);
+			lo = x1;
+			x1 = x2;
+			e1 = e2;
+			x2 = lo + gr * (hi - lo);
 			e2 = sep_error(t, x2, out->a, &norm, &mr);
 		}
 	}

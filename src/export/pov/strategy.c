@@ -87,7 +87,9 @@ static int object_points(const struct scene *s, const struct scene_object *o, in
 		double d[3], q[3];
 		/* Fibonacci sphere: even directions. */
 		double z = 1 - (2.0 * i + 1) / want, r = sqrt(1 - z * z), a = i * M_PI * (3 - sqrt(5));
-		d[0] = r * cos(a), d[1] = r * sin(a), d[2] = z;
+		d[0] = r * cos(a);
+		d[1] = r * sin(a);
+		d[2] = z;
 		switch (o->shape) {
 		case SCENE_SPHERE:
 			for (int j = 0; j < 3; j++)
@@ -97,8 +99,10 @@ static int object_points(const struct scene *s, const struct scene_object *o, in
 		case SCENE_PATCH: {
 			/* The point of the box's surface along d (the patch: its front). */
 			int ax = fabs(d[0]) > fabs(d[1]) ? (fabs(d[0]) > fabs(d[2]) ? 0 : 2) : (fabs(d[1]) > fabs(d[2]) ? 1 : 2);
-			if (o->shape == SCENE_PATCH)
-				ax = 2, d[2] = -1;
+			if (o->shape == SCENE_PATCH) {
+				ax = 2;
+				d[2] = -1;
+			}
 			double t = h[ax] / fabs(d[ax]);
 			for (int j = 0; j < 3; j++)
 				q[j] = o->center[j] + (j == ax ? (d[j] < 0 ? -h[j] : h[j]) : fmax(-h[j], fmin(h[j], t * d[j])));
@@ -139,7 +143,8 @@ double strategy_mixture_error(const struct scene *s, const struct pov_brdf *cons
 	double (*p)[3] = malloc(sizeof *p * WANT), (*n)[3] = malloc(sizeof *n * WANT), err = 0, sum = 0;
 	struct pov_brdf analytic = { .f_rgb = littable_brdf_analytic };
 	if (p == NULL || n == NULL || s->n_lights != 2) {
-		free(p), free(n);
+		free(p);
+		free(n);
 		return s->n_lights == 2 ? 1 : 0;
 	}
 	strategy_light(&s->lights[0], &pl[0]);
@@ -197,8 +202,10 @@ int strategy_in_view(const struct scene *s, const double p[3], double margin)
 	vec3_unit_toward(c->location, c->look_at, d);
 	vec3_cross(sky, d, r);
 	double rn = sqrt(vec3_dot(r, r));
-	for (int i = 0; i < 3; i++)
-		r[i] = rn > 0 ? r[i] / rn : (i == 0), q[i] = p[i] - c->location[i];
+	for (int i = 0; i < 3; i++) {
+		r[i] = rn > 0 ? r[i] / rn : (i == 0);
+		q[i] = p[i] - c->location[i];
+	}
 	vec3_cross(d, r, up);
 	double hx = (1 + margin) * (c->ortho ? 0.5 * c->width : tan(0.5 * c->angle)), hy = hx * s->height / s->width;
 	double z = vec3_dot(q, d), x = vec3_dot(q, r), y = vec3_dot(q, up);
@@ -240,7 +247,9 @@ int strategy_skin_bounds(const struct scene *s, int k, double lo[3], double hi[3
 		any = 1;
 	}
 	if (!any) /* include-only export: around the look_at point */
-		for (int j = 0; j < 3; j++)
-			lo[j] = s->camera.look_at[j] - 1, hi[j] = s->camera.look_at[j] + 1;
+		for (int j = 0; j < 3; j++) {
+			lo[j] = s->camera.look_at[j] - 1;
+			hi[j] = s->camera.look_at[j] + 1;
+		}
 	return any;
 }
