@@ -122,13 +122,42 @@ struct pixel {
 	double co;		/* cosine of the exit angle */
 };
 
-/* --ad: adding-doubling point values of the bake's stacks (see the top). */
+/* --ad: adding-doubling point values of the bake's stacks (see the top).
+ * Two passes over the pixels: the first records the incidence angles asked
+ * (in call order), which are then solved 256 beams at a time per
+ * wavelength; the second evaluates, call by call in the same order. */
 struct ad_ref {
 	struct bake *b;
 	struct bake_provenance pv;
 	double min_to;		/* [rad]: 0 returned below (pixels not counted) */
+	int pass;		/* 0: record, 1: evaluate */
+	long n, cap, next;	/* angles recorded; the next call's index */
+	double *ti;		/* [n] */
+	struct ad_result *res;	/* [n_chunks][n_wl] */
 	long solves;
 };
+
+static void ad_solve_all(struct ad_ref *a)
+{
+	long nc = (a->n + AD_MAX_BEAMS - 1) / AD_MAX_BEAMS;
+	a->res = xcalloc((size_t)(nc * a->b->n_wl + 1), sizeof *a->res);
+	for (long k = 0; k < nc; k++)
+		for (int w = 0; w < a->b->n_wl; w++) {
+			struct ad_opts o;
+			char *cause = NULL;
+			long n = a->n - k * AD_MAX_BEAMS < AD_MAX_BEAMS ? a->n - k * AD_MAX_BEAMS : AD_MAX_BEAMS;
+			ad_opts_default(&o);
+			o.n_to = o.n_phi = 1;
+			if (ad_solve(&a->pv.slab[w], a->pv.fresnel, a->ti + k * AD_MAX_BEAMS, (int)n, &o,
+			    &a->res[k * a->b->n_wl + w], &cause) != 0) {
+				fprintf(stderr, "pov_compare: adding-doubling: %s\n", cause);
+				exit(2);
+			}
+			a->solves++;
+		}
+	a->pass = 1;
+	a->next = 0;
+}
 
 static void ad_rgb(void *ctx, double ti, double to, double dphi, double rgb[3])
 {
@@ -138,23 +167,21 @@ static void ad_rgb(void *ctx, double ti, double to, double dphi, double rgb[3])
 	rgb[0] = rgb[1] = rgb[2] = 0.0;
 	if (to < a->min_to || ti >= 0.5 * M_PI)
 		return;
+	if (a->pass == 0) {
+		if (a->n == a->cap) {
+			a->cap = a->cap ? 2 * a->cap : 1024;
+			a->ti = xreallocarray(a->ti, (size_t)a->cap, sizeof(double));
+		}
+		a->ti[a->n++] = ti;
+		return;
+	}
+	long i = a->next++;
 	bake_eval_specular(b, ti, to, dphi, sp);
 	for (int w = 0; w < b->n_wl; w++) {
-		struct ad_opts o;
-		struct ad_result r;
-		char *cause = NULL;
-		ad_opts_default(&o);
-		o.n_to = o.n_phi = 1;
-		o.threads = 1;
-		if (ad_solve(&a->pv.slab[w], a->pv.fresnel, &ti, 1, &o, &r, &cause) != 0) {
-			fprintf(stderr, "pov_compare: adding-doubling: %s\n", cause);
-			exit(2);
-		}
-		a->solves++;
-		double f = ad_brdf(&r, 0, to, dphi, NULL) + sp[w];
+		const struct ad_result *r = &a->res[(i / AD_MAX_BEAMS) * b->n_wl + w];
+		double f = ad_brdf(r, (int)(i % AD_MAX_BEAMS), to, dphi, NULL) + sp[w];
 		for (int c = 0; c < 3; c++)
 			rgb[c] += b->rgb_from_wl[c * b->n_wl + w] * f;
-		ad_result_free(&r);
 	}
 }
 
@@ -285,23 +312,28 @@ static int cmd_expect(int argc, char **argv)
 	double half_w = cam->ortho ? 0.5 * cam->width : tan(0.5 * cam->angle), half_h = half_w / aspect;
 	struct pixel *px = xcalloc((size_t)w * h, sizeof *px);
 	double vmax = 0;
-	for (int y = 0; y < h; y++)
-		for (int x = 0; x < w; x++) {
-			double u = (2.0 * (x + 0.5) / w - 1) * half_w, v = (1 - 2.0 * (y + 0.5) / h) * half_h, o[3], d[3];
-			for (int i = 0; i < 3; i++) {
-				if (cam->ortho) {
-					o[i] = cam->location[i] + u * right[i] + v * up[i];
-					d[i] = fwd[i];
-				} else {
-					o[i] = cam->location[i];
-					d[i] = fwd[i] + u * right[i] + v * up[i];
+	for (int pass = ad ? 0 : 1; pass < 2; pass++) {
+		if (pass == 1 && ad)
+			ad_solve_all(&ar);
+		vmax = 0;
+		for (int y = 0; y < h; y++)
+			for (int x = 0; x < w; x++) {
+				double u = (2.0 * (x + 0.5) / w - 1) * half_w, v = (1 - 2.0 * (y + 0.5) / h) * half_h, o[3], d[3];
+				for (int i = 0; i < 3; i++) {
+					if (cam->ortho) {
+						o[i] = cam->location[i] + u * right[i] + v * up[i];
+						d[i] = fwd[i];
+					} else {
+						o[i] = cam->location[i];
+						d[i] = fwd[i] + u * right[i] + v * up[i];
+					}
 				}
+				norm(d);
+				shade(s, &f, only, o, d, &px[y * w + x]);
+				for (int c = 0; c < 3; c++)
+					vmax = fmax(vmax, px[y * w + x].v[c]);
 			}
-			norm(d);
-			shade(s, &f, only, o, d, &px[y * w + x]);
-			for (int c = 0; c < 3; c++)
-				vmax = fmax(vmax, px[y * w + x].v[c]);
-		}
+	}
 	double sum_rel = 0, sum_abs = 0, sum_ref = 0;
 	long n_rel = 0, n_px = 0, n_shadow = 0, shadow_bad = 0, n_clip = 0;
 	for (int y = 1; y < h - 1; y++)
@@ -346,8 +378,13 @@ static int cmd_expect(int argc, char **argv)
 		printf("(adding-doubling reference: %ld solves, exit angles from %g deg)\n", ar.solves, min_to_deg);
 	free(px);
 	free(img);
-	if (ad)
+	if (ad) {
+		for (long k = 0; k < ((ar.n + AD_MAX_BEAMS - 1) / AD_MAX_BEAMS) * ar.b->n_wl; k++)
+			ad_result_free(&ar.res[k]);
+		free(ar.res);
+		free(ar.ti);
 		bake_provenance_free(&ar.pv);
+	}
 	brdf_source_free(b);
 	scene_free(s);
 	return mre <= tol && shadow_bad == 0 && n_px > 100 ? 0 : 1;
