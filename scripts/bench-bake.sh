@@ -132,11 +132,13 @@ elif cmd == 'sim':	# sim JSON: photons, seconds, Rd, Rd_err, RMS relative error 
 EOF
 PY() { python3 "$W/bb.py" "$@"; }
 calc() { awk "BEGIN { printf \"$1\n\", $2 }"; }
-# bake NAME ARGS...: run `skinbake bake ARGS --out $W/NAME --quiet`; sets
+# bake NAME ARGS...: run `skinbake bake --solver mc ARGS --out $W/NAME --quiet`
+# (this section measures the Monte Carlo bake; the default solver is
+# adding-doubling since issue 13, scripts/bench-solvers.sh); sets
 # wall cpu photons secs err jobs (and b_*; sh has no local variables).
 bake() {
 	b_name=$1; shift
-	b_run=$(PY run "$W/$b_name.log" "$SKINBAKE" bake "$@" --out "$W/$b_name" --quiet)
+	b_run=$(PY run "$W/$b_name.log" "$SKINBAKE" bake --solver mc "$@" --out "$W/$b_name" --quiet)
 	b_info=$(PY info "$W/$b_name")
 	# shellcheck disable=SC2086
 	set -- $b_run $b_info
@@ -155,14 +157,14 @@ if [ "$QUICK" = 1 ]; then
 	echo "**BENCH_QUICK=1: reduced photon counts and target $TARGET; not the benchmark.**"
 fi
 echo
-echo "Every bake below is \`skinbake bake --preset ... --out DIR\` with the options shown"
+echo "Every bake below is the Monte Carlo bake, \`skinbake bake --solver mc --preset ... --out DIR\` with the options shown"
 echo "(default: all cores, 18 x 18 table, 10 incidence angles, the preset's wavelengths, seed 1,"
 echo "batches of 4000 photons). \"seconds\" is the bake's own compute time (manifest \`result.seconds\`);"
 echo "\"wall\" is the whole command (start-up and writing included); \"CPU\" is user + system time."
 echo "\"RMS error\" is the bake's solid-angle-weighted RMS relative standard error of the table."
 
 # The reference for every error comparison: another seed, many photons.
-ref_cmd="skinbake bake --preset refstack --target-error 0 --max-photons $REF_N --batch-photons $REF_B --seed 2 --out REF"
+ref_cmd="skinbake bake --solver mc --preset refstack --target-error 0 --max-photons $REF_N --batch-photons $REF_B --seed 2 --out REF"
 bake ref --preset refstack --target-error 0 --max-photons "$REF_N" --batch-photons "$REF_B" --seed 2
 ref_err=$err ref_photons=$photons ref_secs=$secs
 
@@ -178,10 +180,10 @@ met=$(awk "BEGIN { print ($wall < 60) ? \"met\" : \"NOT met\" }")
 # shellcheck disable=SC2046
 set -- $(PY cmp "$W/full" "$W/ref")
 vsref="$1 ($(calc '%.2f' "$1 / sqrt($err * $err + $2 * $2)"))"
-echo "| refstack, 3 wavelengths x 10 angles, 18 x 18 | \`skinbake bake --preset refstack --target-error $TARGET ${TOPT}--out DIR\` | $photons | $secs | $wall | $cpu | $err | $vsref | under 60 s wall: $met |"
+echo "| refstack, 3 wavelengths x 10 angles, 18 x 18 | \`skinbake bake --solver mc --preset refstack --target-error $TARGET ${TOPT}--out DIR\` | $photons | $secs | $wall | $cpu | $err | $vsref | under 60 s wall: $met |"
 # shellcheck disable=SC2086
 bake one --preset refstack --target-error "$TARGET" --theta-in 30.0 $TOPT
-echo "| one light (30 deg), 3 wavelengths, 18 x 18 | \`skinbake bake --preset refstack --target-error $TARGET --theta-in 30.0 ${TOPT}--out DIR\` | $photons | $secs | $wall | $cpu | $err | - | - |"
+echo "| one light (30 deg), 3 wavelengths, 18 x 18 | \`skinbake bake --solver mc --preset refstack --target-error $TARGET --theta-in 30.0 ${TOPT}--out DIR\` | $photons | $secs | $wall | $cpu | $err | - | - |"
 echo
 echo "\"against reference\" and \"d / predicted\": see the next section (1 when the reported error is right)."
 echo
@@ -191,10 +193,10 @@ echo "| threads | command | photons | seconds | wall | CPU | speedup |"
 echo "|---|---|---|---|---|---|---|"
 bake thr1 --preset refstack --target-error 0 --max-photons "$THR_N" --batch-photons "$THR_B" --threads 1
 s1=$secs c1=$cpu
-echo "| 1 | \`skinbake bake --preset refstack --target-error 0 --max-photons $THR_N --batch-photons $THR_B --threads 1 --out DIR\` | $photons | $secs | $wall | $cpu | 1 |"
+echo "| 1 | \`skinbake bake --solver mc --preset refstack --target-error 0 --max-photons $THR_N --batch-photons $THR_B --threads 1 --out DIR\` | $photons | $secs | $wall | $cpu | 1 |"
 bake thr2 --preset refstack --target-error 0 --max-photons "$THR_N" --batch-photons "$THR_B" --threads 2
 same=$(cmp -s "$W/thr1/brdf.exr" "$W/thr2/brdf.exr" && echo "tables identical" || echo "TABLES DIFFER")
-echo "| 2 | \`skinbake bake --preset refstack --target-error 0 --max-photons $THR_N --batch-photons $THR_B --threads 2 --out DIR\` | $photons | $secs | $wall | $cpu | $(calc '%.2f' "$s1 / $secs") (target >= 1.8; $same) |"
+echo "| 2 | \`skinbake bake --solver mc --preset refstack --target-error 0 --max-photons $THR_N --batch-photons $THR_B --threads 2 --out DIR\` | $photons | $secs | $wall | $cpu | $(calc '%.2f' "$s1 / $secs") (target >= 1.8; $same) |"
 echo
 echo "CPU time with two threads over one thread: $(calc '%.3f' "$cpu / $c1") (1 = no parallel overhead; a"
 echo "speedup below 2 with this near 1 means the cores were shared with other work)."
@@ -205,7 +207,7 @@ echo "### \`refstack\`: error against photons"
 echo
 echo "Reference: the independent bake above, \`$ref_cmd\`"
 echo "($ref_photons photons, $ref_secs s, its own RMS error $ref_err). Each row is"
-echo "\`skinbake bake --preset refstack --target-error 0 --max-photons N --batch-photons B --out DIR\` (seed 1;"
+echo "\`skinbake bake --solver mc --preset refstack --target-error 0 --max-photons N --batch-photons B --out DIR\` (seed 1;"
 echo "B = N / 240 gives 8 batches for each of the 30 jobs). \"against reference\" is the"
 echo "solid-angle-weighted RMS of (f - f_ref) / f_ref over all bins; it contains the reference's own"
 echo "error, so the next column removes it (sqrt(d^2 - e_ref^2)); the last column is d over the"
@@ -272,10 +274,10 @@ echo "|---|---|---|---|---|---|---|---|---|"
 set -- $(PY info "$W/nee") $(cat "$W/c$NEE_N.cpu")
 photons=$1 secs=$2 err=$3 cpu=$5
 eff_nee=$(calc '%.4g' "1 / ($err * $err * $secs)") effc_nee=$(calc '%.6g' "1 / ($err * $err * $cpu)")
-row_nee="| nee (default) | \`skinbake bake --preset refstack --target-error 0 --max-photons $NEE_N --batch-photons $NEE_B --estimator nee --out DIR\` | $photons | $secs | $cpu | $err | $eff_nee |"
+row_nee="| nee (default) | \`skinbake bake --solver mc --preset refstack --target-error 0 --max-photons $NEE_N --batch-photons $NEE_B --estimator nee --out DIR\` | $photons | $secs | $cpu | $err | $eff_nee |"
 bake bins --preset refstack --target-error 0 --max-photons "$BINS_N" --estimator bins
 eff_bins=$(calc '%.4g' "1 / ($err * $err * $secs)") effc_bins=$(calc '%.6g' "1 / ($err * $err * $cpu)")
-echo "| bins (MCML) | \`skinbake bake --preset refstack --target-error 0 --max-photons $BINS_N --estimator bins --out DIR\` | $photons | $secs | $cpu | $err | $eff_bins | 1 | 1 |"
+echo "| bins (MCML) | \`skinbake bake --solver mc --preset refstack --target-error 0 --max-photons $BINS_N --estimator bins --out DIR\` | $photons | $secs | $cpu | $err | $eff_bins | 1 | 1 |"
 echo "$row_nee $(calc '%.1f' "$eff_nee / $eff_bins") | $(calc '%.1f' "$effc_nee / $effc_bins") |"
 echo
 echo "Roulette: \`skinbake bake\` has no roulette options, so this is \`skinbake simulate\` (plain"
@@ -315,20 +317,20 @@ echo "|---|---|---|---|---|---|---|---|---|"
 for r in $RES; do
 	bins=$(( ${r%x*} * ${r#*x} ))
 	bake "r$r" --preset refstack --wavelengths 550 --theta-in 30.0 --resolution "$r" --target-error 0 --max-photons "$PJ" --batch-photons "$PJ_B"
-	echo "| resolution | \`skinbake bake --preset refstack --wavelengths 550 --theta-in 30.0 --resolution $r --target-error 0 --max-photons $PJ --batch-photons $PJ_B --out DIR\` | $jobs | $bins | $photons | $secs | $cpu | $secs | $(calc '%.3f' "$secs / $bins * 1000") |"
+	echo "| resolution | \`skinbake bake --solver mc --preset refstack --wavelengths 550 --theta-in 30.0 --resolution $r --target-error 0 --max-photons $PJ --batch-photons $PJ_B --out DIR\` | $jobs | $bins | $photons | $secs | $cpu | $secs | $(calc '%.3f' "$secs / $bins * 1000") |"
 	echo "$bins $secs" >> "$W/res.dat"
 done
 wls=550
 for k in 1 2 4 8; do
 	[ "$k" = 1 ] || wls=$(seq -s, 550 $((549 + k)))
 	bake "w$k" --preset medium-oily --wavelengths "$wls" --theta-in 30.0 --target-error 0 --max-photons $((PJ * k)) --batch-photons "$PJ_B"
-	echo "| wavelengths | \`skinbake bake --preset medium-oily --wavelengths $wls --theta-in 30.0 --target-error 0 --max-photons $((PJ * k)) --batch-photons $PJ_B --out DIR\` | $jobs | 324 | $photons | $secs | $cpu | $(calc '%.3f' "$secs / $jobs") | - |"
+	echo "| wavelengths | \`skinbake bake --solver mc --preset medium-oily --wavelengths $wls --theta-in 30.0 --target-error 0 --max-photons $((PJ * k)) --batch-photons $PJ_B --out DIR\` | $jobs | 324 | $photons | $secs | $cpu | $(calc '%.3f' "$secs / $jobs") | - |"
 done
 ths=30.0
 for k in 1 2 4 8; do
 	[ "$k" = 1 ] || ths=$(seq -s, 30 $((29 + k)))
 	bake "a$k" --preset refstack --wavelengths 550 --theta-in "$ths" --target-error 0 --max-photons $((PJ * k)) --batch-photons "$PJ_B"
-	echo "| angles | \`skinbake bake --preset refstack --wavelengths 550 --theta-in $ths --target-error 0 --max-photons $((PJ * k)) --batch-photons $PJ_B --out DIR\` | $jobs | 324 | $photons | $secs | $cpu | $(calc '%.3f' "$secs / $jobs") | - |"
+	echo "| angles | \`skinbake bake --solver mc --preset refstack --wavelengths 550 --theta-in $ths --target-error 0 --max-photons $((PJ * k)) --batch-photons $PJ_B --out DIR\` | $jobs | 324 | $photons | $secs | $cpu | $(calc '%.3f' "$secs / $jobs") | - |"
 done
 fit=$(awk '{ n++; sx += $1; sy += $2; sxx += $1 * $1; sxy += $1 * $2 }
 	END { b = (n * sxy - sx * sy) / (n * sxx - sx * sx); a = (sy - b * sx) / n;
@@ -342,7 +344,7 @@ echo "| bake | command | jobs | photons | seconds | CPU | seconds per job |"
 echo "|---|---|---|---|---|---|---|"
 bake onefix --preset refstack --theta-in 30.0 --target-error 0 --max-photons $((PJ * 3)) --batch-photons "$PJ_B"
 s_one=$secs c_one=$cpu
-echo "| one light | \`skinbake bake --preset refstack --theta-in 30.0 --target-error 0 --max-photons $((PJ * 3)) --batch-photons $PJ_B --out DIR\` | $jobs | $photons | $secs | $cpu | $(calc '%.3f' "$secs / $jobs") |"
+echo "| one light | \`skinbake bake --solver mc --preset refstack --theta-in 30.0 --target-error 0 --max-photons $((PJ * 3)) --batch-photons $PJ_B --out DIR\` | $jobs | $photons | $secs | $cpu | $(calc '%.3f' "$secs / $jobs") |"
 if [ ! -d "$W/fullfix" ]; then
 	bake fullfix --preset refstack --target-error 0 --max-photons "$FULL_N" --batch-photons "$FULL_B"
 else
@@ -350,7 +352,7 @@ else
 	set -- $(PY info "$W/fullfix") $(cat "$W/c$FULL_N.cpu")
 	photons=$1 secs=$2 jobs=$4 cpu=$5
 fi
-echo "| full (10 angles) | \`skinbake bake --preset refstack --target-error 0 --max-photons $FULL_N --batch-photons $FULL_B --out DIR\` | $jobs | $photons | $secs | $cpu | $(calc '%.3f' "$secs / $jobs") |"
+echo "| full (10 angles) | \`skinbake bake --solver mc --preset refstack --target-error 0 --max-photons $FULL_N --batch-photons $FULL_B --out DIR\` | $jobs | $photons | $secs | $cpu | $(calc '%.3f' "$secs / $jobs") |"
 echo
 echo "The full bake costs $(calc '%.1f' "$secs / $s_one") times the one-light bake ($(calc '%.1f' "$cpu / $c_one") in CPU time);"
 echo "the ten angles (0 to 81 degrees) are not equally expensive, so 10 is not exact."

@@ -24,7 +24,7 @@ COLOURS = [0.01, 0.02, 0.04, 0.06, 0.09, 0.13, 0.18, 0.25, 0.33, 0.42, 0.52, 0.6
 EDGES = [0.0] + [round(0.005 * 1.5 ** k, 6) for k in range(22)]          # 0 .. 37.4 mm
 RENDERERS = {
     "pov": {"args": ["pov", "--samples", "800"], "far_samples": "200", "edges": EDGES, "id": "sss_pov"},
-    "cycles": {"args": ["cycles", "--method", "random_walk", "--samples", "128"], "far_samples": "32",
+    "cycles": {"args": ["cycles", "--method", "random_walk", "--samples", "64"], "far_samples": "32",
                "edges": [e for e in EDGES if e <= 20.0], "id": "sss_cycles"},
 }
 
@@ -68,7 +68,7 @@ def c_table(tables):
         t = tables.get(name)
         pre = spec["id"].lower()
         if t is None or "far_pi_f" not in t:       # not measured yet: an empty table, refused by the fit
-            lines.append(f"const struct sss_table {pre}_table = {{ \"{name}\", \"not calibrated\", \"\", "
+            lines.append(f"const struct sss_table {pre}_table = {{ \"{name}\", \"not calibrated\", \"\", 1.4, "
                          "0, 0, 0, NULL, NULL, NULL, NULL, NULL };")
             lines.append("")
             continue
@@ -89,7 +89,7 @@ def c_table(tables):
                 lines.append("\t" + ", ".join(f"{max(v, 0.0):.5e}" for v in row) + ",")
         lines.append("};")
         lines.append(f"const struct sss_table {pre}_table = {{ \"{t['renderer']}\", \"{t['version']}\", "
-                     f"\"{t['closure']}\", {nc}, {ne}, {nf}, {pre}_colour, {pre}_edge, {pre}_g, {pre}_far_deg, {pre}_far }};")
+                     f"\"{t['closure']}\", {t['params']['ior']}, {nc}, {ne}, {nf}, {pre}_colour, {pre}_edge, {pre}_g, {pre}_far_deg, {pre}_far }};")
         lines.append("")
         names.append(pre)
     return "\n".join(lines)

@@ -5,6 +5,8 @@
 #
 #   sh scripts/check-build.sh BUILD_DIR [CONFIGURE_OPTION...]
 #
+# CHECK_TARGET=check-fast runs the fast tier instead (scripts/check-debug.sh).
+#
 # Prints the failing tests, the closing "N passed, N failed, N skipped" line
 # and the wall time; exit status 0 only when every test passed.
 set -u
@@ -45,7 +47,7 @@ fi
 UBSAN_OPTIONS="${UBSAN_OPTIONS:+$UBSAN_OPTIONS:}print_stacktrace=1"
 export UBSAN_OPTIONS
 make -j"${JOBS:-2}" >make.out 2>&1 || { tail -30 make.out; echo "0 passed, 1 failed"; exit 1; }
-make -j"${JOBS:-2}" check >check.out 2>&1
+make -j"${JOBS:-2}" "${CHECK_TARGET:-check}" >check.out 2>&1
 rc=$?
 grep -E '^(FAIL|ERROR|XPASS):' check.out
 sh "$top/scripts/test-summary.sh" test-suite.log

@@ -8,7 +8,7 @@ cd "$(dirname "$0")/.."
 PKGS="build-essential autoconf automake pkg-config autoconf-archive \
  libopenexr-dev openexr libpng-dev libjson-c-dev libinih-dev libqhull-dev \
  librandom123-dev libcmocka-dev libassimp-dev assimp-testmodels libopenmpi-dev openmpi-bin libopenblas-dev liblapacke-dev \
- gnuplot-nox hyperfine python3 python3-venv povray blender strace clang"
+ gnuplot-nox hyperfine python3 python3-venv povray blender strace clang libssl-dev"
 SUDO=
 if [ "$(id -u)" != 0 ]; then
 	if command -v sudo >/dev/null 2>&1; then SUDO=sudo; else

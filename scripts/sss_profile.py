@@ -18,6 +18,9 @@ Units: lengths in mm; irradiance 1, so ring powers and the integral are fraction
 incident power.  Pixels are linear (POV-Ray File_Gamma 1, Cycles EXR with the Standard view);
 a POV-Ray pixel is pi x radiance, a Cycles pixel radiance, so both are scaled to pi x radiance.
 
+--back lights the slab's bottom face instead (edges 0 only): G(0) is the transmittance of a slab
+of thickness --depth, over all exit directions.
+
 pov:    finish { subsurface { translucency T } } with pigment COLOUR (the Rd POV-Ray aims at),
         global_settings { mm_per_unit 1 subsurface { samples N, 1 } }, interior { ior IOR }.
 cycles: the Subsurface Scattering node (falloff --method: random_walk, random_walk_fixed,
@@ -88,7 +91,7 @@ def profile(edges, g):
 POV_SCENE = """#version 3.7;
 global_settings {{ assumed_gamma 1 ambient_light 0 mm_per_unit 1 subsurface {{ samples {samples}, 1 }} }}
 camera {{ fisheye angle 180 location <0, {h}, 0> look_at <0, 0, 0> sky z right x up y }}
-light_source {{ <0, 1000, 0> rgb 1 parallel point_at <0, 0, 0> }}
+light_source {{ <0, {ly}, 0> rgb 1 parallel point_at <0, {lt}, 0> }}
 {occluder}
 box {{ <-{w}, -{d}, -{w}>, <{w}, 0, {w}>
   texture {{ pigment {{ rgb <{c[0]}, {c[1]}, {c[2]}> }}
@@ -134,7 +137,10 @@ def far_dirs(ti, to):
 
 def pov_far(a):
     """pi f of the closure (fully lit slab, parallel light at theta_i, orthographic view at
-    theta_o): mean pixel / cos(theta_i), per pair of FAR_ANGLES."""
+    theta_o): mean pixel / cos(theta_i), per pair of FAR_ANGLES.  32 x 32 pixels: POV-Ray 3.7.0
+    takes one subsurface sample per pixel whatever `samples` says (16 to 3200 gave the same
+    image), its quasi-random sequence running on over the pixels, so the image mean is the
+    estimate."""
     t = a.radius if len(a.radius) == 3 else a.radius * 3
     far = []
     with tempfile.TemporaryDirectory() as tmp:
@@ -147,7 +153,7 @@ def pov_far(a):
                 pov, ppm = os.path.join(tmp, "f.pov"), os.path.join(tmp, "f.ppm")
                 with open(pov, "w") as f:
                     f.write(src)
-                res = subprocess.run(["povray", "-D", "-A", "+W8", "+H8", "+FP16", "File_Gamma=1.0", "+WT2",
+                res = subprocess.run(["povray", "-D", "-A", "+W32", "+H32", "+FP16", "File_Gamma=1.0", "+WT2",
                                       f"+I{pov}", f"+O{ppm}"], capture_output=True, text=True)
                 if res.returncode != 0 or not os.path.exists(ppm):
                     sys.exit(f"sss_profile: povray failed:\n{res.stderr[-2000:]}")
@@ -170,7 +176,7 @@ def pov_measure(a):
             occ = "" if r <= 0 else (f"disc {{ <0, {max(3 * a.height, 0.01)}, 0>, y, {r} no_image pigment {{ rgb 0 }} "
                                      "finish { diffuse 0 ambient 0 } }")
             src = POV_SCENE.format(samples=a.samples, h=a.height, occluder=occ, w=a.width, d=a.depth,
-                                   c=a.colour, t=t, ior=a.ior)
+                                   c=a.colour, t=t, ior=a.ior, ly=-1000 if a.back else 1000, lt=-a.depth if a.back else 0)
             pov, ppm = os.path.join(tmp, "p.pov"), os.path.join(tmp, "p.ppm")
             with open(pov, "w") as f:
                 f.write(src)
@@ -253,7 +259,10 @@ def _cycles_scene(a):
     sun = bpy.data.lights.new("sun", "SUN")
     sun.energy = 1.0
     sun.angle = 0.0
-    sc.collection.objects.link(bpy.data.objects.new("sun", sun))
+    sob = bpy.data.objects.new("sun", sun)
+    if a.back:                                  # shining up at the slab's bottom face
+        sob.rotation_euler = (math.pi, 0.0, 0.0)
+    sc.collection.objects.link(sob)
     bpy.ops.mesh.primitive_circle_add(vertices=256, radius=1.0, fill_type="NGON", location=(0, 0, 3 * a.height))
     occ = bpy.context.object
     omat = bpy.data.materials.new("black")
@@ -371,6 +380,8 @@ def parse(argv):
     p.add_argument("--height", type=float, default=None, help="camera height [mm] (POV-Ray 1e-4, Cycles 1e-3)")
     p.add_argument("--width", type=float, default=None, help="slab half-width [mm] (POV-Ray 500, Cycles 30)")
     p.add_argument("--depth", type=float, default=None, help="slab thickness [mm] (POV-Ray 500, Cycles 30)")
+    p.add_argument("--back", action="store_true", help="light the slab from below (its thickness --depth): "
+                   "G(0) is then the diffuse transmittance over all exit directions")
     p.add_argument("--far", action="store_true", help="also the closure's far-field pi f(theta_i, theta_o) "
                    "at FAR_ANGLES (fully lit slab, orthographic camera)")
     p.add_argument("--json", help="write the result here (default stdout)")

@@ -71,10 +71,17 @@ fi
 B --python "$imp" -- "$set" --mode general --scene box --world 1 --sun-strength 0 \
 	--samples 64 --view 90 0 --render "$tmpd/furnace.exr" >"$tmpd/furnace.log" 2>&1
 check "general mode: furnace render succeeds" test $? -eq 0
-if relerr "$set/manifest.json" general_fit.furnace_rgb "$tmpd/furnace.log" 0.01 >"$tmpd/furnace.cmp"; then
-	ok "albedo round trip within 1%: $(cat "$tmpd/furnace.cmp")"
+# Blender 4+ has no fitted mixture (its Principled BSDF is not the one the fit models): one
+# Principled BSDF whose Base Colour is calibrated per version (calibration.py: the table's nodes
+# are 0.5 % apart in noise, and interpolating between them adds up to 1 %), against the bake's own
+# furnace value, within 2 %.
+bmajor=$(sed -n 's/^import_skin.py: .* in Blender \([0-9]*\)\..*/\1/p' "$tmpd/furnace.log")
+key=general_fit.furnace_rgb tol=0.01 what="the fitted mixture"
+[ "${bmajor:-3}" -ge 4 ] && key=general_fit.furnace_bake_rgb tol=0.02 what="Blender ${bmajor}'s calibrated Principled BSDF"
+if relerr "$set/manifest.json" $key "$tmpd/furnace.log" $tol >"$tmpd/furnace.cmp"; then
+	ok "albedo round trip ($what) within $tol: $(cat "$tmpd/furnace.cmp")"
 else
-	fail "albedo round trip: $(cat "$tmpd/furnace.cmp")"
+	fail "albedo round trip ($what): $(cat "$tmpd/furnace.cmp")"
 fi
 
 # 4. The real pipeline: a small bake, `skinbake export blender`, the exact check on it, and a

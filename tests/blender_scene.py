@@ -8,6 +8,8 @@
 #   blender -b FILE.blend --python blender_scene.py -- check-keep SNAPSHOT.json
 #       everything in the snapshot is still there and unchanged (Head's material and the lamps'
 #       collections excepted); prints SKINBAKE_KEEP_OK or the differences
+#   blender -b FILE.blend --python blender_scene.py -- material-summary NAME
+#       prints SKINBAKE_VERSION and SKINBAKE_MATERIAL: material NAME's node and link counts and images
 #   blender -b FILE.blend --python blender_scene.py -- measure-lights BRDF_HELPER BAKE OUT_STEM RES SAMPLES
 #       renders the imported file (direct light only, point-sampled pixels) with normal and
 #       position passes and compares each pixel with sum over lamps of E cos_l f_r, f_r from
@@ -81,12 +83,20 @@ def head():
     return o
 
 
+def world_colour(w, rgb):
+    """The world's colour; Blender 5.0 makes new worlds with nodes (World.color unused), so the
+    Background node's too."""
+    w.color = rgb
+    if w.use_nodes and w.node_tree and "Background" in w.node_tree.nodes:
+        w.node_tree.nodes["Background"].inputs["Color"].default_value = tuple(rgb) + (1.0,)
+
+
 def make_lights(out):
     bpy.ops.wm.read_factory_settings(use_empty=True)
     sc = bpy.context.scene
     sc.render.engine = "CYCLES"
     sc.world = bpy.data.worlds.new("World")
-    sc.world.color = (0.0, 0.0, 0.0)
+    world_colour(sc.world, (0.0, 0.0, 0.0))
     head()
     camera((0.12, -0.38, 0.07), (0, 0, 0))
     add_lamp("Key", "SUN", 3.0, direction(40, -60))
@@ -120,7 +130,7 @@ def make_keep(out, snap):
     sc = bpy.context.scene
     sc.render.engine = "CYCLES"
     w = bpy.data.worlds.new("Sky")
-    w.color = (0.05, 0.06, 0.08)
+    world_colour(w, (0.05, 0.06, 0.08))
     sc.world = w
     sc["my_prop"] = 42
     head()
@@ -203,24 +213,36 @@ def measure_lights(helper, bake, stem, res, samples):
     layers = list(sc["skinbake_exact_layers"])
     vl = sc.view_layers[layers[0]]
     vl.use_pass_normal = vl.use_pass_position = True
-    nt = sc.node_tree
+    nt = sc.node_tree if hasattr(sc, "node_tree") else sc.compositing_node_group     # 5.0: a node group
     rl = nt.nodes.new("CompositorNodeRLayers")
     rl.layer = vl.name
     fo = nt.nodes.new("CompositorNodeOutputFile")
-    fo.base_path = os.path.dirname(os.path.abspath(stem))
+    directory = os.path.dirname(os.path.abspath(stem))
+    if hasattr(fo.format, "media_type"):
+        fo.format.media_type = "IMAGE"
     fo.format.file_format, fo.format.color_depth = "OPEN_EXR", "32"
-    fo.file_slots.clear()
     base = os.path.basename(stem)
-    for p in ("Normal", "Position"):
-        fo.file_slots.new(f"{base}_{p}_")
-        nt.links.new(rl.outputs[p], fo.inputs[-1])
+    if hasattr(fo, "file_slots"):      # up to 4.x: one slot per file, frame number appended
+        fo.base_path = directory
+        fo.file_slots.clear()
+        for p in ("Normal", "Position"):
+            fo.file_slots.new(f"{base}_{p}_")
+            nt.links.new(rl.outputs[p], fo.inputs[-1])
+        pass_file = {p: f"{base}_{p}_{sc.frame_current:04d}.exr" for p in ("Normal", "Position")}
+    else:                              # 5.0: items, files named FILE_NAME + item name
+        fo.directory = directory
+        fo.file_name = base + "_"
+        for p in ("Normal", "Position"):
+            fo.file_output_items.new("VECTOR", p)
+            nt.links.new(rl.outputs[p], fo.inputs[p])
+        pass_file = {p: f"{base}_{p}.exr" for p in ("Normal", "Position")}
     fmt = sc.render.image_settings
     fmt.file_format, fmt.color_depth, fmt.color_mode = "OPEN_EXR", "32", "RGB"
     sc.render.filepath = os.path.abspath(stem + ".exr")
     bpy.ops.render.render(write_still=True)
     w, h, col = read(stem + ".exr")
-    _, _, nrm = read(os.path.join(fo.base_path, f"{base}_Normal_{sc.frame_current:04d}.exr"))
-    _, _, pos = read(os.path.join(fo.base_path, f"{base}_Position_{sc.frame_current:04d}.exr"))
+    _, _, nrm = read(os.path.join(directory, pass_file["Normal"]))
+    _, _, pos = read(os.path.join(directory, pass_file["Position"]))
     cam = sc.camera.matrix_world.translation
     lamps = [o for o in sc.objects if o.type == "LIGHT" and not o.hide_render]
     on = [Vector(n).length > 0.5 for n in nrm]
@@ -293,6 +315,17 @@ args = sys.argv[sys.argv.index("--") + 1:]
 cmd = args[0]
 if cmd == "make-lights":
     make_lights(args[1])
+elif cmd == "material-summary":
+    mt = bpy.data.materials[args[1]]
+    nt = mt.node_tree
+    imgs = sorted({n.image.name for n in nt.nodes if n.type == "TEX_IMAGE" and n.image is not None})
+    bad = [n.image.name for n in nt.nodes if n.type == "TEX_IMAGE" and (n.image is None or not n.image.has_data
+                                                                        and n.image.size[0] == 0)]
+    print("SKINBAKE_VERSION", bpy.app.version_string.split()[0])
+    print("SKINBAKE_MATERIAL", f"{len(nt.nodes)}_nodes_{len(nt.links)}_links_images_{'+'.join(imgs)}"
+          + (f"_unreadable_{'+'.join(bad)}" if bad else ""))
+    for n in nt.nodes:
+        print("SKINBAKE_NODE", n.name.replace(" ", "_"), n.bl_idname)
 elif cmd == "make-keep":
     make_keep(args[1], args[2])
 elif cmd == "check-keep":

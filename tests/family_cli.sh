@@ -70,9 +70,9 @@ if command -v mpirun >/dev/null 2>&1 && [ -x "$top_builddir/skinbake-mpi" ]; the
 		for f in brdf.exr brdf_rgb.exr albedo.exr; do cmp -s "$fam/$m/$f" "$tmpd/fam2/$m/$f" || same=no; done
 	done
 	check "member tables bit-identical over 1 and 2 ranks" [ $same = yes ]
-	grep -v -e seconds -e command "$fam/family.json" > "$tmpd/j1"
-	grep -v -e seconds -e command "$tmpd/fam2/family.json" > "$tmpd/j2"
-	check "family.json identical but for times and the command" cmp "$tmpd/j1" "$tmpd/j2"
+	grep -v -e seconds -e command -e checksums "$fam/family.json" > "$tmpd/j1"
+	grep -v -e seconds -e command -e checksums "$tmpd/fam2/family.json" > "$tmpd/j2"
+	check "family.json identical but for times, the command and the checksums (of member manifests with times)" cmp "$tmpd/j1" "$tmpd/j2"
 else
 	skip "skinbake-mpi or mpirun missing (configure --with-mpi)"
 fi

@@ -108,6 +108,9 @@ fi
 kill $first 2> /dev/null
 wait $first 2> /dev/null
 rm -f slow.checkpoint	# the killed bake's, of another spec
+ln -s /dev/zero zero.checkpoint
+refused "bake --resume with /dev/zero as its checkpoint (once read without end)" \
+	"zero.checkpoint is not a regular file" bk timeout 60 $B bake $BK --out zero --resume
 check "after the first writer is gone its lock is free, its staging removed" \
 	sh -c "'$B' bake $BK --out slow && [ -z \"\$(ls -A | grep '^\.slow\.')\" ]"
 tap_done

@@ -22,6 +22,7 @@
 #include "export/pov/strategy.h"
 #include "scene/placement.h"
 #include "scene/scene.h"
+#include "scene/scene_load.h"
 #include "base/util.h"
 
 /* Lambert with albedo (0.5, 0.4, 0.3) plus a term in delta_phi, so a wrong

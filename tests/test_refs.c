@@ -115,7 +115,7 @@ static int build_stack(struct stack *st, const struct row *r, char **why)
 		int k = 0;
 		for (char *x = strtok_r(tok, ":", &s2); x && k < 5; x = strtok_r(NULL, ":", &s2))
 			v[k++] = x;
-		struct layer l;
+		struct layer l = { 0 };
 		if (k != 5 || parse_num(v[0], &l.d) || parse_num(v[1], &l.mu_a) || parse_num(v[2], &l.mu_s)
 		    || parse_num(v[3], &l.g) || parse_num(v[4], &l.n)) {
 			*why = xasprintf("bad layer '%s'", r->f[COL_LAYERS]);

@@ -10,7 +10,6 @@
 
 #include "base/check.h"
 #include "base/util.h"
-#include "bake/bakefile.h"
 #include "bake/checkpoint.h"
 #include "engine/ad_solver.h"
 #include "engine/mc.h"
@@ -255,7 +254,37 @@ const char *bake_method_choices(void)
 	return buf;
 }
 
+#define HASH(h, x) ((h) = checkpoint_hash((h), &(x), sizeof(x)))
+
+uint64_t bake_spec_identity(const struct bake_spec *s)
+{
+	uint64_t h = checkpoint_seed();
+	HASH(h, s->n_wl);
+	for (int w = 0; w < s->n_wl; w++) {
+		const struct slab *sl = &s->slab[w];
+		HASH(h, s->wl_nm[w]);
+		HASH(h, sl->n_layers);
+		HASH(h, sl->n_above);
+		HASH(h, sl->n_below);
+		for (int i = 0; i < sl->n_layers + 2; i++) {
+			const struct layer *l = &sl->layer[i];
+			HASH(h, l->d), HASH(h, l->n), HASH(h, l->mu_a), HASH(h, l->mu_s), HASH(h, l->g);
+		}
+	}
+	HASH(h, s->n_ti);
+	for (int k = 0; k < s->n_ti; k++)
+		HASH(h, s->theta_i[k]);
+	HASH(h, s->n_to), HASH(h, s->n_phi), HASH(h, s->n_r), HASH(h, s->dr);
+	HASH(h, s->opts.fresnel), HASH(h, s->opts.roulette_w), HASH(h, s->opts.roulette_chance), HASH(h, s->opts.max_steps);
+	HASH(h, s->method), HASH(h, s->ad_tol), HASH(h, s->ad_quad), HASH(h, s->radial_error), HASH(h, s->radial_photons);
+	HASH(h, s->seed), HASH(h, s->batch_photons), HASH(h, s->min_batches), HASH(h, s->target_error);
+	HASH(h, s->max_photons), HASH(h, s->nee);
+	return h;
+}
+
 static int bake_solve(const struct bake_spec *s, const struct solver_run *run, struct bake_result *r, char **cause);
+static int bake_solve_p(const struct bake_spec *s, const struct solver_problem *pp, const struct solver_run *run0,
+    struct bake_result *r, char **cause);
 
 /* With a checkpoint (bake.h): open it, run, say what it restored and
  * whether it could be written. */
@@ -273,7 +302,7 @@ int bake_run(const struct bake_spec *s, struct bake_result *r, char **cause)
 	}
 	struct checkpoint *ck = NULL;
 	if (s->checkpoint_out) {
-		ck = checkpoint_open(s->checkpoint_out, s, s->resume, run.n_ranks == 1, s->checkpoint_s, cause);
+		ck = checkpoint_open(s->checkpoint_out, bake_spec_identity(s), s->resume, run.n_ranks == 1, s->checkpoint_s, cause);
 		if (ck == NULL)
 			return -1;
 		run.ckpt = checkpoint_hooks(ck);
@@ -299,6 +328,25 @@ static int bake_solve(const struct bake_spec *s, const struct solver_run *run0, 
 		.grid = { .n_theta = s->n_to, .n_phi = s->n_phi, .n_r = s->n_r, .dr = s->dr },
 		.fresnel = s->opts.fresnel, .target_error = s->target_error,
 	};
+	double *pto = NULL, *pph = NULL;
+	if (bake_spec_points(s)) {
+		pto = xmalloc(sizeof(double) * (size_t)s->n_to);
+		pph = xmalloc(sizeof(double) * (size_t)s->n_phi);
+		bake_nodes_theta(s->n_to, pto);
+		bake_nodes_phi(s->n_phi, pph);
+		p.point_theta_o = pto;
+		p.point_phi = pph;
+	}
+	int rc = bake_solve_p(s, &p, run0, r, cause);
+	free(pto);
+	free(pph);
+	return rc;
+}
+
+static int bake_solve_p(const struct bake_spec *s, const struct solver_problem *pp, const struct solver_run *run0,
+    struct bake_result *r, char **cause)
+{
+	struct solver_problem p = *pp;
 	struct solver_run run = *run0;
 	const struct bake_method_row *m = (const struct bake_method_row *)bake_method_of(s->method);
 	if (m->solve(s, &p, &run, r, cause) != 0) {
@@ -383,36 +431,34 @@ void bake_spec_axes(struct bake_spec *s, const double *wl_nm, int n_wl, const do
 	s->n_wl = n_wl;
 	if (n_wl > 0)
 		memcpy(s->wl_nm, wl_nm, sizeof(double) * (size_t)n_wl);
-	s->n_ti = n_theta > 0 ? n_theta : nodes;
+	if (n_theta == 0 && nodes == 0 && s->n_to >= 3 && s->n_to - 1 <= BAKE_MAX_TI) {
+		double th[BAKE_MAX_TI + 1];
+		bake_nodes_theta(s->n_to, th);
+		s->n_ti = s->n_to - 1;
+		memcpy(s->theta_i, th, sizeof(double) * (size_t)s->n_ti);
+		return;
+	}
+	s->n_ti = n_theta > 0 ? n_theta : nodes > 0 ? nodes : 10;
 	for (int k = 0; k < s->n_ti; k++)
 		s->theta_i[k] = n_theta > 0 ? theta_deg[k] * M_PI / 180.0 : 0.5 * M_PI * k / s->n_ti;
 }
 
-int bake_preset_to_dir(struct bake_spec *s, const struct skin_params *p, const char *label, const char *out,
-    const char *command, struct bake_result *r, char **cause)
+void bake_nodes_theta(int n, double *theta)
 {
-	s->checkpoint_out = out;
-	memset(r, 0, sizeof *r);
-	/* Rank 0 takes the output (and its lock) before the work: a target that
-	 * is not a bake, or one another bake is writing, fails now. */
-	struct outdir od;
-	if (s->rank == 0 && outdir_begin(&od, out, &bake_outdir_kind, cause) != 0)
-		return -1;
-	if (bake_run(s, r, cause) != 0) {
-		if (s->rank == 0)
-			outdir_abort(&od);
-		return -1;
-	}
-	if (s->rank != 0)
-		return 0;	/* every rank holds the whole result; rank 0 writes it */
-	double *m = xmalloc(sizeof(double) * 3 * (size_t)s->n_wl);
-	struct bake_meta meta = { .preset = label, .ior = preset_surface_ior(p), .roughness = preset_surface_roughness(p),
-		.rgb_from_wl = m, .rgb_note = bake_rgb_weights(s, m), .command = command };
-	int rc = bake_write_files(outdir_path(&od), s, r, &meta, cause) != 0 ? -2 : 0;
-	if (rc != 0)
-		outdir_abort(&od);
-	else if (outdir_commit(&od, cause) != 0 || checkpoint_remove(out, cause) != 0)
-		rc = -2;
-	free(m);
-	return rc;
+	for (int k = 0; k < n; k++)
+		theta[k] = n == 1 ? 0.0 : 0.25 * M_PI * (1.0 - cos(k * M_PI / (n - 1)));
+	if (n > 1)
+		theta[n - 1] = 0.5 * M_PI;	/* exactly */
 }
+
+void bake_nodes_phi(int n, double *phi)
+{
+	for (int j = 0; j < n; j++)
+		phi[j] = n == 1 ? 0.0 : M_PI * j / (n - 1);
+}
+
+int bake_spec_points(const struct bake_spec *s)
+{
+	return s->method != BAKE_SOLVER_MC && !s->bin_means && s->n_to >= 3 && s->n_phi >= 2;
+}
+

@@ -10,6 +10,7 @@
 #include <sys/stat.h>
 #include <unistd.h>
 
+#include "base/lock.h"
 #include "base/util.h"
 
 static const char MAGIC[] = "skinbake checkpoint 1\n";
@@ -34,6 +35,7 @@ struct checkpoint {
 	const char *unit;	/* what a record is, for the note: "solver run" or "member" */
 	char *note, *error;
 	struct solver_ckpt hooks;
+	struct lock *lock;	/* held while this process writes the file (base/lock.h) */
 };
 
 static uint64_t fnv(uint64_t h, const void *v, size_t n)
@@ -44,7 +46,6 @@ static uint64_t fnv(uint64_t h, const void *v, size_t n)
 	return h;
 }
 #define FNV0 0xcbf29ce484222325ULL
-#define HASH(h, x) ((h) = fnv((h), &(x), sizeof(x)))
 
 char *checkpoint_path(const char *out)
 {
@@ -54,30 +55,9 @@ char *checkpoint_path(const char *out)
 	return xasprintf("%.*s.checkpoint", (int)n, out);
 }
 
-uint64_t checkpoint_identity(const struct bake_spec *s)
+uint64_t checkpoint_seed(void)
 {
-	uint64_t h = fnv(FNV0, MAGIC, sizeof MAGIC);
-	HASH(h, s->n_wl);
-	for (int w = 0; w < s->n_wl; w++) {
-		const struct slab *sl = &s->slab[w];
-		HASH(h, s->wl_nm[w]);
-		HASH(h, sl->n_layers);
-		HASH(h, sl->n_above);
-		HASH(h, sl->n_below);
-		for (int i = 0; i < sl->n_layers + 2; i++) {
-			const struct layer *l = &sl->layer[i];
-			HASH(h, l->d), HASH(h, l->n), HASH(h, l->mu_a), HASH(h, l->mu_s), HASH(h, l->g);
-		}
-	}
-	HASH(h, s->n_ti);
-	for (int k = 0; k < s->n_ti; k++)
-		HASH(h, s->theta_i[k]);
-	HASH(h, s->n_to), HASH(h, s->n_phi), HASH(h, s->n_r), HASH(h, s->dr);
-	HASH(h, s->opts.fresnel), HASH(h, s->opts.roulette_w), HASH(h, s->opts.roulette_chance), HASH(h, s->opts.max_steps);
-	HASH(h, s->method), HASH(h, s->ad_tol), HASH(h, s->ad_quad), HASH(h, s->radial_error), HASH(h, s->radial_photons);
-	HASH(h, s->seed), HASH(h, s->batch_photons), HASH(h, s->min_batches), HASH(h, s->target_error);
-	HASH(h, s->max_photons), HASH(h, s->nee);
-	return h;
+	return fnv(FNV0, MAGIC, sizeof MAGIC);
 }
 
 /* The whole file in memory; NULL and *cause. */
@@ -88,12 +68,19 @@ static unsigned char *slurp(const char *path, size_t *len, char **cause)
 		*cause = xasprintf("%s: %s", path, strerror(errno));
 		return NULL;
 	}
-	size_t cap = 1 << 16, n = 0, got;
+	/* A regular file, read up to its size: a device or FIFO in its place
+	 * (/dev/zero) would be read without end. */
+	struct stat st;
+	if (fstat(fileno(f), &st) != 0 || !S_ISREG(st.st_mode)) {
+		fclose(f);
+		*cause = xasprintf("%s is not a regular file; remove it to bake from the start", path);
+		return NULL;
+	}
+	size_t cap = (size_t)st.st_size + 1, n = 0, got;
 	unsigned char *b = xmalloc(cap);
-	while ((got = fread(b + n, 1, cap - n, f)) > 0)
-		if ((n += got) == cap)
-			b = xreallocarray(b, cap *= 2, 1);
-	int bad = ferror(f);
+	while (n < cap && (got = fread(b + n, 1, cap - n, f)) > 0)
+		n += got;
+	int bad = ferror(f) || n == cap;	/* grew while read: not a checkpoint at rest */
 	fclose(f);
 	if (bad) {
 		free(b);
@@ -273,6 +260,11 @@ static struct checkpoint *open_id(const char *out, uint64_t id, const char *unit
 	c->write = write;
 	c->every_s = every_s;
 	c->hooks = (struct solver_ckpt){ hook_restore, hook_save, c };
+	/* One writer per checkpoint: a bake still running is never resumed. */
+	if (write && (c->lock = lock_take(c->path, cause)) == NULL) {
+		checkpoint_close(c);
+		return NULL;
+	}
 	struct stat st;
 	int there = stat(c->path, &st) == 0;
 	if (there && !resume)
@@ -290,10 +282,9 @@ static struct checkpoint *open_id(const char *out, uint64_t id, const char *unit
 	return c;
 }
 
-struct checkpoint *checkpoint_open(const char *out, const struct bake_spec *s, int resume, int write, double every_s,
-    char **cause)
+struct checkpoint *checkpoint_open(const char *out, uint64_t id, int resume, int write, double every_s, char **cause)
 {
-	return open_id(out, checkpoint_identity(s), "solver run", resume, write, every_s, cause);
+	return open_id(out, id, "solver run", resume, write, every_s, cause);
 }
 
 uint64_t checkpoint_hash(uint64_t h, const void *v, size_t n)
@@ -366,6 +357,7 @@ void checkpoint_close(struct checkpoint *c)
 	free(c->tmp);
 	free(c->note);
 	free(c->error);
+	lock_release(c->lock);
 	free(c);
 }
 

@@ -25,7 +25,6 @@
 #ifndef SKINBAKE_CHECKPOINT_H
 #define SKINBAKE_CHECKPOINT_H
 #include <stdint.h>
-#include "bake/bake.h"
 #include "engine/solver.h"
 
 #define CHECKPOINT_SECONDS 5.0	/* default interval between writes [s] */
@@ -34,17 +33,19 @@ struct checkpoint;
 
 /* "OUT.checkpoint" for the output directory OUT (trailing '/' dropped); caller frees. */
 char *checkpoint_path(const char *out);
-/* The identity of a bake spec (see top). */
-uint64_t checkpoint_identity(const struct bake_spec *s);
+/* The start of every identity: the hash of the file's magic line; a bake's
+ * identity (bake_spec_identity, bake.h) goes on from it with
+ * checkpoint_hash. */
+uint64_t checkpoint_seed(void);
 
-/* Open the checkpoint of the bake s writing to out.  A checkpoint file
+/* Open the checkpoint of the bake of identity ID (bake_spec_identity)
+ * writing to out.  A checkpoint file
  * already there is an error without resume ("pass --resume or remove it"),
  * and with resume is read (an error when it is damaged or of another
  * bake); with resume and no file the bake starts from nothing.  write: 0
  * to only read (MPI ranks), 1 to write every every_s seconds (0: after
  * every step).  NULL and *cause on error. */
-struct checkpoint *checkpoint_open(const char *out, const struct bake_spec *s, int resume, int write, double every_s,
-    char **cause);
+struct checkpoint *checkpoint_open(const char *out, uint64_t id, int resume, int write, double every_s, char **cause);
 /* Checkpoints of units, for family bakes (bake/family.h): the same file
  * format, one record per finished unit (a member's packed result, in
  * member order), under an identity the caller makes with checkpoint_hash

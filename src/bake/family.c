@@ -12,6 +12,7 @@
 
 #include "base/check.h"
 #include "base/srgb.h"
+#include "base/checksum.h"
 #include "base/util.h"
 #include "io/json.h"
 #include "io/pngio.h"
@@ -271,11 +272,12 @@ static int write_swatches(const char *dir, const struct family *f, char **cause)
 
 int family_write_index(const char *dir, const struct family *f, const char *command, char **cause)
 {
-	char *path = xasprintf("%s/family.json", dir), *text = index_text(f, command);
-	int rc = outfile_write_text(path, text, cause);
+	if (write_swatches(dir, f, cause) != 0)
+		return -1;
+	char *text = index_text(f, command);
+	int rc = checksum_write_manifest(dir, "family.json", text, cause);
 	free(text);
-	free(path);
-	return rc == 0 ? write_swatches(dir, f, cause) : -1;
+	return rc;
 }
 
 static const char *const family_names[] = { "family.json", "preset.ini", "swatches.png", "m[0-9][0-9][0-9][0-9]*",

@@ -13,6 +13,7 @@
 #include <string.h>
 #include <unistd.h>
 
+#include "base/checksum.h"
 #include "base/util.h"
 #include "io/json.h"
 
@@ -289,6 +290,8 @@ struct family *family_load(const char *dir, char **cause)
 		*cause = xasprintf("%s: not a skinbake family index (corrupt JSON)", path);
 		goto fail;
 	}
+	if (checksum_verify_dir(dir, "family.json", cause) != 0)
+		goto fail;
 	if (read_head(&r, o, f) || read_spec(&r, o, f))
 		goto fail;
 	json_object *mem = get(&r, o, "", "members", json_type_array), *v;

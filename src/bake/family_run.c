@@ -424,7 +424,7 @@ static uint64_t family_identity(const struct family_plan *pl, const struct famil
 	for (int m = 0; m < f->n_members; m++) {
 		char *why = NULL;
 		struct skin_params *p = member_spec(pl, f, m, s, &why);
-		uint64_t id = p ? checkpoint_identity(s) : 0;
+		uint64_t id = p ? bake_spec_identity(s) : 0;
 		h = checkpoint_hash(h, &id, sizeof id);
 		preset_free(p);
 		free(why);

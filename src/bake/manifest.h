@@ -1,12 +1,12 @@
 /* manifest: manifest.json of a bake directory, written and read (the
- * directory's layout is in bakefile.h, which uses these).  The manifest holds
+ * directory's layout is in bakefile.h, which uses these; the types are bakedir.h).  The manifest holds
  * everything but the tables: axes, RGB weights, the specular model and its
  * stacks, the layers per wavelength, the radial profiles and subsurface
  * radii, the settings, and per entry the totals and the error. */
 #ifndef SKINBAKE_MANIFEST_H
 #define SKINBAKE_MANIFEST_H
 #include "bake/bake.h"
-#include "bake/bakefile.h"
+#include "bake/bakedir.h"
 
 #define BAKE_FORMAT_VERSION 1
 

@@ -6,16 +6,7 @@
 #include <stdarg.h>
 #include <stdio.h>
 
-#define CLI_EXIT_OK 0
-#define CLI_EXIT_FAIL 1
-#define CLI_EXIT_USAGE 2
-
-/* Print "skinbake CMD: message" to stderr; returns CLI_EXIT_USAGE.  Under
- * MPI only rank 0 prints: every rank sees the same bad input. */
-int cli_usage_error(const char *cmd, const char *fmt, ...) __attribute__((format(printf, 2, 3)));
-int cli_vusage_error(const char *cmd, const char *fmt, va_list ap) __attribute__((format(printf, 2, 0)));
-/* Print "skinbake CMD: message" to stderr; returns CLI_EXIT_FAIL. */
-int cli_fail(const char *cmd, const char *fmt, ...) __attribute__((format(printf, 2, 3)));
+#include "cli/msg.h"
 
 /* Progress bar on stderr, shown only when stderr is a terminal (and on MPI rank 0). */
 struct cli_progress {
@@ -38,14 +29,6 @@ char *cli_command_line(int argc, char **argv);
 int cli_double(const char *cmd, const char *opt, const char *s, double lo, double hi, double *out);
 int cli_long(const char *cmd, const char *opt, const char *s, long lo, long hi, long *out);
 
-/* Process layout for bakes split over MPI ranks: {0, 1, NULL} in the plain
- * build; skinbake-mpi fills it after MPI_Init.  Only rank 0 prints and writes. */
-struct cli_parallel {
-	int rank;				/* this process */
-	int size;				/* processes */
-	void (*allreduce)(double *v, long n);	/* in-place sum over ranks */
-};
-extern struct cli_parallel cli_par;
 
 /* Subcommands (each in its own cmd_*.c). */
 int cmd_simulate(int argc, char **argv);
@@ -57,6 +40,7 @@ int cmd_texture(int argc, char **argv);
 int cmd_export(int argc, char **argv);
 int cmd_export_pov(int argc, char **argv);
 int cmd_export_blender(int argc, char **argv);
+int cmd_export_mitsuba(int argc, char **argv);
 int cmd_maps(int argc, char **argv);
 int cmd_verify(int argc, char **argv);
 int cmd_scene(int argc, char **argv);

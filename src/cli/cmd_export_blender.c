@@ -8,6 +8,7 @@
 
 #include "export/blender/blender.h"
 #include "export/blender/blender_family.h"
+#include "export/blender/blender_sss.h"
 #include "maps/mapset.h"
 #include "export/source.h"
 #include "cli/cli.h"
@@ -16,8 +17,10 @@
 
 static const char *CMD = "export blender";
 
-/* After the options: the bake (and textures) as a BRDF source, the image set. */
-static int run(const char *bake_dir, const char *tex_dir, const char *out, const struct blender_options *o)
+/* After the options: the bake (and textures) as a BRDF source, the image set;
+ * translucent: Cycles' subsurface node fitted to Rd(r), the table the rest. */
+static int run(const char *bake_dir, const char *tex_dir, const char *out, const struct blender_options *o,
+    int translucent)
 {
 	char *cause = NULL;
 	struct brdf_source *src = brdf_source_open(bake_dir, &cause);
@@ -27,12 +30,20 @@ static int run(const char *bake_dir, const char *tex_dir, const char *out, const
 		return rc;
 	}
 	struct blender_set *s = NULL;
+	struct blender_sss w;
 	int rc = CLI_EXIT_OK;
 	if (blender_check(src, o, &cause) != 0 || (tex_dir && brdf_source_add_textures(src, tex_dir, &cause) != 0) ||
-	    (s = blender_prepare(src, o, &cause)) == NULL)
+	    (translucent && blender_sss_wrap(src, &w, &cause) != 0) || (s = blender_prepare(src, o, &cause)) == NULL)
 		rc = cli_usage_error(CMD, "%s", cause);
-	else if ((rc = blender_write(s, out, &cause)) != 0)
-		rc = rc == -1 ? cli_usage_error(CMD, "%s", cause) : cli_fail(CMD, "%s", cause);
+	else {
+		if (translucent) {
+			char *j = blender_sss_json(&w);
+			blender_set_add_section(s, "translucent", j);
+			free(j);
+		}
+		if ((rc = blender_write(s, out, &cause)) != 0)
+			rc = rc == -1 ? cli_usage_error(CMD, "%s", cause) : cli_fail(CMD, "%s", cause);
+	}
 	free(cause);
 	blender_set_free(s);
 	brdf_source_free(src);
@@ -62,7 +73,7 @@ int cmd_export_blender(int argc, char **argv)
 	struct blender_options o;
 	const char *bake_dir = NULL, *out, *tex_dir = NULL, *fam_dir = NULL, *maps_dir = NULL;
 	double se, sa, ve, va;
-	int sub;
+	int sub, translucent = 0;
 	blender_options_default(&o);
 	const struct opt opts[] = {
 		{ "bake", OPT_PATH_IN, &bake_dir, "DIR", .flags = OPT_REQUIRED | OPT_DIR, .excl = "family",
@@ -92,6 +103,8 @@ int cmd_export_blender(int argc, char **argv)
 		  .help = "delta_phi nodes over [0, 180] degrees," },
 		{ "map-size", OPT_INT, &o.map_size, "PX", "16", .lo = BLENDER_MAP_MIN, .hi = BLENDER_MAP_MAX, .unit = "px",
 		  .help = "side of albedo.exr, roughness.png and the flat detail maps," },
+		{ "mode", OPT_ENUM, &translucent, .choices = "exact|translucent", .def = "exact", .excl = "family",
+		  .help = "translucent: Cycles' subsurface fitted to Rd(r) beside the rest of the table (docs/translucency.md)" },
 		OPT_END
 	};
 	const struct opt_cmd cmd = { "export blender", "--bake DIR --out DIR [options]",
@@ -117,5 +130,5 @@ int cmd_export_blender(int argc, char **argv)
 		return CLI_EXIT_USAGE;
 	if (fam_dir)
 		return run_family(fam_dir, maps_dir, tex_dir, out, sub, &o);
-	return run(bake_dir, tex_dir, out, &o);
+	return run(bake_dir, tex_dir, out, &o, translucent);
 }

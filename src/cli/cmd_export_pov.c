@@ -118,15 +118,15 @@ int cmd_export_pov(int argc, char **argv)
 		  "a family (bake --vary) blended per texel by the maps, one light (docs/maps.md)" },
 		{ "maps", OPT_PATH_IN, &po.maps, "DIR", .flags = OPT_DIR, .help = "with --family: `skinbake maps` output" },
 		{ "plan", OPT_FLAG, &po.plan, .help = "print the incidence angles the scene needs from a bake, write nothing" },
+		{ "mode", OPT_ENUM, &po.translucent, .choices = "exact|translucent", .def = "exact", .help = "docs/translucency.md" },
+		{ "sss-samples", OPT_INT, &po.sss_samples, "N", "64", .lo = 1, .hi = 100000, .help = "translucent: samples" },
 		OPT_END
 	};
 	const struct opt_cmd cmd = { "export pov",
 		"--bake [SKIN=]DIR [--textures [SKIN=]DIR] (--scene FILE | --light SPEC ... --camera SPEC) --out DIR",
-		"Write POV-Ray 3.7 SDL that evaluates a baked skin BRDF as 'lit tables' (pigment = pi*f_r\n"
-		"over slope/aoi blend maps, finish diffuse 1 brilliance 1): shadows, area lights and bump\n"
-		"maps stay right.  --family/--maps blend a family's tables by maps.  See docs/pov.md.", opts,
-		"Renders are linear (assumed_gamma 1): a white Lambertian under a light of colour 1\n"
-		"at normal incidence shows 1, so pixel = pi * radiance.", 0, 0 };
+		"Write POV-Ray 3.7 SDL that evaluates a baked skin BRDF as 'lit tables' (pigment = pi*f_r over slope/aoi\n"
+		"blend maps, finish diffuse 1): shadows, area lights and bumps stay right.  See docs/pov.md.", opts,
+		"Renders are linear (assumed_gamma 1): pixel = pi * radiance.", 0, 0 };
 	struct opt_ctx x;
 	if (opt_parse(&x, &cmd, argc, argv) != 0)
 		return x.exit;

@@ -12,6 +12,7 @@
 #include "cli/opt.h"
 #include "io/json.h"
 #include "scene/scene.h"
+#include "scene/scene_load.h"
 #include "scene/scene_json.h"
 
 int cmd_scene(int argc, char **argv)

@@ -9,7 +9,7 @@
 #include <stdlib.h>
 #include <string.h>
 
-#include "cli/cli.h"
+#include "cli/msg.h"
 #include "base/util.h"
 
 #define KEYS_MAX 32

@@ -7,7 +7,7 @@
 #include <stdlib.h>
 #include <string.h>
 
-#include "cli/cli.h"
+#include "cli/msg.h"
 #include "base/util.h"
 
 #define HELP_COL 25	/* column of the option texts */

@@ -1,5 +1,7 @@
-/* ad_layer: reflection and transmission of one homogeneous layer for one
- * azimuthal Fourier order, by a thin starting layer and doubling.
+/* ad_layer: the reflection and transmission matrices R and T of one
+ * homogeneous layer (van de Hulst 1980; Prahl 1995) for one azimuthal
+ * Fourier order, by a thin starting layer and doubling (the doubling
+ * method: a layer of thickness 2D from two of thickness D).
  *
  * Representation (shared by the whole solver): a vector holds, per node i,
  * the Fourier component of the flux carried by the node's cell divided by
@@ -14,7 +16,8 @@
  * Transfer 16, 1976; Prahl 1995): the discrete-ordinate equations
  * integrated over a layer of optical thickness D by the trapezoidal rule,
  *   T + R = 2 (I + D/2 (a - b))^-1 - I,  T - R = 2 (I + D/2 (a + b))^-1 - I,
- * with a = M^-1 - omega Q H++ Q, b = omega Q H+- Q (Q = sqrt(w/mu)).  The
+ * with a = M^-1 - omega Q H++ Q, b = omega Q H+- Q (Q = sqrt(w/mu); H++,
+ * H+- the phase redistribution matrices of ad_phase.h).  The
  * collimated beams get the same rule with the same Pade attenuation
  * (1 - D/2mu)/(1 + D/2mu), so a beam along a node direction gives exactly
  * that node's column (reciprocity between beams holds to rounding).

@@ -1,5 +1,7 @@
-/* Fourier components of the Henyey-Greenstein phase function in azimuth,
- * from its Legendre moments g^l, with delta-M where the series is cut. */
+/* The phase redistribution function (matrix at the nodes: h++ and h+- of
+ * the adding-doubling literature) of the Henyey-Greenstein phase function:
+ * its Fourier components in azimuth, from its Legendre moments g^l, with
+ * delta-M where the series is cut. */
 #include "config.h"
 #include "engine/ad_phase.h"
 

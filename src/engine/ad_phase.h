@@ -1,5 +1,7 @@
-/* ad_phase: the azimuthal Fourier components of the Henyey-Greenstein phase
- * function for the adding-doubling solver,
+/* ad_phase: the phase redistribution function of the adding-doubling
+ * literature (van de Hulst 1980; Prahl 1995, "redistribution function"
+ * h(nu, nu')) for the Henyey-Greenstein phase function: its azimuthal
+ * Fourier components,
  *   h_m(x, y) = integral over psi in [0, 2 pi) of p(x y + sqrt(1-x^2) sqrt(1-y^2) cos psi) cos(m psi)
  *             = sum_{l >= m} (2l + 1)/2 chi_l L_l^m(x) L_l^m(y),
  * from the addition theorem of Legendre functions with HG's moments
@@ -29,7 +31,9 @@ struct ad_hg {
 void ad_hg_init(struct ad_hg *h, double g, int l_max);
 void ad_hg_free(struct ad_hg *h);
 
-/* h_m(x_i, x_j) into Hpp and h_m(x_i, -x_j) into Hpm for rows i < nr and
+/* The phase redistribution matrices of order m at the quadrature nodes
+ * (Prahl's h++ and h+-: both directions in the same hemisphere, and in
+ * opposite ones): h_m(x_i, x_j) into Hpp and h_m(x_i, -x_j) into Hpm for rows i < nr and
  * columns j < np (column-major, leading dimension nr); x[0 .. np-1] in
  * [0, 1], rows are the first nr points.  work holds 2 np L + 2 L doubles. */
 void ad_hg_fourier(const struct ad_hg *h, int m, const double *x, int nr, int np, double *Hpp, double *Hpm,

@@ -1,6 +1,7 @@
 /* ad_stack: the layer stack for one azimuthal Fourier order: smooth Fresnel
- * boundaries (diagonal in the nodes), adding of layers and boundaries from
- * the bottom up, and for order 0 the sweep down that gives every flux.
+ * boundaries (diagonal in the nodes), the adding method (R and T of two
+ * elements combined into those of both: adding-doubling's second half,
+ * ad_layer.h the first) of layers and boundaries from the bottom up, and for order 0 the sweep down that gives every flux.
  *
  * The stack is B0 L1 B1 ... LK BK: K turbid layers and K + 1 boundaries.
  * A boundary is everything between two turbid media (or an ambient and a

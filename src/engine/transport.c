@@ -22,6 +22,7 @@
 
 #include "engine/microfacet.h"
 #include "engine/phase.h"
+#include "base/check.h"
 #include "base/rng.h"
 
 void transport_opts_default(struct transport_opts *o)
@@ -302,6 +303,23 @@ static inline int roulette(struct photon *ph, double w_th, double chance, double
 	return 0;
 }
 
+#ifdef SKINBAKE_DEBUG
+/* Debug builds: all the weight the tally has booked, and whether a
+ * direction is a unit vector. */
+static double booked(const struct slab *s, const struct tally *t)
+{
+	double sum = t->rd + t->tt + t->lost;
+	for (int i = 0; i <= s->n_layers + 1; i++)
+		sum += t->a[i];
+	return sum;
+}
+
+static int unit(const struct photon *ph)
+{
+	return fabs(ph->ux * ph->ux + ph->uy * ph->uy + ph->uz * ph->uz - 1.0) < 1e-9;
+}
+#endif
+
 void transport_run(const struct slab *s, const struct launch *ln, const struct transport_opts *o,
     const struct tally_grid *grid, struct nee *nee, uint64_t seed, uint32_t stream, uint64_t first,
     uint64_t count, struct tally *t)
@@ -318,11 +336,17 @@ void transport_run(const struct slab *s, const struct launch *ln, const struct t
 		t->tt_unscat += ln->w0 * (double)count;
 		return;
 	}
+	/* Weights stay in [0, 1], or up to w_th / chance after roulette. */
+	const double w_max = fmax(1.0, w_th * inv_chance);
+	(void)w_max;
 	for (uint64_t p = first; p < first + count; p++) {
 		struct rng r;
 		rng_seed(&r, seed, stream, p);
 		struct photon ph;
 		launch(&ph, ln);
+#ifdef SKINBAKE_DEBUG
+		const double booked0 = booked(s, t);
+#endif
 		if (nee)
 			nee_prepare(nee, s, o->fresnel, rng_uniform(&r));
 		for (;;) {
@@ -330,6 +354,7 @@ void transport_run(const struct slab *s, const struct launch *ln, const struct t
 			if (!hop(&ph, s, &r, &mu_t, &dz)) {
 				if (boundary(&ph, s, o, grid, nee, mu_t, dz, &r, t))
 					break;
+				DCHECK(unit(&ph));
 				continue;
 			}
 			if (drop(&ph, s, t))
@@ -340,8 +365,12 @@ void transport_run(const struct slab *s, const struct launch *ln, const struct t
 				ph.direct = 1;
 			}
 			spin(&ph, &hg[ph.l], &r, t);
+			DCHECK(unit(&ph));
 			if (roulette(&ph, w_th, chance, inv_chance, &r, t) || guard(&ph, o, t))
 				break;
+			DCHECK(ph.w >= 0.0 && ph.w <= w_max);
 		}
+		/* Every photon's launch weight ends in a tally (energy booked). */
+		DCHECK(fabs(booked(s, t) - booked0 - ln->w0) <= 1e-9 * (1.0 + fabs(booked0)));
 	}
 }

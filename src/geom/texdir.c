@@ -10,6 +10,7 @@
 #include <string.h>
 
 #include "base/check.h"
+#include "base/checksum.h"
 #include "base/outdir.h"
 #include "base/srgb.h"
 #include "base/util.h"
@@ -320,16 +321,9 @@ static int write_manifest(const struct outputs *o, const struct relief *r, struc
 		json_object_array_add(fl, json_object_new_string(files[i]));
 	json_object_object_add(m, "files", fl);
 
-	char *path = path_in(o, "manifest.json");
-	struct outfile of;
-	int rc = outfile_open(&of, path, cause);
-	if (rc == 0) {
-		char *text = json_text(m, JSON_PRETTY);
-		fprintf(of.fp, "%s\n", text);
-		free(text);
-		rc = outfile_commit(&of, cause);
-	}
-	free(path);
+	char *text = json_text(m, JSON_PRETTY);
+	int rc = checksum_write_manifest(o->dir, "manifest.json", text, cause);
+	free(text);
 	json_object_put(m);
 	return rc;
 }
@@ -582,7 +576,9 @@ struct texdir *texdir_load(const char *dir, int with_normal, char **cause)
 	struct texdir *t = xcalloc(1, sizeof *t);
 	t->dir = xstrdup(dir);
 	char *hp = xasprintf("%s/height.png", dir), *np = xasprintf("%s/normal.png", dir);
-	int rc = read_height(hp, t, cause);
+	int rc = checksum_verify_dir(dir, "manifest.json", cause);
+	if (rc == 0)
+		rc = read_height(hp, t, cause);
 	if (rc == 0 && with_normal)
 		rc = read_normal(np, hp, t, cause);
 	if (rc == 0)

@@ -12,6 +12,7 @@
 #include <unistd.h>
 
 #include "base/outdir.h"
+#include "base/checksum.h"
 #include "base/util.h"
 #include "io/json.h"
 #include "maps/image.h"
@@ -224,8 +225,8 @@ static int write_all(const char *stage, const struct mapset *m, char **cause)
 		if (rc)
 			return -1;
 	}
-	char *path = xasprintf("%s/maps.json", stage), *text = index_text(m);
-	int rc = outfile_write_text(path, text, cause);
+	char *path = NULL, *text = index_text(m);
+	int rc = checksum_write_manifest(stage, "maps.json", text, cause);
 	free(text);
 	free(path);
 	return rc;
@@ -353,6 +354,8 @@ struct mapset *mapset_read(const char *dir, char **cause)
 		*cause = xasprintf("%s: not a skinbake maps index (corrupt JSON)", path);
 		goto fail;
 	}
+	if (checksum_verify_dir(dir, "maps.json", cause) != 0)
+		goto fail;
 	if ((s = jstr(o, "format")) == NULL || strcmp(s, "skinbake-maps") != 0) {
 		*cause = xasprintf("%s: field format = '%s', expected 'skinbake-maps'", path, s ? s : "(missing)");
 		goto fail;

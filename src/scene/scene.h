@@ -1,6 +1,7 @@
-/* scene: the small INI scene format of skinbake's POV-Ray exporter
- * (camera, lights, skins, objects), parsed through libinih and validated.
- * The format is documented in scenes/README.md.  Lengths are scene units
+/* scene: the renderer-neutral scene model (camera, lights, skins,
+ * objects), read from scene files by scene_load.h and written as
+ * scene.json by scene_json.h; POV-Ray-only settings (antialias, the light
+ * strategy) ride along.  The file format is documented in scenes/README.md.  Lengths are scene units
  * (one unit = unit_mm millimetres), angles radians once parsed (the file
  * says degrees), colours linear RGB. */
 #ifndef SKINBAKE_SCENE_H
@@ -85,9 +86,6 @@ struct scene {
 	struct scene_object objects[SCENE_MAX_OBJECTS];
 };
 
-/* Parse and validate PATH; NULL with *cause ("FILE:LINE: ..." for syntax,
- * unknown sections/keys and bad values) on failure.  Caller frees. */
-struct scene *scene_load(const char *path, char **cause);
 void scene_free(struct scene *s);
 /* A scene without a file: the lights and camera of PARTS (given on a
  * command line; PARTS owns no strings), 320x240 px, unit_mm UNIT_MM (10

@@ -138,13 +138,15 @@ static const char *base_name(const char *path)
 	return s ? s + 1 : path;
 }
 
+static struct skin_params *preset_load_base(const char *name, int depth, char **cause);
+
 /* Parse text; builtin >= 0 names a built-in preset (its name and summary
  * are the defaults for name and description). */
 static struct skin_params *load_text(const char *text, const char *origin, int builtin, int depth,
     char **cause)
 {
 	struct skin_params *p = xcalloc(1, sizeof *p);
-	struct preset_ctx c = { .origin = origin, .p = p, .depth = depth };
+	struct preset_ctx c = { .origin = origin, .p = p, .depth = depth, .load_base = preset_load_base };
 	preset_apply_defaults(p);
 	c.ov_seen = xcalloc(1, 1);
 	if (parse_text(&c, text) != 0) {
@@ -198,7 +200,7 @@ static struct skin_params *load_text(const char *text, const char *origin, int b
 	return p;
 }
 
-struct skin_params *preset_load_base(const char *name, int depth, char **cause)
+static struct skin_params *preset_load_base(const char *name, int depth, char **cause)
 {
 	int i = preset_find(name);
 	if (i < 0) {
@@ -377,4 +379,12 @@ int preset_get_number(const struct skin_params *p, const char *key, double *v)
 	const char *base = ki.layer < 0 ? (const char *)p : (const char *)&p->layer[ki.layer];
 	*v = *(const double *)(base + ki.off);
 	return 0;
+}
+
+int preset_parse_wavelengths(const char *s, double *wl, char **cause)
+{
+	int n = 0;
+	if (preset_wavelengths_parse(s, wl, &n, cause) != 0)
+		return -1;
+	return n;
 }

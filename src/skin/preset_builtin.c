@@ -76,8 +76,8 @@
 	"dermis.mus = 23      ; Table 2 as printed\n"
 
 /* The project's reference skin stack (`paper` before the paper's tables were
- * available; tests and benchmarks that compare with ../shared/refs use it):
- * - 550 nm: ../shared/refs AD_skin3 (epidermis albedo 370/420, optical
+ * available; tests and benchmarks that compare with tests/data/public_refs.tsv use it):
+ * - 550 nm: tests/data/public_refs.tsv AD_skin3 (epidermis albedo 370/420, optical
  *   thickness 4.2; dermis albedo 370/377, optical thickness 94.25; g 0.8,
  *   n 1.4; sebum n 1.5).
  * - 470 and 656 nm: the 550 nm values carried to those wavelengths with this
@@ -199,7 +199,8 @@ const struct builtin_preset builtin_presets[] = {
 	  "[skin]\nbase = paper\n[sebum]\nthickness = 0   ; no sebum film (the paper's Figure 6(a))\n" },
 	{ "paper-literal", "Li & Ng Tables 1-2 with the scattering row read literally as mu_s", PAPER_LITERAL_INI },
 	{ "curet39", "fitted to CUReT sample 39 (incidence 11.25 and 33.75 deg): 5 um sebum, GGX 0.47, blood 7 %", CURET39_INI },
-	{ "refstack", "the reference skin stack of ../shared/refs at 550 nm (paper before issue 16)", REFSTACK_INI },
+	{ "refstack", "the reference skin stack (tests/data/public_refs.tsv, AD_skin3) at 550 nm "
+	  "(paper before issue 16)", REFSTACK_INI },
 	{ "very-fair-oily", "Fitzpatrick I, very light (ITA > 55), 5 um sebum film", PHYS_INI("0.0015", "0.5", "0.02") },
 	{ "very-fair-dry", "Fitzpatrick I, very light (ITA > 55), no sebum", DRY_INI("very-fair-oily") },
 	{ "fair-oily", "Fitzpatrick II, light (ITA 41..55), 5 um sebum film", PHYS_INI("0.011", "0.6", "0.02") },

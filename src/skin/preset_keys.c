@@ -10,7 +10,6 @@
 #include <string.h>
 
 #include "base/util.h"
-#include "skin/preset.h"
 #include "skin/spectra.h"
 #define NONE (-1)
 #define LOFF(f) offsetof(struct skin_layer_params, f)
@@ -342,7 +341,7 @@ int preset_key_set(struct preset_ctx *c, int ki, const char *v)
 			return -1;
 		}
 		char *cause = NULL;
-		struct skin_params *b = preset_load_base(v, c->depth + 1, &cause);
+		struct skin_params *b = c->load_base(v, c->depth + 1, &cause);
 		if (b == NULL) {
 			preset_ctx_err(c, "skin.base = %s: %s", v, cause);
 			free(cause);
@@ -465,12 +464,6 @@ void preset_apply_defaults(struct skin_params *p)
 			fatalx("preset defaults: %s", c.err);
 	}
 	free(c.ov_seen);
-}
-
-int preset_parse_wavelengths(const char *s, double *wl, char **cause)
-{
-	int n = 0;
-	return preset_wavelengths_parse(s, wl, &n, cause) == 0 ? n : -1;
 }
 
 void preset_key_info(int i, struct preset_key_info *out)

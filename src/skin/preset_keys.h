@@ -21,6 +21,9 @@ struct preset_ctx {
 	int err_line;
 	struct skin_params *p;
 	int depth;		/* base nesting */
+	/* Built-in preset NAME as the base of this one, DEPTH levels down (the
+	 * loader, preset.c, passes itself: the keys never call up into it). */
+	struct skin_params *(*load_base)(const char *name, int depth, char **cause);
 	int n_calls;		/* handler calls so far */
 	int name_set, desc_set, wl_set;
 	unsigned char seen[PRESET_MAX_KEYS];
@@ -96,7 +99,4 @@ void preset_apply_defaults(struct skin_params *p);
 void preset_free_contents(struct skin_params *p);
 /* "400:700:10, 720" -> ascending list in [380, 780] nm; -1 and *why. */
 int preset_wavelengths_parse(const char *v, double *wl, int *n, char **why);
-
-/* In preset.c: built-in preset NAME as the base of another, depth levels down. */
-struct skin_params *preset_load_base(const char *name, int depth, char **cause);
 #endif

@@ -6,6 +6,7 @@
 
 #include "scene/placement.h"
 #include "scene/scene.h"
+#include "scene/scene_load.h"
 
 int LLVMFuzzerTestOneInput(const uint8_t *data, size_t size)
 {

@@ -12,6 +12,18 @@ MEASURED = {
         "k0": (0.995, 0.991, 0.983, 0.981, 0.987),   # the random-walk albedo inversion runs 0.5-2 % low
         "k_per_roughness": 0.0607,
     },
+    (4, 5): {            # 4.x rebuilt the Principled BSDF: a Lambert-like exit, no retro-reflection term
+        "measured_with": "Blender 4.5.15 LTS (bpy), Cycles CPU, 64 px, 256 spp (scripts/blender-calibrate.py)",
+        "albedo": (0.05, 0.15, 0.3, 0.6, 0.8, 0.95),
+        "k0": (0.7701, 0.7947, 0.8328, 0.907, 0.9628, 0.9444),
+        "k_per_roughness": 0.0,       # measured -0.0001
+    },
+    (5, 0): {
+        "measured_with": "Blender 5.0.1 (bpy), Cycles CPU, 64 px, 256 spp (scripts/blender-calibrate.py)",
+        "albedo": (0.05, 0.15, 0.3, 0.6, 0.8, 0.95),
+        "k0": (0.7692, 0.7954, 0.8323, 0.9083, 0.9627, 0.9447),
+        "k_per_roughness": 0.0,       # measured -0.0000
+    },
 }
 
 
@@ -25,14 +37,12 @@ def _interp(xs, ys, x):
 
 
 def measurement(version=None):
-    """The constants for VERSION (default: this Blender): the 3.4 measurement serves every 3.x;
+    """The constants for VERSION (default: this Blender): its own measurement, else the newest
+    one of the same major version not newer than it (the 3.4 measurement serves every 3.x);
     None where nothing was measured."""
     v = tuple((version or bpy.app.version)[:2])
-    if v in MEASURED:
-        return MEASURED[v]
-    if v[0] == 3:
-        return MEASURED[(3, 4)]
-    return None
+    same = [k for k in MEASURED if k[0] == v[0] and k <= v] or [k for k in MEASURED if k[0] == v[0]]
+    return MEASURED[max(same)] if same else None
 
 
 def albedo_factor(albedo, roughness):
@@ -42,7 +52,15 @@ def albedo_factor(albedo, roughness):
     if c is None:
         return [1.0] * len(albedo)
     r = min(max(roughness, 0.0), 1.0)
-    return [_interp(c["albedo"], c["k0"], a) + c["k_per_roughness"] * r for a in albedo]
+    if bpy.app.version < (4, 0, 0):        # k at the wanted albedo (k varies by 1.5 % in 3.4)
+        return [_interp(c["albedo"], c["k0"], a) + c["k_per_roughness"] * r for a in albedo]
+    out = []
+    for a in albedo:                       # k at the Base Colour b = a / k that renders a
+        k = 1.0
+        for _ in range(30):
+            k = _interp(c["albedo"], c["k0"], a / k) + c["k_per_roughness"] * r
+        out.append(k)
+    return out
 
 
 def sss_albedo_factor(albedo):

@@ -9,7 +9,7 @@ from .common import SkinbakeError, say
 from .imageset import read_manifest
 from .importer import import_set
 from .objects import find_objects
-from .scene import build_scene, render
+from .scene import build_scene, engine_id, render
 from .schema import VERSION
 
 
@@ -56,7 +56,7 @@ def main(argv):
             raise SkinbakeError(f"--{k} = {v} is out of range [1, 16384]")
     d = a.dir[:-len("manifest.json")] if a.dir.endswith("manifest.json") else a.dir
     m = read_manifest(d or ".")
-    say(f"{VERSION}: {m['_dir']} (format {m['format_version']}, "
+    say(f"{VERSION} in Blender {bpy.app.version_string.split()[0]}: {m['_dir']} (format {m['format_version']}, "
         f"{'flat' if m['detail']['flat'] else 'textured'} detail)")
     have_file = bool(bpy.data.filepath)
     kind = a.scene or ("sphere" if (a.render or a.save) and not have_file and not a.objects else "none")
@@ -74,14 +74,14 @@ def main(argv):
         obs = obs or [obj]
     else:
         if a.engine:
-            scene.render.engine = a.engine
+            scene.render.engine = engine_id(a.engine)
         if a.res:
             scene.render.resolution_x = scene.render.resolution_y = a.res
             scene.render.resolution_percentage = 100
         if a.samples:
             scene.cycles.samples = scene.eevee.taa_render_samples = a.samples
     import_set(m, scene, obs, a.mode, a.no_detail, a.no_specular, not a.no_calibration, a.uv_size,
-               a.generate_uvs, a.engine or scene.render.engine)
+               a.generate_uvs, engine_id(a.engine) if a.engine else scene.render.engine)
     if a.save:
         path = os.path.abspath(a.save)
         bpy.ops.wm.save_as_mainfile(filepath=path)

@@ -38,6 +38,9 @@ def _general_principled(tr, m, nrm, unit_scale, no_specular, calibrate, area_mea
         tr.link(family_radius(tr, m, uv.outputs["UV"], unit_scale, (-600, 200)), bsdf.inputs["Subsurface Radius"])
     n = float(m["ior"])
     bsdf.inputs["IOR"].default_value = n
+    # Where the export-time fit found the bake's surface reflection negligible, leave it out too.
+    if isinstance(m.get("general_fit"), dict) and not m["general_fit"].get("specular", True):
+        no_specular = True
     spec = sock(bsdf.inputs, "Specular")                           # 3.x: 0.5 <-> F0 = 0.04
     if spec is not None:
         spec.default_value = 0.0 if no_specular else ((n - 1) / (n + 1)) ** 2 / 0.08

@@ -7,6 +7,7 @@ import bpy
 
 from .common import PREFIX, VL_DIR, VL_EXACT, VL_POINT, VL_POS, SkinbakeError, say
 from .compositor import compositor_sum
+from .scene import is_eevee
 
 
 EXACT_TYPES = ("SUN", "POINT", "SPOT")
@@ -92,7 +93,7 @@ def setup_exact_layers(scene, source=None, engine=None):
     exact = [o for o in lamps if o.data.type in EXACT_TYPES]
     areas = [o for o in lamps if o.data.type not in EXACT_TYPES]
     lit_world = not world_is_dark(scene.world)
-    if engine == "BLENDER_EEVEE" and lit_world and exact:
+    if is_eevee(engine) and lit_world and exact:
         raise SkinbakeError("exact mode in EEVEE needs a black world: EEVEE cannot switch the world off "
                             "in the per-lamp view layers, so its light would be counted once per lamp "
                             "(render with Cycles, or set the world colour to black)")

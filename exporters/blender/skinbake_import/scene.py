@@ -26,10 +26,21 @@ def _direction(elev_deg, azim_deg):
     return (math.cos(e) * math.cos(a), math.cos(e) * math.sin(a), math.sin(e))
 
 
+def engine_id(name):
+    """The identifier this Blender gives engine NAME: EEVEE is BLENDER_EEVEE_NEXT in 4.2-4.5."""
+    if name == "BLENDER_EEVEE" and (4, 2, 0) <= bpy.app.version < (5, 0, 0):
+        return "BLENDER_EEVEE_NEXT"
+    return name
+
+
+def is_eevee(engine):
+    return engine in ("BLENDER_EEVEE", "BLENDER_EEVEE_NEXT")
+
+
 def render_settings(scene, res=None, samples=None, engine=None):
     """Cycles CPU (or EEVEE), fixed seed, denoiser off, Standard view transform."""
     if engine:
-        scene.render.engine = engine
+        scene.render.engine = engine_id(engine)
     cy = scene.cycles
     cy.device = "CPU"
     if samples:

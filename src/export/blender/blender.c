@@ -6,6 +6,7 @@
 #include "config.h"
 
 #include "export/blender/blender.h"
+#include "export/blender/blender_detail.h"
 #include "export/blender/blender_fit.h"
 
 #include <errno.h>
@@ -20,6 +21,7 @@
 #include "io/pngio.h"
 #include "geom/texdir.h"
 #include "base/check.h"
+#include "base/checksum.h"
 #include "base/util.h"
 
 void blender_options_default(struct blender_options *o)
@@ -71,47 +73,17 @@ float *blender_lut(const struct brdf_source *m, int n_cos, int n_phi)
 	return lut;
 }
 
-/* Bilinear in one tile at continuous column x and row-from-top y. */
-static double tile_bilinear(const float *p, int n_cos, size_t w, int k, double x, double y)
-{
-	int x0 = (int)floor(x), y0 = (int)floor(y);
-	if (x0 > n_cos - 2)
-		x0 = n_cos - 2;
-	if (y0 > n_cos - 2)
-		y0 = n_cos - 2;
-	double tx = x - x0, ty = y - y0;
-	size_t base = (size_t)k * (size_t)n_cos;
-	double a = p[(size_t)y0 * w + base + (size_t)x0], b = p[(size_t)y0 * w + base + (size_t)x0 + 1];
-	double c = p[(size_t)(y0 + 1) * w + base + (size_t)x0], d = p[(size_t)(y0 + 1) * w + base + (size_t)x0 + 1];
-	return (1 - ty) * ((1 - tx) * a + tx * b) + ty * ((1 - tx) * c + tx * d);
-}
-
-void blender_lut_sample(const float *lut, int n_cos, int n_phi, double cos_l, double cos_v, double dphi,
-    double rgb[3])
-{
-	size_t w = (size_t)n_phi * (size_t)n_cos, plane = w * (size_t)n_cos;
-	double x = clamp(cos_v, 0.0, 1.0) * (n_cos - 1);
-	double y = (1.0 - clamp(cos_l, 0.0, 1.0)) * (n_cos - 1);
-	double s = clamp(dphi, 0.0, M_PI) / M_PI * (n_phi - 1);
-	int k = (int)floor(s);
-	if (k > n_phi - 2)
-		k = n_phi - 2;
-	double t = s - k;
-	for (int c = 0; c < 3; c++) {
-		const float *p = lut + (size_t)c * plane;
-		rgb[c] = (1 - t) * tile_bilinear(p, n_cos, w, k, x, y) + t * tile_bilinear(p, n_cos, w, k + 1, x, y);
-	}
-}
-
-/* a(theta) of channel c, linear between nodes, clamped at the ends. */
+/* a(theta) of channel c, linear between nodes, held below the first, and
+ * past the last linear to 0 at 90 deg (nothing enters a smooth surface at
+ * grazing; a bake's albedo curve was held there before issue 26). */
 static double albedo_at(const struct brdf_source *m, int c, double theta)
 {
 	const double *t = m->theta_albedo, *a = m->albedo_rgb + (size_t)c * (size_t)m->n_albedo;
 	int n = m->n_albedo;
-	if (n == 1 || theta <= t[0])
+	if (theta <= t[0] && (n > 1 || t[0] >= M_PI / 2))
 		return a[0];
 	if (theta >= t[n - 1])
-		return a[n - 1];
+		return t[n - 1] < M_PI / 2 ? a[n - 1] * fmax(0.0, (M_PI / 2 - theta) / (M_PI / 2 - t[n - 1])) : a[n - 1];
 	int i = 0;
 	while (i < n - 2 && theta > t[i + 1])
 		i++;
@@ -415,18 +387,10 @@ static json_object *manifest_build(const struct brdf_source *m, const struct ble
 	return j;
 }
 
-static int write_manifest(const char *path, json_object *j, char **cause)
+static int write_manifest(const char *dir, json_object *j, char **cause)
 {
-	struct outfile of;
-	if (outfile_open(&of, path, cause) != 0)
-		return -1;
 	const char *s = json_object_to_json_string_ext(j, JSON_C_TO_STRING_PRETTY | JSON_C_TO_STRING_NOSLASHESCAPE);
-	if (fputs(s, of.fp) == EOF || fputc('\n', of.fp) == EOF) {
-		*cause = xasprintf("%s: %s", path, strerror(errno));
-		outfile_abort(&of);
-		return -1;
-	}
-	return outfile_commit(&of, cause);
+	return checksum_write_manifest(dir, "manifest.json", s, cause);
 }
 
 static int write_rgb_exr(const char *path, int w, int h, const float *rgb, int nattr,
@@ -498,7 +462,11 @@ struct blender_set *blender_prepare(const struct brdf_source *m, const struct bl
 		s->roughness[i] = quantise16(sqrt(m->roughness));
 	}
 	s->manifest = manifest_build(m, o, &s->d, albedo, &ref);
-	blender_fit_manifest(s->manifest, m, o, s->lut, s->d.normal, s->d.w, s->d.h);
+	double sun[3], view[3];
+	blender_direction(o->sun_elevation, o->sun_azimuth, sun);
+	blender_direction(o->view_elevation, o->view_azimuth, view);
+	blender_fit_manifest(s->manifest, m, sun, view, o->sun_strength, s->lut, o->lut_cos, o->lut_phi, s->d.normal,
+	    s->d.w, s->d.h);
 	return s;
 }
 
@@ -570,8 +538,8 @@ int blender_write_files(const struct blender_set *s, const char *dir, char **cau
 		goto out;
 	free(path);
 	/* The manifest goes last: its presence marks a complete image set. */
-	path = xasprintf("%s/manifest.json", dir);
-	if (write_manifest(path, s->manifest, cause) != 0)
+	path = NULL;
+	if (write_manifest(dir, s->manifest, cause) != 0)
 		goto out;
 	rc = 0;
 out:

@@ -56,11 +56,6 @@ void blender_options_default(struct blender_options *o);
  * n_cos rows by n_phi * n_cos columns, row 0 at the top.  Caller frees the
  * returned block (planes at offsets 0, w*h, 2*w*h). */
 float *blender_lut(const struct brdf_source *m, int n_cos, int n_phi);
-/* What the importer's node tree reads from that atlas at cos_light, cos_view
- * in [0, 1] and dphi in [0, pi]: bilinear inside the two neighbouring
- * delta_phi tiles, then linear between them. */
-void blender_lut_sample(const float *lut, int n_cos, int n_phi, double cos_l, double cos_v, double dphi,
-    double rgb[3]);
 /* Bihemispherical (white-sky) albedo 2 * int a(mu) mu dmu per channel, with
  * a(theta) linear between the model's nodes and clamped beyond them. */
 void blender_albedo_mean(const struct brdf_source *m, double rgb[3]);

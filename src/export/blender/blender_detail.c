@@ -6,7 +6,6 @@
 
 #include <math.h>
 
-#include "export/blender/blender.h"
 
 /* Unit normal of texel i, decoded as Blender's Normal Map node does. */
 static void texel_normal(const uint16_t *normal, size_t i, double n[3])
@@ -19,6 +18,43 @@ static void texel_normal(const uint16_t *normal, size_t i, double n[3])
 	l = sqrt(l);
 	for (int c = 0; c < 3; c++)
 		n[c] = l > 0 ? n[c] / l : (c == 2);
+}
+
+static double clamp(double x, double lo, double hi)
+{
+	return x < lo ? lo : x > hi ? hi : x;
+}
+
+/* Bilinear in one tile at continuous column x and row-from-top y. */
+static double tile_bilinear(const float *p, int n_cos, size_t w, int k, double x, double y)
+{
+	int x0 = (int)floor(x), y0 = (int)floor(y);
+	if (x0 > n_cos - 2)
+		x0 = n_cos - 2;
+	if (y0 > n_cos - 2)
+		y0 = n_cos - 2;
+	double tx = x - x0, ty = y - y0;
+	size_t base = (size_t)k * (size_t)n_cos;
+	double a = p[(size_t)y0 * w + base + (size_t)x0], b = p[(size_t)y0 * w + base + (size_t)x0 + 1];
+	double c = p[(size_t)(y0 + 1) * w + base + (size_t)x0], d = p[(size_t)(y0 + 1) * w + base + (size_t)x0 + 1];
+	return (1 - ty) * ((1 - tx) * a + tx * b) + ty * ((1 - tx) * c + tx * d);
+}
+
+void blender_lut_sample(const float *lut, int n_cos, int n_phi, double cos_l, double cos_v, double dphi,
+    double rgb[3])
+{
+	size_t w = (size_t)n_phi * (size_t)n_cos, plane = w * (size_t)n_cos;
+	double x = clamp(cos_v, 0.0, 1.0) * (n_cos - 1);
+	double y = (1.0 - clamp(cos_l, 0.0, 1.0)) * (n_cos - 1);
+	double s = clamp(dphi, 0.0, M_PI) / M_PI * (n_phi - 1);
+	int k = (int)floor(s);
+	if (k > n_phi - 2)
+		k = n_phi - 2;
+	double t = s - k;
+	for (int c = 0; c < 3; c++) {
+		const float *p = lut + (size_t)c * plane;
+		rgb[c] = (1 - t) * tile_bilinear(p, n_cos, w, k, x, y) + t * tile_bilinear(p, n_cos, w, k + 1, x, y);
+	}
 }
 
 static double dot3(const double *a, const double *b)

@@ -10,6 +10,12 @@
 #include <stddef.h>
 #include <stdint.h>
 
+/* What the importer's node tree reads from the exact-mode atlas
+ * (blender_lut, blender.h) at cos_light, cos_view in [0, 1] and dphi in
+ * [0, pi]: bilinear inside the two neighbouring delta_phi tiles, then
+ * linear between them. */
+void blender_lut_sample(const float *lut, int n_cos, int n_phi, double cos_l, double cos_v, double dphi,
+    double rgb[3]);
 /* Mean z of the unit normals of N texels (interleaved RGB) [-]. */
 double blender_detail_mean_nz(const uint16_t *normal, size_t n);
 /* Mean over the W x H tiling map of E cos_l pi f_r / pi / max(n_z, 0.2),

@@ -340,8 +340,8 @@ static void albedo_normal_view(const struct brdf_source *m, const struct blender
 		rgb[c] = 2.0 * acc[c] / M_PI * (1.0 / NL) * (M_PI / NP);
 }
 
-void blender_fit_manifest(json_object *j, const struct brdf_source *m, const struct blender_options *o,
-    const float *lut, const uint16_t *normal, int w, int h)
+void blender_fit_manifest(json_object *j, const struct brdf_source *m, const double sun[3], const double view[3],
+    double sun_strength, const float *lut, int lut_cos, int lut_phi, const uint16_t *normal, int w, int h)
 {
 	struct blender_fit fit;
 	char *cause = NULL;
@@ -366,10 +366,8 @@ void blender_fit_manifest(json_object *j, const struct brdf_source *m, const str
 	if (json_object_object_get_ex(j, "detail", &x))
 		json_object_object_add(x, "mean_normal_z", jd(blender_detail_mean_nz(normal, (size_t)w * (size_t)h)));
 	if (json_object_object_get_ex(j, "exact", &x) && json_object_object_get_ex(x, "reference", &ref)) {
-		double sun[3], view[3], rgb[3];
-		blender_direction(o->sun_elevation, o->sun_azimuth, sun);
-		blender_direction(o->view_elevation, o->view_azimuth, view);
-		blender_detail_radiance(normal, w, h, sun, view, o->sun_strength, lut, o->lut_cos, o->lut_phi, rgb);
+		double rgb[3];
+		blender_detail_radiance(normal, w, h, sun, view, sun_strength, lut, lut_cos, lut_phi, rgb);
 		json_object_object_add(ref, "radiance_detail_rgb", jvec(rgb, 3));
 		json_object_object_add(ref, "radiance_detail_definition", json_object_new_string(
 		    "the same plane with the detail normal map, as the exact material renders it: the mean over "

@@ -28,7 +28,7 @@
 #include <stddef.h>
 #include <stdint.h>
 
-#include "export/blender/blender.h"
+#include "export/source.h"
 
 #define BLENDER_FIT_SSS_ROUGHNESS 0.02	/* Roughness of the subsurface closure [-] */
 #define BLENDER_FIT_VIEW_NODES 32	/* cos_view nodes j / 31 (a ColorRamp holds up to 32) */
@@ -62,6 +62,7 @@ void blender_fit_eval(const struct blender_fit *fit, double cos_l, double cos_v,
  * exact.reference.radiance_detail_rgb (blender_detail.h) for the detail
  * normal map NORMAL of W x H texels and the atlas LUT. */
 struct json_object;
-void blender_fit_manifest(struct json_object *manifest, const struct brdf_source *m,
-    const struct blender_options *o, const float *lut, const uint16_t *normal, int w, int h);
+void blender_fit_manifest(struct json_object *manifest, const struct brdf_source *m, const double sun[3],
+    const double view[3], double sun_strength, const float *lut, int lut_cos, int lut_phi, const uint16_t *normal, int w,
+    int h);
 #endif

@@ -16,6 +16,7 @@
 #include "export/pov/povfiles.h"
 #include "export/pov/pov_maps.h"
 #include "scene/placement.h"
+#include "scene/scene_load.h"
 #include "export/pov/povscene.h"
 #include "geom/mesh.h"
 #include "export/pov/strategy.h"
@@ -353,6 +354,40 @@ static int load_brdf(const struct povexport_options *o, struct scene *s, int k, 
 	return 0;
 }
 
+/* --mode translucent: POV-Ray's subsurface closure under the remainder of
+ * the table (povsss.h).  The subsurface layer goes under one lit table per
+ * skin, so the lights are key or mixture; the fit needs the bake's Rd(r). */
+static int load_sss(const struct povexport_options *o, struct scene *s, int k, struct inputs *in,
+    struct povexport_result *r, char **cause)
+{
+	const char *sn = s->skins[k].name;
+	struct pov_skin *ps = &in->ps[k];
+	enum scene_strategy st = strategy_resolve(s, NULL, NULL);
+	if (!o->translucent)
+		return 0;
+	if (o->analytic || o->family)
+		return *cause = xstrdup("--mode translucent needs a bake and its radial profile, not --analytic or --family"),
+		       -1;
+	if (st != SCENE_LIGHTS_KEY && st != SCENE_LIGHTS_MIXTURE)
+		return *cause = xasprintf("--mode translucent: lights = %s, but the subsurface layer goes under one lit table "
+					  "per skin: lights key or mixture (one or two lights)", scene_strategy_name(st)),
+		       -1;
+	char *err = NULL;
+	if (povsss_setup(&ps->sss, &ps->brdf, &ps->ior, in->src[k]->bake, &err) != 0) {
+		*cause = xasprintf("skin '%s': --mode translucent: %s", sn, err);
+		free(err);
+		return -1;
+	}
+	const struct sss_fit *f = &ps->sss.fit;
+	msg(r, "skin '%s': translucent: POV-Ray subsurface colour %.4g %.4g %.4g, translucency %.4g %.4g %.4g mm; "
+	       "power %.4g %.4g %.4g, mean radius %.3g %.3g %.3g mm as the bake's; RMS ln R(r) %.2f %.2f %.2f (predicted); "
+	       "the remainder clips at most %.1f %% of the table",
+	    sn, f->colour[0], f->colour[1], f->colour[2], f->length_mm[0], f->length_mm[1], f->length_mm[2],
+	    f->integral_fit[0], f->integral_fit[1], f->integral_fit[2], f->mean_fit_mm[0], f->mean_fit_mm[1],
+	    f->mean_fit_mm[2], f->rms_log[0], f->rms_log[1], f->rms_log[2], 100 * ps->sss.clipped);
+	return 0;
+}
+
 static int load_bumps(const struct povexport_options *o, const struct scene *s, const char *base, int k,
     struct inputs *in, struct povexport_result *r, char **cause)
 {
@@ -363,6 +398,12 @@ static int load_bumps(const struct povexport_options *o, const struct scene *s, 
 		tdir = sk->textures;
 	if (tdir == NULL || !sk->bumps)
 		return 0;
+	for (int i = 0; i < s->n_objects && in->ps[k].sss.on; i++)
+		if (s->objects[i].shape == SCENE_MESH && s->objects[i].material == SCENE_MAT_SKIN && s->objects[i].skin == k) {
+			/* A mesh's bump map is a texture per triangle, which cannot be layered. */
+			msg(r, "skin '%s': translucent meshes are written without the bump map", sk->name);
+			return 0;
+		}
 	for (int i = 0; i < s->n_objects; i++) {
 		const struct scene_object *ob = &s->objects[i];
 		if (ob->shape == SCENE_MESH && ob->material == SCENE_MAT_SKIN && ob->skin == k && ob->mesh->uv == NULL)
@@ -466,7 +507,8 @@ static int write_all(const struct povexport_options *o, const struct scene *s, c
 		return -1;
 	const char *stage = outdir_path(&od);
 	struct pov_options po = { .base = base, .n_theta = o->n_theta, .n_gamma = o->n_gamma, .n_mix = o->n_mix,
-		.write_scene = o->scene_path != NULL, .shapes_inc = in->shapes ? "skinbake_shapes.inc" : NULL };
+		.write_scene = o->scene_path != NULL, .shapes_inc = in->shapes ? "skinbake_shapes.inc" : NULL,
+		.sss_samples = o->translucent ? o->sss_samples : 0 };
 	double t0 = util_now();
 	if (povfiles_write(s, in->ps, &po, stage, &rep, cause) != 0 || write_extras(s, stage, base, in, cause) != 0 ||
 	    povfiles_write_index(stage, cause) != 0) {
@@ -526,7 +568,7 @@ int povexport_run(const struct povexport_options *o, struct povexport_result *r,
 	}
 	for (int k = 0; k < s->n_skins; k++)
 		if (load_brdf(o, s, k, &in, r, cause) != 0 || (o->family && load_maps(o, s, base, k, &in, cause) != 0) ||
-		    load_bumps(o, s, base, k, &in, r, cause) != 0)
+		    load_sss(o, s, k, &in, r, cause) != 0 || load_bumps(o, s, base, k, &in, r, cause) != 0)
 			goto done;
 	int need_shapes = 0;
 	for (int i = 0; i < s->n_objects; i++)

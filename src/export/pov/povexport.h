@@ -29,6 +29,8 @@ struct povexport_options {
 	int bump_filter;		/* box-filter height maps to the pixel footprint */
 	int width, height;		/* image size [px], 0 = the scene's (320x240 without one) */
 	double unit_mm;			/* one scene unit [mm], 0 = the scene's (10 without one) */
+	int translucent;		/* --mode translucent (export/pov/povsss.h) */
+	int sss_samples;		/* POV-Ray's subsurface samples for it */
 	FILE *plan_out;
 };
 

@@ -13,6 +13,7 @@
 #include <stdlib.h>
 #include <string.h>
 
+#include "base/checksum.h"
 #include "base/util.h"
 #include "export/pov/mesh2.h"
 #include "export/pov/povinc.h"
@@ -257,10 +258,8 @@ int povfiles_write_index(const char *dir, char **cause)
 		closedir(d);
 	json_object_array_sort(files, cmp_names);
 	json_object_object_add(j, "files", files);
-	char *path = xasprintf("%s/manifest.json", dir);
-	int rc = outfile_write_text(path, json_object_to_json_string_ext(j, JSON_C_TO_STRING_PRETTY |
+	int rc = checksum_write_manifest(dir, "manifest.json", json_object_to_json_string_ext(j, JSON_C_TO_STRING_PRETTY |
 	    JSON_C_TO_STRING_NOSLASHESCAPE), cause);
-	free(path);
 	json_object_put(j);
 	return rc;
 }

@@ -106,24 +106,34 @@ void povinc_write(FILE *fp, const struct scene *s, const struct pov_skin *skins,
 		char *nm;
 		strategy_skin_bounds(s, k, lo, hi);
 		fprintf(fp, "// ---- skin '%s' (preset %s) ----\n", sk->name, sk->preset);
-		fprintf(fp, "#declare SKIN_%s_Finish = finish { " POVSCENE_FINISH_LIT, sk->name);
-		if (sk->reflection)
+		const char *table = ps->sss.on ? "Remainder" : "Pigment";
+		if (ps->sss.on)
+			fprintf(fp, "#declare SKIN_%s_Finish = finish { diffuse %g brilliance 1 ambient 0 emission 0 specular 0",
+			    sk->name, POVSSS_DIFFUSE);
+		else
+			fprintf(fp, "#declare SKIN_%s_Finish = finish { " POVSCENE_FINISH_LIT, sk->name);
+		if (sk->reflection && !ps->sss.on)
 			fputs(" reflection { 0, 1 fresnel on } conserve_energy", fp);
 		fputs(" }\n", fp);
 		fprintf(fp, "#declare SKIN_%s_Interior = interior { ior " SDL_G " }\n", sk->name, ps->ior);
+		if (ps->sss.on)
+			povsss_write(fp, sk->name, &ps->sss, sk->reflection);
 		if (st == SCENE_LIGHTS_KEY) {
-			nm = xasprintf("SKIN_%s_Pigment", sk->name);
+			nm = xasprintf("SKIN_%s_%s", sk->name, table);
 			int g = ps->maps ? pov_maps_write_key(fp, nm, ps->maps, &pl[0], &v, lo, hi, o->n_theta, o->n_gamma,
 			    ps->maps_uv) : littable_write_key(fp, nm, &ps->brdf, &pl[0], &v, lo, hi, o->n_theta, o->n_gamma);
 			r->n_gamma_used = g > r->n_gamma_used ? g : r->n_gamma_used;
 			free(nm);
 		} else if (st == SCENE_LIGHTS_MIXTURE) {
 			double spread;
-			nm = xasprintf("SKIN_%s_Pigment", sk->name);
+			nm = xasprintf("SKIN_%s_%s", sk->name, table);
 			littable_write_mixture(fp, nm, &ps->brdf, pl, &v, lo, hi, o->n_mix, &spread);
 			r->mix_gamma_spread = fmax(r->mix_gamma_spread, spread);
 			free(nm);
 		}
+		if (ps->sss.on)
+			fprintf(fp, "#declare SKIN_%s_Pigment = pigment { average pigment_map { [1 SKIN_%s_Remainder] "
+			    "[%d rgbt <0, 0, 0, 1>] } }\n", sk->name, sk->name, POVSSS_CLEAR);
 		if (st == SCENE_LIGHTS_PASSES)
 			for (int i = 0; i < s->n_lights; i++) {
 				nm = xasprintf("SKIN_%s_Pigment_%s", sk->name, s->lights[i].name);

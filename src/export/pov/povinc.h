@@ -6,7 +6,7 @@
 #define SKINBAKE_POVINC_H
 #include <stdio.h>
 
-#include "export/pov/povfiles.h"
+#include "export/pov/povtypes.h"
 
 void povinc_write(FILE *fp, const struct scene *s, const struct pov_skin *skins, const struct pov_options *o,
     enum scene_strategy st, int layered, struct pov_report *r);

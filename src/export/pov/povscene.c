@@ -168,12 +168,14 @@ static void write_skin_texture(FILE *fp, const struct scene *s, const struct sce
 			write_bump(fp, s, o);
 		fprintf(fp, "\n    finish { %s }] [%d SKIN_Clear] } }", finish, rest);
 	} else {
+		if (skins[o->skin].sss.on)
+			fprintf(fp, "\n  texture { SKIN_%s_Subsurface }", sk->name);
 		fprintf(fp, "\n  texture { pigment { %s }", pigment);
 		if (bumped(s, skins, o))
 			write_bump(fp, s, o);
 		fprintf(fp, "\n    finish { %s } }", finish);
 	}
-	if (sk->reflection)
+	if (sk->reflection || skins[o->skin].sss.on)
 		fprintf(fp, "\n  interior { SKIN_%s_Interior }", sk->name);
 }
 
@@ -383,8 +385,10 @@ void povscene_write(FILE *fp, const struct scene *s, const struct pov_skin *skin
 	else
 		fprintf(fp, "// Render: povray %s.ini   (or povray +I%s.pov +W%d +H%d)\n", o->base, o->base, s->width,
 		    s->height);
-	fprintf(fp, "global_settings { assumed_gamma 1.0 ambient_light 0 max_trace_level %d }\n",
-	    layered ? 5 + s->n_lights : 5);
+	fprintf(fp, "global_settings { assumed_gamma 1.0 ambient_light 0 max_trace_level %d", layered ? 5 + s->n_lights : 5);
+	if (o->sss_samples > 0)
+		povsss_write_global(fp, s->unit_mm, o->sss_samples);
+	fputs(" }\n", fp);
 	if (o->shapes_inc)
 		fprintf(fp, "#include \"%s\"\n", o->shapes_inc);
 	fprintf(fp, "#include \"%s.inc\"\n", o->base);

@@ -17,7 +17,7 @@
 #define SKINBAKE_POVSCENE_H
 #include <stdio.h>
 
-#include "export/pov/povfiles.h"
+#include "export/pov/povtypes.h"
 
 #define POVSCENE_FINISH_LIT "diffuse 1 brilliance 1 ambient 0 emission 0 specular 0"
 

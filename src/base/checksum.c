@@ -1,0 +1,193 @@
+/* checksum: SHA-256 of files for the manifests (checksum.h). */
+#include "config.h"
+#include "base/checksum.h"
+
+#include <dirent.h>
+#include <errno.h>
+#include <json-c/json.h>
+#include <openssl/evp.h>
+#include <stdio.h>
+#include <stdlib.h>
+#include <string.h>
+#include <sys/stat.h>
+#include <unistd.h>
+
+#include "base/util.h"
+
+int checksum_file(const char *path, char out[CHECKSUM_TEXT], char **cause)
+{
+	FILE *f = fopen(path, "rb");
+	if (f == NULL) {
+		*cause = xasprintf("%s: %s", path, strerror(errno));
+		return -1;
+	}
+	EVP_MD_CTX *c = EVP_MD_CTX_new();
+	int ok = c != NULL && EVP_DigestInit_ex(c, EVP_sha256(), NULL) == 1;
+	unsigned char buf[1 << 16], md[EVP_MAX_MD_SIZE];
+	unsigned int len = 0;
+	size_t n;
+	while (ok && (n = fread(buf, 1, sizeof buf, f)) > 0)
+		ok = EVP_DigestUpdate(c, buf, n) == 1;
+	int read_error = ferror(f);
+	fclose(f);
+	ok = ok && !read_error && EVP_DigestFinal_ex(c, md, &len) == 1 && len == 32;
+	EVP_MD_CTX_free(c);
+	if (!ok) {
+		*cause = xasprintf("%s: %s", path, read_error ? "read error" : "cannot compute its SHA-256");
+		return -1;
+	}
+	strcpy(out, "sha256:");
+	for (unsigned int i = 0; i < len; i++)
+		snprintf(out + 7 + 2 * i, 3, "%02x", md[i]);
+	return 0;
+}
+
+char *checksum_member(const char *dir, const char *const *names, char **cause)
+{
+	char *m = xstrdup("\"checksums\": {");
+	for (int i = 0; names[i]; i++) {
+		char *p = xasprintf("%s/%s", dir, names[i]), sum[CHECKSUM_TEXT];
+		int rc = checksum_file(p, sum, cause);
+		free(p);
+		if (rc != 0) {
+			free(m);
+			return NULL;
+		}
+		/* The names are the writers' own (plain ASCII): no escaping needed. */
+		char *n = xasprintf("%s%s\"%s\": \"%s\"", m, i ? ", " : "", names[i], sum);
+		free(m);
+		m = n;
+	}
+	char *n = xasprintf("%s}", m);
+	free(m);
+	return n;
+}
+
+char *checksum_add_member(const char *manifest, const char *member)
+{
+	size_t end = strlen(manifest);
+	while (end > 0 && manifest[end - 1] != '}')
+		end--;
+	if (end == 0)
+		return xstrdup(manifest);
+	size_t body = end - 1;	/* the closing brace */
+	size_t last = body;
+	while (last > 0 && (manifest[last - 1] == ' ' || manifest[last - 1] == '\n' || manifest[last - 1] == '\t'))
+		last--;
+	int empty = last > 0 && manifest[last - 1] == '{';
+	return xasprintf("%.*s%s\n  %s\n}\n", (int)last, manifest, empty ? "" : ",", member);
+}
+
+int checksum_verify(const char *dir, const char *name, const char *want, char **cause)
+{
+	char *p = xasprintf("%s/%s", dir, name), have[CHECKSUM_TEXT];
+	int rc = checksum_file(p, have, cause);
+	if (rc == 0 && strcmp(have, want) != 0) {
+		*cause = xasprintf("%s has changed since its manifest was written (%s there, %s expected): the file "
+		    "was edited or damaged; write the output again", p, have, want);
+		rc = -1;
+	}
+	free(p);
+	return rc;
+}
+
+static int cmp_str(const void *a, const void *b)
+{
+	return strcmp(*(char *const *)a, *(char *const *)b);
+}
+
+char *checksum_member_dir(const char *dir, const char *manifest, char **cause)
+{
+	DIR *d = opendir(dir);
+	if (d == NULL) {
+		*cause = xasprintf("%s: %s", dir, strerror(errno));
+		return NULL;
+	}
+	char **names = NULL;
+	size_t n = 0, cap = 0;
+	struct dirent *e;
+	while ((e = readdir(d)) != NULL) {
+		if (e->d_name[0] == '.' || strcmp(e->d_name, manifest) == 0)
+			continue;
+		char *p = xasprintf("%s/%s", dir, e->d_name), *name = NULL;
+		struct stat st;
+		if (lstat(p, &st) == 0 && S_ISREG(st.st_mode))
+			name = xstrdup(e->d_name);
+		else if (S_ISDIR(st.st_mode)) {
+			char *m = xasprintf("%s/manifest.json", p);
+			if (access(m, F_OK) == 0)
+				name = xasprintf("%s/manifest.json", e->d_name);
+			free(m);
+		}
+		free(p);
+		if (name == NULL)
+			continue;
+		if (n + 2 > cap)
+			names = xreallocarray(names, cap = 2 * cap + 16, sizeof *names);
+		names[n++] = name;
+	}
+	closedir(d);
+	if (n > 0)
+		qsort(names, n, sizeof *names, cmp_str);
+	names = xreallocarray(names, n + 1, sizeof *names);
+	names[n] = NULL;
+	char *m = checksum_member(dir, (const char *const *)names, cause);
+	for (size_t i = 0; i < n; i++)
+		free(names[i]);
+	free(names);
+	return m;
+}
+
+char *checksum_manifest_text(const char *dir, const char *manifest, const char *text, char **cause)
+{
+	char *m = checksum_member_dir(dir, manifest, cause);
+	if (m == NULL)
+		return NULL;
+	char *t = checksum_add_member(text, m);
+	free(m);
+	return t;
+}
+
+int checksum_write_manifest(const char *dir, const char *manifest, const char *text, char **cause)
+{
+	char *t = checksum_manifest_text(dir, manifest, text, cause);
+	if (t == NULL)
+		return -1;
+	char *path = xasprintf("%s/%s", dir, manifest);
+	int rc = outfile_write_text(path, t, cause);
+	free(path);
+	free(t);
+	return rc;
+}
+
+int checksum_verify_dir(const char *dir, const char *manifest, char **cause)
+{
+	char *mp = xasprintf("%s/%s", dir, manifest);
+	json_object *j = json_object_from_file(mp), *sums;
+	int rc = 0;
+	if (j == NULL || !json_object_object_get_ex(j, "checksums", &sums)) {
+		free(mp);
+		if (j)
+			json_object_put(j);
+		return 0;	/* no manifest is the reader's own error; no checksums: an older output */
+	}
+	if (!json_object_is_type(sums, json_type_object)) {
+		*cause = xasprintf("%s: checksums is not an object of \"FILE\": \"sha256:HEX\"", mp);
+		rc = -1;
+	}
+	json_object_object_foreach(sums, name, val) {
+		if (rc != 0)
+			break;
+		const char *want = json_object_is_type(val, json_type_string) ? json_object_get_string(val) : NULL;
+		if (want == NULL || strncmp(want, "sha256:", 7) != 0 || strlen(want) != 71 || name[0] == '/' ||
+		    strstr(name, "..") != NULL) {
+			*cause = xasprintf("%s: checksums.%s: not a file of the directory with \"sha256:\" and 64 hex digits",
+			    mp, name);
+			rc = -1;
+		} else
+			rc = checksum_verify(dir, name, want, cause);
+	}
+	json_object_put(j);
+	free(mp);
+	return rc;
+}

@@ -1,0 +1,215 @@
+/* sss_fit: fit a renderer's calibrated subsurface closure to a bake's Rd(r)
+ * (see sss_fit.h).  Inside a ring of the table the power is spread evenly
+ * over the area, so G is linear in r^2 between edges; between colours G is
+ * linear in the colour. */
+#include "config.h"
+#include "export/sss_fit.h"
+
+#include <math.h>
+
+#include "base/util.h"
+
+const double sss_ring_edges_mm[] = { 0, 0.02, 0.04, 0.07, 0.1, 0.15, 0.2, 0.3, 0.45, 0.65, 1.0, 1.5,
+	2.2, 3.2, 4.6, 6.5, 9.0, 13.0, 20.0, -1 };
+
+/* Colour node below C and the weight of the one above. */
+static int colour_cell(const struct sss_table *t, double c, double *w)
+{
+	int k = 0;
+	while (k < t->n_colour - 2 && c > t->colour[k + 1])
+		k++;
+	double x = (c - t->colour[k]) / (t->colour[k + 1] - t->colour[k]);
+	*w = fmin(fmax(x, 0.0), 1.0);
+	return k;
+}
+
+/* G at r between edges e1 < e2 (values g1, g2): a power law in r, which
+ * follows the steep fall of a profile (power spread evenly over a ring's
+ * area put the centroids 5-13 % too far out); linear in r^2 from r = 0 and
+ * where G reaches 0. */
+static double g_between(double e1, double e2, double g1, double g2, double r)
+{
+	if (e1 <= 0 || g1 <= 0 || g2 <= 0)
+		return g1 + (g2 - g1) * (r * r - e1 * e1) / (e2 * e2 - e1 * e1);
+	return g1 * pow(r / e1, log(g2 / g1) / log(e2 / e1));
+}
+
+/* Integral of G dr over [a, b] inside one ring (Simpson, 16 panels). */
+static double g_integral(double e1, double e2, double g1, double g2, double a, double b)
+{
+	const int n = 16;
+	double h = (b - a) / n, sum = 0.0;
+	for (int i = 0; i <= n; i++) {
+		double w = (i == 0 || i == n) ? 1.0 : (i % 2 ? 4.0 : 2.0);
+		sum += w * g_between(e1, e2, g1, g2, a + i * h);
+	}
+	return sum * h / 3.0;
+}
+
+/* Power and first moment [unit length] within s at unit length, colour
+ * node k: P = G(0) - G(s); the moment of -dG is -s G(s) + int_0^s G dr. */
+static void inside_node(const struct sss_table *t, int c, int k, double s, double *p0, double *p1)
+{
+	const double *g = t->g + ((size_t)c * (size_t)t->n_colour + (size_t)k) * (size_t)t->n_edge;
+	const double *e = t->edge_mm;
+	double gs = g[0], area = 0.0;
+	int i;
+	for (i = 0; i + 1 < t->n_edge && s > e[i]; i++) {
+		double hi = fmin(s, e[i + 1]);
+		area += g_integral(e[i], e[i + 1], g[i], g[i + 1], e[i], hi);
+		gs = g_between(e[i], e[i + 1], g[i], g[i + 1], hi);
+	}
+	if (i + 1 >= t->n_edge && s > e[t->n_edge - 1]) {
+		s = e[t->n_edge - 1];	/* beyond the table: what is left is not counted */
+		gs = g[t->n_edge - 1];
+	}
+	*p0 = g[0] - gs;
+	*p1 = -s * gs + area;
+}
+
+/* Power and first moment [mm] within r_mm in channel ch for colour c at
+ * length L [mm]. */
+static void inside(const struct sss_table *t, int ch, double c, double len, double r_mm, double *p0, double *p1)
+{
+	double w, a0, a1, b0, b1;
+	int k = colour_cell(t, c, &w);
+	inside_node(t, ch, k, r_mm / len, &a0, &a1);
+	inside_node(t, ch, k + 1, r_mm / len, &b0, &b1);
+	*p0 = (1 - w) * a0 + w * b0;
+	*p1 = len * ((1 - w) * a1 + w * b1);
+}
+
+/* The length whose mean radius within r_max is M (bisection in log L; the
+ * mean grows with L). */
+static double length_for_mean(const struct sss_table *t, int ch, double c, double r_max, double m)
+{
+	double lo = log(1e-5), hi = log(1e4);
+	for (int it = 0; it < 80; it++) {
+		double mid = 0.5 * (lo + hi), p0, p1;
+		inside(t, ch, c, exp(mid), r_max, &p0, &p1);
+		if (p0 > 0 && p1 / p0 < m)
+			lo = mid;
+		else
+			hi = mid;
+	}
+	return exp(0.5 * (lo + hi));
+}
+
+double sss_bake_ring(const struct bake *b, int c, double r1_mm, double r2_mm)
+{
+	double dr = b->dr_cm * 10.0, sum = 0.0;
+	for (int i = 0; i < b->n_r; i++) {
+		double r = (i + 0.5) * dr;
+		if (r >= r1_mm && r < r2_mm)
+			sum += 2 * M_PI * r * dr * fmax(b->rd_r_rgb[c * b->n_r + i], 0.0) * 0.01;	/* 1/cm^2 -> 1/mm^2 */
+	}
+	return sum;
+}
+
+double sss_fit_ring(const struct sss_fit *f, int c, double r1_mm, double r2_mm)
+{
+	double a0, a1, b0, b1;
+	inside(f->table, c, f->colour[c], f->length_mm[c], r1_mm, &a0, &a1);
+	inside(f->table, c, f->colour[c], f->length_mm[c], r2_mm, &b0, &b1);
+	return f->scale * (b0 - a0);
+}
+
+/* The bake's power and mean radius within r_max, channel c. */
+static void bake_moments(const struct bake *b, int c, double *p0, double *mean)
+{
+	double dr = b->dr_cm * 10.0, s0 = 0.0, s1 = 0.0;
+	for (int i = 0; i < b->n_r; i++) {
+		double r = (i + 0.5) * dr;
+		double p = 2 * M_PI * r * dr * fmax(b->rd_r_rgb[c * b->n_r + i], 0.0) * 0.01;
+		s0 += p;
+		s1 += p * r;
+	}
+	*p0 = s0;
+	*mean = s0 > 0 ? s1 / s0 : 0.0;
+}
+
+/* RMS of ln(fit / bake) over the comparison rings inside the radius that
+ * holds 95 % of the bake's power. */
+static double rms_log(const struct sss_fit *f, const struct bake *b, int c)
+{
+	double total = f->integral_bake[c], cum = 0.0, sum = 0.0;
+	int n = 0;
+	for (int k = 0; sss_ring_edges_mm[k + 1] > 0 && sss_ring_edges_mm[k] < f->r_max_mm; k++) {
+		double r1 = sss_ring_edges_mm[k], r2 = fmin(sss_ring_edges_mm[k + 1], f->r_max_mm);
+		double pb = sss_bake_ring(b, c, r1, r2), pf = sss_fit_ring(f, c, r1, r2);
+		if (pb > 0 && pf > 0) {
+			sum += log(pf / pb) * log(pf / pb);
+			n++;
+		}
+		cum += pb;
+		if (cum >= 0.95 * total)
+			break;
+	}
+	return n > 0 ? sqrt(sum / n) : 0.0;
+}
+
+int sss_fit_bake(const struct sss_table *t, const struct bake *b, double scale, struct sss_fit *f, char **cause)
+{
+	if (b->rd_r_rgb == NULL || b->n_r < 1) {
+		*cause = xasprintf("%s: the bake has no radial profile (manifest.json: radial.rd_r); bake it again with "
+		    "this skinbake", b->dir ? b->dir : "bake");
+		return -1;
+	}
+	if (t->n_colour < 2) {
+		*cause = xasprintf("%s has no calibration of its subsurface closure (%s): run `make calibrate`",
+		    t->renderer, t->version);
+		return -1;
+	}
+	*f = (struct sss_fit){ .table = t, .scale = scale, .r_max_mm = b->n_r * b->dr_cm * 10.0 };
+	for (int c = 0; c < 3; c++) {
+		double target, m;
+		bake_moments(b, c, &target, &m);
+		f->integral_bake[c] = target;
+		f->mean_bake_mm[c] = m;
+		/* Bisection on the colour: the power within r_max grows with it. */
+		double lo = t->colour[0], hi = t->colour[t->n_colour - 1], len = 1.0, p0 = 0, p1 = 0;
+		for (int it = 0; it < 60; it++) {
+			double mid = 0.5 * (lo + hi);
+			len = length_for_mean(t, c, mid, f->r_max_mm, m);
+			inside(t, c, mid, len, f->r_max_mm, &p0, &p1);
+			if (scale * p0 < target)
+				lo = mid;
+			else
+				hi = mid;
+		}
+		f->colour[c] = 0.5 * (lo + hi);
+		f->clamped[c] = f->colour[c] <= t->colour[0] * 1.0001 || f->colour[c] >= t->colour[t->n_colour - 1] * 0.9999;
+		f->length_mm[c] = length_for_mean(t, c, f->colour[c], f->r_max_mm, m);
+		inside(t, c, f->colour[c], f->length_mm[c], f->r_max_mm, &p0, &p1);
+		f->integral_fit[c] = scale * p0;
+		f->mean_fit_mm[c] = p0 > 0 ? p1 / p0 : 0.0;
+	}
+	for (int c = 0; c < 3; c++)
+		f->rms_log[c] = rms_log(f, b, c);
+	return 0;
+}
+
+double sss_far_pi_f(const struct sss_table *t, int c, double colour, double theta_i, double theta_o)
+{
+	double w;
+	int k = colour_cell(t, colour, &w);
+	double ai = fmin(theta_i * 180.0 / M_PI, t->far_deg[t->n_far - 1]);
+	double ao = fmin(theta_o * 180.0 / M_PI, t->far_deg[t->n_far - 1]);
+	int i = 0, j = 0;
+	while (i < t->n_far - 2 && ai > t->far_deg[i + 1])
+		i++;
+	while (j < t->n_far - 2 && ao > t->far_deg[j + 1])
+		j++;
+	double u = (ai - t->far_deg[i]) / (t->far_deg[i + 1] - t->far_deg[i]);
+	double v = (ao - t->far_deg[j]) / (t->far_deg[j + 1] - t->far_deg[j]);
+	double val[2];
+	for (int n = 0; n < 2; n++) {
+		const double *g = t->far_pi_f + ((size_t)c * (size_t)t->n_colour + (size_t)(k + n)) * (size_t)(t->n_far * t->n_far);
+		int nf = t->n_far;
+		val[n] = (1 - u) * ((1 - v) * g[i * nf + j] + v * g[i * nf + j + 1]) +
+		    u * ((1 - v) * g[(i + 1) * nf + j] + v * g[(i + 1) * nf + j + 1]);
+	}
+	/* Beyond the last node (85 deg) the far field goes to 0 at grazing in POV-Ray (its Fresnel
+	 * transmission) and stays in Cycles; the last node's value is kept: small either way. */
+	return (1 - w) * val[0] + w * val[1];
+}

@@ -1,0 +1,58 @@
+/* sss_fit_print RENDERER BAKE_DIR [SCALE]: the calibrated closure of
+ * RENDERER (pov or cycles) fitted to the bake's Rd(r) (export/sss_fit.h),
+ * printed as one JSON object for tests/sss_profile.sh; exit 2 with a message
+ * for a bake without a radial profile or an unknown renderer.  A test tool,
+ * not a test. */
+#include "config.h"
+
+#include <stdio.h>
+#include <stdlib.h>
+#include <string.h>
+
+#include "export/sss_fit.h"
+
+static void arr(const char *key, const double *v, int last)
+{
+	printf("\"%s\": [%.8g, %.8g, %.8g]%s", key, v[0], v[1], v[2], last ? "" : ", ");
+}
+
+int main(int argc, char **argv)
+{
+	char *cause = NULL;
+	if (argc < 3) {
+		fprintf(stderr, "usage: sss_fit_print pov|cycles BAKE_DIR [SCALE]\n");
+		return 2;
+	}
+	const struct sss_table *t = !strcmp(argv[1], "pov") ? &sss_pov_table :
+	    !strcmp(argv[1], "cycles") ? &sss_cycles_table : NULL;
+	if (t == NULL) {
+		fprintf(stderr, "sss_fit_print: renderer '%s' has no calibration (pov, cycles)\n", argv[1]);
+		return 2;
+	}
+	struct bake *b = bake_load(argv[2], &cause);
+	struct sss_fit f;
+	if (b == NULL || sss_fit_bake(t, b, argc > 3 ? atof(argv[3]) : 1.0, &f, &cause) != 0) {
+		fprintf(stderr, "sss_fit_print: %s\n", cause);
+		free(cause);
+		bake_free(b);
+		return 2;
+	}
+	printf("{\"renderer\": \"%s\", \"version\": \"%s\", \"r_max_mm\": %.8g, ", t->renderer, t->version, f.r_max_mm);
+	arr("colour", f.colour, 0);
+	arr("length_mm", f.length_mm, 0);
+	arr("integral_bake", f.integral_bake, 0);
+	arr("integral_fit", f.integral_fit, 0);
+	arr("mean_bake_mm", f.mean_bake_mm, 0);
+	arr("mean_fit_mm", f.mean_fit_mm, 0);
+	arr("rms_log", f.rms_log, 0);
+	printf("\"bake_rings\": [");
+	for (int k = 0; sss_ring_edges_mm[k + 1] > 0 && sss_ring_edges_mm[k] < f.r_max_mm; k++) {
+		double r2 = sss_ring_edges_mm[k + 1] < f.r_max_mm ? sss_ring_edges_mm[k + 1] : f.r_max_mm;
+		printf("%s[%.8g, %.8g, %.8g, %.8g, %.8g]", k ? ", " : "", sss_ring_edges_mm[k], r2,
+		    sss_bake_ring(b, 0, sss_ring_edges_mm[k], r2), sss_bake_ring(b, 1, sss_ring_edges_mm[k], r2),
+		    sss_bake_ring(b, 2, sss_ring_edges_mm[k], r2));
+	}
+	printf("]}\n");
+	bake_free(b);
+	return 0;
+}

@@ -1,0 +1,96 @@
+#!/bin/sh
+# Translucent skin, steps 1-2 (issue 27): each renderer's own subsurface
+# closure (POV-Ray 3.7's translucency, Cycles' random walk in Debian's
+# Blender), fitted by export/sss_fit to a bake's Rd(r) from the committed
+# calibration (tests/data/sss_calib/RENDERER.json, sss_table.c), rendered by
+# the real renderer on a thick slab and its profile read back
+# (scripts/sss_profile.py: shadowed rings of a parallel light, a fisheye at
+# the unlit centre, every exit direction).  For paper, fair-dry and dark-dry
+# (adding-doubling tables, Monte Carlo Rd(r) at 2 %), per channel, within the
+# bake's profile (5 mm): the power within 2 %, the mean radius within 10 %,
+# the RMS of ln(R_render / R_bake) over the rings holding 95 % of the power
+# within 0.25 (where the fit itself predicts more than 0.25 from the
+# closure's measured shape, the check is a TAP TODO: one closure cannot
+# follow that profile, docs/translucency.md).  A bake without a radial profile and a renderer without a
+# calibration exit 2 with a message.  About 20 small renders per preset and
+# renderer (POV-Ray about 1 s each, Cycles at 32 samples 2 s).
+. "$top_srcdir/tests/tap.sh"
+B="$SKINBAKE"
+FIT="$top_builddir/tests/sss_fit_print"
+PROF="$top_srcdir/scripts/sss_profile.py"
+if [ -z "$POVRAY" ] || ! command -v "$POVRAY" >/dev/null 2>&1 || ! command -v python3 >/dev/null 2>&1 ||
+    [ -z "$BLENDER" ] || ! command -v "$BLENDER" >/dev/null 2>&1; then
+	fail "povray, blender or python3 is missing (POVRAY='$POVRAY' BLENDER='$BLENDER'): the set-up installs them"
+	tap_done
+	exit 1
+fi
+
+# todo DESC REASON CMD...: a known limit, reported but not failing.
+todo() { d=$1; why=$2; shift 2; tap_n=$((tap_n+1)); if "$@"; then echo "ok $tap_n - $d # TODO $why"; \
+	else echo "not ok $tap_n - $d # TODO $why"; fi; }
+
+for p in paper fair-dry dark-dry; do
+	"$B" bake --preset "$p" --out "$tmpd/$p" --quiet >"$tmpd/bake.log" 2>&1
+	check "$p: bake" test $? -eq 0
+done
+for r in pov cycles; do
+samples=800
+[ $r = cycles ] && samples=32
+for p in paper fair-dry dark-dry; do
+	"$FIT" $r "$tmpd/$p" >"$tmpd/$p.fit" 2>"$tmpd/fit.log"
+	check "$r $p: fit of the closure" test $? -eq 0
+	# Render the fitted closure on the bake's rings.
+	args=$(python3 -c 'import json,sys; f=json.load(open(sys.argv[1]))
+print("--colour " + ",".join("%.6g" % x for x in f["colour"]) + " --radius " + ",".join("%.6g" % x for x in f["length_mm"])
+      + " --edges " + ",".join("%.6g" % r[0] for r in f["bake_rings"]) + ",%.6g" % f["bake_rings"][-1][1])' "$tmpd/$p.fit")
+	# shellcheck disable=SC2086
+	BLENDER="$BLENDER" python3 "$PROF" $r $args --samples $samples --json "$tmpd/$p.prof" 2>"$tmpd/prof.log"
+	check "$r $p: the renderer renders the fitted slab" test -s "$tmpd/$p.prof"
+	python3 - "$tmpd/$p.fit" "$tmpd/$p.prof" >"$tmpd/cmp.txt" <<'PY'
+import json, math, sys
+f = json.load(open(sys.argv[1]))
+m = json.load(open(sys.argv[2]))
+rings = f["bake_rings"]
+cen = [2.0 / 3.0 * (b ** 3 - a ** 3) / (b * b - a * a) for a, b, *_ in rings]
+for c, name in enumerate("RGB"):
+    pb = [r[2 + c] for r in rings]
+    pm = [r[c] for r in m["ring_power"]]
+    ib, im = sum(pb), sum(pm)
+    mb = sum(p * x for p, x in zip(pb, cen)) / ib
+    mm = sum(p * x for p, x in zip(pm, cen)) / im
+    cum, s, n = 0.0, 0.0, 0
+    for a, b in zip(pb, pm):
+        if a > 0 and b > 0:
+            s += math.log(b / a) ** 2
+            n += 1
+        cum += a
+        if cum >= 0.95 * ib:
+            break
+    rms = math.sqrt(s / n)
+    print(f"{name} {im / ib - 1:.4f} {mm / mb - 1:.4f} {rms:.4f} {ib:.5g} {mb:.4g} {f['rms_log'][c]:.4f}")
+PY
+	while read -r ch di dm rms ib mb pred; do
+		echo "# $r $p $ch: power $ib (render/bake - 1 = $di), mean radius $mb mm ($dm), RMS ln $rms (predicted $pred)"
+		check "$r $p $ch: power within 2 % ($di)" python3 -c "import sys; sys.exit(abs($di) > 0.02)"
+		check "$r $p $ch: mean radius within 10 % ($dm)" python3 -c "import sys; sys.exit(abs($dm) > 0.10)"
+		if python3 -c "import sys; sys.exit($pred <= 0.25)"; then
+			todo "$r $p $ch: RMS of ln R(r) within 0.25 ($rms)" "the closure's own shape: predicted $pred" \
+				python3 -c "import sys; sys.exit($rms > 0.25)"
+		else
+			check "$r $p $ch: RMS of ln R(r) within 0.25 ($rms)" python3 -c "import sys; sys.exit($rms > 0.25)"
+		fi
+	done <"$tmpd/cmp.txt"
+done
+done
+
+# Bad input: no radial profile; a renderer without calibration.
+cp -r "$tmpd/paper" "$tmpd/norad"
+python3 -c 'import json,sys; p=sys.argv[1]; m=json.load(open(p)); del m["radial"]["rd_r"]; json.dump(m, open(p, "w"))' \
+	"$tmpd/norad/manifest.json"
+"$FIT" pov "$tmpd/norad" >/dev/null 2>"$tmpd/e.log"
+rc=$?
+check "a bake without a radial profile: exit 2 naming radial.rd_r" test $rc -eq 2
+check "  ... and the message says so" grep -q "radial.rd_r" "$tmpd/e.log"
+"$FIT" mitsuba "$tmpd/paper" >/dev/null 2>"$tmpd/e.log"
+check "a renderer without a calibration: exit 2" test $? -eq 2
+tap_done
