@@ -8,7 +8,9 @@
 #      that part is skipped.  The whole `simulate --solver ad` command against `ad`'s command.
 #   2. `bake --preset paper` and the 16-wavelength presets by adding-doubling, with the share of
 #      the Rd(r) Monte Carlo run (the same bake with --radial-photons 100 --radial-error 1).
-#   3. The family pilot and a small family.
+#   3. A small family (the two 17-point pilots and 4 members).
+#   4. With BASE_SKINBAKE (an older binary) and valgrind: instructions (callgrind, independent of
+#      the load) of the old and this binary on the same commands.
 # Prints one markdown section.  Builds tests/ad_bench when it is missing.
 set -eu
 SKINBAKE=${SKINBAKE:-./skinbake}
@@ -138,3 +140,38 @@ echo "### A small family"
 echo
 F="$SKINBAKE bake --preset fair-oily --vary epidermis.melanin=0.005:0.3:2 --vary dermis.blood=0.005:0.1:2 --threads 1 --quiet --out $W/f"
 echo "\`$(echo "$F" | sed "s|$W/f|FAM|")\` (4 members and the two 17-point pilots): $(REPS=1 cpu $F) s CPU."
+
+# ---- 4. instructions against an older binary ----
+if [ -n "${BASE_SKINBAKE:-}" ] && command -v valgrind >/dev/null 2>&1; then
+	echo
+	echo "### Instructions against an older binary"
+	echo
+	echo "Instructions executed (valgrind --tool=callgrind, one thread; unlike times, independent of the"
+	echo "load), old binary: \`$(basename "$BASE_SKINBAKE")\` ($("$BASE_SKINBAKE" --version 2>/dev/null | head -1))."
+	echo
+	echo "| command | old | new | new / old | outputs |"
+	echo "|---|---|---|---|---|"
+	# ir BIN ARGS...: instructions of one run
+	ir() {
+		OMP_NUM_THREADS=1 valgrind --tool=callgrind --callgrind-out-file="$W/cg" "$@" >/dev/null 2>"$W/vg" || true
+		awk '/Collected :/ { print $NF }' "$W/vg"
+	}
+	row() {
+		label=$1
+		shift
+		o=$(ir "$BASE_SKINBAKE" "$@" --out "$W/o1")
+		n=$(ir "$SKINBAKE" "$@" --out "$W/o2")
+		echo "| \`$label\` | $o | $n | $(awk -v a="$o" -v b="$n" 'BEGIN { printf "%.3f", b / a }') | $SAME |"
+	}
+	SAME="tables within the AD estimates (test_ad)"
+	row "bake --preset paper --solver ad --threads 1 --radial-photons 100 --radial-error 1" \
+		bake --preset paper --solver ad --threads 1 --quiet --radial-photons 100 --radial-error 1
+	"$top_builddir/tests/maps_check" synth "$W/f" "$W/true" 256 256 >/dev/null
+	"$SKINBAKE" maps render-albedo --family "$W/f" --maps "$W/true" --out "$W/a.png" --quiet
+	o=$(ir "$BASE_SKINBAKE" maps fit --family "$W/f" --albedo "$W/a.png" --out "$W/m1" --quiet --threads 1)
+	n=$(ir "$SKINBAKE" maps fit --family "$W/f" --albedo "$W/a.png" --out "$W/m2" --quiet --threads 1)
+	same=identical
+	for f in "$W"/m2/*.png; do cmp -s "$f" "$W/m1/$(basename "$f")" || same=different; done
+	echo "| \`maps fit --family FAM --albedo A.png --threads 1\` (256 x 256, FAM above) | $o | $n |" \
+		"$(awk -v a="$o" -v b="$n" 'BEGIN { printf "%.3f", b / a }') | maps $same |"
+fi

@@ -7,7 +7,7 @@
 rank() {
 	case $1 in
 	base) echo 0 ;; io) echo 1 ;; engine) echo 2 ;; skin | geom) echo 3 ;; bake) echo 4 ;;
-	export | maps | scene) echo 5 ;; export/pov | export/blender) echo 6 ;; cli) echo 7 ;; *) echo -1 ;;
+	export | maps | scene) echo 5 ;; export/pov | export/blender | export/mitsuba) echo 6 ;; cli) echo 7 ;; *) echo -1 ;;
 	esac
 }
 # violations FILE DIR: what FILE (taken to live in DIR) includes against the rule.

@@ -195,7 +195,7 @@ bad "preset cat, two names" "unexpected argument 'b'" preset cat paper b
 bad "preset keys with an argument" "unexpected argument 'x'" preset keys x
 bad "presets with an argument" "unexpected argument 'x'" presets x
 bad "preset, unknown action" "unknown action 'frob' (show, cat, keys)" preset frob
-bad "export, unknown exporter" "unknown action 'pbrt' (pov, blender)" export pbrt
+bad "export, unknown exporter" "unknown action 'pbrt' (pov, blender, mitsuba)" export pbrt
 bad "maps, unknown action" "unknown action 'paint' (new, fit, edit, render-albedo)" maps paint
 bad "maps edit --scale hex" "--scale dermis.blood = '0x2' is not a decimal number in [0, 100]" maps edit --maps "$tmpd/maps" --scale dermis.blood=0x2 --out "$tmpd/new"
 bad "maps edit --add without =" "--add = 'dermis.blood' is not KEY=VALUE" maps edit --maps "$tmpd/maps" --add dermis.blood --out "$tmpd/new"
@@ -349,12 +349,12 @@ hand() {
 hand simulate "  --photons N            mc: photons in [1, 1e12] (default 1e6)"
 hand simulate "  --theta-in DEG         incidence angle in [0, 90) deg (default 0)"
 hand simulate "  --roulette-chance P    mc: roulette survival probability in (0, 1] (default 0.3)"
-hand bake "  --theta-nodes N        incidence angles 90*k/N deg (k = 0 .. N-1), N in [1, 90] (not with --theta-in; default 10)"
+hand bake "  --theta-nodes N        incidence angles 90*k/N deg (k = 0 .. N-1), N in [1, 90] (not with --theta-in; default the exit nodes below 90 deg: T-1 angles 45 (1 - cos(180 k/(T-1))) deg for --resolution TxP (T >= 3; else N = 10))"
 hand bake "  --theta-in LIST        incidence angles, comma-separated, each in [0, 90) deg, at most 90 (not with --theta-nodes)"
 hand bake "  --r-step CM            radial bin of Rd(r) in [1e-6, 10] cm (default 0.002)"
 hand bake "  --seed N               mc: random seed in [0, 2^63-1] (default 1)"
 hand bake "  --solver auto|ad|mc    adding-doubling (ad), Monte Carlo (mc), or ad with mc, said on stderr, for the wavelengths where ad cannot meet --ad-tol (auto) (default auto)"
-hand verify "  --cells N              table cells to recompute, 4 per (wavelength, angle) pair re-run in [1, 100000] (default 32)"
+hand verify "  --cells N              table cells to recompute, each by a Monte Carlo re-run of its own (independent cells) in [1, 100000] (default 32)"
 hand eval "  --phi DEG              azimuth difference: 0 back toward the light, 180 the mirror side in [0, 360] deg (required)"
 hand export_blender "  --sun-strength E       sun irradiance for the importer's demo scene, in (0, 1e6] W/m^2 (default 3)"
 hand export_blender "  --lut-cos N            cosine nodes per axis of brdf_lut.exr, in [8, 1024] (default 64)"

@@ -9,7 +9,7 @@
 #include <string.h>
 
 #include "bake/bake.h"
-#include "bake/bakefile.h"
+#include "bake/bakedir.h"
 #include "base/checksum.h"
 #include "base/util.h"
 #include "engine/specular.h"

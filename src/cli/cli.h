@@ -40,6 +40,7 @@ int cmd_texture(int argc, char **argv);
 int cmd_export(int argc, char **argv);
 int cmd_export_pov(int argc, char **argv);
 int cmd_export_blender(int argc, char **argv);
+int cmd_export_mitsuba(int argc, char **argv);
 int cmd_maps(int argc, char **argv);
 int cmd_verify(int argc, char **argv);
 int cmd_scene(int argc, char **argv);

@@ -8,6 +8,7 @@
 static const struct opt_sub exporters[] = {
 	{ "pov", "POV-Ray 3.7 include files and scenes that evaluate the baked table", cmd_export_pov },
 	{ "blender", "an image set for Blender's importer (exporters/blender/import_skin.py)", cmd_export_blender },
+	{ "mitsuba", "a scene directory for Mitsuba 3 (exporters/mitsuba): the table or volumetric skin", cmd_export_mitsuba },
 	{ NULL, NULL, NULL },
 };
 

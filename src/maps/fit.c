@@ -210,6 +210,33 @@ static int lut_nearest(const struct lut *t, const double lab[3])
 	return best;
 }
 
+/* lut_eval for two axes: the same operations in the same order (so the
+ * same bits), unrolled; the general loop spends most of its time on
+ * indexing and branches. */
+static void lut_eval2(const struct lut *t, const int *i0, const double *fr, double lab[3],
+    double jac[3][FAMILY_MAX_AXES])
+{
+	const double f0 = fr[0], f1 = fr[1], e0 = 1.0 - fr[0], e1 = 1.0 - fr[1];
+	const double w[4] = { e0 * e1, f0 * e1, e0 * f1, f0 * f1 };
+	const double d0[4] = { -1.0 * e1, 1.0 * e1, -1.0 * f1, 1.0 * f1 };
+	const double d1[4] = { e0 * -1.0, f0 * -1.0, e0 * 1.0, f0 * 1.0 };
+	const int base = i0[0] + i0[1] * t->g[0];
+	const int off[4] = { base, base + 1, base + t->g[0], base + t->g[0] + 1 };
+	for (int c = 0; c < 3; c++) {
+		lab[c] = 0.0;
+		jac[c][0] = 0.0;
+		jac[c][1] = 0.0;
+	}
+	for (int corner = 0; corner < 4; corner++) {
+		const double *L = t->lab + 3 * (size_t)off[corner];
+		for (int c = 0; c < 3; c++) {
+			lab[c] += w[corner] * L[c];
+			jac[c][0] += d0[corner] * L[c];
+			jac[c][1] += d1[corner] * L[c];
+		}
+	}
+}
+
 /* The multilinear interpolant of the grid at g and its Jacobian. */
 static void lut_eval(const struct lut *t, const double *g, double lab[3], double jac[3][FAMILY_MAX_AXES])
 {
@@ -222,6 +249,10 @@ static void lut_eval(const struct lut *t, const double *g, double lab[3], double
 		if (i0[a] < 0)
 			i0[a] = 0;
 		fr[a] = g[a] - i0[a];
+	}
+	if (t->k == 2) {
+		lut_eval2(t, i0, fr, lab, jac);
+		return;
 	}
 	for (int c = 0; c < 3; c++) {
 		lab[c] = 0.0;
@@ -353,11 +384,12 @@ void maps_texel_linear(const struct image *im, size_t i, int input_linear, doubl
 
 /* Distinct colours: a hash of the bits of the three values, ids in the
  * order of first appearance (raster order, so neighbouring ids are mostly
- * neighbouring texels of similar colour). */
+ * neighbouring texels of similar colour).  Memory per texel: the key (12
+ * bytes) and the id (4), plus 4-byte hash slots (8 to 16 bytes per texel)
+ * while they are found. */
 struct colours {
 	long n;			/* distinct colours */
-	uint32_t (*key)[3];	/* [n] */
-	long *first;		/* [n] a texel of that colour */
+	uint32_t (*key)[3];	/* [n] the bits of the texel's three float values */
 	int *id;		/* [texels] its colour, -1 not fitted */
 };
 
@@ -374,12 +406,12 @@ static void colours_find(struct colours *cl, const struct image *im, const unsig
 	size_t n = (size_t)im->w * im->h, cap = 1024;
 	while (cap < 2 * n)
 		cap *= 2;
-	long *slot = xmalloc(sizeof(long) * cap);
+	CHECK(n < INT32_MAX);
+	int32_t *slot = xmalloc(sizeof(int32_t) * cap);
 	for (size_t i = 0; i < cap; i++)
 		slot[i] = -1;
 	cl->n = 0;
 	cl->key = xmalloc(sizeof *cl->key * (n > 0 ? n : 1));
-	cl->first = xmalloc(sizeof(long) * (n > 0 ? n : 1));
 	cl->id = xmalloc(sizeof(int) * (n > 0 ? n : 1));
 	for (size_t i = 0; i < n; i++) {
 		cl->id[i] = -1;
@@ -393,19 +425,26 @@ static void colours_find(struct colours *cl, const struct image *im, const unsig
 		while (slot[j] >= 0 && memcmp(cl->key[slot[j]], k, sizeof k) != 0)
 			j = (j + 1) & (cap - 1);
 		if (slot[j] < 0) {
-			slot[j] = cl->n;
-			memcpy(cl->key[cl->n], k, sizeof k);
-			cl->first[cl->n++] = (long)i;
+			slot[j] = (int32_t)cl->n;
+			memcpy(cl->key[cl->n++], k, sizeof k);
 		}
 		cl->id[i] = (int)slot[j];
 	}
 	free(slot);
+	/* Keep only the keys found (realloc to a smaller size does not move). */
+	cl->key = xreallocarray(cl->key, (size_t)(cl->n > 0 ? cl->n : 1), sizeof *cl->key);
+}
+
+/* The texel values a colour's key holds (as image_get returned them). */
+static void key_values(const uint32_t k[3], float v[3])
+{
+	for (int c = 0; c < 3; c++)
+		memcpy(&v[c], &k[c], sizeof v[c]);
 }
 
 static void colours_free(struct colours *cl)
 {
 	free(cl->key);
-	free(cl->first);
 	free(cl->id);
 }
 
@@ -488,33 +527,37 @@ int maps_fit(struct family *f, const struct image *albedo, const struct image *m
 	/* Colours in fixed chunks, each solved in order with warm starts: the
 	 * result does not depend on the threads. */
 	enum { CHUNK = 512 };
-	float *res = xmalloc(sizeof(float) * (size_t)(cl.n > 0 ? cl.n : 1) * (FAMILY_MAX_AXES + 1));
+	const int nr = t.k + 1;	/* floats per colour: the parameters and the error */
+	float *res = xmalloc(sizeof(float) * (size_t)(cl.n > 0 ? cl.n : 1) * (size_t)nr);
 	long n_chunks = (cl.n + CHUNK - 1) / CHUNK;
 #pragma omp parallel for schedule(dynamic, 1) num_threads(threads)
 	for (long ch = 0; ch < n_chunks; ch++) {
 		double g[FAMILY_MAX_AXES] = { 0 };
 		for (long u = ch * CHUNK; u < cl.n && u < (ch + 1) * CHUNK; u++) {
 			double rgb[3], target[3], x[FAMILY_MAX_AXES], lab[3];
-			maps_texel_linear(albedo, (size_t)cl.first[u], o->input_linear, rgb);
+			float v[3];
+			key_values(cl.key[u], v);
+			for (int c = 0; c < 3; c++)
+				rgb[c] = o->input_linear ? v[c] : srgb_decode(v[c]);
 			colour_linear_srgb_to_lab(rgb, target);
 			solve_colour(&t, target, g, u > ch * CHUNK);
 			grid_params(&t, g, x);
 			params_lab(f, x, lab);
-			float *r = res + (size_t)u * (FAMILY_MAX_AXES + 1);
+			float *r = res + (size_t)u * (size_t)nr;
 			for (int a = 0; a < t.k; a++)
 				r[a] = (float)x[a];
-			r[FAMILY_MAX_AXES] = (float)colour_de2000(target, lab);
+			r[t.k] = (float)colour_de2000(target, lab);
 		}
 	}
 #pragma omp parallel for schedule(static) num_threads(threads)
 	for (long i = 0; i < (long)n; i++) {
 		if (cl.id[i] < 0)
 			continue;
-		const float *r = res + (size_t)cl.id[i] * (FAMILY_MAX_AXES + 1);
+		const float *r = res + (size_t)cl.id[i] * (size_t)nr;
 		for (int a = 0; a < t.k; a++)
 			m->p[a].v[i] = r[a];
-		m->de2000[i] = r[FAMILY_MAX_AXES];
-		m->status[i] = r[FAMILY_MAX_AXES] <= o->max_de ? MAPS_MATCHED : MAPS_UNMATCHED;
+		m->de2000[i] = r[t.k];
+		m->status[i] = r[t.k] <= o->max_de ? MAPS_MATCHED : MAPS_UNMATCHED;
 	}
 	free(res);
 	colours_free(&cl);

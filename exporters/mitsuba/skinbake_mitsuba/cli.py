@@ -106,17 +106,83 @@ def cmd_slab(a):
     return 0
 
 
+def _sphere_parser(sub):
+    p = sub.add_parser("sphere", help="render a unit sphere with the baked table under a directional "
+                       "light, orthographic from +z (the per-pixel check against skinbake eval)")
+    p.add_argument("--bake", required=True, help="a directory written by skinbake bake")
+    p.add_argument("--light-dir", default="0.5,0.3,0.8", help="direction toward the light, x,y,z")
+    p.add_argument("--size", type=int, default=48, help="image width and height in [4, 4096] px")
+    p.add_argument("--spp", type=int, default=256, help="samples per pixel in [1, 1e6]")
+    p.add_argument("--wavelength", type=float, default=None,
+                   help="nm in [360, 830]: render that 1 nm band in a spectral variant (default: rgb)")
+    p.add_argument("--variant", default=None, help="Mitsuba variant (default llvm_ad_spectral or llvm_ad_rgb)")
+    p.add_argument("--out", required=True, help="output .npy (float32 [size][size][channels])")
+    return p
+
+
+def cmd_sphere(a):
+    import os
+    if not os.path.isfile(os.path.join(a.bake, "manifest.json")):
+        raise UsageError("--bake %s: no manifest.json there (not a bake directory)" % a.bake)
+    d = _floats(a.light_dir, "--light-dir", -1e9, 1e9, "")
+    if len(d) != 3 or (d[0] ** 2 + d[1] ** 2 + d[2] ** 2) == 0.0:
+        raise UsageError("--light-dir %s: needs three numbers, not all 0" % a.light_dir)
+    _int_range("--size", a.size, 4, 4096)
+    _int_range("--spp", a.spp, 1, 10 ** 6)
+    if a.wavelength is not None and not (360.0 <= a.wavelength <= 830.0):
+        raise UsageError("--wavelength %g is outside [360, 830] nm" % a.wavelength)
+    from . import sphere
+    import numpy as np
+    img, seconds, used = sphere.render(a.bake, d, a.size, a.spp, a.wavelength, a.variant)
+    np.save(a.out, img.astype(np.float32))
+    sys.stderr.write("skinbake_mitsuba sphere: %s, %dx%d at %d spp in %.2f s\n" % (used, a.size, a.size, a.spp, seconds))
+    return 0
+
+
+def _render_parser(sub):
+    p = sub.add_parser("render", help="render a `skinbake export mitsuba` directory")
+    p.add_argument("export", help="the directory written by skinbake export mitsuba")
+    p.add_argument("--mode", default="table", help="table or volumetric (default table)")
+    p.add_argument("--width", type=int, default=None, help="image width in [8, 8192] px (default the scene's)")
+    p.add_argument("--spp", type=int, default=64, help="samples per pixel in [1, 1e6]")
+    p.add_argument("--variant", default=None, help="Mitsuba variant (default llvm_ad_rgb, else scalar_rgb)")
+    p.add_argument("--out", required=True, help="output image: .exr (linear) or .png (sRGB)")
+    return p
+
+
+def cmd_render(a):
+    import os
+    if a.mode not in ("table", "volumetric"):
+        raise UsageError("--mode %s is not table or volumetric" % a.mode)
+    if not os.path.isfile(os.path.join(a.export, "manifest.json")):
+        raise UsageError("%s: no manifest.json there (not a skinbake export mitsuba directory)" % a.export)
+    if a.width is not None:
+        _int_range("--width", a.width, 8, 8192)
+    _int_range("--spp", a.spp, 1, 10 ** 6)
+    if not (a.out.endswith(".exr") or a.out.endswith(".png")):
+        raise UsageError("--out %s: give a .exr or .png name" % a.out)
+    from . import scene
+    try:
+        seconds, used = scene.render(a.export, a.mode, a.out, a.width, a.spp, a.variant)
+    except ValueError as e:
+        raise UsageError(str(e)) from None
+    sys.stderr.write("skinbake_mitsuba render: %s mode, %s, %d spp, %.1f s\n" % (a.mode, used, a.spp, seconds))
+    return 0
+
+
 def main(argv):
     parser = _Parser(prog="python -m skinbake_mitsuba",
                      description="Mitsuba 3 renders for skinbake: volumetric ground truth and table BSDF")
     sub = parser.add_subparsers(dest="command")
     _slab_parser(sub)
+    _sphere_parser(sub)
+    _render_parser(sub)
     try:
         a = parser.parse_args(argv)
         if a.command is None:
             parser.print_help(sys.stderr)
             return USAGE_ERROR
-        return {"slab": cmd_slab}[a.command](a)
+        return {"slab": cmd_slab, "sphere": cmd_sphere, "render": cmd_render}[a.command](a)
     except UsageError as e:
         sys.stderr.write("skinbake_mitsuba: %s\n" % e)
         return USAGE_ERROR
