@@ -4,7 +4,9 @@
 # `export pov --plan` lists), grows the face's pores and furrows, exports
 # scenes/human-head.scene (the MakeHuman model of Debian's assimp-testmodels,
 # 640x480) and scenes/human-pores.scene (its cheek at 0.04 mm per pixel) and
-# renders both:  OUT/human-head.png and OUT/human-pores.png  (OUT: out/demo).
+# renders both:  OUT/human-head.png and OUT/human-pores.png  (OUT: out/demo); then the head lit
+# from behind in the translucent mode (POV-Ray's subsurface fitted to the bake's Rd(r)):
+# OUT/human-head-backlit.png.
 # Run after scripts/setup.sh (it uses the binary built in this tree).
 set -eu
 cd "$(dirname "$0")/.."
@@ -33,4 +35,11 @@ for s in human-head human-pores; do
 	cp "$out/$s/$s.png" "$out/$s.png"
 	echo "wrote $out/$s.png"
 done
+echo "== translucent: scenes/human-head-backlit.scene, lit from behind (docs/translucency.md)"
+$B export pov --scene scenes/human-head-backlit.scene --bake "$out/paper" --out "$out/human-head-backlit" \
+	--mode translucent --size 320x240 >/dev/null
+(cd "$out/human-head-backlit" && povray human-head-backlit.ini >povray.log 2>&1) || {
+	echo "demo.sh: povray failed, see $out/human-head-backlit/povray.log" >&2; exit 1; }
+cp "$out/human-head-backlit/human-head-backlit.png" "$out/human-head-backlit.png"
+echo "wrote $out/human-head-backlit.png"
 echo "demo.sh: done in $(($(date +%s) - t0)) s"

@@ -364,6 +364,11 @@ say "[5/5] renders (scripts/validate-renders.sh, POV-Ray)"
 SKINBAKE=$SKINBAKE POVRAY=$POVRAY GNUPLOT=$GNUPLOT THREADS=$THREADS VALIDATE_QUICK=$QUICK \
 	VALIDATE_WORK=$work sh "$top_srcdir/scripts/validate-renders.sh"
 rn=$work/render
+# 5b. The bridge measured against Mitsuba's volumetric reference (issue 25;
+# says "not run" without mitsuba).
+say "[5b] the bridge measured (scripts/validate-mitsuba.sh, Mitsuba 3)"
+SKINBAKE=$SKINBAKE POVRAY=$POVRAY VALIDATE_QUICK=$QUICK VALIDATE_WORK=$work \
+	sh "$top_srcdir/scripts/validate-mitsuba.sh" || say "  scripts/validate-mitsuba.sh failed"
 
 ###########################################################################
 # The report
@@ -538,6 +543,7 @@ EOF
 
 EOF
 	cat "$rn/section.md"
+	[ -f "$work/mitsuba/section.md" ] && printf '\n' && cat "$work/mitsuba/section.md"
 	cat <<EOF
 
 ## 6. What disagrees with the paper

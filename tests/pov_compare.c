@@ -10,6 +10,12 @@
  *       1 % of the image maximum, not clipped.  Prints the mean relative error
  *       and the shadow check; fails if the error exceeds T (default 0.005) or
  *       a shadowed pixel is lit (or a lit pixel dark).
+ *       With --ad (and --bake), the expected value does not come from the
+ *       bake's interpolation (eval) but from adding-doubling point values of
+ *       the bake's own layer stacks (the manifest's), solved at each pixel's
+ *       incidence angle, plus the analytic specular, summed to RGB with the
+ *       bake's weights; with --min-theta-out DEG only pixels whose exit angle
+ *       is at least DEG count (the silhouettes, where the table is grazing).
  *   pov_compare sum --render R.png --parts A.png B.png [...] [--tol T] [--interior]
  *       Mean relative difference of R against the sum of the parts over
  *       pixels above 1 % of the maximum; with --interior only where every
@@ -32,6 +38,8 @@
 #include <stdlib.h>
 #include <string.h>
 
+#include "bake/manifest.h"
+#include "engine/ad.h"
 #include "export/source.h"
 #include "io/pngio.h"
 #include "export/pov/littable.h"
@@ -111,7 +119,44 @@ struct pixel {
 	int obj;		/* object hit or -1 */
 	unsigned shadow;	/* bit k: light k blocked */
 	double v[3];		/* expected value */
+	double co;		/* cosine of the exit angle */
 };
+
+/* --ad: adding-doubling point values of the bake's stacks (see the top). */
+struct ad_ref {
+	struct bake *b;
+	struct bake_provenance pv;
+	double min_to;		/* [rad]: 0 returned below (pixels not counted) */
+	long solves;
+};
+
+static void ad_rgb(void *ctx, double ti, double to, double dphi, double rgb[3])
+{
+	struct ad_ref *a = ctx;
+	const struct bake *b = a->b;
+	double sp[BAKE_MAX_WL];
+	rgb[0] = rgb[1] = rgb[2] = 0.0;
+	if (to < a->min_to || ti >= 0.5 * M_PI)
+		return;
+	bake_eval_specular(b, ti, to, dphi, sp);
+	for (int w = 0; w < b->n_wl; w++) {
+		struct ad_opts o;
+		struct ad_result r;
+		char *cause = NULL;
+		ad_opts_default(&o);
+		o.n_to = o.n_phi = 1;
+		o.threads = 1;
+		if (ad_solve(&a->pv.slab[w], a->pv.fresnel, &ti, 1, &o, &r, &cause) != 0) {
+			fprintf(stderr, "pov_compare: adding-doubling: %s\n", cause);
+			exit(2);
+		}
+		a->solves++;
+		double f = ad_brdf(&r, 0, to, dphi, NULL) + sp[w];
+		for (int c = 0; c < 3; c++)
+			rgb[c] += b->rgb_from_wl[c * b->n_wl + w] * f;
+		ad_result_free(&r);
+	}
+}
 
 static void shade(const struct scene *s, const struct pov_brdf *f, int only, const double o[3], const double d[3],
     struct pixel *px)
@@ -137,6 +182,7 @@ static void shade(const struct scene *s, const struct pov_brdf *f, int only, con
 				n[i] = -n[i];
 	}
 	double co = dot(n, v);
+	px->co = co;
 	for (int k = 0; k < s->n_lights; k++) {
 		if (only >= 0 && k != only)
 			continue;
@@ -175,8 +221,8 @@ static void shade(const struct scene *s, const struct pov_brdf *f, int only, con
 static int cmd_expect(int argc, char **argv)
 {
 	const char *scene_path = NULL, *bake_dir = NULL, *render = NULL, *only_name = NULL;
-	int analytic = 0, only = -1;
-	double tol = 0.005;
+	int analytic = 0, only = -1, ad = 0;
+	double tol = 0.005, min_to_deg = 0.0;
 	for (int i = 2; i < argc; i++) {
 		if (!strcmp(argv[i], "--scene") && i + 1 < argc)
 			scene_path = argv[++i];
@@ -190,6 +236,10 @@ static int cmd_expect(int argc, char **argv)
 			tol = atof(argv[++i]);
 		else if (!strcmp(argv[i], "--only") && i + 1 < argc)
 			only_name = argv[++i];
+		else if (!strcmp(argv[i], "--ad"))
+			ad = 1;
+		else if (!strcmp(argv[i], "--min-theta-out") && i + 1 < argc)
+			min_to_deg = atof(argv[++i]);
 		else
 			return fprintf(stderr, "pov_compare expect: bad argument '%s'\n", argv[i]), 2;
 	}
@@ -210,6 +260,12 @@ static int cmd_expect(int argc, char **argv)
 		if (b == NULL)
 			return fprintf(stderr, "pov_compare: %s\n", cause), 2;
 		f = (struct pov_brdf){ .f_rgb = b->f_rgb, .ctx = b->ctx };
+	}
+	struct ad_ref ar = { .b = b ? b->bake : NULL, .min_to = min_to_deg * M_PI / 180.0 };
+	if (ad) {
+		if (b == NULL || bake_provenance_read(bake_dir, &ar.pv, &cause) != 0)
+			return fprintf(stderr, "pov_compare: --ad: %s\n", cause ? cause : "needs --bake"), 2;
+		f = (struct pov_brdf){ .f_rgb = ad_rgb, .ctx = &ar };
 	}
 	int w, h;
 	float *img = load(render, &w, &h);
@@ -257,7 +313,7 @@ static int cmd_expect(int argc, char **argv)
 					const struct pixel *q = &px[(y + dy) * w + x + dx];
 					edge |= q->obj != p->obj || q->shadow != p->shadow;
 				}
-			if (edge || p->obj < 0)
+			if (edge || p->obj < 0 || acos(fmax(-1, fmin(1, p->co))) < ar.min_to)
 				continue;
 			const float *r = &img[3 * (y * w + x)];
 			if (r[0] < 0 || r[1] < 0 || r[2] < 0) {
@@ -286,8 +342,12 @@ static int cmd_expect(int argc, char **argv)
 	double mre = n_rel ? sum_rel / n_rel : INFINITY;
 	printf("mean_rel_err %.5f  abs_over_mean %.5f  pixels %ld  shadowed %ld  shadow_mismatch %ld  clipped %ld  max %.4f\n",
 	    mre, sum_ref > 0 ? sum_abs / sum_ref : INFINITY, n_px, n_shadow, shadow_bad, n_clip, vmax);
+	if (ad)
+		printf("(adding-doubling reference: %ld solves, exit angles from %g deg)\n", ar.solves, min_to_deg);
 	free(px);
 	free(img);
+	if (ad)
+		bake_provenance_free(&ar.pv);
 	brdf_source_free(b);
 	scene_free(s);
 	return mre <= tol && shadow_bad == 0 && n_px > 100 ? 0 : 1;

@@ -2,10 +2,11 @@
 # The solver choice from the command line: `bake --solver ad` writes the
 # documented bake directory that eval and both exporters read; auto falls
 # back to Monte Carlo on a g = 0.99 stack and says so on stderr, `--solver
-# ad` refuses it with exit 2 and writes nothing; verify exits 0 on a good
+# ad` refuses it with exit 2 and writes nothing (asked to 1e-5); verify exits 0 on a good
 # bake and 1 on one whose manifest no longer matches its table; simulate
-# --solver ad --json has Monte Carlo's keys.  Costs about 10 s of CPU (the
-# g = 0.99 refusal takes about 3 s of it, the fallback's Monte Carlo 2 s).
+# --solver ad --json has Monte Carlo's keys.  Costs about 30 s of CPU (the
+# g = 0.99 refusals escalate to 256 nodes: about 8 s each, the fallback's
+# Monte Carlo 2 s).
 . "$top_srcdir/tests/tap.sh"
 B="$SKINBAKE"
 out="$tmpd/ad"
@@ -18,7 +19,12 @@ check "manifest: solver ad, its error and tolerance, Rd(r) by Monte Carlo with e
 import json; m=json.load(open('$out/manifest.json'))
 s=m['solver']; r=m['result']; rad=m['radial']
 assert s['name']=='ad' and s['requested']=='ad' and s['ad']['tol']==0.001 and s['fallback_to_mc']==[]
-assert r['rms_rel_err']==s['rms_rel_err'] and 0<r['rms_rel_err']<=0.001 and r['target_met'] and r['photons']==0
+# point values (issue 26): their RMS relative error is above the 1e-3 that
+# adding-doubling met on its bin means (at exit nodes near 90 deg the values
+# are small and their error estimates, the largest over a quarter node
+# spacing, conservative), within 2x of it
+assert r['rms_rel_err']==s['rms_rel_err'] and 0<r['rms_rel_err']<=0.002 and r['target_met'] and r['photons']==0
+assert m['table']['values']==['points']*3 and len(m['theta_o_nodes_deg'])==9 and m['theta_o_nodes_deg'][-1]==90
 assert all(j['solver']=='ad' and j['n_quad']>=16 and j['fourier_orders']>=1 for j in m['jobs'])
 assert rad['photons']>=3*2000 and rad['target_rel_err']==0.1 and len(rad['mean_radius_err_cm'])==3
 assert all(0<e<0.12*x for x,e in zip(rad['mean_radius_cm'],rad['mean_radius_err_cm']))"
@@ -28,9 +34,11 @@ check "export blender reads the ad bake" "$B" export blender --bake "$out" --out
 check "export pov reads the ad bake" "$B" export pov --bake "$out" --scene "$top_srcdir/scenes/sphere.scene" \
 	--out "$tmpd/pov" --data-dir "$top_srcdir/exporters/pov"
 
-# A stack adding-doubling cannot resolve to its tolerance: g = 0.99 at 550 nm.
+# A stack adding-doubling cannot resolve to its tolerance: g = 0.99 at 550 nm
+# asked to 1e-5 (at the default 1e-3 it solves it with 256 nodes per unit
+# cosine: issue 26); refused after escalating to n_quad_max (256).
 printf '[skin]\nbase = paper\nname = peaked\n[override.550]\nepidermis.mua = 50\nepidermis.mus = 370\nepidermis.g = 0.99\ndermis.mua = 7\ndermis.mus = 370\ndermis.g = 0.99\n' >"$tmpd/g99.ini"
-small="--preset-file $tmpd/g99.ini --theta-in 30 --resolution 6x4 --r-bins 20 --radial-error 0.2"
+small="--preset-file $tmpd/g99.ini --theta-in 0 --ad-tol 1e-5 --resolution 6x4 --r-bins 20 --radial-error 0.2"
 # shellcheck disable=SC2086
 "$B" bake $small --solver ad --out "$tmpd/g99ad" >"$tmpd/o" 2>"$tmpd/e"
 rc=$?

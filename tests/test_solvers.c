@@ -40,6 +40,7 @@ static void paper_spec(struct bake_spec *s, int method)
 	s->dr = 0.01;
 	transport_opts_default(&s->opts);
 	s->method = method;
+	s->bin_means = 1;	/* the methods compared bin by bin */
 	s->seed = 5;
 	s->batch_photons = 1000;
 	s->min_batches = 8;

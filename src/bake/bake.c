@@ -283,6 +283,8 @@ uint64_t bake_spec_identity(const struct bake_spec *s)
 }
 
 static int bake_solve(const struct bake_spec *s, const struct solver_run *run, struct bake_result *r, char **cause);
+static int bake_solve_p(const struct bake_spec *s, const struct solver_problem *pp, const struct solver_run *run0,
+    struct bake_result *r, char **cause);
 
 /* With a checkpoint (bake.h): open it, run, say what it restored and
  * whether it could be written. */
@@ -326,6 +328,25 @@ static int bake_solve(const struct bake_spec *s, const struct solver_run *run0, 
 		.grid = { .n_theta = s->n_to, .n_phi = s->n_phi, .n_r = s->n_r, .dr = s->dr },
 		.fresnel = s->opts.fresnel, .target_error = s->target_error,
 	};
+	double *pto = NULL, *pph = NULL;
+	if (bake_spec_points(s)) {
+		pto = xmalloc(sizeof(double) * (size_t)s->n_to);
+		pph = xmalloc(sizeof(double) * (size_t)s->n_phi);
+		bake_nodes_theta(s->n_to, pto);
+		bake_nodes_phi(s->n_phi, pph);
+		p.point_theta_o = pto;
+		p.point_phi = pph;
+	}
+	int rc = bake_solve_p(s, &p, run0, r, cause);
+	free(pto);
+	free(pph);
+	return rc;
+}
+
+static int bake_solve_p(const struct bake_spec *s, const struct solver_problem *pp, const struct solver_run *run0,
+    struct bake_result *r, char **cause)
+{
+	struct solver_problem p = *pp;
 	struct solver_run run = *run0;
 	const struct bake_method_row *m = (const struct bake_method_row *)bake_method_of(s->method);
 	if (m->solve(s, &p, &run, r, cause) != 0) {
@@ -410,7 +431,34 @@ void bake_spec_axes(struct bake_spec *s, const double *wl_nm, int n_wl, const do
 	s->n_wl = n_wl;
 	if (n_wl > 0)
 		memcpy(s->wl_nm, wl_nm, sizeof(double) * (size_t)n_wl);
-	s->n_ti = n_theta > 0 ? n_theta : nodes;
+	if (n_theta == 0 && nodes == 0 && s->n_to >= 3 && s->n_to - 1 <= BAKE_MAX_TI) {
+		double th[BAKE_MAX_TI + 1];
+		bake_nodes_theta(s->n_to, th);
+		s->n_ti = s->n_to - 1;
+		memcpy(s->theta_i, th, sizeof(double) * (size_t)s->n_ti);
+		return;
+	}
+	s->n_ti = n_theta > 0 ? n_theta : nodes > 0 ? nodes : 10;
 	for (int k = 0; k < s->n_ti; k++)
 		s->theta_i[k] = n_theta > 0 ? theta_deg[k] * M_PI / 180.0 : 0.5 * M_PI * k / s->n_ti;
 }
+
+void bake_nodes_theta(int n, double *theta)
+{
+	for (int k = 0; k < n; k++)
+		theta[k] = n == 1 ? 0.0 : 0.25 * M_PI * (1.0 - cos(k * M_PI / (n - 1)));
+	if (n > 1)
+		theta[n - 1] = 0.5 * M_PI;	/* exactly */
+}
+
+void bake_nodes_phi(int n, double *phi)
+{
+	for (int j = 0; j < n; j++)
+		phi[j] = n == 1 ? 0.0 : M_PI * j / (n - 1);
+}
+
+int bake_spec_points(const struct bake_spec *s)
+{
+	return s->method != BAKE_SOLVER_MC && !s->bin_means && s->n_to >= 3 && s->n_phi >= 2;
+}
+

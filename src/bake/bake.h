@@ -76,6 +76,8 @@ struct bake_spec {
 	double ad_tol;				/* adding-doubling tolerance (table RMS relative error);
 					 * 0 = 1e-3; the target error when that is smaller */
 	int ad_quad;				/* its quadrature nodes per unit cosine; 0 = automatic */
+	int bin_means;				/* 1: bin means from every method (no point values;
+					 * for comparing methods bin by bin) */
 	double radial_error;			/* relative standard error of the mean exit radius that
 					 * the Rd(r) run of an adding-doubling table aims at;
 					 * 0 = BAKE_RADIAL_ERROR */
@@ -141,7 +143,9 @@ int bake_spec_layers(struct bake_spec *s, const struct skin_params *p, const cha
 const char *bake_rgb_weights(const struct bake_spec *s, double *rgb_from_wl);
 /* s's wavelengths wl_nm[n_wl] (0: the preset's, set later) and incidence
  * angles: theta_deg[n_theta] [deg], or when n_theta is 0 the nodes
- * 90 k / nodes deg, k = 0 .. nodes - 1. */
+ * 90 k / nodes deg, k = 0 .. nodes - 1, or when nodes is 0 too the table's
+ * exit nodes below 90 deg (bake_nodes_theta(s->n_to), the last dropped:
+ * the BRDF is 0 there; needs n_to >= 3, else 10 nodes as above). */
 void bake_spec_axes(struct bake_spec *s, const double *wl_nm, int n_wl, const double *theta_deg, int n_theta,
     int nodes);
 /* Load preset NAME, or the preset file PFILE when NAME is NULL, and fill
@@ -149,4 +153,18 @@ void bake_spec_axes(struct bake_spec *s, const double *wl_nm, int n_wl, const do
  * stacks; for Monte Carlo, check that the photon budget covers the first
  * round.  The preset (caller frees with preset_free), or NULL and *cause. */
 struct skin_params *bake_spec_preset(struct bake_spec *s, const char *name, const char *pfile, char **cause);
+/* The table's nodes where it holds point values (adding-doubling entries,
+ * bake_spec_points): n >= 2 angles theta_k = pi/4 (1 - cos(k pi / (n - 1)))
+ * [rad] over [0, pi/2], both ends included (Chebyshev-Lobatto in theta:
+ * the BRDF of smooth boundaries is analytic in theta up to grazing, so
+ * polynomial interpolation on them converges exponentially; dense where the
+ * Fresnel factors change fast); and n >= 2 azimuths j pi / (n - 1) [rad]
+ * over [0, pi] (trigonometric interpolation is exact for the Fourier orders
+ * below n).  n = 1: theta 0 and phi 0 (an azimuthal mean). */
+void bake_nodes_theta(int n, double *theta);
+void bake_nodes_phi(int n, double *phi);
+/* 1 when adding-doubling entries of s's table are point values at those
+ * nodes (method ad or auto, n_to >= 3 and n_phi >= 2, not bin_means);
+ * Monte Carlo entries are always bin means. */
+int bake_spec_points(const struct bake_spec *s);
 #endif

@@ -24,5 +24,9 @@ void bake_free(struct bake *b)
 	free(b->rgb_from_wl);
 	free(b->stack);
 	free(b->sss_radius_cm);
+	free(b->points);
+	free(b->theta_o_nodes);
+	free(b->phi_nodes);
+	free(b->interp);	/* one allocation (bakeinterp.c) */
 	free(b);
 }

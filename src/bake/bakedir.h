@@ -13,7 +13,7 @@ struct bake {
 	double *wl_nm;		/* [n_wl] wavelengths [nm] */
 	int n_ti, n_to, n_phi;	/* table axes */
 	double *theta_i;	/* [n_ti] incidence nodes [rad], ascending */
-	double *theta_o;	/* [n_to] outgoing bin centres [rad] */
+	double *theta_o;	/* [n_to] outgoing bin centres [rad] (of Monte Carlo wavelengths) */
 	double *phi;		/* [n_phi] delta_phi bin centres [rad] */
 	float *fr;		/* [n_wl][n_ti][n_to][n_phi] diffuse BRDF [1/sr] */
 	float *fr_err;		/* same layout, standard error [1/sr] */
@@ -29,6 +29,11 @@ struct bake {
 	int n_r;		/* radial bins of rd_r_rgb (0: the manifest has no profile) */
 	double dr_cm;		/* their width [cm] */
 	double *rd_r_rgb;	/* [3][n_r] linear sRGB Rd(r) at the first incidence node [1/cm^2], or NULL */
+	/* Point values (NULL in bakes of bin means only; bakefile.h). */
+	int *points;		/* [n_wl] 1: the wavelength's values are at the nodes below, 0: bin means */
+	double *theta_o_nodes;	/* [n_to] exit nodes of point values [rad] */
+	double *phi_nodes;	/* [n_phi] delta_phi nodes of point values [rad] */
+	struct bake_series *interp;	/* the series through them (bakeinterp.h) */
 };
 
 struct bake_spec;

@@ -13,6 +13,7 @@
 #include <unistd.h>
 
 #include "bake/bake.h"
+#include "bake/bakeinterp.h"
 #include "bake/checkpoint.h"
 #include "bake/manifest.h"
 #include "bake/manifest_check.h"
@@ -266,32 +267,14 @@ struct bake *bake_load(const char *dir, char **cause)
 		bake_free(b);
 		return NULL;
 	}
+	bake_prepare(b);
 	return b;
 }
 
-/* Linear interpolation weights on an ascending axis, clamped at the ends. */
-static void axis_weights(const double *ax, int n, double x, int *i0, double *t)
+void bake_prepare(struct bake *b)
 {
-	if (n == 1 || x <= ax[0]) {
-		*i0 = 0;
-		*t = 0.0;
-		return;
-	}
-	if (x >= ax[n - 1]) {
-		*i0 = n - 2;
-		*t = 1.0;
-		return;
-	}
-	int lo = 0, hi = n - 1;
-	while (hi - lo > 1) {
-		int mid = (lo + hi) / 2;
-		if (ax[mid] <= x)
-			lo = mid;
-		else
-			hi = mid;
-	}
-	*i0 = lo;
-	*t = (x - ax[lo]) / (ax[lo + 1] - ax[lo]);
+	bake_interp_free(b);
+	bake_interp_build(b);
 }
 
 static double fold_phi(double dphi)
@@ -300,34 +283,16 @@ static double fold_phi(double dphi)
 	return dphi > M_PI ? 2.0 * M_PI - dphi : dphi;
 }
 
-/* Trilinear interpolation of one plane [n_ti][n_to][n_phi]. */
-static double interp(const struct bake *b, const float *plane, double ti, double to, double ph)
+static double clamp_theta(double t)
 {
-	int a0, b0, c0;
-	double ta, tb, tc;
-	axis_weights(b->theta_i, b->n_ti, ti, &a0, &ta);
-	axis_weights(b->theta_o, b->n_to, to, &b0, &tb);
-	axis_weights(b->phi, b->n_phi, ph, &c0, &tc);
-	int a1 = b->n_ti > 1 ? a0 + 1 : a0, b1 = b->n_to > 1 ? b0 + 1 : b0, c1 = b->n_phi > 1 ? c0 + 1 : c0;
-#define AT(i, o, p) ((double)plane[((size_t)(i) * b->n_to + (size_t)(o)) * b->n_phi + (size_t)(p)])
-	double v = 0.0;
-	v += (1 - ta) * (1 - tb) * (1 - tc) * AT(a0, b0, c0) + (1 - ta) * (1 - tb) * tc * AT(a0, b0, c1);
-	v += (1 - ta) * tb * (1 - tc) * AT(a0, b1, c0) + (1 - ta) * tb * tc * AT(a0, b1, c1);
-	v += ta * (1 - tb) * (1 - tc) * AT(a1, b0, c0) + ta * (1 - tb) * tc * AT(a1, b0, c1);
-	v += ta * tb * (1 - tc) * AT(a1, b1, c0) + ta * tb * tc * AT(a1, b1, c1);
-#undef AT
-	return v;
+	return fmin(0.5 * M_PI, fmax(0.0, t));
 }
 
 void bake_eval_diffuse(const struct bake *b, double theta_i, double theta_o, double dphi, double *f, double *err)
 {
-	size_t npx = (size_t)b->n_ti * b->n_to * b->n_phi;
-	double ph = fold_phi(dphi);
-	for (int w = 0; w < b->n_wl; w++) {
-		f[w] = interp(b, b->fr + w * npx, theta_i, theta_o, ph);
-		if (err)
-			err[w] = interp(b, b->fr_err + w * npx, theta_i, theta_o, ph);
-	}
+	double ph = fold_phi(dphi), ti = clamp_theta(theta_i), to = clamp_theta(theta_o);
+	for (int w = 0; w < b->n_wl; w++)
+		f[w] = bake_interp_eval(b, w, ti, to, ph, err ? &err[w] : NULL);
 }
 
 void bake_eval_specular(const struct bake *b, double theta_i, double theta_o, double dphi, double *f)
@@ -338,16 +303,24 @@ void bake_eval_specular(const struct bake *b, double theta_i, double theta_o, do
 
 void bake_eval_rgb(const struct bake *b, double theta_i, double theta_o, double dphi, double rgb[3])
 {
-	size_t npx = (size_t)b->n_ti * b->n_to * b->n_phi;
-	double ph = fold_phi(dphi);
-	double sp[BAKE_MAX_WL];
+	double ph = fold_phi(dphi), ti = clamp_theta(theta_i), to = clamp_theta(theta_o);
+	double sp[BAKE_MAX_WL], fd[BAKE_MAX_WL];
 	CHECK(b->n_wl <= BAKE_MAX_WL);	/* bake_load guarantees it */
 	bake_eval_specular(b, theta_i, theta_o, ph, sp);
-	for (int c = 0; c < 3; c++) {
-		rgb[c] = interp(b, b->fr_rgb + c * npx, theta_i, theta_o, ph);
+	int mixed = 0;
+	for (int c = 0; c < 3; c++)
+		mixed |= bake_interp_rgb(b, c, ti, to, ph, &rgb[c]) != 0;
+	if (mixed) {	/* point values and bin means: wavelength by wavelength */
+		bake_eval_diffuse(b, ti, to, ph, fd, NULL);
+		for (int c = 0; c < 3; c++) {
+			rgb[c] = 0.0;
+			for (int w = 0; w < b->n_wl; w++)
+				rgb[c] += b->rgb_from_wl[c * b->n_wl + w] * fd[w];
+		}
+	}
+	for (int c = 0; c < 3; c++)
 		for (int w = 0; w < b->n_wl; w++)
 			rgb[c] += b->rgb_from_wl[c * b->n_wl + w] * sp[w];
-	}
 }
 
 int bake_preset_to_dir(struct bake_spec *s, const struct skin_params *p, const char *label, const char *out,

@@ -12,9 +12,13 @@
  *   albedo.png      8-bit sRGB preview
  *
  * Angles: theta_i at nodes (the incidence angles simulated); theta_o and
- * delta_phi at bin centres (uniform bins over [0, 90] and [0, 180] degrees;
- * each value is the bin mean).  delta_phi = 0 is back toward the light,
- * pi the mirror side.  All angles here are radians.
+ * delta_phi per wavelength either at bin centres (Monte Carlo: uniform bins
+ * over [0, 90] and [0, 180] degrees, each value the bin mean) or, for
+ * adding-doubling wavelengths of a bake with point values (manifest
+ * table.values "points", since issue 26), the BRDF at the nodes
+ * theta_o_nodes (Chebyshev-Lobatto in theta over [0, 90] deg) and
+ * phi_nodes (uniform over [0, 180] deg, both ends).  delta_phi = 0 is back
+ * toward the light, pi the mirror side.  All angles here are radians.
  *
  * The surface specular part (rough Fresnel reflection at the top surface) is
  * not in the tables: it is analytic, from `ior` and `roughness`. */
@@ -52,10 +56,15 @@ int bake_preset_to_dir(struct bake_spec *s, const struct skin_params *p, const c
 /* Load DIR; NULL with *cause (caller frees) when a file is missing or corrupt. */
 struct bake *bake_load(const char *dir, char **cause);
 
-/* Diffuse BRDF per wavelength [1/sr] and its standard error, interpolated
- * (linear in each angle, clamped at the axis ends) at theta_i, theta_o in
- * [0, pi/2] and delta_phi in [0, pi] (values outside are folded/clamped).
- * f and err have n_wl entries; err may be NULL. */
+/* Ready b for evaluation (the series through its point values) after its
+ * arrays were filled other than by bake_load (family_bake_at). */
+void bake_prepare(struct bake *b);
+
+/* Diffuse BRDF per wavelength [1/sr] and its error, interpolated at
+ * theta_i, theta_o in [0, pi/2] and delta_phi in [0, pi] (values outside
+ * are folded/clamped) as bakeinterp.h says: point values by series in every
+ * angle with an error that includes the interpolation's; bin means linearly,
+ * with their standard error.  f and err have n_wl entries; err may be NULL. */
 void bake_eval_diffuse(const struct bake *b, double theta_i, double theta_o, double dphi, double *f, double *err);
 /* Analytic surface specular BRDF per wavelength [1/sr]. */
 void bake_eval_specular(const struct bake *b, double theta_i, double theta_o, double dphi, double *f);

@@ -240,5 +240,12 @@ struct bake *family_bake_at(const struct family *f, const double *x)
 	}
 	b->stack = xmalloc(sizeof *b->stack * (size_t)b->n_wl);
 	memcpy(b->stack, f->bake[st.member[heavy]]->stack, sizeof *b->stack * (size_t)b->n_wl);
+	if (b0->points && b0->theta_o_nodes) {	/* point values: member 0's layout (the members' tables blend as values) */
+		b->points = xmalloc(sizeof(int) * (size_t)b->n_wl);
+		memcpy(b->points, b0->points, sizeof(int) * (size_t)b->n_wl);
+		b->theta_o_nodes = dup(b0->theta_o_nodes, b->n_to);
+		b->phi_nodes = dup(b0->phi_nodes, b->n_phi);
+	}
+	bake_prepare(b);
 	return b;
 }

@@ -55,6 +55,12 @@ static void add_axes(json_object *o, const struct bake_spec *s)
 	for (int i = 0; i < np; i++)
 		e[i] = 180.0 * (i + 0.5) / np;
 	add(o, "delta_phi_centres_deg", jarr(e, np));
+	if (bake_spec_points(s)) {	/* where adding-doubling entries hold point values */
+		bake_nodes_theta(nto, e);
+		add(o, "theta_o_nodes_deg", jarr_deg(e, nto));
+		bake_nodes_phi(np, e);
+		add(o, "delta_phi_nodes_deg", jarr_deg(e, np));
+	}
 	free(e);
 }
 
@@ -68,6 +74,14 @@ static json_object *table_info(const struct bake_spec *s, const struct bake_resu
 	add(t, "column", jstr("delta_phi bin index"));
 	add(t, "value", jstr("diffuse (subsurface) BRDF [1/sr]: mean over the (theta_o, delta_phi) bin at the theta_i node; "
 	    "delta_phi = 0 back toward the light, 180 the mirror side"));
+	json_object *vals = json_object_new_array();
+	for (int w = 0; w < s->n_wl; w++) {	/* "points" at the nodes (adding-doubling) or "bins" (means) */
+		const char *m = r->table.entry[w * s->n_ti].method;
+		json_object_array_add(vals, jstr(bake_spec_points(s) && m && strcmp(m, "ad") == 0 ? "points" : "bins"));
+	}
+	add(t, "values", vals);
+	add(t, "values_note", jstr("per wavelength: 'bins' as 'value' says; 'points': the BRDF at the theta_i node, "
+	    "theta_o_nodes_deg[row], delta_phi_nodes_deg[column]; at theta_i 90 deg it is 0 (nothing enters at grazing)"));
 	add(t, "channels", jstr(strcmp(r->solver, "mc") == 0 ? "fr.<WL>nm and fr_err.<WL>nm (standard error)"
 	    : "fr.<WL>nm and fr_err.<WL>nm (its error estimate: see solver.error)"));
 	return t;
@@ -467,6 +481,36 @@ static void read_radial(json_object *o, struct bake *b, const char *mpath)
 	read_radial_profile(rad, b);
 }
 
+/* Point values (issue 26; absent in older bakes: all bin means). */
+static int read_points(json_object *o, struct bake *b, const char *mpath, char **cause)
+{
+	json_object *t, *vals;
+	int nt = 0, np = 0, any = 0, bad = -1;
+	if (!json_object_object_get_ex(o, "table", &t) || !json_object_object_get_ex(t, "values", &vals))
+		return 0;
+	b->points = xcalloc((size_t)b->n_wl, sizeof(int));
+	for (int w = 0; w < b->n_wl && bad < 0; w++) {
+		const char *v = json_object_get_string(json_object_array_get_idx(vals, (size_t)w));
+		b->points[w] = v && strcmp(v, "points") == 0;
+		bad = b->points[w] || (v && strcmp(v, "bins") == 0) ? -1 : w;
+		any |= b->points[w];
+	}
+	if (bad >= 0 || (int)json_object_array_length(vals) != b->n_wl) {
+		*cause = xasprintf("%s: table.values must list 'points' or 'bins' for each of the %d wavelengths", mpath, b->n_wl);
+		return -1;
+	}
+	if (any && (jnum_array(o, "theta_o_nodes_deg", &b->theta_o_nodes, &nt, cause, mpath) ||
+	    jnum_array(o, "delta_phi_nodes_deg", &b->phi_nodes, &np, cause, mpath)))
+		return -1;
+	if (any && (nt != b->n_to || np != b->n_phi)) {
+		*cause = xasprintf("%s: %d x %d nodes for a %d x %d table", mpath, nt, np, b->n_to, b->n_phi);
+		return -1;
+	}
+	for (int i = 0; i < nt + np; i++)
+		*(i < nt ? &b->theta_o_nodes[i] : &b->phi_nodes[i - nt]) *= M_PI / 180.0;
+	return 0;
+}
+
 int bake_manifest_read(const char *dir, struct bake *b, char **cause)
 {
 	char *mpath = xasprintf("%s/manifest.json", dir);
@@ -488,7 +532,8 @@ int bake_manifest_read(const char *dir, struct bake *b, char **cause)
 	}
 	if (json_object_object_get_ex(o, "preset", &v) && json_object_is_type(v, json_type_string))
 		b->preset = xstrdup(json_object_get_string(v));
-	if (read_axes(o, b, mpath, cause) || read_rgb(o, b, mpath, cause) || read_specular(o, b, mpath, cause))
+	if (read_axes(o, b, mpath, cause) || read_rgb(o, b, mpath, cause) || read_specular(o, b, mpath, cause) ||
+	    read_points(o, b, mpath, cause))
 		goto out;
 	read_radial(o, b, mpath);
 	rc = 0;

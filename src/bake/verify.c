@@ -9,9 +9,11 @@
 #include <string.h>
 
 #include "bake/bakefile.h"
+#include "bake/bakeinterp.h"
 #include "bake/manifest.h"
 #include "base/check.h"
 #include "base/util.h"
+#include "engine/ad_quad.h"
 #include "engine/mc.h"
 #include "io/json.h"
 
@@ -19,7 +21,7 @@ enum { MC_BATCHES = 32 };
 
 void verify_opts_default(struct verify_opts *o)
 {
-	*o = (struct verify_opts){ .cells = 32, .cells_per_pair = 4, .photons = 50000, .seed = 20261, .threads = 0 };
+	*o = (struct verify_opts){ .cells = 32, .cells_per_pair = 1, .photons = 50000, .seed = 20261, .threads = 0 };
 }
 
 /* ---- statistics ---- */
@@ -128,6 +130,36 @@ static int rerun(const struct bake_provenance *pv, const struct bake *b, int w, 
 	return solver_solve(&mc_solver, &mc, &p, &run, t, cause);
 }
 
+/* The bake's bin mean of entry (w, ti) and its error: the table's value
+ * (bin means), or for point values the mean of the interpolated function
+ * over the bin (Gauss-Legendre in theta_o weighted by cos sin, uniform in
+ * delta_phi) with the mean of its error bound. */
+static void bake_cell(const struct bake *b, int w, int ti, long bin, double *f, double *e)
+{
+	size_t idx = ((size_t)w * b->n_ti + (size_t)ti) * (size_t)b->n_to * b->n_phi + (size_t)bin;
+	if (!b->points || !b->points[w]) {
+		*f = b->fr[idx];
+		*e = b->fr_err[idx];
+		return;
+	}
+	enum { NG = 8 };
+	int it = (int)(bin / b->n_phi), ip = (int)(bin % b->n_phi);
+	double t0 = 0.5 * M_PI * it / b->n_to, t1 = 0.5 * M_PI * (it + 1) / b->n_to;
+	double p0 = M_PI * ip / b->n_phi, p1 = M_PI * (ip + 1) / b->n_phi;
+	double xt[NG], wt[NG], xp[NG], wp[NG], num = 0.0, err = 0.0, den = 0.0;
+	ad_gauss_legendre(NG, t0, t1, xt, wt);
+	ad_gauss_legendre(NG, p0, p1, xp, wp);
+	for (int a = 0; a < NG; a++)
+		for (int c = 0; c < NG; c++) {
+			double g = wt[a] * wp[c] * cos(xt[a]) * sin(xt[a]), ev;
+			num += g * bake_interp_eval(b, w, b->theta_i[ti], xt[a], xp[c], &ev);
+			err += g * ev;
+			den += g;
+		}
+	*f = num / den;
+	*e = err / den;
+}
+
 static void summarize(struct verify_result *r)
 {
 	int n = r->n_cells, beyond = 0;
@@ -165,17 +197,16 @@ int verify_bake(const char *dir, const struct verify_opts *o, struct verify_resu
 	snprintf(r->solver, sizeof r->solver, "%s", pv.solver);
 	long nb = (long)b->n_to * b->n_phi, n_entries = (long)b->n_wl * b->n_ti;
 	int cells = o->cells < n_entries * nb ? o->cells : (int)(n_entries * nb);
-	int n_pairs = (cells + o->cells_per_pair - 1) / o->cells_per_pair;
-	if (n_pairs > n_entries)
-		n_pairs = (int)n_entries;
+	/* One re-run of its own (seed) per cells_per_pair cells: cells of one
+	 * run share photons and their errors move together. */
+	int n_runs = (cells + o->cells_per_pair - 1) / o->cells_per_pair;
 	r->cell = xcalloc((size_t)cells, sizeof *r->cell);
-	r->n_pairs = n_pairs;
+	r->n_pairs = n_runs;
 	double t0 = util_now();
-	size_t per = (size_t)b->n_ti * (size_t)nb;
-	for (int k = 0; k < n_pairs; k++) {
-		/* Angles stepped evenly, wavelengths cycled: distinct pairs (at most
-		 * n_wl consecutive k share an angle). */
-		int ti = (int)((long)k * b->n_ti / n_pairs), w = k % b->n_wl;
+	for (int k = 0; k < n_runs; k++) {
+		/* Angles stepped evenly, wavelengths cycled (runs beyond the
+		 * entries repeat them with other seeds and bins). */
+		int ti = (int)((long)(k % n_entries) * b->n_ti / (n_runs < n_entries ? n_runs : n_entries)), w = k % b->n_wl;
 		struct brdf_table t;
 		if (rerun(&pv, b, w, ti, o, k, &t, cause) != 0) {
 			verify_result_free(r);
@@ -185,12 +216,13 @@ int verify_bake(const char *dir, const struct verify_opts *o, struct verify_resu
 		double nu_mc = (double)(t.entry[0].batches - 1);
 		long bb = pv.entry_batches[w * b->n_ti + ti];
 		double nu_b = pv.entry_mc[w * b->n_ti + ti] && bb > 1 ? (double)(bb - 1) : INFINITY;
-		for (int j = 0, c = k; c < cells; j++, c += n_pairs) {
+		for (int j = 0; j < o->cells_per_pair && r->n_cells < cells; j++) {
 			long bin = pair_bin(k, j, nb);
-			size_t idx = (size_t)w * per + (size_t)ti * (size_t)nb + (size_t)bin;
 			struct verify_cell *v = &r->cell[r->n_cells];
+			double fb, eb;
+			bake_cell(b, w, ti, bin, &fb, &eb);
 			*v = (struct verify_cell){ b->wl_nm[w], b->theta_i[ti] * 180.0 / M_PI, b->theta_o[bin / b->n_phi] * 180.0 / M_PI,
-				b->phi[bin % b->n_phi] * 180.0 / M_PI, b->fr[idx], b->fr_err[idx], t.entry[0].fr[bin], t.entry[0].fr_err[bin],
+				b->phi[bin % b->n_phi] * 180.0 / M_PI, fb, eb, t.entry[0].fr[bin], t.entry[0].fr_err[bin],
 				0.0, 0.0, 0.0 };
 			double vb = v->e_bake * v->e_bake, vm = v->e_mc * v->e_mc, den = vb * vb / nu_b + vm * vm / nu_mc;
 			if (vb + vm <= 0.0)
@@ -202,7 +234,7 @@ int verify_bake(const char *dir, const struct verify_opts *o, struct verify_resu
 		}
 		brdf_table_free(&t);
 		if (o->progress)
-			o->progress(o->progress_user, k + 1, n_pairs);
+			o->progress(o->progress_user, k + 1, n_runs);
 	}
 	r->seconds = util_now() - t0;
 	bake_provenance_free(&pv);

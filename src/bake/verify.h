@@ -1,8 +1,12 @@
 /* verify: a bake's table checked by an independent Monte Carlo run.  A
  * sample of cells, spread over wavelengths, incidence angles, theta_o and
  * delta_phi, is recomputed from the layer stacks the manifest records (the
- * engine's Monte Carlo with next-event estimation, a seed of its own, 32
- * batches per (wavelength, angle) pair re-run) and compared bin by bin:
+ * engine's Monte Carlo with next-event estimation, 32 batches, one re-run
+ * with a seed of its own per cell by default: the bins of one run share its
+ * photons, so their errors are correlated and would widen the spread of z
+ * beyond the limits below, as measured before issue 26) and compared bin
+ * by bin (a table of point values, bakefile.h, by its interpolated
+ * function's mean over the bin and the mean of its error):
  *
  *   z = (f_bake - f_mc) / sqrt(e_bake^2 + e_mc^2),
  *
@@ -15,11 +19,14 @@
  *   - the mean of z_n^2 is below the 99.9% quantile of chi^2_n / n, and
  *   - the largest |z_n| is below the two-sided quantile that n independent
  *     cells exceed with probability 0.1% (Bonferroni),
- * so that a correct table fails about 0.2% of the time (more where cells
- * share photons and their z move together), while a table 10% off fails
- * with errors of about 1%.  Cells are chosen without randomness: pairs
- * cycle through the wavelengths with the angles stepped evenly, and bins
- * within a pair are visited by a golden-ratio stride. */
+ * so that a correct table fails at most about 0.2% of the time with
+ * independent cells (less where the bake's error is adding-doubling's
+ * bound; more with cells_per_pair > 1, whose z move together), while a
+ * table off by k times the re-runs' relative error fails when k^2 is well
+ * above the mean limit (a 1% scale needs re-runs of about 0.3% error).
+ * Cells are chosen without randomness: re-runs cycle through the
+ * wavelengths with the angles stepped evenly, and bins within a run are
+ * visited by a golden-ratio stride. */
 #ifndef SKINBAKE_VERIFY_H
 #define SKINBAKE_VERIFY_H
 #include <stdint.h>
@@ -27,8 +34,8 @@
 
 struct verify_opts {
 	int cells;		/* cells to compare, >= 1 (at most the table's) */
-	int cells_per_pair;	/* cells per (wavelength, angle) pair re-run, >= 1 */
-	long photons;		/* Monte Carlo photons per pair re-run, >= 64 */
+	int cells_per_pair;	/* cells per re-run, >= 1 (default 1: independent cells) */
+	long photons;		/* Monte Carlo photons per re-run, >= 64 */
 	uint64_t seed;		/* base seed; pair k runs with seed + k (pick one other than the bake's) */
 	int threads;		/* OpenMP threads, 0 = all cores */
 	void (*progress)(void *user, long done, long total);	/* pairs done; may be NULL */
@@ -49,7 +56,7 @@ struct verify_result {
 	char solver[16];		/* the bake's solver (manifest) */
 	int n_cells;
 	struct verify_cell *cell;	/* [n_cells] */
-	int n_pairs;			/* (wavelength, angle) pairs re-run */
+	int n_pairs;			/* Monte Carlo re-runs (of a (wavelength, angle) pair each) */
 	long photons;			/* Monte Carlo photons in all */
 	double seconds;			/* wall time of the re-runs [s] */
 	double mean_z2, max_abs_z;	/* of z */

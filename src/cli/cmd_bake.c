@@ -75,7 +75,7 @@ int cmd_bake(int argc, char **argv)
 	memset(&s, 0, sizeof s);
 	vary.n = 0;
 	const char *preset = NULL, *pfile = NULL, *out = NULL;
-	int quiet = 0, nodes, fresnel, est, solver;
+	int quiet = 0, nodes = 0, fresnel, est, solver;
 	long seed;
 	const struct opt opts[] = {
 		{ "preset", OPT_STRING, &preset, "NAME", .flags = OPT_REQUIRED, .excl = "preset-file",
@@ -91,8 +91,9 @@ int cmd_bake(int argc, char **argv)
 		  .flags = OPT_WHOLE | OPT_UNIQUE | OPT_STEPS, .excl = "wavelengths", .help = "as --wavelengths A:B:STEP" },
 		{ "theta-in", OPT_LIST, &th, "LIST", .lo = 0, .hi = 90, .unit = "deg", .max = BAKE_MAX_TI,
 		  .flags = OPT_HI_OPEN | OPT_UNIQUE | OPT_SORT, .excl = "theta-nodes", .help = "incidence angles" },
-		{ "theta-nodes", OPT_INT, &nodes, "N", "10", .lo = 1, .hi = BAKE_MAX_TI, .excl = "theta-in",
-		  .help = "incidence angles 90*k/N deg (k = 0 .. N-1), N" },
+		{ "theta-nodes", OPT_INT, &nodes, "N", .lo = 1, .hi = BAKE_MAX_TI, .excl = "theta-in",
+		  .help = "incidence angles 90*k/N deg (k = 0 .. N-1), N", .def_note = "the exit nodes below 90 deg: "
+		  "T-1 angles 45 (1 - cos(180 k/(T-1))) deg for --resolution TxP (T >= 3; else N = 10)" },
 		{ "resolution", OPT_CUSTOM, &s, "TxP", "18x18", .fn = parse_resolution,
 		  .help = "theta_o bands x delta_phi bins over [0, 90] x [0, 180] deg, each in [1, 360]" },
 		{ "solver", OPT_ENUM, &solver, .def = "auto", .choices = bake_method_choices(), .help = "adding-doubling (ad), Monte "

@@ -31,7 +31,9 @@
  * orders beyond those kept where the series was cut.  rms_rel_err is the table's
  * solid-angle-weighted RMS relative error, defined as the Monte Carlo
  * bake's.  Asked for a tolerance, the solver doubles its nodes until the
- * estimate meets it, and fails (-1 and *cause) where it cannot.
+ * estimate meets it, up to n_quad_max (slow falls at few nodes often speed
+ * up once peaks are resolved: g = 0.99 meets 1e-3 at 256), and fails (-1
+ * and *cause, with the error reached there) where it cannot.
  *
  * The solver sets OpenBLAS to one thread (process-wide: its matrices are
  * small) and runs Fourier orders on `threads` OpenMP threads instead.
@@ -118,6 +120,12 @@ double ad_brdf(const struct ad_result *r, int k, double theta_o, double dphi, do
  * f(dphi) = sum_m coef[m] cos(m dphi), m < the return value (at most max;
  * dphi = 0 back toward the light). */
 int ad_brdf_fourier(const struct ad_result *r, int k, double theta_o, double *coef, int max);
+
+/* The diffuse BRDF of angle k at the points (theta_o[it], phi[ip]) [rad],
+ * into f[it * n_phi + ip] [1/sr] with its error estimate in err (as
+ * ad_brdf's), from one Fourier series per exit angle. */
+void ad_brdf_points(const struct ad_result *r, int k, const double *theta_o, int n_to, const double *phi, int n_phi,
+    double *f, double *err);
 
 void ad_result_free(struct ad_result *r);
 #endif

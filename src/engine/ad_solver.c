@@ -56,7 +56,8 @@ static void *ad_begin(const struct solver_problem *p, const void *settings, char
 	return a;
 }
 
-/* The seam's RMS relative error of one entry (brdf_table_rms's definition). */
+/* The seam's RMS relative error of one entry (brdf_table_rms's definition:
+ * a 0 with error 0 is exact). */
 static double entry_rms(const struct tally_grid *g, const struct brdf_entry *e)
 {
 	double num = 0.0, den = 0.0;
@@ -64,7 +65,7 @@ static double entry_rms(const struct tally_grid *g, const struct brdf_entry *e)
 		double w = tally_bin_omega(g, it);
 		for (int ip = 0; ip < g->n_phi; ip++) {
 			int k = it * g->n_phi + ip;
-			double rel = e->fr[k] > 0.0 ? e->fr_err[k] / e->fr[k] : 1.0;
+			double rel = e->fr[k] > 0.0 ? e->fr_err[k] / e->fr[k] : e->fr_err[k] == 0.0 ? 0.0 : 1.0;
 			num += w * rel * rel;
 			den += w;
 		}
@@ -92,8 +93,13 @@ static void fill(struct ad_state *a, int w, const struct ad_result *r)
 			e->a_total.err += b->a[i].err;	/* the estimates are bounds: they add */
 		}
 		e->lost = (struct estimate){ 0.0, 0.0 };
-		memcpy(e->fr, b->fr, nb * sizeof(double));
-		memcpy(e->fr_err, b->fr_err, nb * sizeof(double));
+		if (a->p.point_theta_o)
+			ad_brdf_points(r, k, a->p.point_theta_o, a->p.grid.n_theta, a->p.point_phi, a->p.grid.n_phi, e->fr,
+			    e->fr_err);
+		else {
+			memcpy(e->fr, b->fr, nb * sizeof(double));
+			memcpy(e->fr_err, b->fr_err, nb * sizeof(double));
+		}
 		e->rms_rel_err = entry_rms(&a->p.grid, e);
 		e->method = "ad";
 		e->events = (double)r->doublings;

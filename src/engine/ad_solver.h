@@ -6,8 +6,9 @@
  * rank solves every wavelength (seconds of work), so all ranks hold the
  * same table without a reduction.
  *
- * Each entry gets the solver's values with its error estimates in place of
- * standard errors (fr_err, albedo.err, tt.err, a[].err: ad.h says how they
+ * Each entry gets the solver's values (fr: the BRDF at the problem's
+ * point nodes when it names them, ad_brdf_points; else the bin means) with
+ * its error estimates in place of standard errors (fr_err, albedo.err, tt.err, a[].err: ad.h says how they
  * are formed), with the meanings the Monte Carlo gives them: albedo is Rd
  * minus the light that returns unscattered (struct brdf_entry), rd_unscat is
  * exact.  No Rd(r): provides SOLVER_BRDF only, rd_r stays 0.

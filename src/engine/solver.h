@@ -36,6 +36,11 @@ struct solver_problem {
 	enum optics_fresnel fresnel;	/* reflectance model at every boundary */
 	double target_error;		/* solid-angle-weighted RMS relative error of the whole table
 					 * to reach [-]; 0 = the method's own budget decides */
+	/* Point values: a method that gives the BRDF at points (adding-doubling)
+	 * puts fr at the exit nodes (point_theta_o[it], point_phi[ip]) instead of
+	 * the bin means when these are set; Monte Carlo ignores them (bin means). */
+	const double *point_theta_o;	/* [grid.n_theta] [rad], or NULL */
+	const double *point_phi;	/* [grid.n_phi] [rad], or NULL */
 };
 
 struct solver_ops;

@@ -22,6 +22,16 @@ static void bake_specular(void *ctx, double ti, double to, double dphi, double *
 	bake_eval_specular(ctx, ti, to, dphi, f);
 }
 
+/* Whether every wavelength of b holds point values (the table's exit
+ * nodes are then theta_o_nodes, not the bin centres). */
+static int points_everywhere(const struct bake *b)
+{
+	int all = b->points != NULL && b->theta_o_nodes != NULL;
+	for (int w = 0; all && w < b->n_wl; w++)
+		all = b->points[w];
+	return all;
+}
+
 struct brdf_source *brdf_source_open(const char *bake_dir, char **cause)
 {
 	struct bake *b = bake_load(bake_dir, cause);
@@ -41,7 +51,7 @@ struct brdf_source *brdf_source_of_bake(struct bake *b, int own)
 		.n_ti = b->n_ti,
 		.n_to = b->n_to,
 		.theta_i = b->theta_i,
-		.theta_o = b->theta_o,
+		.theta_o = points_everywhere(b) ? b->theta_o_nodes : b->theta_o,
 		.n_albedo = b->n_ti,
 		.theta_albedo = b->theta_i,
 		.albedo_rgb = b->albedo_rgb,

@@ -30,7 +30,7 @@ struct brdf_source {
 	 * that tabulate put their rows on them to follow its interpolation. */
 	int n_ti, n_to;
 	const double *theta_i;		/* [n_ti] incidence nodes [rad], ascending */
-	const double *theta_o;		/* [n_to] exit bin centres [rad], ascending */
+	const double *theta_o;		/* [n_to] exit bin centres, or nodes of point values [rad], ascending */
 	/* Directional-hemispherical diffuse albedo a(theta_i) at nodes. */
 	int n_albedo;			/* >= 1 */
 	const double *theta_albedo;	/* [n_albedo] [rad], ascending */

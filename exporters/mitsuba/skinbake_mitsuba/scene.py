@@ -112,7 +112,7 @@ def _inward_thickness(pos, nrm, faces):
     return t
 
 
-def _medium(layer, unit_cm, spectral, chan_wl):
+def _medium(layer, unit_cm, spectral, chan_wl, channel=None):
     """A homogeneous medium of one layer over the bake's wavelengths, or None
     (clear). Coefficients [1/cm] become 1/unit."""
     mua = np.array([ly["mua_per_cm"] for ly in layer]) * unit_cm
@@ -122,6 +122,11 @@ def _medium(layer, unit_cm, spectral, chan_wl):
         return None
     mut = mua + mus
     alb = np.where(mut > 0, mus / np.where(mut > 0, mut, 1.0), 0.0)
+    if channel is not None:
+        # one wavelength, grey: no chromatic distance sampling
+        k = chan_wl[channel]
+        return {"type": "homogeneous", "sigma_t": float(mut[k]), "albedo": float(alb[k]),
+                "phase": {"type": "hg", "g": g}}
     if spectral is not None:
         wl = list(spectral)
         def spec(v):
@@ -138,7 +143,7 @@ def _medium(layer, unit_cm, spectral, chan_wl):
     return {"type": "homogeneous", "sigma_t": sig, "scale": top, "albedo": al, "phase": {"type": "hg", "g": g}}
 
 
-def _shells(name, ply, centre, view_dist, bake, unit_mm, tmp, spectral):
+def _shells(name, ply, centre, view_dist, bake, unit_mm, tmp, spectral, channel=None):
     """Scene-dict shapes of a volumetric skin on mesh PLY, moved by -centre."""
     import mitsuba as mi
     man = _bake_layers(bake)
@@ -170,7 +175,7 @@ def _shells(name, ply, centre, view_dist, bake, unit_mm, tmp, spectral):
     if np.any(squeeze < 1.0):
         _note("%s: layers squeezed at %d of %d vertices where the body is thinner than %.3g units"
               % (name, int(np.sum(squeeze < 1.0)), len(pos), 2 * depths[-1] / 0.45))
-    media = [_medium(ly, unit_cm, spectral, chan_wl) for ly in keep]
+    media = [_medium(ly, unit_cm, spectral, chan_wl, channel) for ly in keep]
     alpha = float(man["specular"]["alpha"])
     ns = [float(np.mean([x["n"] for x in ly])) for ly in keep]
     shapes = {}
@@ -217,9 +222,11 @@ def _max_depth(keep):
     return stk.max_depth(layers)
 
 
-def build(export_dir, mode, width=None, spp=64, tmp=None):
-    """(scene dict, notes) of the export in mode 'table' or 'volumetric' with
-    the current variant; tmp: a directory for the shells (volumetric)."""
+def build(export_dir, mode, width=None, spp=64, tmp=None, channel=None):
+    """The scene dict of the export in mode 'table' or 'volumetric' with the
+    current variant; tmp: a directory for the shells (volumetric); channel
+    (mono variants): 0, 1, 2 for R, G, B, each the bake wavelength with the
+    largest weight in that channel."""
     import mitsuba as mi
     with open(os.path.join(export_dir, "manifest.json")) as f:
         man = json.load(f)
@@ -233,9 +240,14 @@ def build(export_dir, mode, width=None, spp=64, tmp=None):
     centre = _f(cam["look_at"])
     w = width or sc["width_px"]
     h = max(1, int(round(w * sc["height_px"] / sc["width_px"])))
-    rgb = (lambda v: {"type": "rgb", "value": [float(x) for x in v]}) if mi.is_rgb else \
-        (lambda v: {"type": "spectrum", "value": float(np.mean(v))})
-    film = {"type": "hdrfilm", "width": w, "height": h, "rfilter": {"type": "box"}, "pixel_format": "rgb"}
+    if channel is not None:
+        rgb = (lambda v: {"type": "spectrum", "value": float(v[channel])})
+    elif mi.is_rgb:
+        rgb = (lambda v: {"type": "rgb", "value": [float(x) for x in v]})
+    else:
+        rgb = (lambda v: {"type": "spectrum", "value": float(np.mean(v))})
+    film = {"type": "hdrfilm", "width": w, "height": h, "rfilter": {"type": "box"},
+            "pixel_format": "luminance" if channel is not None else "rgb"}
     to_cam = mi.ScalarTransform4f().look_at(origin=(_f(cam["location"]) - centre).tolist(), target=[0.0, 0.0, 0.0],
                                            up=[0.0, 1.0, 0.0])
     if cam["type"] == "perspective":
@@ -282,7 +294,7 @@ def build(export_dir, mode, width=None, spp=64, tmp=None):
                 if mi.is_spectral:
                     spectral = _bake_layers(bake)["wavelengths_nm"]
                 view_dist = float(np.linalg.norm(_f(cam["location"]) - centre))
-                shapes, keep = _shells(name, ply, centre, view_dist, bake, sc["unit_mm"], tmp, spectral)
+                shapes, keep = _shells(name, ply, centre, view_dist, bake, sc["unit_mm"], tmp, spectral, channel)
                 scene.update(shapes)
                 depth = max(depth, _max_depth(keep))
                 continue
@@ -310,23 +322,34 @@ def build(export_dir, mode, width=None, spp=64, tmp=None):
 
 def render(export_dir, mode, out, width=None, spp=64, variant_name=None):
     """Render the export to OUT (.exr: linear; .png: sRGB 8-bit); returns
-    (seconds, variant)."""
+    (seconds, variant). Volumetric mode renders R, G and B apart in a mono
+    variant, each with its wavelength's grey media: in an rgb variant the
+    media's colour makes Mitsuba sample distances by one channel and weight
+    the others by exponentials of the path length (coloured fireflies)."""
     import time
     from . import variant
-    used = variant.choose("rgb", variant_name)
+    per_channel = mode == "volumetric" and variant_name is None
+    used = variant.choose("mono" if per_channel else "rgb", variant_name)
     import mitsuba as mi
     from . import tablebsdf
     tablebsdf.register()
     tmp = tempfile.mkdtemp(prefix="skinbake-mitsuba-")
     try:
-        scene = mi.load_dict(build(export_dir, mode, width, spp, tmp))
         t0 = time.time()
-        img = mi.render(scene, spp=spp)
+        if per_channel:
+            chans = []
+            for c in range(3):
+                scene = mi.load_dict(build(export_dir, mode, width, spp, tmp, channel=c))
+                chans.append(np.array(mi.render(scene, spp=spp))[..., 0])
+            arr = np.stack(chans, axis=-1)
+        else:
+            scene = mi.load_dict(build(export_dir, mode, width, spp, tmp))
+            arr = np.array(mi.render(scene, spp=spp))        # forces the (lazy) render
         seconds = time.time() - t0
     finally:
         shutil.rmtree(tmp, ignore_errors=True)
-    bmp = mi.Bitmap(img)
+    bmp = mi.Bitmap(arr.astype(np.float32), mi.Bitmap.PixelFormat.RGB)
     if out.endswith(".png"):
         bmp = bmp.convert(mi.Bitmap.PixelFormat.RGB, mi.Struct.Type.UInt8, srgb_gamma=True)
     bmp.write(out)
-    return seconds, used
+    return seconds, used + (" (R, G, B apart)" if per_channel else "")

@@ -73,15 +73,17 @@ float *blender_lut(const struct brdf_source *m, int n_cos, int n_phi)
 	return lut;
 }
 
-/* a(theta) of channel c, linear between nodes, clamped at the ends. */
+/* a(theta) of channel c, linear between nodes, held below the first, and
+ * past the last linear to 0 at 90 deg (nothing enters a smooth surface at
+ * grazing; a bake's albedo curve was held there before issue 26). */
 static double albedo_at(const struct brdf_source *m, int c, double theta)
 {
 	const double *t = m->theta_albedo, *a = m->albedo_rgb + (size_t)c * (size_t)m->n_albedo;
 	int n = m->n_albedo;
-	if (n == 1 || theta <= t[0])
+	if (theta <= t[0] && (n > 1 || t[0] >= M_PI / 2))
 		return a[0];
 	if (theta >= t[n - 1])
-		return a[n - 1];
+		return t[n - 1] < M_PI / 2 ? a[n - 1] * fmax(0.0, (M_PI / 2 - theta) / (M_PI / 2 - t[n - 1])) : a[n - 1];
 	int i = 0;
 	while (i < n - 2 && theta > t[i + 1])
 		i++;

@@ -9,12 +9,19 @@
 
 #include "base/util.h"
 
+/* The node's far field f [1/sr] from the calibration (about colour / pi:
+ * Lambertian, but 10 % above at colour 0.01). */
+static double far_f(const struct blender_sss *w, int c, double ti, double to)
+{
+	return sss_far_pi_f(w->fit.table, c, w->fit.colour[c], ti, to) / M_PI;
+}
+
 static void sss_remainder(void *ctx, double ti, double to, double dphi, double rgb[3])
 {
 	const struct blender_sss *w = ctx;
 	w->f_rgb(w->ctx, ti, to, dphi, rgb);
 	for (int c = 0; c < 3; c++)
-		rgb[c] = fmax(rgb[c] - w->fit.colour[c] / M_PI, 0.0);
+		rgb[c] = fmax(rgb[c] - far_f(w, c, ti, to), 0.0);
 }
 
 /* The largest share of the table the remainder clips, over a grid to 85 deg. */
@@ -24,11 +31,11 @@ static double clipped_share(const struct blender_sss *w)
 	for (int i = 0; i <= 17; i++)
 		for (int j = 0; j <= 17; j++)
 			for (int k = 0; k <= 4; k++) {
-				double t[3];
-				w->f_rgb(w->ctx, i * 5.0 * M_PI / 180, j * 5.0 * M_PI / 180, k * M_PI / 4, t);
+				double t[3], ti = i * 5.0 * M_PI / 180, to = j * 5.0 * M_PI / 180;
+				w->f_rgb(w->ctx, ti, to, k * M_PI / 4, t);
 				for (int c = 0; c < 3; c++)
-					if (t[c] > 0 && w->fit.colour[c] / M_PI > t[c])
-						worst = fmax(worst, (w->fit.colour[c] / M_PI - t[c]) / t[c]);
+					if (t[c] > 0 && far_f(w, c, ti, to) > t[c])
+						worst = fmax(worst, (far_f(w, c, ti, to) - t[c]) / t[c]);
 			}
 	return worst;
 }
@@ -69,9 +76,9 @@ char *blender_sss_json(const struct blender_sss *w)
 	    "\"node\": \"ShaderNodeSubsurfaceScattering\", \"falloff\": \"RANDOM_WALK\", \"ior\": %g, \"colour\": %s, "
 	    "\"radius_m\": %s, \"scale\": 1.0, \"r_max_m\": %.8g, \"power_bake\": %s, \"power_fit\": %s, "
 	    "\"mean_radius_bake_m\": %s, \"mean_radius_fit_m\": %s, \"rms_ln_r_predicted\": %s, "
-	    "\"remainder_clipped_max\": %.6g, \"split\": \"brdf_lut.exr holds pi * max(0, f_bake - colour / pi): the "
-	    "baked BRDF (diffuse + surface specular) minus the node's far field, which is Lambertian with albedo = "
-	    "colour in Cycles (measured); the node is added beside it where the exact mode shades one lamp\"}",
+	    "\"remainder_clipped_max\": %.6g, \"split\": \"brdf_lut.exr holds pi * max(0, f_bake - f_node): the "
+	    "baked BRDF (diffuse + surface specular) minus the node's far field from the calibration (Lambertian, about "
+	    "colour / pi); the importer adds the node beside it\"}",
 	    f->table->renderer, f->table->version, f->table->closure, f->table->ior, col, rad, f->r_max_mm * 1e-3, ib, ifit, mb, mf,
 	    rl, w->clipped);
 }

@@ -2,9 +2,10 @@
  * docs/translucency.md).  Cycles' Subsurface Scattering node (random walk)
  * is fitted to the bake's Rd(r) from the calibration (export/sss_fit.h); its
  * far field, measured, is Lambertian with albedo = its colour (pi f = colour
- * within 0.5 % for theta_i, theta_o up to 85 degrees).  The exact mode's table
- * (brdf_lut.exr) then holds the remainder: the baked BRDF (diffuse + surface
- * specular) minus colour / pi, never negative, and the importer adds the node
+ * within 0.5 % for theta_i, theta_o up to 85 degrees, a little above at the
+ * darkest colours).  The exact mode's table (brdf_lut.exr) then holds the
+ * remainder: the baked BRDF (diffuse + surface specular) minus the node's far
+ * field from the calibration, never negative, and the importer adds the node
  * beside it (manifest section "translucent"). */
 #ifndef SKINBAKE_BLENDER_SSS_H
 #define SKINBAKE_BLENDER_SSS_H

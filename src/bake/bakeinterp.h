@@ -1,0 +1,46 @@
+/* bakeinterp: the baked diffuse BRDF between a bake table's entries, with
+ * an error that covers the interpolation (bakefile.h's bake_eval_diffuse).
+ *
+ * Point values (adding-doubling wavelengths, table.values "points"):
+ *  - Delta-phi: the trigonometric interpolant through the n_phi nodes
+ *    j pi / (n_phi - 1), a cosine series of n_phi terms (the Fourier series
+ *    in the azimuth that adding-doubling computes, cut there).
+ *  - theta_o (and theta_i at the default nodes): the polynomial interpolant
+ *    in theta through the Chebyshev-Lobatto nodes (bake_nodes_theta), as a
+ *    Chebyshev series sum c_k cos(k u), u = acos(1 - 4 theta / pi).  With the
+ *    default incidence nodes (the exit nodes below 90 deg) the table is
+ *    completed by theta_i = 90 deg, where the BRDF is 0, to a square grid,
+ *    and the coefficients are made symmetric in (theta_i, theta_o): eval is
+ *    reciprocal exactly (f(a, b) = f(b, a)); half the table's asymmetry
+ *    goes to the error.  Other incidence nodes: linear in theta_i between
+ *    the nodes and to 0 at 90 deg.
+ *  - Error: the table's error (its fr_err through the same interpolant, in
+ *    absolute value) + the interpolation error estimate |f - f_half|, f_half
+ *    the series cut to the first half of its terms in every axis (the table
+ *    at half resolution), + the asymmetry; with other incidence nodes the
+ *    linear step's t (1 - t) |f(a0) - f(a1)|.
+ *
+ * Bin means (Monte Carlo wavelengths, and bakes written before issue 26):
+ * linear between the bin centres and the incidence nodes, and from the last
+ * centre or node linear to 0 at 90 deg (the limit of the BRDF at grazing;
+ * before issue 26 the last value was held).  This reconstructs bin means as
+ * if they were point values; the averaging error, largest at grazing exit,
+ * is not in the error, which is the standard error only. */
+#ifndef SKINBAKE_BAKEINTERP_H
+#define SKINBAKE_BAKEINTERP_H
+#include <stddef.h>
+
+struct bake;
+
+/* The series of b's point-value wavelengths (b->points); b->interp. */
+void bake_interp_build(struct bake *b);
+void bake_interp_free(struct bake *b);
+
+/* Wavelength w's diffuse BRDF [1/sr] at (theta_i, theta_o) [rad] in
+ * [0, pi/2], dphi [rad] in [0, pi]; its error into *err (may be NULL). */
+double bake_interp_eval(const struct bake *b, int w, double theta_i, double theta_o, double dphi, double *err);
+/* The same for RGB channel c of the linear sRGB plane: -1 when that plane
+ * cannot be interpolated as one (wavelengths of both kinds): then sum the
+ * wavelengths. */
+int bake_interp_rgb(const struct bake *b, int c, double theta_i, double theta_o, double dphi, double *v);
+#endif
