@@ -163,7 +163,7 @@ if [ -n "${BASE_SKINBAKE:-}" ] && command -v valgrind >/dev/null 2>&1; then
 		n=$(ir "$SKINBAKE" "$@" --out "$W/o2")
 		echo "| \`$label\` | $o | $n | $(awk -v a="$o" -v b="$n" 'BEGIN { printf "%.3f", b / a }') | $SAME |"
 	}
-	SAME="tables within the AD estimates (test_ad)"
+	SAME="AD values within 1.2e-8 relative (same-outputs.sh)"
 	row "bake --preset paper --solver ad --threads 1 --radial-photons 100 --radial-error 1" \
 		bake --preset paper --solver ad --threads 1 --quiet --radial-photons 100 --radial-error 1
 	"$top_builddir/tests/maps_check" synth "$W/f" "$W/true" 256 256 >/dev/null
