@@ -11,6 +11,7 @@
 #include "cli/cli.h"
 #include "cli/opt.h"
 #include "geom/relief.h"
+#include "geom/relief_ranges.h"
 #include "geom/sites.h"
 #include "geom/texdir.h"
 
@@ -44,6 +45,12 @@ static int run(const struct texture_config *cfg, const char *out, int quiet)
 		    "relief %.4g to %.4g um; place %.2f s, render %.2f s, write %.2f s -> %s\n",
 		    cfg->site, cfg->size, cfg->relief.tile * 10, (unsigned long long)cfg->seed,
 		    s.n_pores, s.h_min * 1e4, s.h_max * 1e4, s.t_place, s.t_render, s.t_write, out);
+	if (s.have_stats) {
+		int outside;
+		char *text = relief_ranges_report(&s.stats, cfg->site, &outside);
+		printf("%s# %d outside their measured range\n", text, outside);
+		free(text);
+	}
 	return CLI_EXIT_OK;
 }
 
@@ -52,7 +59,7 @@ int cmd_texture(int argc, char **argv)
 	int np;
 	const struct texture_param *params = sites_params(&np);
 	const char *site = "face", *preset = NULL, *out = NULL;
-	int quiet = 0, dump = 0, list = 0, rc = CLI_EXIT_USAGE;
+	int quiet = 0, dump = 0, list = 0, stats = 0, rc = CLI_EXIT_USAGE;
 	struct opt opts[OPT_MAX] = {
 		{ "site", OPT_STRING, &site, "NAME", "face", .help = "start from a body site (see --list-sites)" },
 		{ "preset-file", OPT_PATH_IN, &preset, "FILE", .flags = OPT_FILE, .help = "start from the [texture] "
@@ -63,9 +70,11 @@ int cmd_texture(int argc, char **argv)
 		{ "list-sites", OPT_FLAG, &list, .help = "list the sites and exit" },
 		{ "dump-config", OPT_FLAG, &dump, .help = "print the resolved [texture] section and exit" },
 		{ "quiet", OPT_FLAG, &quiet, .help = "no summary on stderr" },
+		{ "stats", OPT_FLAG, &stats, .help = "measure the map into manifest.json and print it against the site's "
+		  "measured ranges (data/relief_sites.tsv)" },
 	};
 	/* One option per texture parameter, from the table in geom/sites.c. */
-	enum { N_FIXED = 6 };
+	enum { N_FIXED = 7 };
 	char defs[OPT_MAX][32];
 	struct texture_config cfg;
 	char *cause = NULL;
@@ -133,6 +142,7 @@ int cmd_texture(int argc, char **argv)
 		goto done;
 	}
 
+	cfg.with_stats = stats;
 	rc = run(&cfg, out, quiet);
 done:
 	free(cause);

@@ -17,6 +17,7 @@ struct texture_config {
 	long size;	/* output edge [px] */
 	uint64_t seed;	/* random seed [1] */
 	struct relief_params relief;	/* geometry [cm, rad] */
+	int with_stats;	/* 1: measure the map (relief_stats) into manifest.json "stats" */
 };
 
 enum sites_type { SITES_REAL, SITES_LONG, SITES_SEED, SITES_INT };

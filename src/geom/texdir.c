@@ -113,6 +113,7 @@ struct outputs {
 	const char *dir;
 	char software[64];
 	char tile[32], seed[32], size[32];
+	const struct relief_stats *stats;	/* or NULL: no "stats" in the manifest */
 };
 
 static char *path_in(const struct outputs *o, const char *name)
@@ -314,6 +315,8 @@ static int write_manifest(const struct outputs *o, const struct relief *r, struc
 	json_object_object_add(comp, "pores", jrange("pores_height.png", sp));
 	json_object_object_add(comp, "furrows", jrange("furrows_height.png", sf));
 	json_object_object_add(m, "components", comp);
+	if (o->stats)
+		json_object_object_add(m, "stats", relief_stats_json(o->stats));
 
 	static const char *files[] = { "height.png", "normal.png", "normal.exr", "height.exr",
 		"preview.png", "pores_height.png", "furrows_height.png", "manifest.json" };
@@ -336,12 +339,12 @@ const struct outdir_kind texdir_outdir_kind = { "texture directory", "manifest.j
 
 /* Every file into the existing directory DIR, manifest.json last. */
 static int write_files(const char *dir, const struct texture_config *cfg, const struct relief *r,
-    const struct texdir_maps *m, char **cause)
+    const struct texdir_maps *m, const struct relief_stats *st, char **cause)
 {
 	CHECK(m->n == (int)cfg->size);
 	size_t npx = (size_t)m->n * (size_t)m->n;
 	struct stats sh = minmax(m->height, npx), sp = minmax(m->pores, npx), sf = minmax(m->furrows, npx);
-	struct outputs o = { .cfg = cfg, .dir = dir };
+	struct outputs o = { .cfg = cfg, .dir = dir, .stats = st };
 	snprintf(o.software, sizeof o.software, "skinbake %s", PACKAGE_VERSION);
 	snprintf(o.tile, sizeof o.tile, "%.10g", cfg->relief.tile * 10);
 	snprintf(o.seed, sizeof o.seed, "%llu", (unsigned long long)cfg->seed);
@@ -410,8 +413,10 @@ int texdir_make(const char *dir, const struct texture_config *cfg, struct texdir
 	struct texdir_maps m;
 	texdir_maps_render(&m, r, cfg);
 	texdir_height_range(&m, &made->h_min, &made->h_max);
+	made->have_stats = cfg->with_stats
+	    && relief_stats_for(&cfg->relief, m.n, m.height, m.furrows, m.pores, &made->stats) == 0;
 	double t2 = util_now();
-	int rc = write_files(outdir_path(&od), cfg, r, &m, cause);
+	int rc = write_files(outdir_path(&od), cfg, r, &m, made->have_stats ? &made->stats : NULL, cause);
 	if (rc != 0)
 		outdir_fail(&od, cause);
 	else

@@ -22,6 +22,7 @@
 
 #include "base/outdir.h"
 #include "geom/relief.h"
+#include "geom/relief_stats.h"
 #include "geom/sites.h"
 
 /* ---- writer ---- */
@@ -63,6 +64,8 @@ struct texdir_made {
 	double t_place, t_render, t_write;	/* wall time of each step [s] */
 	char *notes;		/* texdir_resolution_notes, or NULL; caller frees */
 	int refused;		/* 1: DIR or the size was refused before any work (exit status 2) */
+	int have_stats;		/* 1 when cfg->with_stats: stats below are set */
+	struct relief_stats stats;	/* of the written maps (relief_stats_for) */
 };
 
 /* All of `skinbake texture` after its options: place the relief of cfg,

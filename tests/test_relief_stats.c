@@ -1,0 +1,143 @@
+/* relief_stats against height maps whose statistics are known in closed
+ * form: a sinusoid (Sa, furrow crossings and depth, anisotropy 1), two
+ * crossed sinusoids (isotropic and stretched: the discrete structure tensor
+ * exactly), a diagonal sinusoid (direction) and flat-bottomed discs (pore
+ * count, density, diameter to the lattice bound). */
+#include <stdarg.h>
+#include <stddef.h>
+#include <stdint.h>
+#include <setjmp.h>
+#include <cmocka.h>
+#include <math.h>
+#include <stdlib.h>
+
+#include "geom/relief_stats.h"
+
+enum { N = 256 };
+static const double PITCH = 1e-4;	/* 1 um [cm] */
+static const double A = 10e-4;	/* amplitude [cm] */
+
+/* h at pixel (row, col) = sum of sines of wavelengths lx, ly [px] along x,
+ * y (0: none) and ld along x + y; x = col + 0.5, y = N - row - 0.5. */
+static float *waves(double lx, double ly, double ld)
+{
+	float *h = malloc(sizeof *h * N * N);
+	for (int r = 0; r < N; r++) {
+		for (int c = 0; c < N; c++) {
+			double x = c + 0.5, y = N - r - 0.5, v = 0;
+			if (lx > 0)
+				v += sin(2 * M_PI * x / lx);
+			if (ly > 0)
+				v += sin(2 * M_PI * y / ly);
+			if (ld > 0)
+				v += sin(2 * M_PI * (x + y) / ld);
+			h[r * N + c] = (float)(A * v);
+		}
+	}
+	return h;
+}
+
+static struct relief_stats stats_of(const float *h, const float *pores)
+{
+	struct relief_stats_spec spec = { PITCH, A / 2, 1e-4 };
+	struct relief_stats st;
+	char *cause = NULL;
+	assert_int_equal(relief_stats_compute(N, h, NULL, pores, &spec, &st, &cause), 0);
+	return st;
+}
+
+static void test_sinusoid(void **state)
+{
+	(void)state;
+	const int L = 64;	/* px per period */
+	float *h = waves(L, 0, 0);
+	struct relief_stats st = stats_of(h, NULL);
+	/* Midpoint samples: mean |sin| = 2 / (L sin(pi / L)) exactly, within
+	 * pi^2 / (6 L^2) = 4e-4 relative of the continuous 2 / pi. */
+	double sa = 2 * A / (L * sin(M_PI / L));
+	assert_true(fabs(st.sa - sa) < 1e-6 * sa);	/* float storage */
+	assert_true(fabs(st.sa - 2 * A / M_PI) < 5e-4 * 2 * A / M_PI);
+	assert_true(fabs(st.sz - 2 * A * cos(M_PI / L)) < 1e-6 * A);
+	/* One furrow per period along rows and, stretched by sqrt 2, along the
+	 * diagonals; none along columns. */
+	double per_len = 1.0 / (L * PITCH);
+	assert_true(fabs(st.furrow_density - per_len * (1 + sqrt(2.0)) / 4) < 1e-9 * per_len);
+	assert_true(fabs(st.furrow_depth - A * cos(M_PI / L)) < 1e-6 * A);
+	assert_true(fabs(st.anisotropy - 1) < 1e-12);
+	assert_true(fabs(st.direction - M_PI / 2) < 1e-9);
+	free(h);
+}
+
+static void test_isotropic_and_stretched(void **state)
+{
+	(void)state;
+	float *h = waves(32, 32, 0);
+	struct relief_stats st = stats_of(h, NULL);
+	/* Cross terms sum to zero over whole periods; float rounding only. */
+	assert_true(st.anisotropy < 1e-5);
+	free(h);
+	h = waves(32, 64, 0);
+	st = stats_of(h, NULL);
+	/* Central differences scale sin(kx) by sin(k p) / p. */
+	double ratio = pow(sin(2 * M_PI / 64) / sin(2 * M_PI / 32), 2);
+	assert_true(fabs(st.anisotropy - (1 - ratio)) < 1e-5);
+	assert_true(fabs(st.direction - M_PI / 2) < 1e-5);
+	free(h);
+	h = waves(0, 0, 64);
+	st = stats_of(h, NULL);
+	/* Gradient along (1, 1): the furrows run along (1, -1). */
+	assert_true(fabs(st.anisotropy - 1) < 1e-5);
+	assert_true(fabs(st.direction - 3 * M_PI / 4) < 1e-5);
+	free(h);
+}
+
+static void test_discs(void **state)
+{
+	(void)state;
+	/* Five discs of radius R px, one across the left/right seam and one
+	 * across the top/bottom seam (each must count once). */
+	const double R = 12, cx[5] = { 40, 128, 200, 2, 128 }, cy[5] = { 40, 128, 60, 128, 250 };
+	float *p = calloc(N * N, sizeof *p);
+	for (int r = 0; r < N; r++) {
+		for (int c = 0; c < N; c++) {
+			for (int k = 0; k < 5; k++) {
+				double dx = fabs(c + 0.5 - cx[k]), dy = fabs(r + 0.5 - cy[k]);
+				dx = fmin(dx, N - dx);
+				dy = fmin(dy, N - dy);
+				if (dx * dx + dy * dy < R * R)
+					p[r * N + c] = -5e-4f;
+			}
+		}
+	}
+	struct relief_stats st = stats_of(p, p);
+	assert_int_equal(st.pores, 5);
+	double area = (double)N * N * PITCH * PITCH;
+	assert_true(fabs(st.pore_density - 5 / area) < 1e-9 / area);
+	/* The pixels with centres inside a disc cover between pi (R - sqrt2/2)^2
+	 * and pi (R + sqrt2/2)^2: the diameter is 2R within sqrt 2 px. */
+	assert_true(fabs(st.pore_diameter - 2 * R * PITCH) <= sqrt(2.0) * PITCH);
+	free(p);
+}
+
+static void test_bad_input(void **state)
+{
+	(void)state;
+	float h[9] = { 0 };
+	struct relief_stats_spec spec = { 0, 1, 1 };
+	struct relief_stats st;
+	char *cause = NULL;
+	assert_int_equal(relief_stats_compute(3, h, NULL, NULL, &spec, &st, &cause), -1);
+	assert_non_null(cause);
+	free(cause);
+}
+
+int main(void)
+{
+	const struct CMUnitTest tests[] = {
+		cmocka_unit_test(test_sinusoid),
+		cmocka_unit_test(test_isotropic_and_stretched),
+		cmocka_unit_test(test_discs),
+		cmocka_unit_test(test_bad_input),
+	};
+	return cmocka_run_group_tests(tests, NULL, NULL);
+}
