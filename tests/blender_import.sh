@@ -158,7 +158,12 @@ broken() {	# DESC DIR PATTERN
 broken "missing image set" "$tmpd/nothing" "no such image-set directory"
 cp -r "$set" "$tmpd/trunc"
 head -c 3000 "$set/brdf_lut.exr" >"$tmpd/trunc/brdf_lut.exr"
-broken "truncated brdf_lut.exr" "$tmpd/trunc" "corrupt OpenEXR file"
+broken "truncated brdf_lut.exr" "$tmpd/trunc" "has changed since its manifest was written"
+# The same without checksums (a set from before them): the EXR reader's own check.
+cp -r "$tmpd/trunc" "$tmpd/trunc2"
+python3 -c 'import json, sys; p = sys.argv[1]; m = json.load(open(p)); m.pop("checksums", None); json.dump(m, open(p, "w"))' \
+	"$tmpd/trunc2/manifest.json"
+broken "truncated brdf_lut.exr, no checksums" "$tmpd/trunc2" "corrupt OpenEXR file"
 cp -r "$set" "$tmpd/vers"
 sed 's/"format_version":1/"format_version":99/' "$set/manifest.json" >"$tmpd/vers/manifest.json"
 broken "unknown format version" "$tmpd/vers" "format_version 99 is not supported"

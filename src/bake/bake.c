@@ -173,6 +173,8 @@ static int bake_ad(const struct bake_spec *s, const struct solver_problem *p, co
 	if (s->ad_tol > 0.0)
 		ad.ad.tol = s->ad_tol;
 	ad.ad.n_quad = s->ad_quad;
+	if (s->ad_quad_max > 0)
+		ad.ad.n_quad_max = s->ad_quad_max;
 	ad.strict = s->method == BAKE_SOLVER_AD;
 	r->ad_tol = ad_solver_tol(&ad, p);
 	if (solver_solve(&ad_solver, &ad, p, run, &r->table, cause) != 0)
@@ -291,6 +293,8 @@ uint64_t bake_spec_identity(const struct bake_spec *s)
 	HASH(h, s->method);
 	HASH(h, s->ad_tol);
 	HASH(h, s->ad_quad);
+	if (s->ad_quad_max > 0)	/* identities of bakes without it unchanged */
+		HASH(h, s->ad_quad_max);
 	HASH(h, s->radial_error);
 	HASH(h, s->radial_photons);
 	HASH(h, s->seed);

@@ -76,6 +76,7 @@ struct bake_spec {
 	double ad_tol;				/* adding-doubling tolerance (table RMS relative error);
 					 * 0 = 1e-3; the target error when that is smaller */
 	int ad_quad;				/* its quadrature nodes per unit cosine; 0 = automatic */
+	int ad_quad_max;			/* largest automatic ad_quad (its cost bound); 0 = the solver's default */
 	int bin_means;				/* 1: bin means from every method (no point values;
 					 * for comparing methods bin by bin) */
 	double radial_error;			/* relative standard error of the mean exit radius that

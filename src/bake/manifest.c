@@ -207,7 +207,7 @@ static json_object *solver_info(const struct bake_spec *s, const struct bake_res
 		add(ad, "method", jstr("adding-doubling, Fourier series in delta_phi (src/engine/ad.h)"));
 		add(ad, "tol", json_num(r->ad_tol));
 		add(ad, "n_quad", s->ad_quad > 0 ? json_object_new_int(s->ad_quad) : jstr("auto"));
-		add(ad, "n_quad_max", json_object_new_int(d.ad.n_quad_max));
+		add(ad, "n_quad_max", json_object_new_int(s->ad_quad_max > 0 ? s->ad_quad_max : d.ad.n_quad_max));
 		add(ad, "dtau_frac", json_num(d.ad.dtau_frac));
 		add(ad, "dm_terms", json_num(d.ad.dm_terms));
 		add(ad, "max_orders", json_object_new_int(d.ad.max_orders));

@@ -74,6 +74,8 @@ int cmd_bake(int argc, char **argv)
 		  .help = "ad: estimated RMS relative error of the table to reach (or --target-error when smaller)" },
 		{ "ad-quad", OPT_INT, &s.ad_quad, "N", .lo = 4, .hi = 1024, .help = "ad: quadrature nodes per unit cosine",
 		  .def_note = "the fewest from 16 up, doubling, that meet --ad-tol" },
+		{ "ad-quad-max", OPT_INT, &s.ad_quad_max, "N", .lo = 16, .hi = 1024, .def_note = "256",
+		  .help = "ad: the most nodes per unit cosine the automatic search tries before refusing (its cost bound)" },
 		{ "radial-error", OPT_DOUBLE, &s.radial_error, "E", "0.02", .lo = 1e-4, .hi = 1, .help = "ad: relative error of "
 		  "each mean exit radius (Rd(r) by Monte Carlo: 2000 photons per wavelength, more as E asks, up to "
 		  "--radial-photons)" },
