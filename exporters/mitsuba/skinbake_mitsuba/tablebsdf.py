@@ -59,8 +59,14 @@ class TableBSDF(mi.BSDF):
         with open(os.path.join(bake, "manifest.json")) as f:
             man = json.load(f)
         self.ti = [math.radians(v) for v in man["theta_i_deg"]]
-        self.to = [math.radians(v) for v in man["theta_o_centres_deg"]]
-        self.ph = [math.radians(v) for v in man["delta_phi_centres_deg"]]
+        # Adding-doubling tables hold point values at their nodes (manifest
+        # table.values "points"), Monte Carlo tables bin means at the centres.
+        values = man.get("table", {}).get("values", [])
+        points = bool(values) and all(v == "points" for v in values) and "theta_o_nodes_deg" in man
+        to_key, ph_key = ("theta_o_nodes_deg", "delta_phi_nodes_deg") if points else \
+            ("theta_o_centres_deg", "delta_phi_centres_deg")
+        self.to = [math.radians(v) for v in man[to_key]]
+        self.ph = [math.radians(v) for v in man[ph_key]]
         self.wl = list(man["wavelengths_nm"])
         self.npx = len(self.ti) * len(self.to) * len(self.ph)
         self.alpha = float(man["specular"]["alpha"])
