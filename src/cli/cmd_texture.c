@@ -45,12 +45,11 @@ static int run(const struct texture_config *cfg, const char *out, int quiet)
 		    "relief %.4g to %.4g um; place %.2f s, render %.2f s, write %.2f s -> %s\n",
 		    cfg->site, cfg->size, cfg->relief.tile * 10, (unsigned long long)cfg->seed,
 		    s.n_pores, s.h_min * 1e4, s.h_max * 1e4, s.t_place, s.t_render, s.t_write, out);
-	if (s.have_stats) {
-		int outside;
-		char *text = relief_ranges_report(&s.stats, cfg->site, &outside);
+	int outside = 0;
+	char *text = s.have_stats ? relief_ranges_report(&s.stats, cfg->site, &outside) : NULL;
+	if (text != NULL)
 		printf("%s# %d outside their measured range\n", text, outside);
-		free(text);
-	}
+	free(text);
 	return CLI_EXIT_OK;
 }
 

@@ -174,16 +174,20 @@ int opt_u64(const struct opt_ctx *x, const char *label, const char *s, unsigned 
 	const double two64 = 18446744073709551616.0;
 	if (number(x, label, s, 0, two64, 0, NULL, "whole decimal number", &v, &integer) != 0)
 		return -1;
-	if (v != floor(v) || (!integer && v >= two64))
-		return opt_error(x, "%s = %s is not a whole number in [0, 2^64-1]", label, s), -1;
+	if (v != floor(v) || (!integer && v >= two64)) {
+		opt_error(x, "%s = %s is not a whole number in [0, 2^64-1]", label, s);
+		return -1;
+	}
 	if (!integer) {
 		*out = (unsigned long long)v;	/* exact: a double below 2^64 that is whole */
 		return 0;
 	}
 	errno = 0;
 	unsigned long long u = strtoull(s, NULL, 10);
-	if (errno == ERANGE || strchr(s, '-') != NULL)
-		return opt_error(x, "%s = %s is out of range [0, 2^64-1]", label, s), -1;
+	if (errno == ERANGE || strchr(s, '-') != NULL) {
+		opt_error(x, "%s = %s is out of range [0, 2^64-1]", label, s);
+		return -1;
+	}
 	*out = u;
 	return 0;
 }

@@ -1,5 +1,8 @@
 /* povexport: run a POV-Ray export: build the scene, bind bakes and texture
- * directories to its skins, load and check every input, then write. */
+ * directories to its skins, load and check every input, then write.
+ * Over 600 lines because the translucent mode's fit and the ownership and
+ * checksum checks of this session landed here; splitting the skin binding
+ * into its own file is the next step. */
 #include "config.h"
 
 #include "export/pov/povexport.h"
@@ -230,8 +233,10 @@ static int check_parts(const struct scene *s, char **cause)
 			return *cause = xasprintf("--light %s: position %g:%g:%g and point_at coincide (default 0:0:0)",
 			    s->lights[i].name, p[0], p[1], p[2]), -1;
 	}
-	if (hypot(hypot(c[0] - a[0], c[1] - a[1]), c[2] - a[2]) < 1e-9)
-		return *cause = xasprintf("--camera: location and look_at coincide"), -1;
+	if (hypot(hypot(c[0] - a[0], c[1] - a[1]), c[2] - a[2]) < 1e-9) {
+		*cause = xasprintf("--camera: location and look_at coincide");
+		return -1;
+	}
 	return 0;
 }
 
