@@ -12,6 +12,12 @@ MEASURED = {
         "k0": (0.995, 0.991, 0.983, 0.981, 0.987),   # the random-walk albedo inversion runs 0.5-2 % low
         "k_per_roughness": 0.0607,
     },
+    (4, 3): {            # Debian 13's blender package; the same as 4.5 to 4 digits
+        "measured_with": "Blender 4.3.2 (Debian 13), Cycles CPU, 64 px, 256 spp (scripts/blender-calibrate.py)",
+        "albedo": (0.05, 0.15, 0.3, 0.6, 0.8, 0.95),
+        "k0": (0.7701, 0.7947, 0.8328, 0.907, 0.9628, 0.9444),
+        "k_per_roughness": 0.0,       # measured -0.0001
+    },
     (4, 5): {            # 4.x rebuilt the Principled BSDF: a Lambert-like exit, no retro-reflection term
         "measured_with": "Blender 4.5.15 LTS (bpy), Cycles CPU, 64 px, 256 spp (scripts/blender-calibrate.py)",
         "albedo": (0.05, 0.15, 0.3, 0.6, 0.8, 0.95),
