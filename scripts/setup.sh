@@ -35,9 +35,10 @@ pick() {
 clangv=$(apt-cache depends clang 2>/dev/null | sed -n 's/^ *Depends: clang-\([0-9][0-9]*\)$/\1/p' | head -n 1)
 [ -n "$clangv" ] || { echo "setup.sh: apt does not say which clang-NN the clang package is" >&2; exit 1; }
 PKGS="$PKGS $(pick "libclang-rt-$clangv-dev")"
-# bpy (Blender as a Python module, in the venvs) loads X11 and GL libraries that Debian 12's
-# blender package happens to pull in and Debian 13's does not; libXt has its t64 name on 13.
-PKGS="$PKGS libsm6 libice6 libopengl0 $(pick libxt6t64 libxt6)"
+# bpy (Blender as a Python module, in the venvs) loads X11 and GL libraries that Debian's blender
+# package does not pull in without recommends (libXt has its t64 name on 13), and bpy 5.x aborts
+# in a render without EGL (Mesa's llvmpipe when headless).
+PKGS="$PKGS libsm6 libice6 libopengl0 $(pick libxt6t64 libxt6) libegl1 libegl-mesa0 libgl1-mesa-dri"
 # Mitsuba's LLVM variants (drjit 1.5) need libLLVM >= 16: Debian 12's default 14 crashes them.
 # (Debian 13 renamed some for 64-bit time: libllvm17t64.)
 PKGS="$PKGS $(pick libllvm19 libllvm20 libllvm18 libllvm18t64 libllvm17 libllvm17t64 libllvm16)"
