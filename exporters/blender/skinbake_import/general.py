@@ -4,6 +4,7 @@ Blender 3.x, "general_fit_v4" on 4.x and 5.x, whose subsurface colour is made by
 that Blender's measured response turns into it (calibration.VIEW_RESPONSE); else one Principled
 BSDF with random-walk subsurface."""
 import math
+import os
 
 import bpy
 
@@ -179,7 +180,7 @@ def general_shader(tr, m, nrm, area, geo, unit_scale, no_specular, calibrate):
     f = m.get("general_fit_v4" if bpy.app.version >= (4, 0, 0) else "general_fit")
     if isinstance(f, dict):
         if f is m.get("general_fit_v4"):
-            _check_fit(f, "general_fit_v4")
+            _check_fit(f, os.path.join(m.get("_dir", "."), "manifest.json") + ": general_fit_v4")
         return _general_fit(tr, m, f, nrm, area, geo, unit_scale, no_specular, calibrate, area_mean)
     return _general_principled(tr, m, nrm, unit_scale, no_specular, calibrate, area_mean)
 
