@@ -10,6 +10,9 @@
 # pi L / E per Base Colour, the closure's response R(base, cos_view), printed as an entry for
 # calibration.VIEW_RESPONSE; and the same at a sun 60 deg off the normal, which 4.x and 5.x render
 # alike (cosine law: the light direction does not matter).  About 5 minutes at 128 samples.
+# check (Blender 4+, tests/blender_lights.sh): Base Colours 0.02, 0.1, 0.45 at cos_view 0.45 with the
+# sun 60 deg off the normal, and along the normal with the sun along it, against this Blender's
+# VIEW_RESPONSE: prints SKINBAKE_VIEW_CHECK and the largest relative difference.  About 20 s.
 import math
 import os
 import sys
@@ -22,7 +25,7 @@ sys.path.insert(0, os.path.join(os.path.dirname(os.path.abspath(__file__)), ".."
 from skinbake_import import calibration, nodes, scene  # noqa: E402
 
 args = sys.argv[sys.argv.index("--") + 1:] if "--" in sys.argv else []
-what = args.pop(0) if args and args[0] in ("furnace", "view") else "furnace"
+what = args.pop(0) if args and args[0] in ("furnace", "view", "check") else "furnace"
 samples = int(args[0]) if args else (256 if what == "furnace" else 128)
 ALBEDO = (0.05, 0.15, 0.3, 0.6, 0.8, 0.95)
 VIEW_COS = (0.1, 0.2, 0.3, 0.45, 0.6, 0.75, 0.9, 1.0)
@@ -91,6 +94,16 @@ with tempfile.TemporaryDirectory() as tmp:
               f"Cycles CPU, 64 px, {samples} spp (scripts/blender-calibrate.py)\", \"albedo\": {ALBEDO}, "
               f"\"k0\": {tuple(k0)}, \"k_per_roughness\": {slope:.4f}}},")
         print("SKINBAKE_CALIBRATION_RAW", {r: [round(x, 4) for x in v] for r, v in k.items()})
+    elif what == "check":
+        c = calibration.view_measurement()
+        if c is None:
+            raise SystemExit(f"Blender {bpy.app.version_string} has no VIEW_RESPONSE to check")
+        err = []
+        for cv, sun_deg in ((0.45, 60.0), (1.0, 0.0)):
+            bases = (0.02, 0.1, 0.45)
+            for b, r in zip(bases, lit(bases, cv, sun_deg, tmp)):
+                err.append(r / calibration.view_response(b, cv, c) - 1)
+        print("SKINBAKE_VIEW_CHECK", f"{max(abs(e) for e in err):.4f}", " ".join(f"{e:+.4f}" for e in err))
     else:
         base = sorted(VIEW_BASE)
         rows = []
