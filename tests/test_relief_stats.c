@@ -2,7 +2,8 @@
  * form: a sinusoid (Sa, furrow crossings and depth, anisotropy 1), two
  * crossed sinusoids (isotropic and stretched: the discrete structure tensor
  * exactly), a diagonal sinusoid (direction) and flat-bottomed discs (pore
- * count, density, diameter to the lattice bound). */
+ * count, density, diameter to the lattice bound) and a triangle wave (the
+ * developed area ratio Sdr). */
 #include <stdarg.h>
 #include <stddef.h>
 #include <stdint.h>
@@ -119,6 +120,30 @@ static void test_discs(void **state)
 	free(p);
 }
 
+/* A triangle wave of slope +-s along x, kinks on pixel boundaries: the
+ * central difference is +-s except at the 4 samples per period next to a
+ * kink, where it is +-s/2, so Sdr is known exactly; the continuous surface
+ * has sqrt(1 + s^2) - 1. */
+static void test_developed_area(void **state)
+{
+	(void)state;
+	const int L = 64;	/* px per period */
+	const double s = 0.5;	/* slope [1] */
+	float *h = malloc(sizeof *h * N * N);
+	for (int r = 0; r < N; r++) {
+		for (int c = 0; c < N; c++) {
+			double x = fmod(c + 0.5, L);
+			double up = x < L / 2.0 ? x : L - x;	/* distance from the last valley [px] */
+			h[r * N + c] = (float)(s * up * PITCH);
+		}
+	}
+	struct relief_stats st = stats_of(h, NULL);
+	double exact = ((L - 4) * (sqrt(1 + s * s) - 1) + 4 * (sqrt(1 + s * s / 4) - 1)) / L;
+	assert_true(fabs(st.sdr - exact) < 1e-5 * exact);	/* float storage */
+	assert_true(fabs(st.sdr - (sqrt(1 + s * s) - 1)) < 4.0 / L * (sqrt(1 + s * s) - 1));
+	free(h);
+}
+
 static void test_bad_input(void **state)
 {
 	(void)state;
@@ -137,6 +162,7 @@ int main(void)
 		cmocka_unit_test(test_sinusoid),
 		cmocka_unit_test(test_isotropic_and_stretched),
 		cmocka_unit_test(test_discs),
+		cmocka_unit_test(test_developed_area),
 		cmocka_unit_test(test_bad_input),
 	};
 	return cmocka_run_group_tests(tests, NULL, NULL);

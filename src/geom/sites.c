@@ -69,7 +69,7 @@ static const struct site sites[] = {
 		.pore_aspect = 1.3, .pore_junction = 0.2, .pore_regularity = 0.5,
 		.levels = 2,
 		.furrow_cell = MM(0.35), .furrow_width = UM(40),	/* assumption */
-		.furrow_depth = UM(20), .furrow_depth_sd = 0.35,	/* Hashimoto 1974: shallow end */
+		.furrow_depth = UM(25), .furrow_depth_sd = 0.35,	/* Hashimoto 1974: 20-100 um, shallow part */
 		.ridge_height = UM(4),
 		.level_scale = 0.45, .level_gain = 0.35,
 		.stretch = 1.15, .orientation = DEG(0), .furrow_regularity = 0.6 } },
@@ -81,7 +81,7 @@ static const struct site sites[] = {
 		.pore_aspect = 1.4, .pore_junction = 0.0, .pore_regularity = 0.5,
 		.levels = 2,
 		.furrow_cell = MM(0.35), .furrow_width = UM(40),
-		.furrow_depth = UM(18), .furrow_depth_sd = 0.35,
+		.furrow_depth = UM(25), .furrow_depth_sd = 0.35,	/* Hashimoto 1974, as face */
 		.ridge_height = UM(4),
 		.level_scale = 0.45, .level_gain = 0.35,
 		.stretch = 1.15, .orientation = DEG(0), .furrow_regularity = 0.6 } },
