@@ -38,8 +38,20 @@ struct level {
 	struct bbox *fbox, *pbox;
 };
 
+/* One plane wave of the plateau texture: amp cos(2 pi (kx x + ky y) + phase)
+ * with x, y in tiles, so the texture is periodic with the tile. */
+#define RELIEF_WAVES 48
+
+struct wave {
+	int kx, ky;	/* cycles per tile */
+	double amp;	/* [cm] */
+	double phase;	/* [rad] */
+};
+
 struct relief {
 	struct relief_params p;
+	int n_waves;
+	struct wave *waves;
 	int n_pores;
 	struct pore *pores;
 	struct bbox *pore_box;

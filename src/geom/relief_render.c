@@ -198,8 +198,10 @@ static void draw_furrows(const struct level *l, double T, const struct window *w
 	}
 }
 
-/* Plateau dome: ridge * 27 b0 b1 b2 (barycentric bubble), 1 at the
- * centroid and 0 on the edges, so neighbouring triangles join continuously. */
+/* Plateau dome: ridge * (27 b0 b1 b2)^2 (a squared barycentric bubble), 1
+ * at the centroid, 0 with zero slope on the edges, so neighbouring
+ * triangles join smoothly and a bent furrow leaves no crease along the
+ * straight edge. */
 static void draw_plateaus(const struct level *l, const struct window *w, const struct bins *bn,
     int blk, const struct rect *k, float *buf)
 {
@@ -222,10 +224,42 @@ static void draw_plateaus(const struct level *l, const struct window *w, const s
 				double b0 = 1 - b1 - b2;
 				if (b0 < 0 || b1 < 0 || b2 < 0)
 					continue;
-				o[col - k->c0] = (float)(q->ridge * 27 * b0 * b1 * b2);
+				double bub = 27 * b0 * b1 * b2;
+				o[col - k->c0] = (float)(q->ridge * bub * bub);
 			}
 		}
 	}
+}
+
+/* Add the plateau waves to out: cos(a + b) = cos a cos b - sin a sin b
+ * with a from the column and b from the row, so each pixel costs two
+ * products per wave. */
+static void add_waves(const struct relief *r, const struct window *w, float *out)
+{
+	int n = w->n, nw = r->n_waves;
+	double *cs = xmalloc(sizeof *cs * 2 * (size_t)nw * (size_t)n);
+	for (int q = 0; q < nw; q++)
+		for (int c = 0; c < n; c++) {
+			double a = 2 * M_PI * r->waves[q].kx * px_x(w, c);
+			cs[2 * ((size_t)q * n + c)] = cos(a);
+			cs[2 * ((size_t)q * n + c) + 1] = sin(a);
+		}
+#pragma omp parallel for schedule(static)
+	for (int row = 0; row < n; row++) {
+		double rc[RELIEF_WAVES], rs[RELIEF_WAVES];
+		for (int q = 0; q < nw; q++) {
+			double b = 2 * M_PI * r->waves[q].ky * px_y(w, row) + r->waves[q].phase;
+			rc[q] = r->waves[q].amp * cos(b);
+			rs[q] = r->waves[q].amp * sin(b);
+		}
+		for (int c = 0; c < n; c++) {
+			double sum = 0;
+			for (int q = 0; q < nw; q++)
+				sum += cs[2 * ((size_t)q * n + c)] * rc[q] - cs[2 * ((size_t)q * n + c) + 1] * rs[q];
+			out[(size_t)row * n + c] += (float)sum;
+		}
+	}
+	free(cs);
 }
 
 void relief_render(const struct relief *r, int n, double x0, double y0, float *pores, float *furrows)
@@ -269,6 +303,8 @@ void relief_render(const struct relief *r, int n, double x0, double y0, float *p
 				    sizeof(float) * (size_t)(k.c1 - k.c0 + 1));
 		}
 	}
+	if (furrows && r->n_waves > 0)
+		add_waves(r, &w, furrows);
 	if (pores)
 		bins_free(&pb);
 	for (int k = 0; furrows && k < r->n_levels; k++) {

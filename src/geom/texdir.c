@@ -261,6 +261,7 @@ static int write_manifest(const struct outputs *o, const struct relief *r, struc
 	json_object_object_add(m, "kind", json_object_new_string("skinbake texture"));
 	json_object_object_add(m, "skinbake_version", json_object_new_string(PACKAGE_VERSION));
 	json_object_object_add(m, "site", json_object_new_string(cfg->site));
+	json_object_object_add(m, "direction_map", cfg->direction_map ? json_object_new_string(cfg->direction_map) : NULL);
 	json_object_object_add(m, "seed", json_object_new_uint64(cfg->seed));
 	json_object_object_add(m, "size_px", json_object_new_int64(cfg->size));
 	json_object_object_add(m, "tile_mm", json_num(tile_mm));
@@ -301,7 +302,7 @@ static int write_manifest(const struct outputs *o, const struct relief *r, struc
 		json_object *l = json_object_new_object();
 		json_object_object_add(l, "level", json_object_new_int(k + 1));
 		json_object_object_add(l, "junctions", json_object_new_int(li.points));
-		json_object_object_add(l, "furrows", json_object_new_int(3 * li.points));
+		json_object_object_add(l, "furrows", json_object_new_int(li.furrows));
 		json_object_object_add(l, "cell_mm", json_num(li.cell * 10));
 		json_object_object_add(l, "width_um", json_num(li.width * 1e4));
 		json_object_object_add(l, "depth_um", json_num(li.depth * 1e4));
