@@ -97,7 +97,7 @@ static const struct site sites[] = {
 		.pore_aspect = 1.2, .pore_junction = 1.0, .pore_regularity = 0.5,
 		.levels = 2,
 		.furrow_cell = MM(0.4), .furrow_width = UM(40),
-		.furrow_depth = UM(20), .furrow_depth_sd = 0.35,
+		.furrow_depth = UM(25), .furrow_depth_sd = 0.35,	/* Hashimoto 1974, as face */
 		.ridge_height = UM(4),
 		.level_scale = 0.45, .level_gain = 0.35,
 		.stretch = 1.3, .orientation = DEG(0), .furrow_regularity = 0.6,
@@ -138,8 +138,11 @@ static const struct site sites[] = {
 		.pore_depth = UM(15), .pore_depth_sd = 0.3,
 		.pore_aspect = 1.2, .pore_junction = 0.8, .pore_regularity = 0.5,
 		.levels = 3,
-		.furrow_cell = MM(0.45), .furrow_width = UM(45),
-		.furrow_depth = UM(35), .furrow_depth_sd = 0.3,
+		/* Width and depth (assumptions) chosen so that the developed area
+		 * is inside the 8-30 % of the 1983 forearm replicas: 20.7-24.0 %
+		 * over seeds 1-5 at 7.8 um pixels (docs/relief.md). */
+		.furrow_cell = MM(0.45), .furrow_width = UM(70),
+		.furrow_depth = UM(30), .furrow_depth_sd = 0.3,
 		.ridge_height = UM(8),
 		.level_scale = 0.4, .level_gain = 0.3,
 		.stretch = 1.4, .orientation = DEG(0), .furrow_regularity = 0.6,
