@@ -25,6 +25,7 @@ for s in face forehead cheek hand forearm; do
 	fi
 	check "site $s: manifest has stats" grep -q '"stats"' "$od/manifest.json"
 	check "site $s: report has a table" sh -c "! grep -q 'no range table' '$tmpd/$s.txt'"
+	check "site $s: far roughness map written and listed" sh -c "test -s '$od/roughness_far.png' && grep -q '\"far_roughness\"' '$od/manifest.json'"
 	# Every sourced row of the site: the reported value inside [lo, hi].
 	awk -F'\t' -v s=$s '$1 == s { print $2, $3, $4 }' "$table" >"$tmpd/rows"
 	while read -r key lo hi; do
