@@ -149,7 +149,8 @@ static struct relief_level_info level_info(const struct relief_params *p, int k)
 	li.furrows = (int)fmin(2e9, 3.0 * li.points);
 	if (k == 1 && p->hierarchy) {
 		/* Stars in the 2 N primary triangles: N junctions + 2 N centres +
-		 * 3 N arm ends on the 3 N primary edges; 3 arms per triangle. */
+		 * up to 3 N arm ends on the 3 N primary edges; up to 3 arms per
+		 * triangle (star_place records the number drawn). */
 		double n0 = nearbyint((p->tile / p->furrow_cell) * (p->tile / p->furrow_cell));
 		li.points = (int)fmin(2e9, 6 * n0);
 		li.furrows = (int)fmin(2e9, 6 * n0);
@@ -363,8 +364,8 @@ static void level_alloc(struct level *l, int n)
 	l->fbox = xmalloc(sizeof *l->fbox * (size_t)n * BEND_SEGMENTS);
 }
 
-/* Secondary level k as stars in the triangles of level k - 1: three arms
- * from an interior point (near the centroid) to a point of each side of
+/* Secondary level k in the triangles of level k - 1: two or three arms
+ * from an interior point (near the centroid) to a point of the sides of
  * the triangle, on the bent furrow of that side, so every secondary line
  * ends on a primary one. */
 static void star_place(struct relief *r, int k, uint64_t seed)
@@ -376,6 +377,7 @@ static void star_place(struct relief *r, int k, uint64_t seed)
 	struct rng rg;
 	rng_seed(&rg, seed, STREAM_LEVEL + 2 * (uint32_t)k + 1, 0);
 	level_alloc(l, 3 * d->n_tris);
+	int arms = 0;
 	for (int t = 0; t < d->n_tris; t++) {
 		const struct delaunay_tri *tr = &d->tris[t];
 		double v[3][2], bw[3], sum = 0, c[2] = { 0, 0 };
@@ -389,7 +391,13 @@ static void star_place(struct relief *r, int k, uint64_t seed)
 			c[0] += bw[i] / sum * v[i][0];
 			c[1] += bw[i] / sum * v[i][1];
 		}
+		/* Three arms (a star) in 2 of 5 triangles, two (a bent chord from
+		 * side to side) in the others, so that the cells are not all
+		 * split alike. */
+		int skip = rng_uniform(&rg) < 0.4 ? -1 : (int)(3 * rng_uniform(&rg));
 		for (int i = 0; i < 3; i++) {
+			if (i == skip)
+				continue;
 			int i1 = (i + 1) % 3, flip;
 			struct side e = canonical(tr->v[i], tr->sx[i], tr->sy[i], tr->v[i1], tr->sx[i1], tr->sy[i1], &flip);
 			double w[2], q[2], aw[2], depth, half;
@@ -402,8 +410,10 @@ static void star_place(struct relief *r, int k, uint64_t seed)
 			double th = direction_at(p, 0.5 * (c[0] + q[0]), 0.5 * (c[1] + q[1]));
 			furrow_size(p, &l->info, &rg, phi, th, &depth, &half);
 			emit(l, p->tile, c, q, aw, depth, half);
+			arms++;
 		}
 	}
+	l->info.furrows = arms;
 }
 
 static int level_place(struct relief *r, int k, uint64_t seed, char **cause)
