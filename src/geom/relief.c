@@ -205,6 +205,7 @@ int relief_params_check(const struct relief_params *p, char **cause)
 	    "be in [0, 0.8]", p->furrow_regularity);
 	NEED(p->hierarchy == 0 || p->hierarchy == 1, "hierarchy %d must be 0 or 1", p->hierarchy);
 	NEED(p->bend >= 0 && p->bend <= 0.3, "bend %g must be in [0, 0.3]", p->bend);
+	NEED(p->furrow_fade >= 0 && p->furrow_fade <= 1.5, "furrow fade %g must be in [0, 1.5]", p->furrow_fade);
 	NEED(p->direction_gain >= 1 && p->direction_gain <= 10, "direction gain %g must be in [1, 10]",
 	    p->direction_gain);
 	NEED(p->direction == NULL || p->direction_n >= 1, "direction map needs a positive size");
@@ -328,21 +329,25 @@ static void bent_point(const double a[2], const double b[2], const double w[2], 
 }
 
 /* Append the furrow a-b bent by w as BEND_SEGMENTS straight grooves (one
- * when straight); l->furrows and l->fbox have room. */
+ * when straight); l->furrows and l->fbox have room.  The depth is full at
+ * both ends (the junctions) and depth exp(-fade |z|), z standard normal,
+ * at the inner joints, linear along each piece, so a line fades in and out
+ * without getting deeper than at its ends. */
 static void emit(struct level *l, double T, const double a[2], const double b[2], const double w[2],
-    double depth, double half)
+    double depth, double half, double fade, struct rng *rg)
 {
 	int segs = w[0] == 0 && w[1] == 0 ? 1 : BEND_SEGMENTS;
-	double p0[2] = { a[0], a[1] }, e2 = half / T;
+	double p0[2] = { a[0], a[1] }, d0 = depth, e2 = half / T;
 	for (int s = 1; s <= segs; s++) {
-		double p1[2];
+		double p1[2], d1 = s == segs ? depth : depth * exp(-fade * fabs(normal(rg)));
 		bent_point(a, b, w, (double)s / segs, p1);
-		l->furrows[l->n_furrows] = (struct furrow){ p0[0], p0[1], p1[0], p1[1], half, depth };
+		l->furrows[l->n_furrows] = (struct furrow){ p0[0], p0[1], p1[0], p1[1], half, d0, d1 };
 		l->fbox[l->n_furrows] = (struct bbox){ fmin(p0[0], p1[0]) - e2, fmax(p0[0], p1[0]) + e2,
 			fmin(p0[1], p1[1]) - e2, fmax(p0[1], p1[1]) + e2 };
 		l->n_furrows++;
 		p0[0] = p1[0];
 		p0[1] = p1[1];
+		d0 = d1;
 	}
 }
 
@@ -409,7 +414,7 @@ static void star_place(struct relief *r, int k, uint64_t seed)
 			double phi = atan2(q[1] - c[1], q[0] - c[0]);
 			double th = direction_at(p, 0.5 * (c[0] + q[0]), 0.5 * (c[1] + q[1]));
 			furrow_size(p, &l->info, &rg, phi, th, &depth, &half);
-			emit(l, p->tile, c, q, aw, depth, half);
+			emit(l, p->tile, c, q, aw, depth, half, p->furrow_fade, &rg);
 			arms++;
 		}
 	}
@@ -450,7 +455,7 @@ static int level_place(struct relief *r, int k, uint64_t seed, char **cause)
 		side_bend(p, seed, k, sd, w);
 		double phi = atan2(b[1] - a[1], b[0] - a[0]);
 		furrow_size(p, &l->info, &rg, phi, direction_at(p, 0.5 * (a[0] + b[0]), 0.5 * (a[1] + b[1])), &depth, &half);
-		emit(l, p->tile, a, b, w, depth, half);
+		emit(l, p->tile, a, b, w, depth, half, p->furrow_fade, &rg);
 	}
 	l->n_plateaus = d->n_tris;
 	l->plateaus = xmalloc(sizeof *l->plateaus * (size_t)d->n_tris);

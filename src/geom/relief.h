@@ -47,6 +47,8 @@ struct relief_params {
 			 * secondary furrows (from an interior point to its three sides), so
 			 * secondary lines end on primary ones; 0: an independent net [1] */
 	double bend;	/* largest sideways bend of a furrow / its length [1] */
+	double furrow_fade;	/* f: a furrow's depth at its inner joints is exp(-f |z|), z
+				 * standard normal, times that at its ends [1] */
 	double direction_gain;	/* depth of a furrow along the preferred direction over one
 				 * across it, (gain)^(cos 2 angle / 2) in between [1] */
 	double plateau_roughness;	/* RMS height of the fine plateau texture [cm] */

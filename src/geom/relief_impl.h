@@ -19,7 +19,8 @@ struct pore {
 struct furrow {
 	double x0, y0, x1, y1;	/* ends [tiles]; (x1, y1) may lie in a neighbour tile */
 	double half;	/* half width [cm] */
-	double depth;	/* [cm] */
+	double depth;	/* at (x0, y0) [cm] */
+	double depth1;	/* at (x1, y1) [cm]; linear in between, so a furrow fades in and out */
 };
 
 struct plateau {

@@ -165,8 +165,9 @@ static void draw_pores(const struct relief *r, const struct window *w, const str
 	}
 }
 
-/* Furrow groove along a segment: -depth (1 - t^2)^2 with t = distance /
- * half width; grooves of one level combine by their minimum. */
+/* Furrow groove along a segment: -depth (1 - s^2)^2 with s = distance /
+ * half width, the depth linear from one end to the other along the
+ * segment; grooves of one level combine by their minimum. */
 static void draw_furrows(const struct level *l, double T, const struct window *w,
     const struct bins *bn, int blk, const struct rect *k, float *buf)
 {
@@ -190,7 +191,8 @@ static void draw_furrows(const struct level *l, double T, const struct window *w
 				double s2 = (dx * dx + dy * dy) * ih2;
 				if (s2 >= 1)
 					continue;
-				float h = (float)(-f->depth * (1 - s2) * (1 - s2));
+				double d = f->depth + t * (f->depth1 - f->depth);
+				float h = (float)(-d * (1 - s2) * (1 - s2));
 				if (h < o[col - k->c0])
 					o[col - k->c0] = h;
 			}
