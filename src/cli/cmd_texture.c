@@ -73,8 +73,9 @@ int cmd_texture(int argc, char **argv)
 		{ "quiet", OPT_FLAG, &quiet, .help = "no summary on stderr" },
 		{ "stats", OPT_FLAG, &stats, .help = "measure the map into manifest.json and print it against the site's "
 		  "measured ranges (data/relief_sites.tsv)" },
-		{ "direction-map", OPT_PATH_IN, &dirmap, "PNG", .flags = OPT_FILE, .help = "preferred furrow direction "
-		  "per pixel in UV, a PNG of --size x --size px (encoding in docs/relief.md); replaces --orientation" },
+		{ "direction-map", OPT_PATH_IN, &dirmap, "PNG", .flags = OPT_FILE,
+		  .help = "preferred furrow direction per pixel in UV, a PNG of --size x --size px "
+		  "(encoding in docs/relief.md); replaces --orientation" },
 	};
 	/* One option per texture parameter, from the table in geom/sites.c. */
 	enum { N_FIXED = 8 };

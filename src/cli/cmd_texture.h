@@ -17,6 +17,6 @@ struct texture_sources {
  * the caller frees them), and check the result.  On bad input it prints
  * the message (naming the option, the value and the allowed range) and
  * returns -1 (exit status 2). */
-int cmd_texture_resolve(struct texture_config *cfg, const struct opt_ctx *x, const struct texture_sources *src,
-    float **dir);
+int cmd_texture_resolve(struct texture_config *cfg, const struct opt_ctx *x,
+    const struct texture_sources *src, float **dir);
 #endif

@@ -12,8 +12,8 @@
 
 static const char *CMD = "texture";
 
-int cmd_texture_resolve(struct texture_config *cfg, const struct opt_ctx *x, const struct texture_sources *src,
-    float **dir)
+int cmd_texture_resolve(struct texture_config *cfg, const struct opt_ctx *x,
+    const struct texture_sources *src, float **dir)
 {
 	int np;
 	const struct texture_param *params = sites_params(&np);
@@ -31,7 +31,8 @@ int cmd_texture_resolve(struct texture_config *cfg, const struct opt_ctx *x, con
 	for (int i = 0; i < np; i++) {
 		char label[64];
 		snprintf(label, sizeof label, "--%s", params[i].key);
-		if (opt_given(x, params[i].key) && sites_set(cfg, &params[i], label, opt_text(x, params[i].key), &cause) != 0) {
+		const char *v = opt_given(x, params[i].key) ? opt_text(x, params[i].key) : NULL;
+		if (v != NULL && sites_set(cfg, &params[i], label, v, &cause) != 0) {
 			cli_usage_error(CMD, "%s", cause);
 			goto done;
 		}

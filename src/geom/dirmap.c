@@ -17,12 +17,14 @@ float *dirmap_read(const char *path, int n, char **cause)
 	char *why = NULL;
 	uint16_t *px = pngio_read(path, &w, &h, &ch, &bits, &why);
 	if (px == NULL) {
-		*cause = xasprintf("%s is not a readable PNG (%s)", path, why ? why : "unknown error");
+		*cause = xasprintf("%s is not a readable PNG (%s)", path,
+		    why ? why : "unknown error");
 		free(why);
 		return NULL;
 	}
 	if (w != n || h != n) {
-		*cause = xasprintf("%s is %dx%d px; it must be %dx%d px, the map's --size", path, w, h, n, n);
+		*cause = xasprintf("%s is %dx%d px; it must be %dx%d px, the map's --size",
+		    path, w, h, n, n);
 		free(px);
 		return NULL;
 	}

@@ -19,7 +19,13 @@
 
 /* Random streams under one seed: every feature family has its own, so
  * changing one parameter does not reshuffle the others. */
-enum { STREAM_PORE_POS = 1, STREAM_PORE_SHAPE = 2, STREAM_JUNCTION = 3, STREAM_WAVES = 4, STREAM_LEVEL = 16 };
+enum {
+	STREAM_PORE_POS = 1,
+	STREAM_PORE_SHAPE = 2,
+	STREAM_JUNCTION = 3,
+	STREAM_WAVES = 4,
+	STREAM_LEVEL = 16
+};
 
 /* Segments per bent furrow. */
 #define BEND_SEGMENTS 4
@@ -184,10 +190,11 @@ int relief_params_check(const struct relief_params *p, char **cause)
 	    "[0, 0.8]", p->pore_regularity);
 	NEED(p->levels >= 0 && p->levels <= RELIEF_MAX_LEVELS, "furrow levels %d must be in [0, %d]",
 	    p->levels, RELIEF_MAX_LEVELS);
-	NEED(p->plateau_roughness >= 0 && isfinite(p->plateau_roughness), "plateau roughness %g um must "
-	    "be >= 0", p->plateau_roughness * 1e4);
+	NEED(p->plateau_roughness >= 0 && isfinite(p->plateau_roughness),
+	    "plateau roughness %g um must be >= 0", p->plateau_roughness * 1e4);
 	NEED(p->plateau_roughness == 0 || (p->plateau_scale > 0 && p->plateau_scale <= p->tile / 2),
-	    "plateau scale %g um must be in (0, tile/2 = %g um]", p->plateau_scale * 1e4, p->tile / 2 * 1e4);
+	    "plateau scale %g um must be in (0, tile/2 = %g um]", p->plateau_scale * 1e4,
+	    p->tile / 2 * 1e4);
 	if (p->levels == 0)
 		return 0;
 	NEED(p->furrow_cell > 0 && p->furrow_cell <= p->tile / 2, "furrow cell %g mm must be in "
@@ -205,9 +212,10 @@ int relief_params_check(const struct relief_params *p, char **cause)
 	    "be in [0, 0.8]", p->furrow_regularity);
 	NEED(p->hierarchy == 0 || p->hierarchy == 1, "hierarchy %d must be 0 or 1", p->hierarchy);
 	NEED(p->bend >= 0 && p->bend <= 0.3, "bend %g must be in [0, 0.3]", p->bend);
-	NEED(p->furrow_fade >= 0 && p->furrow_fade <= 1.5, "furrow fade %g must be in [0, 1.5]", p->furrow_fade);
-	NEED(p->direction_gain >= 1 && p->direction_gain <= 10, "direction gain %g must be in [1, 10]",
-	    p->direction_gain);
+	NEED(p->furrow_fade >= 0 && p->furrow_fade <= 1.5, "furrow fade %g must be in [0, 1.5]",
+	    p->furrow_fade);
+	NEED(p->direction_gain >= 1 && p->direction_gain <= 10,
+	    "direction gain %g must be in [1, 10]", p->direction_gain);
 	NEED(p->direction == NULL || p->direction_n >= 1, "direction map needs a positive size");
 	for (int k = 0; k < p->levels; k++) {
 		struct relief_level_info li = level_info(p, k);
@@ -308,10 +316,12 @@ static struct side canonical(int i, int six, int siy, int j, int sjx, int sjy, i
 
 /* Sideways amplitudes [1 of the length] of the bend of canonical side e of
  * level k, from the seed and the side alone. */
-static void side_bend(const struct relief_params *p, uint64_t seed, int k, struct side e, double w[2])
+static void side_bend(const struct relief_params *p, uint64_t seed, int k, struct side e,
+    double w[2])
 {
 	uint64_t h = mix64(seed ^ mix64(((uint64_t)(uint32_t)k << 32) | (uint32_t)e.i));
-	h = mix64(h ^ ((uint64_t)(uint32_t)e.j << 32) ^ ((uint64_t)(uint16_t)e.sx << 16) ^ (uint16_t)e.sy);
+	uint64_t shift = ((uint64_t)(uint16_t)e.sx << 16) ^ (uint16_t)e.sy;
+	h = mix64(h ^ ((uint64_t)(uint32_t)e.j << 32) ^ shift);
 	double u1 = ((h >> 11) + 0.5) * 0x1.0p-53, u2 = ((mix64(h) >> 11) + 0.5) * 0x1.0p-53;
 	double rad = sqrt(-2 * log(u1));
 	w[0] = 0.2 * p->bend * fmax(-2.5, fmin(2.5, rad * cos(2 * M_PI * u2)));
@@ -320,7 +330,8 @@ static void side_bend(const struct relief_params *p, uint64_t seed, int k, struc
 
 /* The point at t in [0, 1] of the furrow from a to b [tiles] bent by w:
  * the chord plus (w0 sin(pi t) + w1 sin(2 pi t)) times its normal. */
-static void bent_point(const double a[2], const double b[2], const double w[2], double t, double out[2])
+static void bent_point(const double a[2], const double b[2], const double w[2], double t,
+    double out[2])
 {
 	double dx = b[0] - a[0], dy = b[1] - a[1];
 	double off = w[0] * sin(M_PI * t) + w[1] * sin(2 * M_PI * t);
@@ -341,9 +352,10 @@ static void emit(struct level *l, double T, const double a[2], const double b[2]
 	for (int s = 1; s <= segs; s++) {
 		double p1[2], d1 = s == segs ? depth : depth * exp(-fade * fabs(normal(rg)));
 		bent_point(a, b, w, (double)s / segs, p1);
-		l->furrows[l->n_furrows] = (struct furrow){ p0[0], p0[1], p1[0], p1[1], half, d0, d1 };
-		l->fbox[l->n_furrows] = (struct bbox){ fmin(p0[0], p1[0]) - e2, fmax(p0[0], p1[0]) + e2,
-			fmin(p0[1], p1[1]) - e2, fmax(p0[1], p1[1]) + e2 };
+		struct furrow f = { p0[0], p0[1], p1[0], p1[1], half, d0, d1 };
+		l->furrows[l->n_furrows] = f;
+		l->fbox[l->n_furrows] = (struct bbox){ fmin(p0[0], p1[0]) - e2,
+			fmax(p0[0], p1[0]) + e2, fmin(p0[1], p1[1]) - e2, fmax(p0[1], p1[1]) + e2 };
 		l->n_furrows++;
 		p0[0] = p1[0];
 		p0[1] = p1[1];
@@ -355,10 +367,11 @@ static void emit(struct level *l, double T, const double a[2], const double b[2]
  * preferred direction is theta: log-normal, deeper along the direction, and
  * a deeper furrow is also wider (constant flank slope would give width ~
  * depth; the square root keeps shallow ones visible). */
-static void furrow_size(const struct relief_params *p, const struct relief_level_info *li, struct rng *rg,
-    double phi, double theta, double *depth, double *half)
+static void furrow_size(const struct relief_params *p, const struct relief_level_info *li,
+    struct rng *rg, double phi, double theta, double *depth, double *half)
 {
-	double rel = exp(p->furrow_depth_sd * normal(rg)) * align_gain(p->direction_gain, phi, theta);
+	double rel = exp(p->furrow_depth_sd * normal(rg));
+	rel *= align_gain(p->direction_gain, phi, theta);
 	*depth = li->depth * rel;
 	*half = 0.5 * li->width * sqrt(rel);
 }
@@ -404,11 +417,13 @@ static void star_place(struct relief *r, int k, uint64_t seed)
 			if (i == skip)
 				continue;
 			int i1 = (i + 1) % 3, flip;
-			struct side e = canonical(tr->v[i], tr->sx[i], tr->sy[i], tr->v[i1], tr->sx[i1], tr->sy[i1], &flip);
+			struct side e = canonical(tr->v[i], tr->sx[i], tr->sy[i],
+			    tr->v[i1], tr->sx[i1], tr->sy[i1], &flip);
 			double w[2], q[2], aw[2], depth, half;
 			side_bend(p, seed, k - 1, e, w);
 			double u = 0.3 + 0.4 * rng_uniform(&rg);
-			bent_point(flip ? v[i1] : v[i], flip ? v[i] : v[i1], w, flip ? 1 - u : u, q);
+			const double *from = flip ? v[i1] : v[i], *to = flip ? v[i] : v[i1];
+			bent_point(from, to, w, flip ? 1 - u : u, q);
 			aw[0] = 0.2 * p->bend * normal(&rg);
 			aw[1] = 0.2 * p->bend * normal(&rg);
 			double phi = atan2(q[1] - c[1], q[0] - c[0]);
@@ -454,7 +469,8 @@ static int level_place(struct relief *r, int k, uint64_t seed, char **cause)
 		double w[2], depth, half;
 		side_bend(p, seed, k, sd, w);
 		double phi = atan2(b[1] - a[1], b[0] - a[0]);
-		furrow_size(p, &l->info, &rg, phi, direction_at(p, 0.5 * (a[0] + b[0]), 0.5 * (a[1] + b[1])), &depth, &half);
+		double th = direction_at(p, 0.5 * (a[0] + b[0]), 0.5 * (a[1] + b[1]));
+		furrow_size(p, &l->info, &rg, phi, th, &depth, &half);
 		emit(l, p->tile, a, b, w, depth, half, p->furrow_fade, &rg);
 	}
 	l->n_plateaus = d->n_tris;

@@ -55,10 +55,12 @@ int relief_far_write(const char *path, int m, const float *alpha, double block_u
 		{ "skinbake:site", site },
 		{ "skinbake:component", "alpha_relief" },
 		{ "skinbake:block_um", block },
-		{ "skinbake:encoding", "alpha_relief = value / 65535 (clipped at 1); alpha_total^2 = alpha_skin^2 + "
-		  "alpha_relief^2 where the relief is below a pixel; Toksvig 2005" },
+		{ "skinbake:encoding", "alpha_relief = value / 65535 (clipped at 1); "
+		  "alpha_total^2 = alpha_skin^2 + alpha_relief^2 where the relief is "
+		  "below a pixel; Toksvig 2005" },
 	};
-	int rc = pngio_write(path, m, m, 1, 16, q, 0, (int)(sizeof text / sizeof text[0]), text, cause);
+	int nt = (int)(sizeof text / sizeof text[0]);
+	int rc = pngio_write(path, m, m, 1, 16, q, 0, nt, text, cause);
 	free(q);
 	return rc;
 }

@@ -21,7 +21,8 @@ int relief_far_size(int n, double pitch, double cell);
 /* alpha_relief of m x m blocks of the n x n unit normals (block i spans
  * texels floor(i n / m) .. floor((i + 1) n / m) - 1 on each axis; row 0 on
  * top).  alpha receives m*m values [1]. */
-void relief_far_alpha(int n, const float *nx, const float *ny, const float *nz, int m, float *alpha);
+void relief_far_alpha(int n, const float *nx, const float *ny, const float *nz, int m,
+    float *alpha);
 
 /* Write alpha (m x m) as a 16-bit gray PNG, value = min(alpha, 1) * 65535,
  * with tEXt keys for the block size [um], the site and the software. */

@@ -241,7 +241,8 @@ static void add_waves(const struct relief *r, const struct window *w, float *out
 	int n = w->n, nw = r->n_waves;
 	/* Column terms stored column by column, so the inner loop over the
 	 * waves reads contiguous memory. */
-	double *ca = xmalloc(sizeof *ca * (size_t)nw * (size_t)n), *sa = xmalloc(sizeof *sa * (size_t)nw * (size_t)n);
+	size_t nterms = (size_t)nw * (size_t)n;
+	double *ca = xmalloc(sizeof *ca * nterms), *sa = xmalloc(sizeof *sa * nterms);
 	for (int c = 0; c < n; c++)
 		for (int q = 0; q < nw; q++) {
 			double a = 2 * M_PI * r->waves[q].kx * px_x(w, c);

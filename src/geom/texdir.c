@@ -267,7 +267,8 @@ static int write_manifest(const struct outputs *o, const struct relief *r, struc
 	json_object_object_add(m, "kind", json_object_new_string("skinbake texture"));
 	json_object_object_add(m, "skinbake_version", json_object_new_string(PACKAGE_VERSION));
 	json_object_object_add(m, "site", json_object_new_string(cfg->site));
-	json_object_object_add(m, "direction_map", cfg->direction_map ? json_object_new_string(cfg->direction_map) : NULL);
+	const char *dmap = cfg->direction_map;
+	json_object_object_add(m, "direction_map", dmap ? json_object_new_string(dmap) : NULL);
 	json_object_object_add(m, "seed", json_object_new_uint64(cfg->seed));
 	json_object_object_add(m, "size_px", json_object_new_int64(cfg->size));
 	json_object_object_add(m, "tile_mm", json_num(tile_mm));
@@ -338,7 +339,8 @@ static int write_manifest(const struct outputs *o, const struct relief *r, struc
 	json_object_object_add(far, "alpha_max", json_num(amax));
 	json_object_object_add(m, "far_roughness", far);
 	static const char *files[] = { "height.png", "normal.png", "normal.exr", "height.exr",
-		"preview.png", "pores_height.png", "furrows_height.png", "roughness_far.png", "manifest.json" };
+		"preview.png", "pores_height.png", "furrows_height.png", "roughness_far.png",
+		"manifest.json" };
 	json_object *fl = json_object_new_array();
 	for (size_t i = 0; i < sizeof files / sizeof files[0]; i++)
 		json_object_array_add(fl, json_object_new_string(files[i]));
@@ -368,7 +370,8 @@ static int write_files(const char *dir, const struct texture_config *cfg, const 
 	snprintf(o.tile, sizeof o.tile, "%.10g", cfg->relief.tile * 10);
 	snprintf(o.seed, sizeof o.seed, "%llu", (unsigned long long)cfg->seed);
 	snprintf(o.size, sizeof o.size, "%ld", cfg->size);
-	double pitch = cfg->relief.tile / (double)m->n, cell = cfg->relief.levels > 0 ? cfg->relief.furrow_cell : cfg->relief.tile;
+	double pitch = cfg->relief.tile / (double)m->n;
+	double cell = cfg->relief.levels > 0 ? cfg->relief.furrow_cell : cfg->relief.tile;
 	o.far_m = relief_far_size(m->n, pitch, cell);
 	o.far_alpha = xmalloc(sizeof *o.far_alpha * (size_t)o.far_m * (size_t)o.far_m);
 	o.far_block_um = cfg->relief.tile / o.far_m * 1e4;
