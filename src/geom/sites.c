@@ -30,6 +30,14 @@
  * - Lagarde JM, Rouvrais C, Black D.  Topography and anisotropy of the skin
  *   surface with ageing.  Skin Res Technol 2005;11:110-119: the furrow net
  *   of the forearm and temple is anisotropic, more so with age.
+ * - Skin relief and aging.  J Soc Cosmet Chem 1983;34(4): the developed
+ *   surface of the volar forearm is 8-30 % larger than its projection
+ *   (the forearm widths and depths are chosen to fall inside it).
+ * - Yuan Y, Verma R.  Colloids Surf B 2006;48:6-12: corneocytes 20-40 um
+ *   across and about 0.5 um thick (the plateau texture's scale; its RMS
+ *   0.3 um is an assumption of that order).
+ * Bend, fading, direction gains, the secondary stars and the pores on the
+ * face's junctions are assumptions (docs/relief.md).
  * Furrow cell sizes, widths and the plateau dome heights are assumptions
  * read off the appearance of the back of the hand (a net of triangles of a
  * fraction of a millimetre, Li & Ng figures 8-10). */
