@@ -354,6 +354,9 @@ static void test_bad_params(void **state)
 	q = p;
 	q.plateau_scale = 0;
 	expect_bad(q, "plateau scale");
+	q = p;
+	q.region_sd = 2;
+	expect_bad(q, "region sigma");
 	q = p, q.furrow_cell = p.tile;
 	expect_bad(q, "furrow cell");
 	q = p, q.level_scale = 1.5;

@@ -24,20 +24,12 @@ enum {
 	STREAM_PORE_SHAPE = 2,
 	STREAM_JUNCTION = 3,
 	STREAM_WAVES = 4,
+	STREAM_REGION = 5,
 	STREAM_LEVEL = 16
 };
 
 /* Segments per bent furrow. */
 #define BEND_SEGMENTS 4
-
-/* A standard normal deviate (Box-Muller), clamped to +-2.5 sigma so that
- * one draw cannot make a pore or furrow absurdly large. */
-static double normal(struct rng *r)
-{
-	double u1 = rng_uniform(r), u2 = rng_uniform(r);
-	double z = sqrt(-2 * log(u1)) * cos(2 * M_PI * u2);
-	return fmax(-2.5, fmin(2.5, z));
-}
 
 static double wrap(double d)
 {
@@ -214,6 +206,8 @@ int relief_params_check(const struct relief_params *p, char **cause)
 	NEED(p->bend >= 0 && p->bend <= 0.3, "bend %g must be in [0, 0.3]", p->bend);
 	NEED(p->furrow_fade >= 0 && p->furrow_fade <= 1.5, "furrow fade %g must be in [0, 1.5]",
 	    p->furrow_fade);
+	NEED(p->region_sd >= 0 && p->region_sd <= 1, "region sigma %g must be in [0, 1]",
+	    p->region_sd);
 	NEED(p->direction_gain >= 1 && p->direction_gain <= 10,
 	    "direction gain %g must be in [1, 10]", p->direction_gain);
 	NEED(p->direction == NULL || p->direction_n >= 1, "direction map needs a positive size");
@@ -267,16 +261,17 @@ static void pore_place(struct relief *r, uint64_t seed)
 	double sa = sqrt(p->pore_aspect);
 	for (int k = 0; k < n; k++) {
 		struct pore *q = &r->pores[k];
-		double rad = p->pore_radius * exp(p->pore_radius_sd * normal(&rg));
+		double rad = p->pore_radius * exp(p->pore_radius_sd * relief_normal(&rg));
 		/* Larger openings are deeper: depth scales with the radius. */
-		q->depth = p->pore_depth * (rad / p->pore_radius) * exp(p->pore_depth_sd * normal(&rg));
+		double zd = relief_normal(&rg);
+		q->depth = p->pore_depth * (rad / p->pore_radius) * exp(p->pore_depth_sd * zd);
 		q->x = xy[2 * k];
 		q->y = xy[2 * k + 1];
 		/* Pore openings are elongated along the tension lines where there
 		 * is a preferred direction, randomly elsewhere. */
 		double phi = M_PI * rng_uniform(&rg);
 		if (p->direction != NULL || p->stretch > 1 || p->direction_gain > 1)
-			phi = direction_at(p, q->x, q->y) + 0.35 * normal(&rg);
+			phi = direction_at(p, q->x, q->y) + 0.35 * relief_normal(&rg);
 		q->a = rad * sa;
 		q->b = rad / sa;
 		q->c = cos(phi);
@@ -350,7 +345,7 @@ static void emit(struct level *l, double T, const double a[2], const double b[2]
 	int segs = w[0] == 0 && w[1] == 0 ? 1 : BEND_SEGMENTS;
 	double p0[2] = { a[0], a[1] }, d0 = depth, e2 = half / T;
 	for (int s = 1; s <= segs; s++) {
-		double p1[2], d1 = s == segs ? depth : depth * exp(-fade * fabs(normal(rg)));
+		double p1[2], d1 = s == segs ? depth : depth * exp(-fade * fabs(relief_normal(rg)));
 		bent_point(a, b, w, (double)s / segs, p1);
 		struct furrow f = { p0[0], p0[1], p1[0], p1[1], half, d0, d1 };
 		l->furrows[l->n_furrows] = f;
@@ -364,14 +359,15 @@ static void emit(struct level *l, double T, const double a[2], const double b[2]
 }
 
 /* Depth and half width of one furrow of level li at angle phi where the
- * preferred direction is theta: log-normal, deeper along the direction, and
+ * preferred direction is theta and the regional factor is region:
+ * log-normal, deeper along the direction, and
  * a deeper furrow is also wider (constant flank slope would give width ~
  * depth; the square root keeps shallow ones visible). */
 static void furrow_size(const struct relief_params *p, const struct relief_level_info *li,
-    struct rng *rg, double phi, double theta, double *depth, double *half)
+    struct rng *rg, double phi, double theta, double region, double *depth, double *half)
 {
-	double rel = exp(p->furrow_depth_sd * normal(rg));
-	rel *= align_gain(p->direction_gain, phi, theta);
+	double rel = exp(p->furrow_depth_sd * relief_normal(rg));
+	rel *= align_gain(p->direction_gain, phi, theta) * region;
 	*depth = li->depth * rel;
 	*half = 0.5 * li->width * sqrt(rel);
 }
@@ -402,7 +398,7 @@ static void star_place(struct relief *r, int k, uint64_t seed)
 		for (int i = 0; i < 3; i++) {
 			v[i][0] = pl->xy[2 * tr->v[i]] + tr->sx[i];
 			v[i][1] = pl->xy[2 * tr->v[i] + 1] + tr->sy[i];
-			bw[i] = exp(0.35 * normal(&rg));
+			bw[i] = exp(0.35 * relief_normal(&rg));
 			sum += bw[i];
 		}
 		for (int i = 0; i < 3; i++) {
@@ -424,11 +420,13 @@ static void star_place(struct relief *r, int k, uint64_t seed)
 			double u = 0.3 + 0.4 * rng_uniform(&rg);
 			const double *from = flip ? v[i1] : v[i], *to = flip ? v[i] : v[i1];
 			bent_point(from, to, w, flip ? 1 - u : u, q);
-			aw[0] = 0.2 * p->bend * normal(&rg);
-			aw[1] = 0.2 * p->bend * normal(&rg);
+			aw[0] = 0.2 * p->bend * relief_normal(&rg);
+			aw[1] = 0.2 * p->bend * relief_normal(&rg);
 			double phi = atan2(q[1] - c[1], q[0] - c[0]);
-			double th = direction_at(p, 0.5 * (c[0] + q[0]), 0.5 * (c[1] + q[1]));
-			furrow_size(p, &l->info, &rg, phi, th, &depth, &half);
+			double mx = 0.5 * (c[0] + q[0]), my = 0.5 * (c[1] + q[1]);
+			double th = direction_at(p, mx, my);
+			double reg = relief_region_at(r, mx, my);
+			furrow_size(p, &l->info, &rg, phi, th, reg, &depth, &half);
 			emit(l, p->tile, c, q, aw, depth, half, p->furrow_fade, &rg);
 			arms++;
 		}
@@ -469,8 +467,10 @@ static int level_place(struct relief *r, int k, uint64_t seed, char **cause)
 		double w[2], depth, half;
 		side_bend(p, seed, k, sd, w);
 		double phi = atan2(b[1] - a[1], b[0] - a[0]);
-		double th = direction_at(p, 0.5 * (a[0] + b[0]), 0.5 * (a[1] + b[1]));
-		furrow_size(p, &l->info, &rg, phi, th, &depth, &half);
+		double mx = 0.5 * (a[0] + b[0]), my = 0.5 * (a[1] + b[1]);
+		double th = direction_at(p, mx, my);
+		double reg = relief_region_at(r, mx, my);
+		furrow_size(p, &l->info, &rg, phi, th, reg, &depth, &half);
 		emit(l, p->tile, a, b, w, depth, half, p->furrow_fade, &rg);
 	}
 	l->n_plateaus = d->n_tris;
@@ -496,31 +496,6 @@ static int level_place(struct relief *r, int k, uint64_t seed, char **cause)
 	return 0;
 }
 
-/* The plateau texture: RELIEF_WAVES plane waves of random direction and a
- * wavelength log-normal about plateau_scale (sigma 0.2), rounded to whole
- * cycles per tile, random phases; RMS plateau_roughness. */
-static void waves_place(struct relief *r, uint64_t seed)
-{
-	const struct relief_params *p = &r->p;
-	if (p->plateau_roughness <= 0)
-		return;
-	struct rng rg;
-	rng_seed(&rg, seed, STREAM_WAVES, 0);
-	r->n_waves = RELIEF_WAVES;
-	r->waves = xmalloc(sizeof *r->waves * RELIEF_WAVES);
-	double k0 = p->tile / p->plateau_scale;
-	for (int q = 0; q < RELIEF_WAVES; q++) {
-		double ang = 2 * M_PI * rng_uniform(&rg), kk = k0 * exp(0.2 * normal(&rg));
-		struct wave *wv = &r->waves[q];
-		wv->kx = (int)lround(kk * cos(ang));
-		wv->ky = (int)lround(kk * sin(ang));
-		if (wv->kx == 0 && wv->ky == 0)
-			wv->kx = 1;
-		wv->amp = p->plateau_roughness * sqrt(2.0 / RELIEF_WAVES);
-		wv->phase = 2 * M_PI * rng_uniform(&rg);
-	}
-}
-
 struct relief *relief_new(const struct relief_params *p, uint64_t seed, char **cause)
 {
 	if (relief_params_check(p, cause) != 0)
@@ -528,13 +503,14 @@ struct relief *relief_new(const struct relief_params *p, uint64_t seed, char **c
 	struct relief *r = xcalloc(1, sizeof *r);
 	r->p = *p;
 	r->n_levels = p->levels;
+	relief_region_place(r, seed, STREAM_REGION);
 	for (int k = 0; k < p->levels; k++)
 		if (level_place(r, k, seed, cause) != 0) {
 			relief_free(r);
 			return NULL;
 		}
 	pore_place(r, seed);
-	waves_place(r, seed);
+	relief_waves_place(r, seed, STREAM_WAVES);
 	return r;
 }
 

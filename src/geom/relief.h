@@ -47,6 +47,8 @@ struct relief_params {
 			 * secondary furrows (from an interior point to its three sides), so
 			 * secondary lines end on primary ones; 0: an independent net [1] */
 	double bend;	/* largest sideways bend of a furrow / its length [1] */
+	double region_sd;	/* log-normal sigma of a smooth depth factor over the tile
+				 * (1-3 cycles per tile): regions of deeper lines [1] */
 	double furrow_fade;	/* f: a furrow's depth at its inner joints is exp(-f |z|), z
 				 * standard normal, times that at its ends [1] */
 	double direction_gain;	/* depth of a furrow along the preferred direction over one

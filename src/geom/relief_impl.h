@@ -2,6 +2,10 @@
  * (relief.c) and rendering (relief_render.c); not for other modules. */
 #ifndef SKINBAKE_RELIEF_IMPL_H
 #define SKINBAKE_RELIEF_IMPL_H
+#include <math.h>
+#include <stdint.h>
+
+#include "base/rng.h"
 #include "geom/delaunay.h"
 #include "geom/relief.h"
 
@@ -20,7 +24,7 @@ struct furrow {
 	double x0, y0, x1, y1;	/* ends [tiles]; (x1, y1) may lie in a neighbour tile */
 	double half;	/* half width [cm] */
 	double depth;	/* at (x0, y0) [cm] */
-	double depth1;	/* at (x1, y1) [cm]; linear in between, so a furrow fades in and out */
+	double depth1;	/* at (x1, y1) [cm]; linear in between: a furrow fades */
 };
 
 struct plateau {
@@ -49,8 +53,11 @@ struct wave {
 	double phase;	/* [rad] */
 };
 
+#define RELIEF_REGION_WAVES 8
+
 struct relief {
 	struct relief_params p;
+	struct wave region[RELIEF_REGION_WAVES];	/* the regional depth field (relief.c) */
 	int n_waves;
 	struct wave *waves;
 	int n_pores;
@@ -59,4 +66,18 @@ struct relief {
 	int n_levels;
 	struct level level[RELIEF_MAX_LEVELS];
 };
+
+/* A standard normal deviate (Box-Muller), clamped to +-2.5 sigma so that
+ * one draw cannot make a pore or furrow absurdly large. */
+static inline double relief_normal(struct rng *r)
+{
+	double u1 = rng_uniform(r), u2 = rng_uniform(r);
+	double z = sqrt(-2 * log(u1)) * cos(2 * M_PI * u2);
+	return fmax(-2.5, fmin(2.5, z));
+}
+
+/* relief_waves.c: the regional depth field and the plateau texture. */
+void relief_region_place(struct relief *r, uint64_t seed, uint32_t stream);
+double relief_region_at(const struct relief *r, double x, double y);
+void relief_waves_place(struct relief *r, uint64_t seed, uint32_t stream);
 #endif

@@ -77,11 +77,13 @@ static const struct site sites[] = {
 		.pore_aspect = 1.3, .pore_junction = 1.0, .pore_regularity = 0.5,
 		.levels = 2,
 		.furrow_cell = MM(0.35), .furrow_width = UM(40),	/* assumption */
-		.furrow_depth = UM(25), .furrow_depth_sd = 0.35,	/* Hashimoto 1974: 20-100 um, shallow part */
+		/* Hashimoto 1974: 20-100 um, the shallow part. */
+		.furrow_depth = UM(25), .furrow_depth_sd = 0.35,
 		.ridge_height = UM(4),
 		.level_scale = 0.45, .level_gain = 0.35,
 		.stretch = 1.15, .orientation = DEG(0), .furrow_regularity = 0.6,
-		.hierarchy = 1, .bend = 0.12, .furrow_fade = 0.5, .direction_gain = 1.3,
+		.hierarchy = 1, .bend = 0.12, .furrow_fade = 0.5, .region_sd = 0.25,
+		.direction_gain = 1.3,
 		.plateau_roughness = UM(0.3), .plateau_scale = UM(30) } },
 	{ "cheek", "cheek with enlarged, visible pores (Flament 2015 style)", {
 		.tile = MM(8),
@@ -91,11 +93,12 @@ static const struct site sites[] = {
 		.pore_aspect = 1.4, .pore_junction = 1.0, .pore_regularity = 0.5,
 		.levels = 2,
 		.furrow_cell = MM(0.35), .furrow_width = UM(40),
-		.furrow_depth = UM(25), .furrow_depth_sd = 0.35,	/* Hashimoto 1974, as face */
+		.furrow_depth = UM(25), .furrow_depth_sd = 0.35,	/* as face */
 		.ridge_height = UM(4),
 		.level_scale = 0.45, .level_gain = 0.35,
 		.stretch = 1.15, .orientation = DEG(0), .furrow_regularity = 0.6,
-		.hierarchy = 1, .bend = 0.12, .furrow_fade = 0.5, .direction_gain = 1.3,
+		.hierarchy = 1, .bend = 0.12, .furrow_fade = 0.5, .region_sd = 0.25,
+		.direction_gain = 1.3,
 		.plateau_roughness = UM(0.3), .plateau_scale = UM(30) } },
 	{ "forehead", "forehead: dense small follicle openings (Blume 1991: 439 /cm^2)", {
 		.tile = MM(8),
@@ -105,11 +108,12 @@ static const struct site sites[] = {
 		.pore_aspect = 1.2, .pore_junction = 1.0, .pore_regularity = 0.5,
 		.levels = 2,
 		.furrow_cell = MM(0.4), .furrow_width = UM(40),
-		.furrow_depth = UM(25), .furrow_depth_sd = 0.35,	/* Hashimoto 1974, as face */
+		.furrow_depth = UM(25), .furrow_depth_sd = 0.35,	/* as face */
 		.ridge_height = UM(4),
 		.level_scale = 0.45, .level_gain = 0.35,
 		.stretch = 1.3, .orientation = DEG(0), .furrow_regularity = 0.6,
-		.hierarchy = 1, .bend = 0.12, .furrow_fade = 0.5, .direction_gain = 1.5,
+		.hierarchy = 1, .bend = 0.12, .furrow_fade = 0.5, .region_sd = 0.25,
+		.direction_gain = 1.5,
 		.plateau_roughness = UM(0.3), .plateau_scale = UM(30) } },
 	{ "nose", "nose: large sebaceous pores, weak furrows (Pagnoni 1994 gradient)", {
 		.tile = MM(6),
@@ -123,7 +127,8 @@ static const struct site sites[] = {
 		.ridge_height = UM(3),
 		.level_scale = 0.45, .level_gain = 0.35,
 		.stretch = 1.0, .orientation = DEG(0), .furrow_regularity = 0.6,
-		.hierarchy = 1, .bend = 0.12, .furrow_fade = 0.5, .direction_gain = 1,
+		.hierarchy = 1, .bend = 0.12, .furrow_fade = 0.5, .region_sd = 0.25,
+		.direction_gain = 1,
 		.plateau_roughness = UM(0.3), .plateau_scale = UM(30) } },
 	{ "hand", "back of the hand: deep anisotropic triangular furrow net, sparse pores", {
 		.tile = MM(12),
@@ -137,7 +142,8 @@ static const struct site sites[] = {
 		.ridge_height = UM(12),
 		.level_scale = 0.4, .level_gain = 0.3,	/* secondary 5-40 um */
 		.stretch = 1.8, .orientation = DEG(0), .furrow_regularity = 0.6,
-		.hierarchy = 1, .bend = 0.12, .furrow_fade = 0.5, .direction_gain = 2,
+		.hierarchy = 1, .bend = 0.12, .furrow_fade = 0.5, .region_sd = 0.25,
+		.direction_gain = 2,
 		.plateau_roughness = UM(0.3), .plateau_scale = UM(30) } },
 	{ "forearm", "volar forearm: moderately anisotropic furrows, few small pores", {
 		.tile = MM(10),
@@ -154,7 +160,8 @@ static const struct site sites[] = {
 		.ridge_height = UM(8),
 		.level_scale = 0.4, .level_gain = 0.3,
 		.stretch = 1.4, .orientation = DEG(0), .furrow_regularity = 0.6,
-		.hierarchy = 1, .bend = 0.12, .furrow_fade = 0.5, .direction_gain = 1.6,
+		.hierarchy = 1, .bend = 0.12, .furrow_fade = 0.5, .region_sd = 0.25,
+		.direction_gain = 1.6,
 		.plateau_roughness = UM(0.3), .plateau_scale = UM(30) } },	/* Lagarde 2005 */
 	{ "back", "upper back: isotropic furrows, vellus pores (Blume 1991: 85 /cm^2)", {
 		.tile = MM(12),
@@ -168,7 +175,8 @@ static const struct site sites[] = {
 		.ridge_height = UM(8),
 		.level_scale = 0.45, .level_gain = 0.3,
 		.stretch = 1.1, .orientation = DEG(0), .furrow_regularity = 0.6,
-		.hierarchy = 1, .bend = 0.12, .furrow_fade = 0.5, .direction_gain = 1.2,
+		.hierarchy = 1, .bend = 0.12, .furrow_fade = 0.5, .region_sd = 0.25,
+		.direction_gain = 1.2,
 		.plateau_roughness = UM(0.3), .plateau_scale = UM(30) } },
 };
 
@@ -216,8 +224,12 @@ static const struct texture_param params[] = {
 	{ "furrow-regularity", "1", 1, 0, 0.8, SITES_REAL, R(furrow_regularity),
 	  "Poisson-disk distance between junctions / mean spacing" },
 	{ "hierarchy", "1", 1, 0, 1, SITES_INT, R(hierarchy),
-	  "1: level 2 splits each primary triangle (secondary lines end on primary ones); 0: own net" },
-	{ "bend", "1", 1, 0, 0.3, SITES_REAL, R(bend), "largest sideways bend of a furrow / its length" },
+	  "1: level 2 splits each primary triangle (secondary lines end on primary ones); "
+	  "0: own net" },
+	{ "bend", "1", 1, 0, 0.3, SITES_REAL, R(bend),
+	  "largest sideways bend of a furrow / its length" },
+	{ "region-sd", "1", 1, 0, 1, SITES_REAL, R(region_sd),
+	  "log-normal sigma of a smooth depth factor over the tile (regions of deeper lines)" },
 	{ "furrow-fade", "1", 1, 0, 1.5, SITES_REAL, R(furrow_fade),
 	  "fading along a furrow: depth exp(-f |z|) at its inner joints, full at the ends" },
 	{ "direction-gain", "1", 1, 1, 10, SITES_REAL, R(direction_gain),
