@@ -153,7 +153,7 @@ static const struct site sites[] = {
 		.pore_aspect = 1.2, .pore_junction = 0.8, .pore_regularity = 0.5,
 		.levels = 3,
 		/* Width and depth (assumptions) chosen so that the developed area
-		 * is inside the 8-30 % of the 1983 forearm replicas: 14.0-16.7 %
+		 * is inside the 8-30 % of the 1983 forearm replicas: 15.5-18.3 %
 		 * over seeds 1-5 at 7.8 um pixels (docs/relief.md). */
 		.furrow_cell = MM(0.45), .furrow_width = UM(70),
 		.furrow_depth = UM(30), .furrow_depth_sd = 0.3,
