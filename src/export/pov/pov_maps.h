@@ -1,5 +1,5 @@
 /* pov_maps: a skin whose parameters vary per texel, a family of bakes
- * (family/family.h) plus a maps directory (maps/mapset.h), as one POV-Ray
+ * (export/source_family.h) plus a maps directory (maps/mapset.h), as one POV-Ray
  * pigment.  Each member the maps reach gets its own lit table
  * (littable.h); the pigment blends them by the maps:
  *
@@ -20,13 +20,12 @@
 #define SKINBAKE_POV_MAPS_H
 #include <stdio.h>
 
-#include "family/family.h"
 #include "export/pov/littable.h"
-#include "export/source.h"
+#include "export/source_family.h"
 #include "maps/mapset.h"
 
 struct pov_maps {
-	struct family *fam;		/* with its member tables */
+	struct brdf_family *fam;	/* with its member tables */
 	struct mapset *maps;
 	struct brdf_source **src;	/* [n_members], NULL for members the maps do not reach */
 	int lo_idx[FAMILY_MAX_AXES];	/* per axis the first and last node the maps reach */
