@@ -32,6 +32,7 @@
  * per varying axis; detail_dir (NULL: flat) is a texture directory.  -1
  * and *cause on bad input (before anything is written), -2 on an I/O
  * failure. */
-int blender_family_export(struct brdf_family *f, const struct mapset *m, const struct blender_options *o, int sub,
-    const char *detail_dir, const char *dir, char **cause);
+int blender_family_export(struct brdf_family *f, const struct mapset *m,
+    const struct blender_options *o, int sub, const char *detail_dir, const char *dir,
+    char **cause);
 #endif

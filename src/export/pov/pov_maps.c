@@ -13,7 +13,8 @@
 #include "maps/image.h"
 
 /* The node interval [*i0, *i1] that covers the values of map p. */
-static void reach(const struct family_axis *a, const struct maps_param *p, size_t n, int *i0, int *i1)
+static void reach(const struct family_axis *a, const struct maps_param *p, size_t n, int *i0,
+    int *i1)
 {
 	float vmin = p->v[0], vmax = p->v[0];
 	for (size_t i = 1; i < n; i++) {
@@ -30,12 +31,13 @@ static void reach(const struct family_axis *a, const struct maps_param *p, size_
 		*i1 = *i0;
 }
 
-struct pov_maps *pov_maps_open(const char *family_dir, const char *maps_dir, const char *base, const char *skin,
-    char **cause)
+struct pov_maps *pov_maps_open(const char *family_dir, const char *maps_dir, const char *base,
+    const char *skin, char **cause)
 {
 	struct pov_maps *pm = xcalloc(1, sizeof *pm);
 	char *err = NULL;
-	if ((pm->fam = brdf_family_open(family_dir, &err)) == NULL || brdf_family_load_tables(pm->fam, &err) != 0 ||
+	if ((pm->fam = brdf_family_open(family_dir, &err)) == NULL ||
+	    brdf_family_load_tables(pm->fam, &err) != 0 ||
 	    (pm->maps = mapset_read(maps_dir, &err)) == NULL ||
 	    mapset_check_family(pm->maps, maps_dir, pm->fam->family, &err) != 0) {
 		*cause = xasprintf("--family %s --maps %s: %s", family_dir, maps_dir, err);
@@ -111,8 +113,8 @@ int pov_maps_write_images(const struct pov_maps *pm, const char *outdir, char **
 
 /* The blend over axis a at the node indices idx[a + 1 ..] given: nested
  * image_pattern pigments down to the member tables. */
-static void write_blend(FILE *fp, const char *name, const struct pov_maps *pm, int a, int *idx, int depth, int top,
-    const char *mapping)
+static void write_blend(FILE *fp, const char *name, const struct pov_maps *pm, int a, int *idx,
+    int depth, int top, const char *mapping)
 {
 	const struct family_axis *ax = &pm->fam->axis[a];
 	/* A blend-map entry holds a pigment body, not `pigment { }` (pov.md). */
@@ -123,10 +125,11 @@ static void write_blend(FILE *fp, const char *name, const struct pov_maps *pm, i
 		idx[a] = j;
 		double t = family_axis_t(ax, ax->node[j]);
 		if (a == 0)
-			fprintf(fp, "%*s    [%.7f %s_M%04d]  // %s = %g\n", depth, "", t, name, brdf_family_member(pm->fam, idx), ax->key,
-			    ax->node[j]);
+			fprintf(fp, "%*s    [%.7f %s_M%04d]  // %s = %g\n", depth, "", t, name,
+			    brdf_family_member(pm->fam, idx), ax->key, ax->node[j]);
 		else {
-			fprintf(fp, "%*s    [%.7f  // %s = %g\n", depth, "", t, ax->key, ax->node[j]);
+			fprintf(fp, "%*s    [%.7f  // %s = %g\n", depth, "", t, ax->key,
+			    ax->node[j]);
 			write_blend(fp, name, pm, a - 1, idx, depth + 6, 0, mapping);
 			fprintf(fp, "%*s    ]\n", depth, "");
 		}
@@ -134,8 +137,9 @@ static void write_blend(FILE *fp, const char *name, const struct pov_maps *pm, i
 	fprintf(fp, "%*s  }\n", depth, "");
 }
 
-int pov_maps_write_key(FILE *fp, const char *name, const struct pov_maps *pm, const struct pov_light *l,
-    const struct pov_view *v, const double lo[3], const double hi[3], int n_theta, int n_gamma, int uv)
+int pov_maps_write_key(FILE *fp, const char *name, const struct pov_maps *pm,
+    const struct pov_light *l, const struct pov_view *v, const double lo[3], const double hi[3],
+    int n_theta, int n_gamma, int uv)
 {
 	const struct brdf_family *f = pm->fam;
 	int g = 1;
