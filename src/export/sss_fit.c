@@ -194,7 +194,7 @@ static void fit_channel(struct sss_fit *f, const struct bake *b, int c)
 	double best = -1.0, best_local = 0.0;
 	for (int j = 0; j <= steps; j++) {
 		f->local[c] = ring0 * j / steps;
-		fit_closure(f, c, target - f->local[c], m * target / (target - f->local[c]));
+		fit_closure(f, c, target - f->local[c], target > 0 ? m * target / (target - f->local[c]) : m);
 		double rms = rms_log(f, b, c);
 		if (best < 0 || rms < best - 1e-4) {
 			best = rms;
@@ -202,7 +202,7 @@ static void fit_channel(struct sss_fit *f, const struct bake *b, int c)
 		}
 	}
 	f->local[c] = best_local;
-	fit_closure(f, c, target - best_local, m * target / (target - best_local));
+	fit_closure(f, c, target - best_local, target > 0 ? m * target / (target - best_local) : m);
 	f->rms_log[c] = rms_log(f, b, c);
 }
 
