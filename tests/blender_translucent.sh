@@ -11,7 +11,8 @@
 #    to that thickness (light entering the deepest layer), within 20 %: TAP TODO (the walk in a
 #    homogeneous medium with the half space's reflection transmits up to twice the layered
 #    slab's, docs/translucency.md).
-# 3. Bad input: a translucent section with a radius of 0 is refused by the importer.
+# 3. Bad input: a translucent section with a radius of 0, or fitted to another Cycles version
+#    (major.minor), is refused by the importer.
 # Paper bake (adding-doubling, Monte Carlo Rd(r)); about 1 minute.
 . "$top_srcdir/tests/tap.sh"
 imp="$top_srcdir/exporters/blender/import_skin.py"
@@ -109,4 +110,11 @@ python3 -c 'import json,sys; p=sys.argv[1]; m=json.load(open(p)); m["translucent
 B --python "$imp" -- "$tmpd/bad" --mode exact --scene box --samples 1 --render "$tmpd/bad.exr" >"$tmpd/bad.log" 2>&1
 check "a translucent radius of 0: the importer fails" test $? -ne 0 -a ! -s "$tmpd/bad.exr"
 check "  ... naming translucent.radius_m" grep -q "translucent.radius_m" "$tmpd/bad.log"
+# ... and a set calibrated on another Cycles (Blender 5.0.1 rendered the 3.4.1 fit 12 % dark).
+cp -r "$set" "$tmpd/bad2"
+python3 -c 'import json,sys; p=sys.argv[1]; m=json.load(open(p)); m["translucent"]["version"] = "2.79"; json.dump(m, open(p, "w"))' \
+	"$tmpd/bad2/manifest.json"
+B --python "$imp" -- "$tmpd/bad2" --mode exact --scene box --samples 1 --render "$tmpd/bad2.exr" >"$tmpd/bad2.log" 2>&1
+check "a set fitted to another Cycles version: the importer fails" test $? -ne 0 -a ! -s "$tmpd/bad2.exr"
+check "  ... naming translucent.version" grep -q "translucent.version = '2.79'" "$tmpd/bad2.log"
 tap_done
