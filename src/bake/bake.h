@@ -63,7 +63,7 @@ const struct bake_method_info *bake_method_named(const char *name);
 const char *bake_method_choices(void);
 
 /* Rd(r) made outside bake_run for some wavelengths (a family's members
- * share one white Monte Carlo run per wavelength, bake/family_radial.h). */
+ * share one white Monte Carlo run per wavelength, family/family_radial.h). */
 struct bake_radial_given {
 	const double *rd_r[BAKE_MAX_WL];	/* [n_r] Rd(r) [1/cm^2] per wavelength; NULL: bake_run runs it */
 	const double *rd_r_err[BAKE_MAX_WL];	/* [n_r] its standard error [1/cm^2] */

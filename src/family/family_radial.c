@@ -1,6 +1,6 @@
 /* family_radial: shared white Monte Carlo Rd(r) of a family (family_radial.h). */
 #include "config.h"
-#include "bake/family_radial.h"
+#include "family/family_radial.h"
 
 #include <math.h>
 #include <stdlib.h>
