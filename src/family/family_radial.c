@@ -11,6 +11,8 @@
 #include "base/util.h"
 
 enum { NS = SLAB_MAX_LAYERS + 2, BATCHES = 16 };
+#define RERUN_SLACK 1.25	/* the sized run's error over the target beyond which a member runs its own */
+#define GROUP_SPREAD 4.0	/* the largest need over the least in a group, but the last */
 
 /* Relative standard error of the mean radius of profile k of w. */
 static double rel_err(const struct wmc_radial *w, int k)
@@ -20,41 +22,90 @@ static double rel_err(const struct wmc_radial *w, int k)
 	return m > 0.0 ? tally_mean_radius_err(x, e, w->n_r, w->dr) / m : INFINITY;
 }
 
-/* Wavelength wl: the pilot, the sized run, the members' profiles into fr.
- * vs[n] are the members' slabs at wl. */
-static void share_wavelength(const struct bake_spec *s, const struct slab *vs, int n, int wl, struct family_radial *fr)
+/* One group of members at wavelength wl: idx[n] (members), vs (all
+ * members' slabs at wl).  The pilot sizes each member's need; unless this
+ * is the last group, the members needing over GROUP_SPREAD times the least
+ * need are left for a later group (their own, more absorbing walk) into
+ * left[*n_left].  The rest share a run sized to their largest need, which
+ * replaces the pilot, walked with the least absorption among them. */
+static void share_group(const struct bake_spec *s, const struct slab *vs, const int *idx, int n, int wl, int grp,
+    int last, struct family_radial *fr, int *left, int *n_left)
 {
 	double target = s->radial_error > 0.0 ? s->radial_error : BAKE_RADIAL_ERROR;
 	long cap = s->radial_photons > 0 ? s->radial_photons : BAKE_RADIAL_PHOTONS;
-	struct slab ref;
-	double *dmua = xmalloc(sizeof(double) * NS * (size_t)n);
-	wmc_reference(vs, n, &ref, dmua);
-	struct wmc_radial w;
 	long pilot = cap < FAMILY_RADIAL_PILOT ? cap : FAMILY_RADIAL_PILOT;
-	wmc_radial_run(&ref, dmua, n, s->theta_i[0], &s->opts, s->n_r, s->dr, pilot, BATCHES, s->seed,
-	    (uint32_t)(2 * wl), s->threads, &w);
+	struct slab *sub = xmalloc(sizeof *sub * (size_t)n), ref;
+	double *dmua = xmalloc(sizeof(double) * NS * (size_t)n), *want = xmalloc(sizeof(double) * (size_t)n);
+	for (int k = 0; k < n; k++)
+		sub[k] = vs[idx[k]];
+	wmc_reference(sub, n, &ref, dmua);
+	struct wmc_radial w;
+	uint32_t stream = (uint32_t)(wl * 2 * FAMILY_RADIAL_GROUPS + 2 * grp);
+	wmc_radial_run(&ref, dmua, n, s->theta_i[0], &s->opts, s->n_r, s->dr, pilot, BATCHES, s->seed, stream,
+	    s->threads, &w);
 	fr->photons += w.photons;
 	fr->seconds += w.seconds;
-	long need = 0;
-	for (int m = 0; m < n; m++) {
-		double e = rel_err(&w, m);
-		double want = (double)w.photons * (e / target) * (e / target) * 1.2;
-		fr->ok[(size_t)wl * (size_t)n + (size_t)m] = e <= target || want <= (double)cap;
-		if (e > target && want <= (double)cap && (long)ceil(want) > need)
-			need = (long)ceil(want);
+	double least = INFINITY;
+	for (int k = 0; k < n; k++) {
+		double e = rel_err(&w, k);
+		want[k] = e <= target ? 0.0 : (double)w.photons * (e / target) * (e / target) * 1.2;
+		least = fmin(least, want[k]);
 	}
-	if (need > 0) {
+	int kept = 0, *keep = xmalloc(sizeof(int) * (size_t)n);
+	long need = 0;
+	for (int k = 0; k < n; k++) {
+		if (!last && want[k] > GROUP_SPREAD * fmax(least, (double)pilot)) {
+			left[(*n_left)++] = idx[k];
+			continue;
+		}
+		fr->ok[(size_t)wl * (size_t)fr->n_members + (size_t)idx[k]] = want[k] <= (double)cap;
+		if (want[k] <= (double)cap && (long)ceil(want[k]) > need)
+			need = (long)ceil(want[k]);
+		sub[kept] = vs[idx[k]];
+		keep[kept++] = k;
+	}
+	if (need > 0 || kept < n) {
 		wmc_radial_free(&w);
-		wmc_radial_run(&ref, dmua, n, s->theta_i[0], &s->opts, s->n_r, s->dr, need, BATCHES, s->seed,
-		    (uint32_t)(2 * wl + 1), s->threads, &w);
+		wmc_reference(sub, kept, &ref, dmua);
+		wmc_radial_run(&ref, dmua, kept, s->theta_i[0], &s->opts, s->n_r, s->dr, need > pilot ? need : pilot,
+		    BATCHES, s->seed, stream + 1, s->threads, &w);
 		fr->photons += w.photons;
 		fr->seconds += w.seconds;
 	}
-	size_t nr = (size_t)s->n_r, off = (size_t)wl * (size_t)n * nr;
-	memcpy(fr->rd_r + off, w.rd_r, sizeof(double) * (size_t)n * nr);
-	memcpy(fr->rd_r_err + off, w.rd_r_err, sizeof(double) * (size_t)n * nr);
+	size_t nr = (size_t)s->n_r;
+	for (int j = 0; j < kept; j++) {
+		/* The run's variant j: member idx[keep[j]] (the pilot's order when it was kept). */
+		size_t off = ((size_t)wl * (size_t)fr->n_members + (size_t)idx[keep[j]]) * nr;
+		size_t from = (size_t)(w.n_var == n ? keep[j] : j) * nr;
+		memcpy(fr->rd_r + off, w.rd_r + from, sizeof(double) * nr);
+		memcpy(fr->rd_r_err + off, w.rd_r_err + from, sizeof(double) * nr);
+		/* A pilot can miss a heavy tail of the weights: a member still
+		 * well above the target runs its own. */
+		if (rel_err(&w, (int)(from / nr)) > RERUN_SLACK * target)
+			fr->ok[(size_t)wl * (size_t)fr->n_members + (size_t)idx[keep[j]]] = 0;
+	}
 	wmc_radial_free(&w);
+	free(keep);
+	free(want);
 	free(dmua);
+	free(sub);
+}
+
+/* Wavelength wl: the members (slabs vs[n]) in groups of like absorption. */
+static void share_wavelength(const struct bake_spec *s, const struct slab *vs, int n, int wl, struct family_radial *fr)
+{
+	int *idx = xmalloc(sizeof(int) * (size_t)n), *left = xmalloc(sizeof(int) * (size_t)n);
+	for (int m = 0; m < n; m++)
+		idx[m] = m;
+	int G = FAMILY_RADIAL_GROUPS;
+	for (int grp = 0; grp < G && n > 0; grp++) {
+		int n_left = 0;
+		share_group(s, vs, idx, n, wl, grp, grp == G - 1 || n == 1, fr, left, &n_left);
+		memcpy(idx, left, sizeof(int) * (size_t)n_left);
+		n = n_left;
+	}
+	free(left);
+	free(idx);
 }
 
 int family_radial_run(const struct bake_spec *s, const struct slab *slabs, int n_members, struct family_radial *fr)

@@ -11,7 +11,8 @@
 #define SKINBAKE_FAMILY_RADIAL_H
 #include "bake/bake.h"
 
-#define FAMILY_RADIAL_PILOT 8000	/* photons of the shared pilot per wavelength */
+#define FAMILY_RADIAL_PILOT 4000	/* photons of a group's pilot */
+#define FAMILY_RADIAL_GROUPS 4		/* groups per wavelength at most */
 
 struct family_radial {
 	int n_members, n_wl, n_r;
