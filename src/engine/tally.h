@@ -15,7 +15,8 @@
  * Svensson, J. Biomed. Opt. 13:041304, 2008). */
 struct tally_variants {
 	int n;			/* variants */
-	const double *dmua;	/* [n * (SLAB_MAX_LAYERS + 2)] mu_a of the variant minus the slab's, per layer [1/cm] */
+	const double *dmua;	/* [n * (SLAB_MAX_LAYERS + 2)] mu_a of the variant minus the
+				 * slab's, per layer [1/cm] */
 };
 
 /* Resolution of the exit tallies. */
@@ -40,7 +41,8 @@ struct tally {
 	double events;		/* scattering events (a count, for throughput) */
 	double *exit;		/* [n_theta * n_phi] scattered weight leaving the top */
 	double *radial;		/* [n_r] weight leaving the top by exit radius */
-	double *radial_var;	/* [var->n * n_r] the same per variant (grid.var), reweighted; NULL without */
+	double *radial_var;	/* [var->n * n_r] the same per variant (grid.var), reweighted;
+				 * NULL without */
 };
 
 /* Allocate zeroed arrays for grid (caller frees with tally_free). */

@@ -60,7 +60,8 @@ void transport_launch(const struct slab *s, double theta_in, enum optics_fresnel
 /* White Monte Carlo (tally.h): the escape at radial bin ir for every
  * absorption variant, its weight times exp(-sum dmua L) over the path
  * lengths path[] [cm] per layer. */
-static void score_variants(const struct tally_grid *g, struct tally *t, double w, const double *path, long ir)
+static void score_variants(const struct tally_grid *g, struct tally *t, double w,
+    const double *path, long ir)
 {
 	enum { NS = SLAB_MAX_LAYERS + 2 };
 	for (int v = 0; v < g->var->n; v++) {
@@ -119,7 +120,7 @@ struct photon {
 	int direct;	/* flying straight on since the last scattering (what nee scores) */
 	int entered;	/* has reached the first turbid layer (else a return is specular) */
 	long steps;	/* interactions so far */
-	double path[SLAB_MAX_LAYERS + 2];	/* path length per layer so far [cm] (white Monte Carlo) */
+	double path[SLAB_MAX_LAYERS + 2];	/* path length per layer so far [cm] (wmc.h) */
 };
 
 /* Launch: the refracted direction and weight of struct launch, at the top
@@ -271,8 +272,8 @@ static inline int boundary(struct photon *ph, const struct slab *s, const struct
 		if (!ph->entered)
 			t->rsp += ph->w;	/* back out of clear layers on top: specular */
 		else
-			score_top(grid, t, ph->w, ph->scattered, !(nee && ph->direct), ph->ux, ph->uy, ct, ph->x, ph->y,
-			    ph->path);
+			score_top(grid, t, ph->w, ph->scattered, !(nee && ph->direct), ph->ux, ph->uy, ct,
+			    ph->x, ph->y, ph->path);
 		return 1;
 	}
 	if (nb == s->n_layers + 1) {

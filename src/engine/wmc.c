@@ -21,8 +21,8 @@ int wmc_same_scattering(const struct slab *s, const struct slab *v)
 		return 0;
 	for (int l = 1; l <= s->n_layers; l++) {
 		const struct layer *a = &s->layer[l], *b = &v->layer[l];
-		if (a->d != b->d || a->n != b->n || a->mu_s != b->mu_s || a->g != b->g || a->rough != b->rough ||
-		    slab_layer_clear(s, l) != slab_layer_clear(v, l))
+		if (a->d != b->d || a->n != b->n || a->mu_s != b->mu_s || a->g != b->g ||
+		    a->rough != b->rough || slab_layer_clear(s, l) != slab_layer_clear(v, l))
 			return 0;
 	}
 	return 1;
@@ -64,7 +64,8 @@ void wmc_radial_run(const struct slab *ref, const double *dmua, int n_var, doubl
 #pragma omp for schedule(dynamic, 1)
 		for (int b = 0; b < batches; b++) {
 			tally_zero(&t, &g);
-			transport_run(ref, &ln, o, &g, NULL, seed, stream, (uint64_t)b * (uint64_t)bp, (uint64_t)bp, &t);
+			uint64_t first = (uint64_t)b * (uint64_t)bp;
+			transport_run(ref, &ln, o, &g, NULL, seed, stream, first, (uint64_t)bp, &t);
 			for (size_t i = 0; i < nq; i++)
 				q[(size_t)b * nq + i] = t.radial_var[i] / (double)bp;
 		}

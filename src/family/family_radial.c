@@ -11,13 +11,15 @@
 #include "base/util.h"
 
 enum { NS = SLAB_MAX_LAYERS + 2, BATCHES = 16 };
-#define RERUN_SLACK 1.25	/* the sized run's error over the target beyond which a member runs its own */
+/* The sized run's error over the target beyond which a member runs its own. */
+#define RERUN_SLACK 1.25
 #define GROUP_SPREAD 4.0	/* the largest need over the least in a group, but the last */
 
 /* Relative standard error of the mean radius of profile k of w. */
 static double rel_err(const struct wmc_radial *w, int k)
 {
-	const double *x = w->rd_r + (size_t)k * (size_t)w->n_r, *e = w->rd_r_err + (size_t)k * (size_t)w->n_r;
+	size_t off = (size_t)k * (size_t)w->n_r;
+	const double *x = w->rd_r + off, *e = w->rd_r_err + off;
 	double m = tally_mean_radius(x, w->n_r, w->dr);
 	return m > 0.0 ? tally_mean_radius_err(x, e, w->n_r, w->dr) / m : INFINITY;
 }
@@ -28,21 +30,22 @@ static double rel_err(const struct wmc_radial *w, int k)
  * need are left for a later group (their own, more absorbing walk) into
  * left[*n_left].  The rest share a run sized to their largest need, which
  * replaces the pilot, walked with the least absorption among them. */
-static void share_group(const struct bake_spec *s, const struct slab *vs, const int *idx, int n, int wl, int grp,
-    int last, struct family_radial *fr, int *left, int *n_left)
+static void share_group(const struct bake_spec *s, const struct slab *vs, const int *idx, int n,
+    int wl, int grp, int last, struct family_radial *fr, int *left, int *n_left)
 {
 	double target = s->radial_error > 0.0 ? s->radial_error : BAKE_RADIAL_ERROR;
 	long cap = s->radial_photons > 0 ? s->radial_photons : BAKE_RADIAL_PHOTONS;
 	long pilot = cap < FAMILY_RADIAL_PILOT ? cap : FAMILY_RADIAL_PILOT;
 	struct slab *sub = xmalloc(sizeof *sub * (size_t)n), ref;
-	double *dmua = xmalloc(sizeof(double) * NS * (size_t)n), *want = xmalloc(sizeof(double) * (size_t)n);
+	double *dmua = xmalloc(sizeof(double) * NS * (size_t)n);
+	double *want = xmalloc(sizeof(double) * (size_t)n);
 	for (int k = 0; k < n; k++)
 		sub[k] = vs[idx[k]];
 	wmc_reference(sub, n, &ref, dmua);
 	struct wmc_radial w;
 	uint32_t stream = (uint32_t)(wl * 2 * FAMILY_RADIAL_GROUPS + 2 * grp);
-	wmc_radial_run(&ref, dmua, n, s->theta_i[0], &s->opts, s->n_r, s->dr, pilot, BATCHES, s->seed, stream,
-	    s->threads, &w);
+	wmc_radial_run(&ref, dmua, n, s->theta_i[0], &s->opts, s->n_r, s->dr, pilot, BATCHES,
+	    s->seed, stream, s->threads, &w);
 	fr->photons += w.photons;
 	fr->seconds += w.seconds;
 	double least = INFINITY;
@@ -58,7 +61,8 @@ static void share_group(const struct bake_spec *s, const struct slab *vs, const 
 			left[(*n_left)++] = idx[k];
 			continue;
 		}
-		fr->ok[(size_t)wl * (size_t)fr->n_members + (size_t)idx[k]] = want[k] <= (double)cap;
+		size_t at = (size_t)wl * (size_t)fr->n_members + (size_t)idx[k];
+		fr->ok[at] = want[k] <= (double)cap;
 		if (want[k] <= (double)cap && (long)ceil(want[k]) > need)
 			need = (long)ceil(want[k]);
 		sub[kept] = vs[idx[k]];
@@ -67,7 +71,8 @@ static void share_group(const struct bake_spec *s, const struct slab *vs, const 
 	if (need > 0 || kept < n) {
 		wmc_radial_free(&w);
 		wmc_reference(sub, kept, &ref, dmua);
-		wmc_radial_run(&ref, dmua, kept, s->theta_i[0], &s->opts, s->n_r, s->dr, need > pilot ? need : pilot,
+		long photons = need > pilot ? need : pilot;
+		wmc_radial_run(&ref, dmua, kept, s->theta_i[0], &s->opts, s->n_r, s->dr, photons,
 		    BATCHES, s->seed, stream + 1, s->threads, &w);
 		fr->photons += w.photons;
 		fr->seconds += w.seconds;
@@ -92,7 +97,8 @@ static void share_group(const struct bake_spec *s, const struct slab *vs, const 
 }
 
 /* Wavelength wl: the members (slabs vs[n]) in groups of like absorption. */
-static void share_wavelength(const struct bake_spec *s, const struct slab *vs, int n, int wl, struct family_radial *fr)
+static void share_wavelength(const struct bake_spec *s, const struct slab *vs, int n, int wl,
+    struct family_radial *fr)
 {
 	int *idx = xmalloc(sizeof(int) * (size_t)n), *left = xmalloc(sizeof(int) * (size_t)n);
 	for (int m = 0; m < n; m++)
@@ -108,7 +114,8 @@ static void share_wavelength(const struct bake_spec *s, const struct slab *vs, i
 	free(idx);
 }
 
-int family_radial_run(const struct bake_spec *s, const struct slab *slabs, int n_members, struct family_radial *fr)
+int family_radial_run(const struct bake_spec *s, const struct slab *slabs, int n_members,
+    struct family_radial *fr)
 {
 	memset(fr, 0, sizeof *fr);
 	if (s->method == BAKE_SOLVER_MC || s->n_r <= 0 || n_members < 2)

@@ -18,7 +18,8 @@ struct family_radial {
 	int n_members, n_wl, n_r;
 	double *rd_r;		/* [n_wl][n_members][n_r] [1/cm^2] */
 	double *rd_r_err;	/* [n_wl][n_members][n_r] */
-	unsigned char *ok;	/* [n_wl][n_members] 1: shared profile there, 0: the member runs its own */
+	unsigned char *ok;	/* [n_wl][n_members] 1: shared profile there,
+				 * 0: the member runs its own */
 	long photons;		/* photons of all the shared runs */
 	double seconds;		/* their wall time [s] */
 };
@@ -28,7 +29,8 @@ struct family_radial {
  * slabs[m * s->n_wl + w].  0 when none is shared (an all-Monte Carlo bake,
  * no bins, or no wavelength where the members share their scattering), 1
  * with fr filled (caller frees with family_radial_free). */
-int family_radial_run(const struct bake_spec *s, const struct slab *slabs, int n_members, struct family_radial *fr);
+int family_radial_run(const struct bake_spec *s, const struct slab *slabs, int n_members,
+    struct family_radial *fr);
 /* Member m's given profiles for bake_spec.radial_given. */
 void family_radial_given(const struct family_radial *fr, int m, struct bake_radial_given *g);
 void family_radial_free(struct family_radial *fr);
