@@ -66,6 +66,14 @@ def _square_nodes(ti, to_nodes):
             and abs(to_nodes[-1] - 0.5 * math.pi) < 1e-9)
 
 
+def _between(w, r, ax, xv):
+    """Row r of w: linear weights of xv between the two nodes of ax around it."""
+    lo = int(np.searchsorted(ax, xv, side="right")) - 1
+    t = (xv - ax[lo]) / (ax[lo + 1] - ax[lo])
+    w[r, lo] = 1.0 - t
+    w[r, lo + 1] = t
+
+
 def _linear_to_zero(ax, x):
     """Weights [len(x)][len(ax)] of bakeinterp.c's axis_weights: linear between nodes,
     held below the first, from the last linear to 0 at 90 deg."""
@@ -79,10 +87,7 @@ def _linear_to_zero(ax, x):
             t = min(1.0, (xv - ax[-1]) / end) if end > 0.0 else 0.0
             w[r, -1] = 1.0 - t
         else:
-            lo = int(np.searchsorted(ax, xv, side="right")) - 1
-            t = (xv - ax[lo]) / (ax[lo + 1] - ax[lo])
-            w[r, lo] = 1.0 - t
-            w[r, lo + 1] = t
+            _between(w, r, ax, xv)
     return w
 
 
@@ -95,10 +100,7 @@ def _linear_held(ax, x):
         elif xv >= ax[-1]:
             w[r, -1] = 1.0
         else:
-            lo = int(np.searchsorted(ax, xv, side="right")) - 1
-            t = (xv - ax[lo]) / (ax[lo + 1] - ax[lo])
-            w[r, lo] = 1.0 - t
-            w[r, lo + 1] = t
+            _between(w, r, ax, xv)
     return w
 
 
