@@ -114,6 +114,29 @@ static void share_wavelength(const struct bake_spec *s, const struct slab *vs, i
 	free(idx);
 }
 
+/* Under MPI each rank made the wavelengths wl % n_ranks == rank (the
+ * others are zero): the sum over ranks gathers them all on every rank. */
+static void gather(const struct bake_spec *s, struct family_radial *fr)
+{
+	size_t nv = (size_t)fr->n_wl * (size_t)fr->n_members, np = nv * (size_t)fr->n_r;
+	size_t n = 2 * np + nv + 2;
+	double *v = xmalloc(sizeof(double) * n);
+	memcpy(v, fr->rd_r, sizeof(double) * np);
+	memcpy(v + np, fr->rd_r_err, sizeof(double) * np);
+	for (size_t i = 0; i < nv; i++)
+		v[2 * np + i] = fr->ok[i];
+	v[n - 2] = (double)fr->photons;
+	v[n - 1] = fr->seconds;
+	s->allreduce(v, (long)n);
+	memcpy(fr->rd_r, v, sizeof(double) * np);
+	memcpy(fr->rd_r_err, v + np, sizeof(double) * np);
+	for (size_t i = 0; i < nv; i++)
+		fr->ok[i] = v[2 * np + i] != 0.0;
+	fr->photons = (long)v[n - 2];
+	fr->seconds = v[n - 1];
+	free(v);
+}
+
 int family_radial_run(const struct bake_spec *s, const struct slab *slabs, int n_members,
     struct family_radial *fr)
 {
@@ -128,7 +151,7 @@ int family_radial_run(const struct bake_spec *s, const struct slab *slabs, int n
 	fr->rd_r_err = xcalloc(nv * (size_t)s->n_r, sizeof(double));
 	fr->ok = xcalloc(nv, 1);
 	struct slab *vs = xmalloc(sizeof *vs * (size_t)n_members);
-	int shared = 0;
+	int shared = 0, R = s->n_ranks > 1 && s->allreduce ? s->n_ranks : 1;
 	for (int wl = 0; wl < s->n_wl; wl++) {
 		int same = 1;
 		for (int m = 0; m < n_members; m++) {
@@ -137,12 +160,15 @@ int family_radial_run(const struct bake_spec *s, const struct slab *slabs, int n
 		}
 		if (!same)
 			continue;
-		share_wavelength(s, vs, n_members, wl, fr);
 		shared = 1;
+		if (wl % R == s->rank)
+			share_wavelength(s, vs, n_members, wl, fr);
 	}
 	free(vs);
 	if (!shared)
 		family_radial_free(fr);
+	else if (R > 1)
+		gather(s, fr);
 	return shared;
 }
 

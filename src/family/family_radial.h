@@ -6,7 +6,9 @@
  * e_m; a member needing more than the photon cap (pilot x (e_m / target)^2
  * x 1.2, bake.h's rule) is left to its own run in bake_run; the run is
  * then repeated with the largest need of the rest (other random streams),
- * which replaces the pilot. */
+ * which replaces the pilot.  Under MPI (spec's n_ranks and allreduce) the
+ * ranks share the wavelengths and sum the profiles: every rank ends with
+ * the same numbers as one process. */
 #ifndef SKINBAKE_FAMILY_RADIAL_H
 #define SKINBAKE_FAMILY_RADIAL_H
 #include "bake/bake.h"
