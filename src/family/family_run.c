@@ -255,8 +255,8 @@ static uint64_t family_identity(const struct family_plan *pl, const struct famil
  * MPI the ranks split the wavelengths and all end with the same profiles
  * (their random streams do not depend on the rank), so members come out
  * the same over any number of ranks.  1 with fr filled. */
-static int shared_radial(const struct family_plan *pl, const struct family *f, struct family_radial *fr,
-    char **cause)
+static int shared_radial(const struct family_plan *pl, const struct family *f,
+    struct family_radial *fr, char **cause)
 {
 	if (pl->spec.method == BAKE_SOLVER_MC || pl->spec.n_r <= 0)
 		return 0;
