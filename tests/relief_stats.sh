@@ -10,10 +10,8 @@ SKINBAKE_DATADIR="$top_srcdir/data"
 export SKINBAKE_DATADIR
 table="$top_srcdir/data/relief_sites.tsv"
 # Known out of range (TAP TODO, reported as XFAIL; an XPASS fails the run,
-# so remove an entry once its site is in range): the face and cheek
-# defaults put the median primary furrow at 20 and 18 um, the shallow end
-# of and below Hashimoto's 20-100 um, and measure 20.0 and 18.1 um.
-known_out="face:furrow_depth_um cheek:furrow_depth_um"
+# so remove an entry once its site is in range): none at present.
+known_out=""
 
 for s in face forehead cheek hand forearm; do
 	tile=2
@@ -27,6 +25,7 @@ for s in face forehead cheek hand forearm; do
 	fi
 	check "site $s: manifest has stats" grep -q '"stats"' "$od/manifest.json"
 	check "site $s: report has a table" sh -c "! grep -q 'no range table' '$tmpd/$s.txt'"
+	check "site $s: far roughness map written and listed" sh -c "test -s '$od/roughness_far.png' && grep -q '\"far_roughness\"' '$od/manifest.json'"
 	# Every sourced row of the site: the reported value inside [lo, hi].
 	awk -F'\t' -v s=$s '$1 == s { print $2, $3, $4 }' "$table" >"$tmpd/rows"
 	while read -r key lo hi; do

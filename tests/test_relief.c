@@ -40,9 +40,19 @@ static float *render(const struct relief *r, int n, double x0, double y0, int wh
 static void test_shifted_windows(void **state)
 {
 	(void)state;
-	const char *sites[] = { "face", "hand", "back" };
-	for (size_t s = 0; s < 3; s++) {
+	const char *sites[] = { "face", "hand", "back", "forearm" };
+	/* The last one with a direction map that is not periodic itself (a
+	 * ramp of angles): the relief still is. */
+	enum { DN = 64 };
+	float *dir = malloc(sizeof *dir * DN * DN);
+	for (int i = 0; i < DN * DN; i++)
+		dir[i] = (float)(3.0 * (i % DN) / DN + 2.0 * (i / DN) / DN);
+	for (size_t s = 0; s < 4; s++) {
 		struct relief_params p = params(sites[s]);
+		if (s == 3) {
+			p.direction = dir;
+			p.direction_n = DN;
+		}
 		char *cause = NULL;
 		struct relief *r = relief_new(&p, 11, &cause);
 		assert_non_null(r);
@@ -68,6 +78,7 @@ static void test_shifted_windows(void **state)
 		free(c);
 		relief_free(r);
 	}
+	free(dir);
 }
 
 /* RMS of the differences between column c and column c+1 (wrapping). */
@@ -239,12 +250,22 @@ static void test_anisotropy(void **state)
 	assert_true(ex > 1.5 * ey);
 	free(h);
 	relief_free(r);
-	/* Isotropic: neither direction dominates. */
+	/* Isotropic cells and no direction gain: neither direction dominates. */
 	p.stretch = 1;
+	p.direction_gain = 1;
 	r = relief_new(&p, 2, &cause);
 	h = render(r, n, 0, 0, 1);
 	grad_energy(h, n, &ex, &ey);
 	assert_true(ex < 1.3 * ey && ey < 1.3 * ex);
+	free(h);
+	relief_free(r);
+	/* Isotropic cells, furrows along y 3 times deeper than across. */
+	p.direction_gain = 3;
+	p.orientation = M_PI / 2;
+	r = relief_new(&p, 2, &cause);
+	h = render(r, n, 0, 0, 1);
+	grad_energy(h, n, &ex, &ey);
+	assert_true(ex > 1.5 * ey);
 	free(h);
 	relief_free(r);
 }
@@ -274,10 +295,29 @@ static void test_components(void **state)
 	relief_free(r);
 	p.pore_density = 0;
 	p.levels = 0;
+	p.plateau_roughness = 0;
 	r = relief_new(&p, 9, &cause);
 	float *flat = render(r, 64, 0, 0, 2);
 	for (size_t i = 0; i < 64 * 64; i++)
 		assert_true(flat[i] == 0.0f);
+	free(flat);
+	relief_free(r);
+	/* The plateau texture alone: 48 waves with whole cycles per tile, all
+	 * below the Nyquist limit (<= 33 e^0.5 = 55 of 128), so its mean is 0
+	 * and, the wave vectors being distinct for this seed, its RMS the
+	 * parameter (Parseval) up to float rounding. */
+	p.tile = 0.1;
+	p.plateau_roughness = 1e-4;
+	p.plateau_scale = 30e-4;
+	r = relief_new(&p, 9, &cause);
+	flat = render(r, 256, 0, 0, 2);
+	double sum = 0, sum2 = 0;
+	for (size_t i = 0; i < 256 * 256; i++) {
+		sum += flat[i];
+		sum2 += (double)flat[i] * flat[i];
+	}
+	assert_true(fabs(sum / (256 * 256)) < 1e-3 * p.plateau_roughness);
+	assert_true(fabs(sqrt(sum2 / (256 * 256)) - p.plateau_roughness) < 1e-3 * p.plateau_roughness);
 	free(flat);
 	relief_free(r);
 }
@@ -302,6 +342,21 @@ static void test_bad_params(void **state)
 	expect_bad(q, "pore density");
 	q = p, q.levels = 7;
 	expect_bad(q, "levels");
+	q = p;
+	q.bend = 0.5;
+	expect_bad(q, "bend");
+	q = p;
+	q.hierarchy = 2;
+	expect_bad(q, "hierarchy");
+	q = p;
+	q.direction_gain = 0.5;
+	expect_bad(q, "direction gain");
+	q = p;
+	q.plateau_scale = 0;
+	expect_bad(q, "plateau scale");
+	q = p;
+	q.region_sd = 2;
+	expect_bad(q, "region sigma");
 	q = p, q.furrow_cell = p.tile;
 	expect_bad(q, "furrow cell");
 	q = p, q.level_scale = 1.5;

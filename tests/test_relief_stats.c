@@ -2,7 +2,8 @@
  * form: a sinusoid (Sa, furrow crossings and depth, anisotropy 1), two
  * crossed sinusoids (isotropic and stretched: the discrete structure tensor
  * exactly), a diagonal sinusoid (direction) and flat-bottomed discs (pore
- * count, density, diameter to the lattice bound). */
+ * count, density, diameter to the lattice bound) and a triangle wave (the
+ * developed area ratio Sdr). */
 #include <stdarg.h>
 #include <stddef.h>
 #include <stdint.h>
@@ -11,6 +12,7 @@
 #include <math.h>
 #include <stdlib.h>
 
+#include "geom/relief_far.h"
 #include "geom/relief_stats.h"
 
 enum { N = 256 };
@@ -119,6 +121,71 @@ static void test_discs(void **state)
 	free(p);
 }
 
+/* A triangle wave of slope +-s along x, kinks on pixel boundaries: the
+ * central difference is +-s except at the 4 samples per period next to a
+ * kink, where it is +-s/2, so Sdr is known exactly; the continuous surface
+ * has sqrt(1 + s^2) - 1. */
+static void test_developed_area(void **state)
+{
+	(void)state;
+	const int L = 64;	/* px per period */
+	const double s = 0.5;	/* slope [1] */
+	float *h = malloc(sizeof *h * N * N);
+	for (int r = 0; r < N; r++) {
+		for (int c = 0; c < N; c++) {
+			double x = fmod(c + 0.5, L);
+			double up = x < L / 2.0 ? x : L - x;	/* distance from the last valley [px] */
+			h[r * N + c] = (float)(s * up * PITCH);
+		}
+	}
+	struct relief_stats st = stats_of(h, NULL);
+	double exact = ((L - 4) * (sqrt(1 + s * s) - 1) + 4 * (sqrt(1 + s * s / 4) - 1)) / L;
+	assert_true(fabs(st.sdr - exact) < 1e-5 * exact);	/* float storage */
+	assert_true(fabs(st.sdr - (sqrt(1 + s * s) - 1)) < 4.0 / L * (sqrt(1 + s * s) - 1));
+	free(h);
+}
+
+/* Toksvig roughness of averaged normals: 0 on a flat map; on the triangle
+ * wave above (normals by relief_normals) the x components cancel over a
+ * period and |N| is the mean of 1/sqrt(1 + g^2) over its slopes, exactly;
+ * blocks of one period each all give that value. */
+static void test_far_alpha(void **state)
+{
+	(void)state;
+	const int L = 64;
+	const double s = 0.5;
+	float *h = malloc(sizeof *h * N * N), *nx = malloc(sizeof *nx * N * N);
+	float *ny = malloc(sizeof *ny * N * N), *nz = malloc(sizeof *nz * N * N);
+	float alpha[16];
+	for (int i = 0; i < N * N; i++)
+		h[i] = 0;
+	relief_normals(N, PITCH, h, nx, ny, nz);
+	relief_far_alpha(N, nx, ny, nz, 4, alpha);
+	for (int i = 0; i < 16; i++)
+		assert_true(alpha[i] == 0.0f);
+	for (int r = 0; r < N; r++) {
+		for (int c = 0; c < N; c++) {
+			double x = fmod(c + 0.5, L);
+			h[r * N + c] = (float)(s * (x < L / 2.0 ? x : L - x) * PITCH);
+		}
+	}
+	relief_normals(N, PITCH, h, nx, ny, nz);
+	double len = ((L - 4) / sqrt(1 + s * s) + 4 / sqrt(1 + s * s / 4)) / L;
+	double exact = sqrt(2 * (1 - len) / len);
+	relief_far_alpha(N, nx, ny, nz, 1, alpha);
+	assert_true(fabs(alpha[0] - exact) < 1e-4 * exact);
+	relief_far_alpha(N, nx, ny, nz, 4, alpha);	/* 64 px blocks: one period each */
+	for (int i = 0; i < 16; i++)
+		assert_true(fabs(alpha[i] - exact) < 1e-4 * exact);
+	/* About one block per primary cell: 2 mm at 256 px, cell 0.35 mm. */
+	assert_int_equal(relief_far_size(256, 0.2 / 256, 0.035), 6);
+	assert_int_equal(relief_far_size(16, 0.2 / 16, 1.0), 1);
+	free(h);
+	free(nx);
+	free(ny);
+	free(nz);
+}
+
 static void test_bad_input(void **state)
 {
 	(void)state;
@@ -137,6 +204,8 @@ int main(void)
 		cmocka_unit_test(test_sinusoid),
 		cmocka_unit_test(test_isotropic_and_stretched),
 		cmocka_unit_test(test_discs),
+		cmocka_unit_test(test_developed_area),
+		cmocka_unit_test(test_far_alpha),
 		cmocka_unit_test(test_bad_input),
 	};
 	return cmocka_run_group_tests(tests, NULL, NULL);

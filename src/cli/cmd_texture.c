@@ -10,6 +10,7 @@
 
 #include "cli/cli.h"
 #include "cli/opt.h"
+#include "cli/cmd_texture.h"
 #include "geom/relief.h"
 #include "geom/relief_ranges.h"
 #include "geom/sites.h"
@@ -57,7 +58,8 @@ int cmd_texture(int argc, char **argv)
 {
 	int np;
 	const struct texture_param *params = sites_params(&np);
-	const char *site = "face", *preset = NULL, *out = NULL;
+	const char *site = "face", *preset = NULL, *out = NULL, *dirmap = NULL;
+	float *dir = NULL;
 	int quiet = 0, dump = 0, list = 0, stats = 0, rc = CLI_EXIT_USAGE;
 	struct opt opts[OPT_MAX] = {
 		{ "site", OPT_STRING, &site, "NAME", "face", .help = "start from a body site (see --list-sites)" },
@@ -71,9 +73,12 @@ int cmd_texture(int argc, char **argv)
 		{ "quiet", OPT_FLAG, &quiet, .help = "no summary on stderr" },
 		{ "stats", OPT_FLAG, &stats, .help = "measure the map into manifest.json and print it against the site's "
 		  "measured ranges (data/relief_sites.tsv)" },
+		{ "direction-map", OPT_PATH_IN, &dirmap, "PNG", .flags = OPT_FILE,
+		  .help = "preferred furrow direction per pixel in UV, a PNG of --size x --size px "
+		  "(encoding in docs/relief.md); replaces --orientation" },
 	};
 	/* One option per texture parameter, from the table in geom/sites.c. */
-	enum { N_FIXED = 7 };
+	enum { N_FIXED = 8 };
 	char defs[OPT_MAX][32];
 	struct texture_config cfg;
 	char *cause = NULL;
@@ -87,19 +92,21 @@ int cmd_texture(int argc, char **argv)
 			.unit = strcmp(p->unit, "1") ? p->unit : NULL, .help = p->help };
 	}
 	const struct opt_cmd cmd = { "texture", "[--site NAME | --preset-file FILE] [options] --out DIR",
-		"Grow the micro-relief of skin (pores and a net of triangular furrows) as\n"
-		"seamless, tileable maps: DIR/height.png (16-bit, physical range in its tEXt\n"
-		"chunks), pores_height.png, furrows_height.png, normal.png (16-bit RGB) and\n"
-		"normal.exr (float) in tangent space with the OpenGL +Y convention,\n"
-		"height.exr (float, um), preview.png (8-bit) and manifest.json.  The\n"
-		"parameters after --quiet override the site; the defaults shown are site 'face'.", opts,
-		"Finer furrow level k (k = 0 primary) has cell furrow-cell * level-scale^k,\n"
-		"depth furrow-depth * level-gain^k, dome ridge-height * level-gain^k and\n"
-		"width furrow-width * level-scale^(k/2) (at most half its cell).\n\n"
+		"Grow the micro-relief of skin (pores, primary furrows, secondary ones that\n"
+		"split the primary triangles, finer nets, plateau texture) as seamless maps:\n"
+		"DIR/height.png (16-bit, physical range in its tEXt chunks), pores_height.png,\n"
+		"furrows_height.png, normal.png (16-bit RGB) and normal.exr (float) in tangent\n"
+		"space with the OpenGL +Y convention, height.exr (float, um), preview.png and\n"
+		"manifest.json.  The parameters after --direction-map override the site; the\n"
+		"defaults shown are site 'face'.", opts,
+		"Furrow level k (k = 0 primary) has cell furrow-cell * level-scale^k (level 2\n"
+		"with --hierarchy 1: a star in each primary triangle), depth furrow-depth *\n"
+		"level-gain^k, dome ridge-height * level-gain^k and width furrow-width *\n"
+		"level-scale^(k/2) (at most half its cell).\n\n"
 		"Heights are relative to the undisturbed surface; 0 in height.png is the\n"
 		"lowest point of the map and 65535 the highest (skinbake:height_min_um and\n"
 		"skinbake:height_max_um).  POV-Ray: bump_size = (max - min) * size / tile.\n"
-		"Sources and details: docs/texture.md.", 0, 0 };
+		"Details: docs/texture.md; measured data and sources: docs/relief.md.", 0, 0 };
 	struct opt_ctx x;
 	if (opt_parse(&x, &cmd, argc, argv) != 0)
 		return x.exit;
@@ -109,26 +116,9 @@ int cmd_texture(int argc, char **argv)
 	}
 
 	/* Site, then preset file, then the options in command-line order. */
-	if (sites_load(site, &cfg, &cause) != 0) {
-		cli_usage_error(CMD, "--site: %s", cause);
+	const struct texture_sources src = { site, preset, dirmap };
+	if (cmd_texture_resolve(&cfg, &x, &src, &dir) != 0)
 		goto done;
-	}
-	if (preset && sites_read_ini(preset, &cfg, &cause) != 0) {
-		cli_usage_error(CMD, "--preset-file: %s", cause);
-		goto done;
-	}
-	for (int i = 0; i < np; i++) {
-		char label[64];
-		snprintf(label, sizeof label, "--%s", params[i].key);
-		if (opt_given(&x, params[i].key) && sites_set(&cfg, &params[i], label, opt_text(&x, params[i].key), &cause) != 0) {
-			cli_usage_error(CMD, "%s", cause);
-			goto done;
-		}
-	}
-	if (relief_params_check(&cfg.relief, &cause) != 0) {
-		cli_usage_error(CMD, "%s", cause);
-		goto done;
-	}
 	if (dump) {
 		char *ini = sites_ini_text(&cfg);
 		fputs(ini, stdout);
@@ -144,6 +134,7 @@ int cmd_texture(int argc, char **argv)
 	cfg.with_stats = stats;
 	rc = run(&cfg, out, quiet);
 done:
+	free(dir);
 	free(cause);
 	return rc;
 }

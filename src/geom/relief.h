@@ -2,8 +2,11 @@
  * tile: pores (smooth dimples at Poisson-disk positions, optionally on the
  * furrow junctions) and furrows (grooves along the edges of a periodic
  * Delaunay triangulation, with curved plateaus inside the triangles), at one
- * or more levels (deep primary lines, finer secondary ones), optionally
- * stretched along one direction as on the back of the hand.  Every feature
+ * or more levels (deep primary lines; secondary ones that split the primary
+ * triangles, so that they end on primary lines; finer independent nets),
+ * bent, deeper along a preferred direction (one angle, or a direction map in
+ * UV) and optionally stretched along it as on the back of the hand, with a
+ * fine corneocyte-scale texture on the plateaus.  Every feature
  * is evaluated with periodic distances, so the map tiles without a seam.
  * The furrow net follows Li & Ng (skin surface figures 8-10); dermatology
  * sources for the numbers are in sites.c and docs/texture.md.
@@ -39,11 +42,29 @@ struct relief_params {
 	double stretch;	/* elongation of the cells along `orientation` [1] */
 	double orientation;	/* direction of elongation from +x toward +y [rad] */
 	double furrow_regularity;	/* Poisson-disk distance / mean spacing of junctions [1] */
+	/* Hierarchy, shape and fine texture. */
+	int hierarchy;	/* 1: level 2 splits every primary triangle by a three-armed star of
+			 * secondary furrows (from an interior point to its three sides), so
+			 * secondary lines end on primary ones; 0: an independent net [1] */
+	double bend;	/* largest sideways bend of a furrow / its length [1] */
+	double region_sd;	/* log-normal sigma of a smooth depth factor over the tile
+				 * (1-3 cycles per tile): regions of deeper lines [1] */
+	double furrow_fade;	/* f: a furrow's depth at its inner joints is exp(-f |z|), z
+				 * standard normal, times that at its ends [1] */
+	double direction_gain;	/* depth of a furrow along the preferred direction over one
+				 * across it, (gain)^(cos 2 angle / 2) in between [1] */
+	double plateau_roughness;	/* RMS height of the fine plateau texture [cm] */
+	double plateau_scale;	/* its wavelength [cm] */
+	/* Preferred direction map (NULL: `orientation` everywhere): n*n angles
+	 * [rad] from +x toward +y, row 0 on top, covering the tile. */
+	const float *direction;
+	int direction_n;	/* its edge [px] */
 };
 
 /* Per-level furrow geometry derived from the parameters. */
 struct relief_level_info {
-	int points;	/* junctions (Delaunay vertices) */
+	int points;	/* junctions (Delaunay vertices, or the star centres and arm ends) */
+	int furrows;	/* furrows before bending (Delaunay edges or star arms) */
 	double cell;	/* mean junction spacing [cm] */
 	double width;	/* furrow width [cm] */
 	double depth;	/* median furrow depth [cm] */

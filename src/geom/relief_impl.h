@@ -2,6 +2,10 @@
  * (relief.c) and rendering (relief_render.c); not for other modules. */
 #ifndef SKINBAKE_RELIEF_IMPL_H
 #define SKINBAKE_RELIEF_IMPL_H
+#include <math.h>
+#include <stdint.h>
+
+#include "base/rng.h"
 #include "geom/delaunay.h"
 #include "geom/relief.h"
 
@@ -19,7 +23,8 @@ struct pore {
 struct furrow {
 	double x0, y0, x1, y1;	/* ends [tiles]; (x1, y1) may lie in a neighbour tile */
 	double half;	/* half width [cm] */
-	double depth;	/* [cm] */
+	double depth;	/* at (x0, y0) [cm] */
+	double depth1;	/* at (x1, y1) [cm]; linear in between: a furrow fades */
 };
 
 struct plateau {
@@ -38,12 +43,41 @@ struct level {
 	struct bbox *fbox, *pbox;
 };
 
+/* One plane wave of the plateau texture: amp cos(2 pi (kx x + ky y) + phase)
+ * with x, y in tiles, so the texture is periodic with the tile. */
+#define RELIEF_WAVES 48
+
+struct wave {
+	int kx, ky;	/* cycles per tile */
+	double amp;	/* [cm] */
+	double phase;	/* [rad] */
+};
+
+#define RELIEF_REGION_WAVES 8
+
 struct relief {
 	struct relief_params p;
+	struct wave region[RELIEF_REGION_WAVES];	/* the regional depth field (relief.c) */
+	int n_waves;
+	struct wave *waves;
 	int n_pores;
 	struct pore *pores;
 	struct bbox *pore_box;
 	int n_levels;
 	struct level level[RELIEF_MAX_LEVELS];
 };
+
+/* A standard normal deviate (Box-Muller), clamped to +-2.5 sigma so that
+ * one draw cannot make a pore or furrow absurdly large. */
+static inline double relief_normal(struct rng *r)
+{
+	double u1 = rng_uniform(r), u2 = rng_uniform(r);
+	double z = sqrt(-2 * log(u1)) * cos(2 * M_PI * u2);
+	return fmax(-2.5, fmin(2.5, z));
+}
+
+/* relief_waves.c: the regional depth field and the plateau texture. */
+void relief_region_place(struct relief *r, uint64_t seed, uint32_t stream);
+double relief_region_at(const struct relief *r, double x, double y);
+void relief_waves_place(struct relief *r, uint64_t seed, uint32_t stream);
 #endif

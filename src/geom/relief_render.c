@@ -165,8 +165,9 @@ static void draw_pores(const struct relief *r, const struct window *w, const str
 	}
 }
 
-/* Furrow groove along a segment: -depth (1 - t^2)^2 with t = distance /
- * half width; grooves of one level combine by their minimum. */
+/* Furrow groove along a segment: -depth (1 - s^2)^2 with s = distance /
+ * half width, the depth linear from one end to the other along the
+ * segment; grooves of one level combine by their minimum. */
 static void draw_furrows(const struct level *l, double T, const struct window *w,
     const struct bins *bn, int blk, const struct rect *k, float *buf)
 {
@@ -190,7 +191,8 @@ static void draw_furrows(const struct level *l, double T, const struct window *w
 				double s2 = (dx * dx + dy * dy) * ih2;
 				if (s2 >= 1)
 					continue;
-				float h = (float)(-f->depth * (1 - s2) * (1 - s2));
+				double d = f->depth + t * (f->depth1 - f->depth);
+				float h = (float)(-d * (1 - s2) * (1 - s2));
 				if (h < o[col - k->c0])
 					o[col - k->c0] = h;
 			}
@@ -198,8 +200,10 @@ static void draw_furrows(const struct level *l, double T, const struct window *w
 	}
 }
 
-/* Plateau dome: ridge * 27 b0 b1 b2 (barycentric bubble), 1 at the
- * centroid and 0 on the edges, so neighbouring triangles join continuously. */
+/* Plateau dome: ridge * (27 b0 b1 b2)^2 (a squared barycentric bubble), 1
+ * at the centroid, 0 with zero slope on the edges, so neighbouring
+ * triangles join smoothly and a bent furrow leaves no crease along the
+ * straight edge. */
 static void draw_plateaus(const struct level *l, const struct window *w, const struct bins *bn,
     int blk, const struct rect *k, float *buf)
 {
@@ -222,10 +226,49 @@ static void draw_plateaus(const struct level *l, const struct window *w, const s
 				double b0 = 1 - b1 - b2;
 				if (b0 < 0 || b1 < 0 || b2 < 0)
 					continue;
-				o[col - k->c0] = (float)(q->ridge * 27 * b0 * b1 * b2);
+				double bub = 27 * b0 * b1 * b2;
+				o[col - k->c0] = (float)(q->ridge * bub * bub);
 			}
 		}
 	}
+}
+
+/* Add the plateau waves to out: cos(a + b) = cos a cos b - sin a sin b
+ * with a from the column and b from the row, so each pixel costs two
+ * products per wave. */
+static void add_waves(const struct relief *r, const struct window *w, float *out)
+{
+	int n = w->n, nw = r->n_waves;
+	/* Column terms stored column by column, so the inner loop over the
+	 * waves reads contiguous memory. */
+	size_t nterms = (size_t)nw * (size_t)n;
+	double *ca = xmalloc(sizeof *ca * nterms), *sa = xmalloc(sizeof *sa * nterms);
+	for (int c = 0; c < n; c++)
+		for (int q = 0; q < nw; q++) {
+			double a = 2 * M_PI * r->waves[q].kx * px_x(w, c);
+			ca[(size_t)c * nw + q] = cos(a);
+			sa[(size_t)c * nw + q] = sin(a);
+		}
+#pragma omp parallel for schedule(static)
+	for (int row = 0; row < n; row++) {
+		double rc[RELIEF_WAVES], rs[RELIEF_WAVES];
+		for (int q = 0; q < nw; q++) {
+			double b = 2 * M_PI * r->waves[q].ky * px_y(w, row) + r->waves[q].phase;
+			rc[q] = r->waves[q].amp * cos(b);
+			rs[q] = r->waves[q].amp * sin(b);
+		}
+		for (int c = 0; c < n; c++) {
+			const double *cc = ca + (size_t)c * nw, *sc = sa + (size_t)c * nw;
+			double sum = 0;
+			/* Vectorised; the order is fixed by the compiler, not the threads. */
+#pragma omp simd reduction(+:sum)
+			for (int q = 0; q < nw; q++)
+				sum += cc[q] * rc[q] - sc[q] * rs[q];
+			out[(size_t)row * n + c] += (float)sum;
+		}
+	}
+	free(ca);
+	free(sa);
 }
 
 void relief_render(const struct relief *r, int n, double x0, double y0, float *pores, float *furrows)
@@ -269,6 +312,8 @@ void relief_render(const struct relief *r, int n, double x0, double y0, float *p
 				    sizeof(float) * (size_t)(k.c1 - k.c0 + 1));
 		}
 	}
+	if (furrows && r->n_waves > 0)
+		add_waves(r, &w, furrows);
 	if (pores)
 		bins_free(&pb);
 	for (int k = 0; furrows && k < r->n_levels; k++) {

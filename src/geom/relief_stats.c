@@ -86,10 +86,11 @@ static void furrows(int n, const float *f, double pitch, double t, struct relief
 	st->furrow_depth = total > 0 ? depth / (double)total : 0;
 }
 
-/* Mean gradient structure tensor and its eigen-decomposition. */
+/* Mean gradient structure tensor and its eigen-decomposition, and the
+ * developed area ratio from the same gradients. */
 static void tensor(int n, const float *h, double pitch, struct relief_stats *st)
 {
-	double jxx = 0, jyy = 0, jxy = 0;
+	double jxx = 0, jyy = 0, jxy = 0, dev = 0;
 	for (int r = 0; r < n; r++) {
 		for (int c = 0; c < n; c++) {
 			/* y is up, toward row 0. */
@@ -98,8 +99,10 @@ static void tensor(int n, const float *h, double pitch, struct relief_stats *st)
 			jxx += gx * gx;
 			jyy += gy * gy;
 			jxy += gx * gy;
+			dev += sqrt(1 + gx * gx + gy * gy) - 1;
 		}
 	}
+	st->sdr = dev / ((double)n * n);
 	double tr = jxx + jyy, disc = sqrt((jxx - jyy) * (jxx - jyy) + 4 * jxy * jxy);
 	double lmax = (tr + disc) / 2, lmin = (tr - disc) / 2;
 	st->anisotropy = lmax > 0 ? 1 - fmax(lmin, 0) / lmax : 0;
@@ -195,7 +198,8 @@ int relief_stats_compute(int n, const float *h, const float *furrow_map, const f
 }
 
 static const char *const keys[RELIEF_STATS_KEYS] = { "sa_um", "sz_um", "furrow_density_per_mm",
-	"furrow_depth_um", "anisotropy", "direction_deg", "pore_density_per_mm2", "pore_diameter_um" };
+	"furrow_depth_um", "anisotropy", "direction_deg", "pore_density_per_mm2", "pore_diameter_um",
+	"sdr_pct" };
 
 const char *relief_stats_key(int i)
 {
@@ -212,7 +216,8 @@ double relief_stats_value(const struct relief_stats *st, int i)
 	case 4: return st->anisotropy;
 	case 5: return st->direction * 180 / M_PI;
 	case 6: return st->pore_density / 100;
-	default: return st->pore_diameter * 1e4;
+	case 7: return st->pore_diameter * 1e4;
+	default: return st->sdr * 100;
 	}
 }
 

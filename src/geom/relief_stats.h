@@ -16,7 +16,10 @@
  *   (along which the height varies least), in [0, pi) from +x toward +y;
  * - pores: 4-connected regions (periodic) of the pore map deeper than the
  *   pore threshold; density per area and mean equivalent diameter
- *   2 sqrt(area / pi) at the threshold level.
+ *   2 sqrt(area / pi) at the threshold level;
+ * - Sdr: the developed area ratio (ISO 25178), mean of
+ *   sqrt(1 + |grad h|^2) - 1 over the pixels (the same central differences),
+ *   how much larger the true surface is than its projection.
  *
  * Maps are n x n, row 0 at the top (+y end), pixel pitch in cm. */
 #ifndef SKINBAKE_RELIEF_STATS_H
@@ -34,6 +37,7 @@ struct relief_stats {
 	int pores;	/* pore regions found */
 	double pore_density;	/* pores per area [1/cm^2] */
 	double pore_diameter;	/* mean equivalent diameter, 0 without pores [cm] */
+	double sdr;	/* developed area / projected area - 1 [1] */
 };
 
 struct relief_stats_spec {
@@ -58,7 +62,7 @@ int relief_stats_compute(int n, const float *h, const float *furrows, const floa
     const struct relief_stats_spec *spec, struct relief_stats *st, char **cause);
 /* The statistics in user units, in report order: key (with its unit) and
  * value. */
-enum { RELIEF_STATS_KEYS = 8 };
+enum { RELIEF_STATS_KEYS = 9 };
 const char *relief_stats_key(int i);
 double relief_stats_value(const struct relief_stats *st, int i);
 

@@ -30,6 +30,14 @@
  * - Lagarde JM, Rouvrais C, Black D.  Topography and anisotropy of the skin
  *   surface with ageing.  Skin Res Technol 2005;11:110-119: the furrow net
  *   of the forearm and temple is anisotropic, more so with age.
+ * - Skin relief and aging.  J Soc Cosmet Chem 1983;34(4): the developed
+ *   surface of the volar forearm is 8-30 % larger than its projection
+ *   (the forearm widths and depths are chosen to fall inside it).
+ * - Yuan Y, Verma R.  Colloids Surf B 2006;48:6-12: corneocytes 20-40 um
+ *   across and about 0.5 um thick (the plateau texture's scale; its RMS
+ *   0.3 um is an assumption of that order).
+ * Bend, fading, direction gains, the secondary stars and the pores on the
+ * face's junctions are assumptions (docs/relief.md).
  * Furrow cell sizes, widths and the plateau dome heights are assumptions
  * read off the appearance of the back of the hand (a net of triangles of a
  * fraction of a millimetre, Li & Ng figures 8-10). */
@@ -66,49 +74,62 @@ static const struct site sites[] = {
 		.pore_density = PER_MM2(2.0),
 		.pore_radius = UM(45), .pore_radius_sd = 0.35,	/* assumption (Otberg 2004 order) */
 		.pore_depth = UM(35), .pore_depth_sd = 0.3,	/* assumption */
-		.pore_aspect = 1.3, .pore_junction = 0.2, .pore_regularity = 0.5,
+		.pore_aspect = 1.3, .pore_junction = 1.0, .pore_regularity = 0.5,
 		.levels = 2,
 		.furrow_cell = MM(0.35), .furrow_width = UM(40),	/* assumption */
-		.furrow_depth = UM(20), .furrow_depth_sd = 0.35,	/* Hashimoto 1974: shallow end */
+		/* Hashimoto 1974: 20-100 um, the shallow part. */
+		.furrow_depth = UM(25), .furrow_depth_sd = 0.35,
 		.ridge_height = UM(4),
 		.level_scale = 0.45, .level_gain = 0.35,
-		.stretch = 1.15, .orientation = DEG(0), .furrow_regularity = 0.6 } },
+		.stretch = 1.15, .orientation = DEG(0), .furrow_regularity = 0.6,
+		.hierarchy = 1, .bend = 0.12, .furrow_fade = 0.5, .region_sd = 0.25,
+		.direction_gain = 1.3,
+		.plateau_roughness = UM(0.3), .plateau_scale = UM(30) } },
 	{ "cheek", "cheek with enlarged, visible pores (Flament 2015 style)", {
 		.tile = MM(8),
 		.pore_density = PER_MM2(0.8),	/* visible pores only; assumption */
 		.pore_radius = UM(110), .pore_radius_sd = 0.3,	/* ~ Flament 2015 250 um threshold */
 		.pore_depth = UM(60), .pore_depth_sd = 0.3,	/* assumption */
-		.pore_aspect = 1.4, .pore_junction = 0.0, .pore_regularity = 0.5,
+		.pore_aspect = 1.4, .pore_junction = 1.0, .pore_regularity = 0.5,
 		.levels = 2,
 		.furrow_cell = MM(0.35), .furrow_width = UM(40),
-		.furrow_depth = UM(18), .furrow_depth_sd = 0.35,
+		.furrow_depth = UM(25), .furrow_depth_sd = 0.35,	/* as face */
 		.ridge_height = UM(4),
 		.level_scale = 0.45, .level_gain = 0.35,
-		.stretch = 1.15, .orientation = DEG(0), .furrow_regularity = 0.6 } },
+		.stretch = 1.15, .orientation = DEG(0), .furrow_regularity = 0.6,
+		.hierarchy = 1, .bend = 0.12, .furrow_fade = 0.5, .region_sd = 0.25,
+		.direction_gain = 1.3,
+		.plateau_roughness = UM(0.3), .plateau_scale = UM(30) } },
 	{ "forehead", "forehead: dense small follicle openings (Blume 1991: 439 /cm^2)", {
 		.tile = MM(8),
 		.pore_density = PER_MM2(4.39),	/* Blume 1991 */
 		.pore_radius = UM(35), .pore_radius_sd = 0.3,	/* assumption */
 		.pore_depth = UM(25), .pore_depth_sd = 0.3,	/* assumption */
-		.pore_aspect = 1.2, .pore_junction = 0.2, .pore_regularity = 0.5,
+		.pore_aspect = 1.2, .pore_junction = 1.0, .pore_regularity = 0.5,
 		.levels = 2,
 		.furrow_cell = MM(0.4), .furrow_width = UM(40),
-		.furrow_depth = UM(20), .furrow_depth_sd = 0.35,
+		.furrow_depth = UM(25), .furrow_depth_sd = 0.35,	/* as face */
 		.ridge_height = UM(4),
 		.level_scale = 0.45, .level_gain = 0.35,
-		.stretch = 1.3, .orientation = DEG(0), .furrow_regularity = 0.6 } },
+		.stretch = 1.3, .orientation = DEG(0), .furrow_regularity = 0.6,
+		.hierarchy = 1, .bend = 0.12, .furrow_fade = 0.5, .region_sd = 0.25,
+		.direction_gain = 1.5,
+		.plateau_roughness = UM(0.3), .plateau_scale = UM(30) } },
 	{ "nose", "nose: large sebaceous pores, weak furrows (Pagnoni 1994 gradient)", {
 		.tile = MM(6),
 		.pore_density = PER_MM2(4.0),	/* assumption, above the forehead */
 		.pore_radius = UM(70), .pore_radius_sd = 0.35,	/* assumption */
 		.pore_depth = UM(60), .pore_depth_sd = 0.3,	/* assumption */
-		.pore_aspect = 1.2, .pore_junction = 0.0, .pore_regularity = 0.55,
+		.pore_aspect = 1.2, .pore_junction = 1.0, .pore_regularity = 0.55,
 		.levels = 1,
 		.furrow_cell = MM(0.5), .furrow_width = UM(30),
 		.furrow_depth = UM(8), .furrow_depth_sd = 0.3,
 		.ridge_height = UM(3),
 		.level_scale = 0.45, .level_gain = 0.35,
-		.stretch = 1.0, .orientation = DEG(0), .furrow_regularity = 0.6 } },
+		.stretch = 1.0, .orientation = DEG(0), .furrow_regularity = 0.6,
+		.hierarchy = 1, .bend = 0.12, .furrow_fade = 0.5, .region_sd = 0.25,
+		.direction_gain = 1,
+		.plateau_roughness = UM(0.3), .plateau_scale = UM(30) } },
 	{ "hand", "back of the hand: deep anisotropic triangular furrow net, sparse pores", {
 		.tile = MM(12),
 		.pore_density = PER_MM2(0.15),	/* assumption: sparse vellus follicles */
@@ -120,7 +141,10 @@ static const struct site sites[] = {
 		.furrow_depth = UM(60), .furrow_depth_sd = 0.35,	/* Hashimoto 1974: 20-100 um */
 		.ridge_height = UM(12),
 		.level_scale = 0.4, .level_gain = 0.3,	/* secondary 5-40 um */
-		.stretch = 1.8, .orientation = DEG(0), .furrow_regularity = 0.6 } },
+		.stretch = 1.8, .orientation = DEG(0), .furrow_regularity = 0.6,
+		.hierarchy = 1, .bend = 0.12, .furrow_fade = 0.5, .region_sd = 0.25,
+		.direction_gain = 2,
+		.plateau_roughness = UM(0.3), .plateau_scale = UM(30) } },
 	{ "forearm", "volar forearm: moderately anisotropic furrows, few small pores", {
 		.tile = MM(10),
 		.pore_density = PER_MM2(0.2),	/* assumption, Otberg 2004: low density */
@@ -128,11 +152,17 @@ static const struct site sites[] = {
 		.pore_depth = UM(15), .pore_depth_sd = 0.3,
 		.pore_aspect = 1.2, .pore_junction = 0.8, .pore_regularity = 0.5,
 		.levels = 3,
-		.furrow_cell = MM(0.45), .furrow_width = UM(45),
-		.furrow_depth = UM(35), .furrow_depth_sd = 0.3,
+		/* Width and depth (assumptions) chosen so that the developed area
+		 * is inside the 8-30 % of the 1983 forearm replicas: 15.5-18.3 %
+		 * over seeds 1-5 at 7.8 um pixels (docs/relief.md). */
+		.furrow_cell = MM(0.45), .furrow_width = UM(70),
+		.furrow_depth = UM(30), .furrow_depth_sd = 0.3,
 		.ridge_height = UM(8),
 		.level_scale = 0.4, .level_gain = 0.3,
-		.stretch = 1.4, .orientation = DEG(0), .furrow_regularity = 0.6 } },	/* Lagarde 2005 */
+		.stretch = 1.4, .orientation = DEG(0), .furrow_regularity = 0.6,
+		.hierarchy = 1, .bend = 0.12, .furrow_fade = 0.5, .region_sd = 0.25,
+		.direction_gain = 1.6,
+		.plateau_roughness = UM(0.3), .plateau_scale = UM(30) } },	/* Lagarde 2005 */
 	{ "back", "upper back: isotropic furrows, vellus pores (Blume 1991: 85 /cm^2)", {
 		.tile = MM(12),
 		.pore_density = PER_MM2(0.85),	/* Blume 1991 */
@@ -144,7 +174,10 @@ static const struct site sites[] = {
 		.furrow_depth = UM(30), .furrow_depth_sd = 0.3,
 		.ridge_height = UM(8),
 		.level_scale = 0.45, .level_gain = 0.3,
-		.stretch = 1.1, .orientation = DEG(0), .furrow_regularity = 0.6 } },
+		.stretch = 1.1, .orientation = DEG(0), .furrow_regularity = 0.6,
+		.hierarchy = 1, .bend = 0.12, .furrow_fade = 0.5, .region_sd = 0.25,
+		.direction_gain = 1.2,
+		.plateau_roughness = UM(0.3), .plateau_scale = UM(30) } },
 };
 
 #define F(field) offsetof(struct texture_config, field)
@@ -190,6 +223,21 @@ static const struct texture_param params[] = {
 	  "direction of elongation, from +x (right) toward +y (up)" },
 	{ "furrow-regularity", "1", 1, 0, 0.8, SITES_REAL, R(furrow_regularity),
 	  "Poisson-disk distance between junctions / mean spacing" },
+	{ "hierarchy", "1", 1, 0, 1, SITES_INT, R(hierarchy),
+	  "1: level 2 splits each primary triangle (secondary lines end on primary ones); "
+	  "0: own net" },
+	{ "bend", "1", 1, 0, 0.3, SITES_REAL, R(bend),
+	  "largest sideways bend of a furrow / its length" },
+	{ "region-sd", "1", 1, 0, 1, SITES_REAL, R(region_sd),
+	  "log-normal sigma of a smooth depth factor over the tile (regions of deeper lines)" },
+	{ "furrow-fade", "1", 1, 0, 1.5, SITES_REAL, R(furrow_fade),
+	  "fading along a furrow: depth exp(-f |z|) at its inner joints, full at the ends" },
+	{ "direction-gain", "1", 1, 1, 10, SITES_REAL, R(direction_gain),
+	  "depth of furrows along --orientation (or --direction-map) / across it" },
+	{ "plateau-roughness", "um", 1e-4, 0, 20, SITES_REAL, R(plateau_roughness),
+	  "RMS height of the fine texture on the plateaus" },
+	{ "plateau-scale", "um", 1e-4, 2, 5000, SITES_REAL, R(plateau_scale),
+	  "wavelength of the plateau texture" },
 };
 #undef F
 #undef R

@@ -18,6 +18,7 @@ struct texture_config {
 	uint64_t seed;	/* random seed [1] */
 	struct relief_params relief;	/* geometry [cm, rad] */
 	int with_stats;	/* 1: measure the map (relief_stats) into manifest.json "stats" */
+	const char *direction_map;	/* path of the direction map in relief.direction, or NULL */
 };
 
 enum sites_type { SITES_REAL, SITES_LONG, SITES_SEED, SITES_INT };

@@ -1,5 +1,7 @@
 /* texdir: write the maps of a skin-relief tile with their metadata, and
- * read back what exporters need (layout in texdir.h). */
+ * read back what exporters need (layout in texdir.h).
+ * Over 600 lines because the writer and the reader of one directory format
+ * are kept together, so that a change to one is seen next to the other. */
 #include "config.h"
 #include "geom/texdir.h"
 
@@ -15,6 +17,7 @@
 #include "base/outdir.h"
 #include "base/srgb.h"
 #include "base/util.h"
+#include "geom/relief_far.h"
 #include "io/exrio.h"
 #include "io/json.h"
 #include "io/pngio.h"
@@ -114,6 +117,9 @@ struct outputs {
 	char software[64];
 	char tile[32], seed[32], size[32];
 	const struct relief_stats *stats;	/* or NULL: no "stats" in the manifest */
+	int far_m;	/* roughness_far.png edge [px] */
+	float *far_alpha;	/* its alpha_relief values [1] */
+	double far_block_um;	/* its texel on the skin [um] */
 };
 
 static char *path_in(const struct outputs *o, const char *name)
@@ -261,6 +267,8 @@ static int write_manifest(const struct outputs *o, const struct relief *r, struc
 	json_object_object_add(m, "kind", json_object_new_string("skinbake texture"));
 	json_object_object_add(m, "skinbake_version", json_object_new_string(PACKAGE_VERSION));
 	json_object_object_add(m, "site", json_object_new_string(cfg->site));
+	const char *dmap = cfg->direction_map;
+	json_object_object_add(m, "direction_map", dmap ? json_object_new_string(dmap) : NULL);
 	json_object_object_add(m, "seed", json_object_new_uint64(cfg->seed));
 	json_object_object_add(m, "size_px", json_object_new_int64(cfg->size));
 	json_object_object_add(m, "tile_mm", json_num(tile_mm));
@@ -301,7 +309,7 @@ static int write_manifest(const struct outputs *o, const struct relief *r, struc
 		json_object *l = json_object_new_object();
 		json_object_object_add(l, "level", json_object_new_int(k + 1));
 		json_object_object_add(l, "junctions", json_object_new_int(li.points));
-		json_object_object_add(l, "furrows", json_object_new_int(3 * li.points));
+		json_object_object_add(l, "furrows", json_object_new_int(li.furrows));
 		json_object_object_add(l, "cell_mm", json_num(li.cell * 10));
 		json_object_object_add(l, "width_um", json_num(li.width * 1e4));
 		json_object_object_add(l, "depth_um", json_num(li.depth * 1e4));
@@ -318,8 +326,21 @@ static int write_manifest(const struct outputs *o, const struct relief *r, struc
 	if (o->stats)
 		json_object_object_add(m, "stats", relief_stats_json(o->stats));
 
+	json_object *far = json_object_new_object();
+	double amean = 0, amax = 0;
+	for (int i = 0; i < o->far_m * o->far_m; i++) {
+		amean += o->far_alpha[i] / ((double)o->far_m * o->far_m);
+		amax = fmax(amax, o->far_alpha[i]);
+	}
+	json_object_object_add(far, "file", json_object_new_string("roughness_far.png"));
+	json_object_object_add(far, "size_px", json_object_new_int(o->far_m));
+	json_object_object_add(far, "block_um", json_num(o->far_block_um));
+	json_object_object_add(far, "alpha_mean", json_num(amean));
+	json_object_object_add(far, "alpha_max", json_num(amax));
+	json_object_object_add(m, "far_roughness", far);
 	static const char *files[] = { "height.png", "normal.png", "normal.exr", "height.exr",
-		"preview.png", "pores_height.png", "furrows_height.png", "manifest.json" };
+		"preview.png", "pores_height.png", "furrows_height.png", "roughness_far.png",
+		"manifest.json" };
 	json_object *fl = json_object_new_array();
 	for (size_t i = 0; i < sizeof files / sizeof files[0]; i++)
 		json_object_array_add(fl, json_object_new_string(files[i]));
@@ -333,7 +354,7 @@ static int write_manifest(const struct outputs *o, const struct relief *r, struc
 }
 
 static const char *const texdir_names[] = { "height.png", "normal.png", "normal.exr", "height.exr", "preview.png",
-	"pores_height.png", "furrows_height.png", NULL };
+	"pores_height.png", "furrows_height.png", "roughness_far.png", NULL };
 const struct outdir_kind texdir_outdir_kind = { "texture directory", "manifest.json", "kind", "skinbake texture",
 	texdir_names };
 
@@ -349,6 +370,13 @@ static int write_files(const char *dir, const struct texture_config *cfg, const 
 	snprintf(o.tile, sizeof o.tile, "%.10g", cfg->relief.tile * 10);
 	snprintf(o.seed, sizeof o.seed, "%llu", (unsigned long long)cfg->seed);
 	snprintf(o.size, sizeof o.size, "%ld", cfg->size);
+	double pitch = cfg->relief.tile / (double)m->n;
+	double cell = cfg->relief.levels > 0 ? cfg->relief.furrow_cell : cfg->relief.tile;
+	o.far_m = relief_far_size(m->n, pitch, cell);
+	o.far_alpha = xmalloc(sizeof *o.far_alpha * (size_t)o.far_m * (size_t)o.far_m);
+	o.far_block_um = cfg->relief.tile / o.far_m * 1e4;
+	relief_far_alpha(m->n, m->nx, m->ny, m->nz, o.far_m, o.far_alpha);
+	char *far_path = path_in(&o, "roughness_far.png");
 	/* The writers are independent (own libpng / OpenEXR contexts), and
 	 * compression dominates, so they run in parallel; the manifest, which
 	 * lists them, comes last. */
@@ -364,7 +392,7 @@ static int write_files(const char *dir, const struct texture_config *cfg, const 
 		case 3: e = write_preview(&o, m->nx, m->ny, m->nz, &why[t]); break;
 		case 4: e = write_height_png(&o, "pores_height.png", "pores", m->pores, sp, &why[t]); break;
 		case 5: e = write_height_png(&o, "furrows_height.png", "furrows", m->furrows, sf, &why[t]); break;
-		default: break;
+		default: e = relief_far_write(far_path, o.far_m, o.far_alpha, o.far_block_um, cfg->site, o.software, &why[t]); break;
 		}
 		failed |= e != 0;
 	}
@@ -374,9 +402,10 @@ static int write_files(const char *dir, const struct texture_config *cfg, const 
 		else
 			free(why[t]);
 	}
-	if (failed)
-		return -1;
-	return write_manifest(&o, r, sh, sp, sf, cause);
+	free(far_path);
+	int rc = failed ? -1 : write_manifest(&o, r, sh, sp, sf, cause);
+	free(o.far_alpha);
+	return rc;
 }
 
 /* The steps in the order the command reports them; the output (and its
