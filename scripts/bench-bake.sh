@@ -39,65 +39,11 @@ else
 fi
 
 # Helpers: run a command and record wall and CPU seconds; read a bake's
-# manifest and tables (OpenEXR read here with the standard library only).
+# manifest and tables (scripts/bench_tables.py, tests/lib/images.py).
 cat > "$W/bb.py" <<'EOF'
-import json, math, resource, struct, subprocess, sys, time, zlib
-
-def read_exr(path):
-    """Scanline float32 OpenEXR (NONE, ZIPS or ZIP): {channel: rows}."""
-    b = open(path, 'rb').read()
-    assert b[:4] == b'\x76\x2f\x31\x01', path + ': not an OpenEXR file'
-    p, attrs = 8, {}
-    while b[p] != 0:
-        e = b.index(b'\0', p); name = b[p:e].decode(); p = e + 1
-        e = b.index(b'\0', p); typ = b[p:e].decode(); p = e + 1
-        (n,) = struct.unpack_from('<i', b, p); p += 4
-        attrs[name] = (typ, b[p:p + n]); p += n
-    p += 1
-    ch, q, v = [], 0, attrs['channels'][1]
-    while v[q] != 0:
-        e = v.index(b'\0', q)
-        ch.append((v[q:e].decode(), struct.unpack_from('<i', v, e + 1)[0]))
-        q = e + 17
-    x0, y0, x1, y1 = struct.unpack('<4i', attrs['dataWindow'][1])
-    w, h, comp = x1 - x0 + 1, y1 - y0 + 1, attrs['compression'][1][0]
-    lpc = {0: 1, 2: 1, 3: 16}[comp]
-    offs = struct.unpack_from('<%dQ' % ((h + lpc - 1) // lpc), b, p)
-    out = {c: [None] * h for c, _ in ch}
-    for o in offs:
-        y, n = struct.unpack_from('<ii', b, o)
-        d = b[o + 8:o + 8 + n]
-        lines = min(lpc, y1 + 1 - y)
-        if comp and n < lines * w * 4 * len(ch):
-            t = bytearray(zlib.decompress(d))
-            for i in range(1, len(t)):
-                t[i] = (t[i - 1] + t[i] - 128) & 0xff
-            half = (len(t) + 1) // 2
-            u = bytearray(len(t)); u[0::2] = t[:half]; u[1::2] = t[half:]
-            d = bytes(u)
-        q = 0
-        for r in range(lines):
-            for c, typ in ch:
-                assert typ == 2, 'float32 channels only'
-                out[c][y - y0 + r] = struct.unpack_from('<%df' % w, d, q); q += 4 * w
-    return out
-
-def manifest(d):
-    return json.load(open(d + '/manifest.json'))
-
-def table(d):
-    """Values, errors and solid-angle weights of every bin of every job."""
-    m, t = manifest(d), read_exr(d + '/brdf.exr')
-    edges = [math.radians(x) for x in m['theta_o_edges_deg']]
-    n_to = len(edges) - 1
-    f, e, w = [], [], []
-    for wl in m['wavelengths_nm']:
-        a, b = t['fr.%dnm' % wl], t['fr_err.%dnm' % wl]
-        for row in range(len(a)):
-            it = row % n_to
-            om = math.cos(edges[it]) - math.cos(edges[it + 1])
-            f += a[row]; e += b[row]; w += [om] * len(a[row])
-    return f, e, w
+import json, math, os, resource, subprocess, sys, time
+sys.path.insert(0, os.path.join(os.environ["top_srcdir"], "scripts"))
+from bench_tables import manifest, table  # one reader of bakes and OpenEXR (tests/lib/images.py)
 
 def rms(f, e, w):
     return math.sqrt(sum(wi * ((ei / fi) if fi > 0 else 1.0) ** 2 for fi, ei, wi in zip(f, e, w)) / sum(w))
@@ -130,7 +76,7 @@ elif cmd == 'sim':	# sim JSON: photons, seconds, Rd, Rd_err, RMS relative error 
     print(d['photons'], '%.3f' % d['seconds'], '%.6f' % d['Rd'], '%.4g' % d['Rd_err'], '%.4g' % r,
           '%.1f' % (d['scattering_events'] / d['photons']))
 EOF
-PY() { python3 "$W/bb.py" "$@"; }
+PY() { top_srcdir="$top_srcdir" python3 "$W/bb.py" "$@"; }
 calc() { awk "BEGIN { printf \"$1\n\", $2 }"; }
 # bake NAME ARGS...: run `skinbake bake --solver mc ARGS --out $W/NAME --quiet`
 # (this section measures the Monte Carlo bake; the default solver is

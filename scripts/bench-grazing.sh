@@ -1,7 +1,9 @@
 #!/bin/sh
 # The baked BRDF at every angle (issue 26): eval against adding-doubling
 # point values (tests/test_grazing, built by `make check`), verify's
-# false-alarm rate (tests/test_verify), and what the default table costs.
+# false-alarm rate (tests/test_verify), what the default table costs, POV-Ray
+# renders' silhouettes against adding-doubling (tests/pov_compare, as
+# tests/pov_silhouette.sh) and the node schedule's hard cases (simulate).
 # Prints a markdown section (make bench).
 set -eu
 B=${SKINBAKE:-./skinbake}
@@ -55,3 +57,60 @@ t0=$(now)
 "$B" export blender --bake "$T/b" --out "$T/bl" >/dev/null
 t1=$(now)
 echo "| \`skinbake export blender\` (of the last) | $(echo "$t1 - $t0" | bc -l | cut -c1-5) |"
+echo
+# Renders (tests/pov_silhouette.sh's measurement): the sphere scene from a default adding-doubling
+# bake of paper (9 x 9) rendered by POV-Ray, against adding-doubling point values of the bake's
+# own stacks at each pixel's angles, on the grazing ring; and the same with 4 incidence nodes.
+POVRAY=${POVRAY:-povray}
+TS=${top_srcdir:-.}
+echo "### Renders: silhouettes against adding-doubling"
+echo
+if command -v "$POVRAY" >/dev/null 2>&1 && [ -x "$TB/tests/pov_compare" ]; then
+	. "$TS/tests/lib/pov.sh"
+	echo "\`tests/pov_compare expect --ad\` on a POV-Ray render (128 x 128) of \`scenes/sphere.scene\`: the"
+	echo "mean relative error against adding-doubling point values of the bake's own stacks at each"
+	echo "pixel's angles (pixels with the exit angle shown), and against eval over the whole sphere."
+	echo
+	echo "| bake | exit >= 60 deg | >= 70 deg | >= 75 deg | whole sphere against eval |"
+	echo "|---|---|---|---|---|"
+	for nodes in "" "--theta-nodes 4"; do
+		# shellcheck disable=SC2086
+		"$B" bake --preset paper --resolution 9x9 --r-bins 20 --radial-photons 4000 $nodes --out "$T/s" \
+			--quiet >/dev/null
+		rm -rf "$T/sp"
+		"$B" export pov --out "$T/sp" --data-dir "$TS/exporters/pov" --scene "$TS/scenes/sphere.scene" \
+			--bake "$T/s" >/dev/null 2>&1
+		pov_render "$T/sp" sphere 128 128 >/dev/null
+		row="| \`skinbake bake --preset paper --resolution 9x9${nodes:+ $nodes}\` |"
+		for m in 60 70 75; do
+			r=$("$TB/tests/pov_compare" expect --scene "$TS/scenes/sphere.scene" --bake "$T/s" \
+				--render "$T/sp/r.png" --ad --min-theta-out $m --tol 1 | head -1 | awk '{ printf "%.2f %% (%d px)", 100 * $2, $6 }')
+			row="$row $r |"
+		done
+		r=$("$TB/tests/pov_compare" expect --scene "$TS/scenes/sphere.scene" --bake "$T/s" \
+			--render "$T/sp/r.png" --tol 1 | head -1 | awk '{ printf "%.2f %% (%d px)", 100 * $2, $6 }')
+		echo "$row $r |"
+	done
+else
+	echo "(POV-Ray or tests/pov_compare missing: run make check first)"
+fi
+echo
+# The node schedule: cases that needed more than 32 nodes per unit cosine (issue 26).
+echo "### Node schedule"
+echo
+echo "| \`skinbake simulate --solver ad --ad-tol 1e-3 --json\` | nodes per unit cosine | estimated table error | Rd | wall [s] |"
+echo "|---|---|---|---|---|"
+for L in "--layer d=0.1,n=1.4,mua=1,mus=100,g=0.99 --theta-in 0" \
+	"--layer d=0.0000099,n=1.4,mua=1,mus=100,g=0.8 --theta-in 0" \
+	"--layer d=0.0000099,n=1.4,mua=1,mus=100,g=0.8 --theta-in 34" \
+	"--layer d=0.0000099,n=1.4,mua=1,mus=100,g=0.8 --theta-in 80"; do
+	t0=$(now)
+	# shellcheck disable=SC2086
+	"$B" simulate $L --solver ad --ad-tol 1e-3 --json >"$T/ns.json"
+	t1=$(now)
+	python3 - "$T/ns.json" "$L" "$(echo "$t1 - $t0" | bc -l | cut -c1-5)" <<'PY'
+import json, sys
+d = json.load(open(sys.argv[1]))
+print("| `%s` | %d | %.2g | %.5f | %s |" % (sys.argv[2], d["n_quad"], d["rms_rel_err"], d["Rd"], sys.argv[3]))
+PY
+done

@@ -8,7 +8,8 @@
 #      that part is skipped.  The whole `simulate --solver ad` command against `ad`'s command.
 #   2. `bake --preset paper` and the 16-wavelength presets by adding-doubling, with the share of
 #      the Rd(r) Monte Carlo run (the same bake with --radial-photons 100 --radial-error 1).
-#   3. A small family (the two 17-point pilots and 4 members).
+#   3. A small family (the two 17-point pilots and 4 members); with BASE_SKINBAKE, it (and with
+#      BENCH_FAMILY86=1 the 8 x 6 family) against the older binary: Rd(r) shared by white Monte Carlo.
 #   4. With BASE_SKINBAKE (an older binary) and valgrind: instructions (callgrind, independent of
 #      the load) of the old and this binary on the same commands.
 # Prints one markdown section.  Builds tests/ad_bench when it is missing.
@@ -129,6 +130,23 @@ echo "### A small family"
 echo
 F="$SKINBAKE bake --preset fair-oily --vary epidermis.melanin=0.005:0.3:2 --vary dermis.blood=0.005:0.1:2 --threads 1 --quiet --out $W/f"
 echo "\`$(echo "$F" | sed "s|$W/f|FAM|")\` (4 members and the two 17-point pilots): $(REPS=1 cpu $F) s CPU."
+# The members' Rd(r) by white Monte Carlo shared per wavelength (family/family_radial.h) against
+# the older binary's one run per member, one after the other; the 8 x 6 family with BENCH_FAMILY86=1.
+if [ -n "${BASE_SKINBAKE:-}" ]; then
+	echo
+	echo "Rd(r) shared by the members (white Monte Carlo) against one run per member (\`$(basename "$BASE_SKINBAKE")\`,"
+	echo "$("$BASE_SKINBAKE" --version 2>/dev/null | head -1)), CPU seconds measured one after the other:"
+	echo
+	echo "| family | old | new | new / old |"
+	echo "|---|---|---|---|"
+	for grid in 2:2 ${BENCH_FAMILY86:+8:6}; do
+		G="bake --preset fair-oily --vary epidermis.melanin=0.005:0.3:${grid%:*} --vary dermis.blood=0.005:0.1:${grid#*:} --threads 1 --quiet"
+		rm -rf "$W/fo" "$W/fn"
+		o=$(REPS=1 cpu "$BASE_SKINBAKE" $G --out "$W/fo")
+		n=$(REPS=1 cpu "$SKINBAKE" $G --out "$W/fn")
+		echo "| \`skinbake $G --out FAM\` | $o | $n | $(awk -v a="$o" -v b="$n" 'BEGIN { printf "%.2f", b / a }') |"
+	done
+fi
 
 # ---- 4. instructions against an older binary ----
 if [ -n "${BASE_SKINBAKE:-}" ] && command -v valgrind >/dev/null 2>&1; then

@@ -1,48 +1,11 @@
-"""Helpers of scripts/bench-solvers.sh: run a command and time it, read a
-bake directory's manifest and tables (OpenEXR read with the standard library
-only: scanline float32, NONE, ZIPS or ZIP, what skinbake writes), compare
-two tables.  usage: python3 bench_tables.py COMMAND ARGS..."""
-import json, math, resource, struct, subprocess, sys, time, zlib
+"""Helpers of scripts/bench-solvers.sh and scripts/bench-bake.sh: run a
+command and time it, read a bake directory's manifest and tables (OpenEXR by
+tests/lib/images.py, the standard library only), compare two tables.
+usage: python3 bench_tables.py COMMAND ARGS..."""
+import json, math, os, resource, subprocess, sys, time
 
-
-def read_exr(path):
-    """{channel: rows} of a scanline float32 OpenEXR file."""
-    b = open(path, 'rb').read()
-    assert b[:4] == b'\x76\x2f\x31\x01', path + ': not an OpenEXR file'
-    p, attrs = 8, {}
-    while b[p] != 0:
-        e = b.index(b'\0', p); name = b[p:e].decode(); p = e + 1
-        e = b.index(b'\0', p); typ = b[p:e].decode(); p = e + 1
-        (n,) = struct.unpack_from('<i', b, p); p += 4
-        attrs[name] = (typ, b[p:p + n]); p += n
-    p += 1
-    ch, q, v = [], 0, attrs['channels'][1]
-    while v[q] != 0:
-        e = v.index(b'\0', q)
-        ch.append((v[q:e].decode(), struct.unpack_from('<i', v, e + 1)[0]))
-        q = e + 17
-    x0, y0, x1, y1 = struct.unpack('<4i', attrs['dataWindow'][1])
-    w, h, comp = x1 - x0 + 1, y1 - y0 + 1, attrs['compression'][1][0]
-    lpc = {0: 1, 2: 1, 3: 16}[comp]
-    offs = struct.unpack_from('<%dQ' % ((h + lpc - 1) // lpc), b, p)
-    out = {c: [None] * h for c, _ in ch}
-    for o in offs:
-        y, n = struct.unpack_from('<ii', b, o)
-        d = b[o + 8:o + 8 + n]
-        lines = min(lpc, y1 + 1 - y)
-        if comp and n < lines * w * 4 * len(ch):
-            t = bytearray(zlib.decompress(d))
-            for i in range(1, len(t)):
-                t[i] = (t[i - 1] + t[i] - 128) & 0xff
-            half = (len(t) + 1) // 2
-            u = bytearray(len(t)); u[0::2] = t[:half]; u[1::2] = t[half:]
-            d = bytes(u)
-        q = 0
-        for r in range(lines):
-            for c, typ in ch:
-                assert typ == 2, 'float32 channels only'
-                out[c][y - y0 + r] = struct.unpack_from('<%df' % w, d, q); q += 4 * w
-    return out
+sys.path.insert(0, os.path.join(os.path.dirname(os.path.abspath(__file__)), "..", "tests", "lib"))
+from images import read_exr  # noqa: E402
 
 
 def manifest(d):
@@ -102,4 +65,5 @@ def main():
         sys.exit('unknown command ' + cmd)
 
 
-main()
+if __name__ == "__main__":
+    main()

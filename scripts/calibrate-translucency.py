@@ -24,8 +24,13 @@ COLOURS = [0.01, 0.02, 0.04, 0.06, 0.09, 0.13, 0.18, 0.25, 0.33, 0.42, 0.52, 0.6
 EDGES = [0.0] + [round(0.005 * 1.5 ** k, 6) for k in range(22)]          # 0 .. 37.4 mm
 RENDERERS = {
     "pov": {"args": ["pov", "--samples", "800"], "far_samples": "200", "edges": EDGES, "id": "sss_pov"},
+    # Cycles' walk enters and leaves through a cosine-weighted (Lambertian) direction, so its far
+    # field is G(0) / pi at every angle; the C table takes it from G(0) (64 samples on a 32 px
+    # fisheye), not from the far renders (32 samples on 8 x 8 px, one seed for every angle, so the
+    # whole far table carried one noise draw: 1.4 % low at colour 0.18, which put +2.3 % red on a
+    # flat translucent box in Blender).
     "cycles": {"args": ["cycles", "--method", "random_walk", "--samples", "64"], "far_samples": "32",
-               "edges": [e for e in EDGES if e <= 20.0], "id": "sss_cycles"},
+               "edges": [e for e in EDGES if e <= 20.0], "id": "sss_cycles", "far_from_g0": True},
 }
 
 
@@ -85,7 +90,9 @@ def c_table(tables):
         lines.append(f"static const double {pre}_far_deg[{nf}] = {{ " + ", ".join(f"{a:.6g}" for a in t["far_angles_deg"]) + " };")
         lines.append(f"static const double {pre}_far[{3 * nc * nf * nf}] = {{")
         for ch in range(3):
-            for row in t["far_pi_f"][ch]:
+            for k, row in enumerate(t["far_pi_f"][ch]):
+                if spec.get("far_from_g0"):
+                    row = [t["g"][ch][k][0]] * len(row)
                 lines.append("\t" + ", ".join(f"{max(v, 0.0):.5e}" for v in row) + ",")
         lines.append("};")
         lines.append(f"const struct sss_table {pre}_table = {{ \"{t['renderer']}\", \"{t['version']}\", "

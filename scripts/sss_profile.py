@@ -96,8 +96,13 @@ light_source {{ <0, {ly}, 0> rgb 1 parallel point_at <0, {lt}, 0> }}
 box {{ <-{w}, -{d}, -{w}>, <{w}, 0, {w}>
   texture {{ pigment {{ rgb <{c[0]}, {c[1]}, {c[2]}> }}
     finish {{ diffuse 1 ambient 0 emission 0 specular 0 phong 0 subsurface {{ translucency <{t[0]}, {t[1]}, {t[2]}> }} }} }}
+  {local}
   interior {{ ior {ior} }} }}
 """
+# --local: the exporter's layering (export/pov/povsss.h): a Lambertian of albedo L over the
+# subsurface layer, which then shows with weight 0.999.
+POV_LOCAL = ("texture {{ pigment {{ average pigment_map {{ [1 rgb <{l[0]}, {l[1]}, {l[2]}>] [999 rgbt <0, 0, 0, 1>] }} }} "
+             "finish {{ diffuse 1e6 ambient 0 emission 0 specular 0 phong 0 }} }}")
 
 
 def read_ppm(path):
@@ -176,7 +181,8 @@ def pov_measure(a):
             occ = "" if r <= 0 else (f"disc {{ <0, {max(3 * a.height, 0.01)}, 0>, y, {r} no_image pigment {{ rgb 0 }} "
                                      "finish { diffuse 0 ambient 0 } }")
             src = POV_SCENE.format(samples=a.samples, h=a.height, occluder=occ, w=a.width, d=a.depth,
-                                   c=a.colour, t=t, ior=a.ior, ly=-1000 if a.back else 1000, lt=-a.depth if a.back else 0)
+                                   c=a.colour, t=t, ior=a.ior, ly=-1000 if a.back else 1000, lt=-a.depth if a.back else 0,
+                                   local=POV_LOCAL.format(l=a.local) if a.local else "")
             pov, ppm = os.path.join(tmp, "p.pov"), os.path.join(tmp, "p.ppm")
             with open(pov, "w") as f:
                 f.write(src)
@@ -238,6 +244,13 @@ def _cycles_material(a):
         if "IOR" in node.inputs:
             node.inputs["IOR"].default_value = a.ior
     node.inputs["Color"].default_value = (*a.colour, 1.0)
+    if a.local:                                 # the remainder's local part: a Lambertian beside it
+        dif = nt.nodes.new("ShaderNodeBsdfDiffuse")
+        dif.inputs["Color"].default_value = (*a.local, 1.0)
+        add = nt.nodes.new("ShaderNodeAddShader")
+        nt.links.new(node.outputs[0], add.inputs[0])
+        nt.links.new(dif.outputs[0], add.inputs[1])
+        node = add
     nt.links.new(node.outputs[0], out.inputs["Surface"])
     return mat
 
@@ -369,6 +382,8 @@ def parse(argv):
     p.add_argument("renderer", choices=["pov", "cycles"])
     p.add_argument("--colour", type=numbers, required=True, help="R,G,B: POV-Ray pigment / Cycles colour")
     p.add_argument("--radius", type=numbers, required=True, help="POV-Ray translucency / Cycles radius [mm]")
+    p.add_argument("--local", type=numbers, default=None, help="R,G,B: add a Lambertian of this albedo, the "
+                   "part of the power the fit leaves to the table at the entry point (sss_fit.h: local)")
     p.add_argument("--method", default="random_walk", help="Cycles falloff (random_walk, random_walk_fixed, "
                    "random_walk_skin, burley)")
     p.add_argument("--ior", type=float, default=1.4)
@@ -387,8 +402,8 @@ def parse(argv):
     p.add_argument("--json", help="write the result here (default stdout)")
     p.add_argument("--inner", action="store_true", help=argparse.SUPPRESS)
     a = p.parse_args(argv)
-    if len(a.colour) != 3 or len(a.radius) not in (1, 3):
-        p.error("--colour takes R,G,B and --radius one or three numbers")
+    if len(a.colour) != 3 or len(a.radius) not in (1, 3) or (a.local and len(a.local) != 3):
+        p.error("--colour and --local take R,G,B and --radius one or three numbers")
     if a.edges[0] != 0.0 or any(y <= x for x, y in zip(a.edges, a.edges[1:])):
         p.error("--edges must start at 0 and ascend")
     pov = a.renderer == "pov"

@@ -16,14 +16,13 @@
 
 imp="$top_srcdir/exporters/blender/import_skin.py"
 scn="$top_srcdir/tests/blender_scene.py"
-for tool in BLENDER POVRAY; do
-	eval "t=\$$tool"
-	if [ -z "$t" ] || ! command -v "$t" >/dev/null 2>&1; then
-		fail "$tool is missing ('$t'; the project's set-up installs it)"
-		tap_done
-		exit 1
-	fi
-done
+. "$top_srcdir/tests/lib/pov.sh"
+pov_require
+if [ -z "$BLENDER" ] || ! command -v "$BLENDER" >/dev/null 2>&1; then
+	fail "blender is missing (BLENDER='$BLENDER'; the project's set-up installs it)"
+	tap_done
+	exit 1
+fi
 B() { timeout 300 "$BLENDER" -b -noaudio --python-exit-code 1 "$@"; }
 val() { sed -n "s/^$1 //p" "$2" | tail -1; }
 
@@ -95,7 +94,7 @@ for s in A B; do
 	"$SKINBAKE" scene --scene "$tmpd/$s.scene" --out "$dir/scene.json" >"$dir/scene.log" 2>&1 &&
 		"$SKINBAKE" export pov --scene "$tmpd/$s.scene" --out "$dir/pov" --data-dir "$top_srcdir/exporters/pov" \
 			>"$dir/pov.log" 2>&1 &&
-		(cd "$dir/pov" && "$POVRAY" +I$s.pov +Or.png +W80 +H60 -D -A +FN16 File_Gamma=1.0 >render.log 2>&1)
+		pov_render "$dir/pov" $s 80 60 >/dev/null
 	check "$s: scene.json written, POV-Ray rendered the export" test -s "$dir/pov/r.png" -a -s "$dir/scene.json"
 	B --factory-startup --python "$scn" -- make-scene-json "$dir/scene.json" "$dir/balls.blend" >"$dir/make.log" 2>&1
 	B "$dir/balls.blend" --python "$imp" -- "$tmpd/set" --scene-json "$dir/scene.json" --render "$dir/b.exr" \

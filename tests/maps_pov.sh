@@ -13,11 +13,8 @@ B="$SKINBAKE"
 CMP="$top_builddir/tests/pov_compare"
 SC="$top_srcdir/scenes/sphere.scene"
 DATA="$top_srcdir/exporters/pov"
-if [ -z "$POVRAY" ] || ! command -v "$POVRAY" >/dev/null 2>&1; then
-	fail "povray is missing (POVRAY='$POVRAY'): the project's set-up installs it"
-	tap_done
-	exit 1
-fi
+. "$top_srcdir/tests/lib/pov.sh"
+pov_require
 fam="$tmpd/fam"
 check "family over dermis.blood" "$B" bake --preset fair-oily --wavelengths 400:700:50 --theta-nodes 4 \
 	--resolution 9x9 --r-bins 50 --vary dermis.blood=0.005,0.03,0.1 --out "$fam" --quiet
@@ -26,8 +23,7 @@ check "family over dermis.blood" "$B" bake --preset fair-oily --wavelengths 400:
 render() {
 	"$B" export pov --scene "$SC" --family "$fam" --maps "$2" --out "$tmpd/$1" --nodes 33 --data-dir "$DATA" \
 		>"$tmpd/$1.log" 2>&1 &&
-	(cd "$tmpd/$1" && "$POVRAY" +Isphere.pov +Or.png +W128 +H128 -D -A +FN16 File_Gamma=1.0 >pov.log 2>&1) &&
-	! grep -E "Error|Warning|Possible" "$tmpd/$1/pov.log" | grep -v "Stream to console" | grep -q .
+	pov_render "$tmpd/$1" sphere 128 128 >/dev/null
 }
 for m in 0:0.005 1:0.03 2:0.1; do
 	i=${m%%:*} v=${m#*:}
@@ -55,28 +51,13 @@ PY
 "$B" maps edit --maps "$tmpd/u0" --set dermis.blood=0.1 --mask "$tmpd/right.png" --out "$tmpd/painted-maps" --quiet 2>/dev/null
 if render painted "$tmpd/painted-maps"; then
 	check "painted blood: right half redder, each half its member's pixels" python3 - "$tmpd" <<'PY'
-import struct, sys, zlib
+import os, struct, sys, zlib
+sys.path.insert(0, os.path.join(os.environ["top_srcdir"], "tests", "lib"))
+from images import read_png
 def read(path):
-    d = open(path, 'rb').read(); i = 8; idat = b''
-    while i < len(d):
-        n = struct.unpack('>I', d[i:i + 4])[0]; t = d[i + 4:i + 8]
-        if t == b'IHDR': w, h, bd, ct = struct.unpack('>IIBB', d[i + 8:i + 18])
-        if t == b'IDAT': idat += d[i + 8:i + 8 + n]
-        i += 12 + n
-    assert bd == 16 and ct == 2
-    raw = zlib.decompress(idat); bpp = 6; st = w * bpp; prev = bytearray(st); px = []
-    for y in range(h):
-        f = raw[y * (st + 1)]; ln = bytearray(raw[y * (st + 1) + 1:(y + 1) * (st + 1)])
-        for x in range(st):
-            a = ln[x - bpp] if x >= bpp else 0; b = prev[x]; c = prev[x - bpp] if x >= bpp else 0
-            if f == 1: ln[x] = (ln[x] + a) & 255
-            elif f == 2: ln[x] = (ln[x] + b) & 255
-            elif f == 3: ln[x] = (ln[x] + (a + b) // 2) & 255
-            elif f == 4:
-                p = a + b - c; pa, pb, pc = abs(p - a), abs(p - b), abs(p - c)
-                ln[x] = (ln[x] + (a if pa <= pb and pa <= pc else b if pb <= pc else c)) & 255
-        px.append([struct.unpack('>3H', bytes(ln[x * 6:x * 6 + 6])) for x in range(w)]); prev = ln
-    return px
+    w, h, ch, bits, rows, _ = read_png(path)
+    assert bits == 16 and ch == 3
+    return rows
 d = sys.argv[1]
 p, lo, hi = read(d + '/painted/r.png'), read(d + '/r0/r.png'), read(d + '/r2/r.png')
 def region(img, x0, x1):	# lit pixels of the columns [x0, x1)

@@ -14,11 +14,8 @@ B="$SKINBAKE"
 CMP="$top_builddir/tests/pov_compare"
 SC="$top_srcdir/scenes/sphere.scene"
 DATA="$top_srcdir/exporters/pov"
-if [ -z "$POVRAY" ] || ! command -v "$POVRAY" >/dev/null 2>&1; then
-	fail "povray is missing (POVRAY='$POVRAY'): the project's set-up installs it"
-	tap_done
-	exit 1
-fi
+. "$top_srcdir/tests/lib/pov.sh"
+pov_require
 fam="$tmpd/fam"
 # Members: m0000 (melanin 0.01, blood 0.005), m0001 (0.1, 0.005),
 # m0002 (0.01, 0.1), m0003 (0.1, 0.1); melanin is axis 0.
@@ -30,8 +27,7 @@ check "2 x 2 family over epidermis.melanin and dermis.blood" "$B" bake --preset 
 render() {
 	"$B" export pov --scene "$SC" --family "$fam" --maps "$2" --out "$tmpd/$1" --nodes 33 --data-dir "$DATA" \
 		>"$tmpd/$1.log" 2>&1 &&
-	(cd "$tmpd/$1" && "$POVRAY" +Isphere.pov +Or.png +W128 +H128 -D -A +FN16 File_Gamma=1.0 >pov.log 2>&1) &&
-	! grep -E "Error|Warning|Possible" "$tmpd/$1/pov.log" | grep -v "Stream to console" | grep -q .
+	pov_render "$tmpd/$1" sphere 128 128 >/dev/null
 }
 for m in 0:0.01:0.005 1:0.1:0.005 2:0.01:0.1 3:0.1:0.1; do
 	i=${m%%:*} r=${m#*:} mel=${r%%:*} bl=${r#*:}
@@ -64,29 +60,12 @@ mel=$(python3 -c 'print(repr(0.01 * 10 ** 0.3))') bl=$(python3 -c 'print(repr(0.
 	--out "$tmpd/mid-maps" --quiet
 if render quad "$tmpd/quad-maps" && render mid "$tmpd/mid-maps"; then
 	check "each quadrant its member's pixels; between the nodes the bilinear blend" python3 - "$tmpd" <<'PY'
-import struct, sys, zlib
+import os, struct, sys, zlib
+sys.path.insert(0, os.path.join(os.environ["top_srcdir"], "tests", "lib"))
+from images import read_png
 def read(path):
-    d = open(path, 'rb').read(); i = 8; idat = b''
-    while i < len(d):
-        n = struct.unpack('>I', d[i:i + 4])[0]; t = d[i + 4:i + 8]
-        if t == b'IHDR': w, h, bd, ct = struct.unpack('>IIBB', d[i + 8:i + 18])
-        if t == b'IDAT': idat += d[i + 8:i + 8 + n]
-        i += 12 + n
-    bpp = {0: 2, 2: 6}[ct] if bd == 16 else {0: 1, 2: 3}[ct]
-    raw = zlib.decompress(idat); st = w * bpp; prev = bytearray(st); px = []
-    for y in range(h):
-        f = raw[y * (st + 1)]; ln = bytearray(raw[y * (st + 1) + 1:(y + 1) * (st + 1)])
-        for x in range(st):
-            a = ln[x - bpp] if x >= bpp else 0; b = prev[x]; c = prev[x - bpp] if x >= bpp else 0
-            if f == 1: ln[x] = (ln[x] + a) & 255
-            elif f == 2: ln[x] = (ln[x] + b) & 255
-            elif f == 3: ln[x] = (ln[x] + (a + b) // 2) & 255
-            elif f == 4:
-                p = a + b - c; pa, pb, pc = abs(p - a), abs(p - b), abs(p - c)
-                ln[x] = (ln[x] + (a if pa <= pb and pa <= pc else b if pb <= pc else c)) & 255
-        fmt = '>%dH' % (bpp // 2) if bd == 16 else '%dB' % bpp
-        px.append([struct.unpack(fmt, bytes(ln[x * bpp:(x + 1) * bpp])) for x in range(w)]); prev = ln
-    return px, bd
+    w, h, ch, bits, rows, _ = read_png(path)
+    return rows, bits
 d = sys.argv[1]
 r = [read(d + '/r%d/r.png' % i)[0] for i in range(4)]
 q, mid = read(d + '/quad/r.png')[0], read(d + '/mid/r.png')[0]

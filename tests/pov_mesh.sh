@@ -13,26 +13,8 @@ CMP="$top_builddir/tests/pov_compare"
 TD="$top_srcdir/tests/data/mesh"
 HUMAN=/usr/share/assimp/models/Collada/human.zae
 
-if [ -z "$POVRAY" ] || ! command -v "$POVRAY" >/dev/null 2>&1; then
-	fail "povray is missing (POVRAY='$POVRAY'): the project's set-up installs it (apt-get install povray), then re-run configure"
-	tap_done
-	exit 1
-fi
-
-# render DIR BASE W H [POV options]: DIR/BASE.pov -> DIR/r.png (16-bit
-# linear, no antialiasing); fails on a POV-Ray error or warning.
-render() {
-	r_d=$1 r_b=$2 r_w=$3 r_h=$4
-	shift 4
-	(cd "$r_d" && "$POVRAY" "+I$r_b.pov" +Or.png "+W$r_w" "+H$r_h" -D -A +FN16 File_Gamma=1.0 "$@" >pov.log 2>&1) || {
-		sed -n '/Parse Error/,+3p' "$r_d/pov.log" | head -5
-		return 1
-	}
-	if grep -E "Error|Warning|Possible" "$r_d/pov.log" | grep -v "Stream to console" | grep -q .; then
-		grep -E -A2 "Error|Warning|Possible" "$r_d/pov.log" | grep -v "Stream to console" | head -6
-		return 1
-	fi
-}
+. "$top_srcdir/tests/lib/pov.sh"
+pov_require
 
 # export OUT [options]: skinbake export pov, output in $tmpd/OUT
 export_pov() {
@@ -73,7 +55,7 @@ TX="$tmpd/tex"
 for f in square.obj square.ply square.gltf square.dae; do
 	n=$(echo "$f" | tr . -)
 	scene "$n" "shape = mesh" "file = $TD/$f" "translate = -0.5 -0.5 0"
-	if export_pov "$n" --scene "$tmpd/$n.scene" --bake "$B" && render "$tmpd/$n" "$n" 32 32; then
+	if export_pov "$n" --scene "$tmpd/$n.scene" --bake "$B" && pov_render "$tmpd/$n" "$n" 32 32; then
 		grep -q "uv_vectors { 4" "$tmpd/$n/${n}_mesh_thing.inc" && grep -q "normal_vectors { 4" "$tmpd/$n/${n}_mesh_thing.inc"
 		check "$f: mesh2 with normals and UVs, rendered" test $? -eq 0
 	else
@@ -92,7 +74,7 @@ scene grid "shape = mesh" "file = $TD/grid.obj"
 scene grid90 "shape = mesh" "file = $TD/grid-turned.obj"
 for n in patch patch90 grid grid90; do
 	export_pov "$n" --scene "$tmpd/$n.scene" --bake "$B" --textures "$TX" --bump-filter off &&
-		render "$tmpd/$n" "$n" 96 96 || fail "bump scene $n: $(cat "$tmpd/$n.stderr")"
+		pov_render "$tmpd/$n" "$n" 96 96 || fail "bump scene $n: $(cat "$tmpd/$n.stderr")"
 done
 r=$("$CMP" sum --render "$tmpd/grid/r.png" --parts "$tmpd/patch/r.png" --tol 0.005)
 check "bump-mapped grid mesh = bump-mapped patch: $r (<= 0.5 %)" test $? -eq 0
@@ -143,7 +125,7 @@ EOF
 	# No bump map here: relief finer than these 3.5 mm pixels is aliasing
 	# noise that the inset layers sample a hair apart (the grid tests bumps).
 	for n in human human-key human-fill humanp humanp-key humanp-fill; do
-		export_pov "$n" --scene "$tmpd/$n.scene" --bake "$B" && render "$tmpd/$n" "$n" 96 72 ||
+		export_pov "$n" --scene "$tmpd/$n.scene" --bake "$B" && pov_render "$tmpd/$n" "$n" 96 72 ||
 			fail "human scene $n: $(cat "$tmpd/$n.stderr")"
 	done
 	export_pov humant --scene "$tmpd/human.scene" --bake "$B" --textures "$TX"

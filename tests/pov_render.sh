@@ -10,26 +10,8 @@ SC="$top_srcdir/scenes"
 TD="$top_srcdir/tests/data/pov"
 DATA="$top_srcdir/exporters/pov"
 
-if [ -z "$POVRAY" ] || ! command -v "$POVRAY" >/dev/null 2>&1; then
-	fail "povray is missing (POVRAY='$POVRAY'): the project's set-up installs it (apt-get install povray), then re-run configure"
-	tap_done
-	exit 1
-fi
-
-# render DIR BASE W H [POV options]: DIR/BASE.pov -> DIR/r.png (16-bit
-# linear, no antialiasing); fails on a POV-Ray error or warning.
-render() {
-	r_d=$1 r_b=$2 r_w=$3 r_h=$4
-	shift 4
-	(cd "$r_d" && "$POVRAY" "+I$r_b.pov" +Or.png "+W$r_w" "+H$r_h" -D -A +FN16 File_Gamma=1.0 "$@" >pov.log 2>&1) || {
-		sed -n '/Parse Error/,+3p' "$r_d/pov.log" | head -5
-		return 1
-	}
-	if grep -E "Error|Warning|Possible" "$r_d/pov.log" | grep -v "Stream to console" | grep -q .; then
-		grep -E -A2 "Error|Warning|Possible" "$r_d/pov.log" | grep -v "Stream to console" | head -6
-		return 1
-	fi
-}
+. "$top_srcdir/tests/lib/pov.sh"
+pov_require
 
 # export OUT [options]: skinbake export pov, output in $tmpd/OUT
 export_pov() {
@@ -57,7 +39,7 @@ else
 fi
 
 # 1. Accuracy: one parallel light, orthographic camera (2-D table).
-if export_pov sphere --scene "$SC/sphere.scene" --bake "$B" && render "$tmpd/sphere" sphere 128 128; then
+if export_pov sphere --scene "$SC/sphere.scene" --bake "$B" && pov_render "$tmpd/sphere" sphere 128 128; then
 	r=$("$CMP" expect --scene "$SC/sphere.scene" --bake "$B" --render "$tmpd/sphere/r.png" --tol 0.005)
 	check "sphere: parallel light, orthographic: $r (<= 0.5 %)" test $? -eq 0
 else
@@ -65,7 +47,7 @@ else
 fi
 
 # 2. Point light and perspective camera (3-D table with the gamma axis).
-if export_pov point --scene "$TD/point.scene" --bake "$B" && render "$tmpd/point" point 96 96; then
+if export_pov point --scene "$TD/point.scene" --bake "$B" && pov_render "$tmpd/point" point 96 96; then
 	grep -q "light-view angles" "$tmpd/point.stderr"
 	check "point light + perspective uses the light-view angle axis" test $? -eq 0
 	r=$("$CMP" expect --scene "$TD/point.scene" --bake "$B" --render "$tmpd/point/r.png" --tol 0.01)
@@ -81,10 +63,10 @@ fi
 #    The background is in the key-only render alone.
 sed '/^\[light fill\]/,/^$/d' "$SC/two-lights.scene" >"$tmpd/key-only.scene"
 sed '/^\[light key\]/,/^$/d; s/^background.*/background = 0 0 0/' "$SC/two-lights.scene" >"$tmpd/fill-only.scene"
-if export_pov two --scene "$SC/two-lights.scene" --bake "$B" && render "$tmpd/two" two-lights 128 128 &&
-	export_pov k1 --scene "$tmpd/key-only.scene" --bake "$B" && render "$tmpd/k1" key-only 128 128 &&
-	export_pov k2 --scene "$tmpd/fill-only.scene" --bake "$B" && render "$tmpd/k2" fill-only 128 128 &&
-	export_pov twop --scene "$SC/two-lights.scene" --bake "$B" --lights passes && render "$tmpd/twop" two-lights 128 128; then
+if export_pov two --scene "$SC/two-lights.scene" --bake "$B" && pov_render "$tmpd/two" two-lights 128 128 &&
+	export_pov k1 --scene "$tmpd/key-only.scene" --bake "$B" && pov_render "$tmpd/k1" key-only 128 128 &&
+	export_pov k2 --scene "$tmpd/fill-only.scene" --bake "$B" && pov_render "$tmpd/k2" fill-only 128 128 &&
+	export_pov twop --scene "$SC/two-lights.scene" --bake "$B" --lights passes && pov_render "$tmpd/twop" two-lights 128 128; then
 	grep -q "mixture table would be 0.00 % off.*so mixture" "$tmpd/two.stderr"
 	check "two parallel lights, orthographic camera: auto estimates the mixture exact and picks it" test $? -eq 0
 	r=$("$CMP" sum --render "$tmpd/two/r.png" --parts "$tmpd/k1/r.png" "$tmpd/k2/r.png" --tol 0.01)
@@ -101,7 +83,7 @@ fi
 # 3b. Passes where the skin cannot be layered (the hand): animation frames
 #     to .hdr summed by POV-Ray; BASE.sh does both steps.
 if export_pov frames --scene "$TD/frames.scene" --bake "$B" --lights passes &&
-	render "$tmpd/frames" frames 64 64 +KFI1 +KFF2 &&
+	pov_render "$tmpd/frames" frames 64 64 +KFI1 +KFF2 &&
 	(cd "$tmpd/frames" && sh frames.sh +W64 +H64 -A >sh.log 2>&1 &&
 		"$POVRAY" frames_combine.ini +W64 +H64 +FN16 File_Gamma=1.0 +Oc.png >c.log 2>&1); then
 	check "frames: frames.sh writes frames.png" test -s "$tmpd/frames/frames.png"
@@ -113,7 +95,7 @@ fi
 
 # 4. Shadows: an occluder darkens exactly the pixels the C-side shadow rays
 #    say (pov_compare fails on a lit pixel that should be dark and counts them).
-if export_pov shadow --scene "$TD/shadow.scene" --bake "$B" && render "$tmpd/shadow" shadow 96 96; then
+if export_pov shadow --scene "$TD/shadow.scene" --bake "$B" && pov_render "$tmpd/shadow" shadow 96 96; then
 	r=$("$CMP" expect --scene "$TD/shadow.scene" --bake "$B" --render "$tmpd/shadow/r.png" --tol 0.005)
 	rc=$?
 	n=$(echo "$r" | sed -n 's/.*shadowed \([0-9]*\).*/\1/p')
@@ -124,8 +106,8 @@ fi
 
 # 5. Bump maps change the shading; the tiled patch shows no seam at the
 #    tile boundary (x = 0: column 48 of 96); a non-tileable map does.
-if export_pov bump --scene "$TD/bump.scene" --bake "$B" --textures "$TX" && render "$tmpd/bump" bump 96 96 &&
-	export_pov flat --scene "$TD/bump.scene" --bake "$B" && render "$tmpd/flat" bump 96 96; then
+if export_pov bump --scene "$TD/bump.scene" --bake "$B" --textures "$TX" && pov_render "$tmpd/bump" bump 96 96 &&
+	export_pov flat --scene "$TD/bump.scene" --bake "$B" && pov_render "$tmpd/flat" bump 96 96; then
 	grep -q "bump_map { png" "$tmpd/bump/bump.inc"
 	check "bump map declared as 16-bit png bump_map" test $? -eq 0
 	r=$("$CMP" differ --render "$tmpd/bump/r.png" --other "$tmpd/flat/r.png" --min 0.02)
@@ -133,7 +115,7 @@ if export_pov bump --scene "$TD/bump.scene" --bake "$B" --textures "$TX" && rend
 	r=$("$CMP" seam --render "$tmpd/bump/r.png" --column 48 --max 2)
 	check "tiled patch, no seam at the tile boundary: $r" test $? -eq 0
 	"$CMP" mkheight --out "$tmpd/ramp" --kind ramp
-	if export_pov rampo --scene "$TD/bump.scene" --bake "$B" --textures "$tmpd/ramp" && render "$tmpd/rampo" bump 96 96; then
+	if export_pov rampo --scene "$TD/bump.scene" --bake "$B" --textures "$tmpd/ramp" && pov_render "$tmpd/rampo" bump 96 96; then
 		r=$("$CMP" seam --render "$tmpd/rampo/r.png" --column 48 --max 2)
 		check "negative control: a non-tileable map shows a seam: $r" test $? -ne 0
 	else
@@ -147,14 +129,14 @@ fi
 #    no antialiasing); passes also through their .ini files.
 for f in "$SC"/*.scene; do
 	n=$(basename "$f" .scene)
-	if export_pov "s-$n" --scene "$f" --bake "$B" --textures "$TX" && render "$tmpd/s-$n" "$n" 64 48; then
+	if export_pov "s-$n" --scene "$f" --bake "$B" --textures "$TX" && pov_render "$tmpd/s-$n" "$n" 64 48; then
 		ok "scene $n renders without error or warning"
 	else
 		fail "scene $n: $(cat "$tmpd/s-$n.stderr")"
 	fi
 done
 if export_pov s-sep --scene "$SC/two-lights.scene" --bake "$B" --lights separable &&
-	render "$tmpd/s-sep" two-lights 64 48; then
+	pov_render "$tmpd/s-sep" two-lights 64 48; then
 	ok "separable scene renders"
 else
 	fail "separable scene: $(cat "$tmpd/s-sep.stderr")"
@@ -190,7 +172,7 @@ camera { perspective location <0,0,-3> look_at 0 angle 40 right x up y }
 light_source { SKIN_Light_key }
 sphere { 0, 1 texture { pigment { SKIN_skin_Pigment } finish { SKIN_skin_Finish } } }
 POV
-	check "include-only export, included twice" render "$tmpd/inc" use 32 32
+	check "include-only export, included twice" pov_render "$tmpd/inc" use 32 32
 else
 	fail "include-only export: $(cat "$tmpd/inc.stderr")"
 fi

@@ -13,11 +13,8 @@
 . "$top_srcdir/tests/tap.sh"
 CMP="$top_builddir/tests/pov_compare"
 SC="$top_srcdir/scenes"
-if [ -z "$POVRAY" ] || ! command -v "$POVRAY" >/dev/null 2>&1; then
-	fail "povray is missing (POVRAY='$POVRAY'): the project's set-up installs it (apt-get install povray), then re-run configure"
-	tap_done
-	exit 1
-fi
+. "$top_srcdir/tests/lib/pov.sh"
+pov_require
 B="$tmpd/bake"
 check "default adding-doubling bake of paper (9 x 9)" "$SKINBAKE" bake --preset paper --out "$B" --resolution 9x9 \
 	--r-bins 20 --radial-photons 4000 --quiet
@@ -25,8 +22,7 @@ check "the bake holds point values" python3 -c "
 import json; m=json.load(open('$B/manifest.json')); assert m['table']['values']==['points']*3"
 check "export pov (sphere)" "$SKINBAKE" export pov --out "$tmpd/sphere" --data-dir "$top_srcdir/exporters/pov" \
 	--scene "$SC/sphere.scene" --bake "$B"
-(cd "$tmpd/sphere" && "$POVRAY" +Isphere.pov +Or.png +W128 +H128 -D -A +FN16 File_Gamma=1.0 >pov.log 2>&1)
-check "POV-Ray renders the sphere" test -s "$tmpd/sphere/r.png"
+check "POV-Ray renders the sphere" pov_render "$tmpd/sphere" sphere 128 128
 r=$("$CMP" expect --scene "$SC/sphere.scene" --bake "$B" --render "$tmpd/sphere/r.png" --ad --min-theta-out 70 \
 	--tol 0.005)
 rc=$?

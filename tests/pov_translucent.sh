@@ -142,11 +142,20 @@ w = m["rgb"]["rgb_from_wl"]
 sim = [sum(w[c][k] * tt[k] for k in range(len(tt))) for c in range(3)]
 ren = json.load(open(prof))["g"][0]
 ratio = [r / s if s > 1e-4 else 1.0 for r, s in zip(ren, sim)]
-print(" ".join("%.4g/%.4g" % (r, s) for r, s in zip(ren, sim)), int(all(abs(x - 1) <= 0.2 for x in ratio)))
+# The bake's own reflected power beyond r = d: POV-Ray's dipole lights the exit point from the
+# back face at distances >= d with the half-space profile, so a closure fitted to the reflection
+# transmits about that (measured: 1.3-1.4 times it).
+dr, rd = m["radial"]["dr_cm"] * 10, m["radial"]["rd_r"]
+tail = [sum(sum(w[c][j] * rd[j][k] for j in range(len(rd))) * 0.01 * 3.141592653589793 *
+            (((k + 1) * dr) ** 2 - max(k * dr, d_mm) ** 2) for k in range(len(rd[0])) if (k + 1) * dr > d_mm)
+        for c in range(3)]
+print(" ".join("%.4g/%.4g" % (r, s) for r, s in zip(ren, sim)), "; the bake's reflected power beyond d:",
+      " ".join("%.3g" % x for x in tail), int(all(abs(x - 1) <= 0.2 for x in ratio)))
 PY
 )
 	echo "# back light $d mm: rendered/simulated Tt per R, G, B (below 1e-4 not compared): ${r% *}"
-	todo "back light through $d mm within 20 % of simulated Tt" "POV-Ray's dipole is for a half space" \
+	todo "back light through $d mm within 20 % of simulated Tt" \
+		"POV-Ray's dipole transmits about the reflection profile's tail beyond d, which is below Tt" \
 		test "${r##* }" = 1
 done
 

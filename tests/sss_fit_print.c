@@ -40,6 +40,7 @@ int main(int argc, char **argv)
 	printf("{\"renderer\": \"%s\", \"version\": \"%s\", \"r_max_mm\": %.8g, ", t->renderer, t->version, f.r_max_mm);
 	arr("colour", f.colour, 0);
 	arr("length_mm", f.length_mm, 0);
+	arr("local", f.local, 0);
 	arr("integral_bake", f.integral_bake, 0);
 	arr("integral_fit", f.integral_fit, 0);
 	arr("mean_bake_mm", f.mean_bake_mm, 0);

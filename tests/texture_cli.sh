@@ -100,35 +100,13 @@ check "missing --out is a usage error" test $? -eq 2
 # Pixel-level checks of the written files (need only python3's zlib).
 if command -v python3 >/dev/null 2>&1; then
 	python3 - "$tmpd/hand" "$tmpd/face" >"$tmpd/py" 2>&1 <<'EOF'
-import struct, sys, zlib, math
+import math, os, sys
+sys.path.insert(0, os.path.join(os.environ["top_srcdir"], "tests", "lib"))
+import images
 
 def read_png(path):
-    data = open(path, 'rb').read()
-    pos, idat, text = 8, b'', {}
-    while pos < len(data):
-        n, = struct.unpack('>I', data[pos:pos + 4]); kind = data[pos + 4:pos + 8]
-        body = data[pos + 8:pos + 8 + n]; pos += 12 + n
-        if kind == b'IHDR':
-            w, h, bits, ctype = struct.unpack('>IIBB', body[:10])
-        elif kind == b'IDAT':
-            idat += body
-        elif kind == b'tEXt':
-            k, v = body.split(b'\0', 1); text[k.decode()] = v.decode('latin-1')
-    ch = {0: 1, 2: 3, 6: 4}[ctype]; bpp = ch * bits // 8; stride = w * bpp
-    raw = zlib.decompress(idat); out = bytearray(); prev = bytearray(stride)
-    for r in range(h):
-        f = raw[r * (stride + 1)]; line = bytearray(raw[r * (stride + 1) + 1:(r + 1) * (stride + 1)])
-        for i in range(stride):
-            a = line[i - bpp] if i >= bpp else 0; b = prev[i]; c = prev[i - bpp] if i >= bpp else 0
-            if f == 1: line[i] = (line[i] + a) & 255
-            elif f == 2: line[i] = (line[i] + b) & 255
-            elif f == 3: line[i] = (line[i] + (a + b) // 2) & 255
-            elif f == 4:
-                p = a + b - c; pa, pb, pc = abs(p - a), abs(p - b), abs(p - c)
-                line[i] = (line[i] + (a if pa <= pb and pa <= pc else b if pb <= pc else c)) & 255
-        out += line; prev = line
-    vals = struct.unpack('>%dH' % (w * h * ch), bytes(out)) if bits == 16 else tuple(out)
-    return w, h, ch, vals, text
+    w, h, ch, bits, rows, text = images.read_png(path)
+    return w, h, ch, tuple(v for row in rows for px in row for v in px), text
 
 bad = 0
 for d in sys.argv[1:]:

@@ -138,6 +138,31 @@ static int radial_run(const struct bake_spec *s, const struct solver_problem *p,
 	return 0;
 }
 
+/* Copy the given profiles (bake_spec.radial_given) among the n wavelengths
+ * w[]; returns how many are left, compacted in w[]. */
+static int take_given(const struct bake_spec *s, struct bake_result *r, int *w, int n)
+{
+	const struct bake_radial_given *g = s->radial_given;
+	if (g == NULL)
+		return n;
+	int left = 0;
+	for (int i = 0; i < n; i++) {
+		struct brdf_entry *e = &r->table.entry[w[i] * s->n_ti];
+		if (g->rd_r[w[i]] == NULL) {
+			w[left++] = w[i];
+			continue;
+		}
+		memcpy(e->rd_r, g->rd_r[w[i]], sizeof(double) * (size_t)s->n_r);
+		memcpy(e->rd_r_err, g->rd_r_err[w[i]], sizeof(double) * (size_t)s->n_r);
+		r->radial_shared = g->n_shared;
+	}
+	if (r->radial_shared) {
+		r->radial_photons += g->photons;
+		r->radial_seconds += g->seconds;
+	}
+	return left;
+}
+
 /* Rd(r) for the wavelengths whose method gave none: a pilot, then the
  * wavelengths whose mean radius is not yet within radial_error (bake.h). */
 static int radial_mc(const struct bake_spec *s, const struct solver_problem *p, const struct solver_run *run,
@@ -145,6 +170,9 @@ static int radial_mc(const struct bake_spec *s, const struct solver_problem *p, 
 {
 	int w[BAKE_MAX_WL], n = pick(s, &r->table, no_radial, w);
 	if (n == 0 || s->n_r <= 0)
+		return 0;
+	n = take_given(s, r, w, n);
+	if (n == 0)
 		return 0;
 	double target = s->radial_error > 0.0 ? s->radial_error : BAKE_RADIAL_ERROR;
 	long cap = s->radial_photons > 0 ? s->radial_photons : BAKE_RADIAL_PHOTONS;

@@ -62,6 +62,16 @@ const struct bake_method_info *bake_method_named(const char *name);
 /* The names joined by '|', as OPT_ENUM choices ("auto|ad|mc"). */
 const char *bake_method_choices(void);
 
+/* Rd(r) made outside bake_run for some wavelengths (a family's members
+ * share one white Monte Carlo run per wavelength, family/family_radial.h). */
+struct bake_radial_given {
+	const double *rd_r[BAKE_MAX_WL];	/* [n_r] Rd(r) [1/cm^2] per wavelength; NULL: bake_run runs it */
+	const double *rd_r_err[BAKE_MAX_WL];	/* [n_r] its standard error [1/cm^2] */
+	long photons;				/* photons of the shared runs behind them */
+	double seconds;				/* their wall time [s] */
+	int n_shared;				/* members sharing the runs */
+};
+
 struct bake_spec {
 	int n_wl;				/* wavelengths, 1..BAKE_MAX_WL */
 	double wl_nm[BAKE_MAX_WL];		/* [nm] */
@@ -83,6 +93,7 @@ struct bake_spec {
 					 * the Rd(r) run of an adding-doubling table aims at;
 					 * 0 = BAKE_RADIAL_ERROR */
 	long radial_photons;			/* its photons per wavelength at most; 0 = BAKE_RADIAL_PHOTONS */
+	const struct bake_radial_given *radial_given;	/* Rd(r) already made (NULL: none) */
 	/* Monte Carlo. */
 	uint64_t seed;
 	long batch_photons;			/* photons per batch; 0 = sized from the target (mc.h) */
@@ -121,6 +132,8 @@ struct bake_result {
 	double *mean_radius_err_cm;	/* [n_wl] its standard error [cm] (tally_mean_radius_err) */
 	long radial_photons;		/* photons of the separate Rd(r) run (0 when the table's method gave it) */
 	double radial_seconds;		/* its wall time [s] */
+	int radial_shared;		/* > 0: Rd(r) came from white Monte Carlo runs shared by this many
+					 * family members (radial_photons, radial_seconds are those runs') */
 };
 
 /* Run the bake: 0, or -1 and *cause (caller frees) when the solver refuses

@@ -164,9 +164,16 @@ static json_object *radial_info(const struct bake_spec *s, const struct bake_res
 	add(rad, "rd_r_err", prof_e);
 	add(rad, "mean_radius_cm", jarr(r->mean_radius_cm, s->n_wl));
 	add(rad, "mean_radius_err_cm", jarr(r->mean_radius_err_cm, s->n_wl));
-	add(rad, "method", jstr(r->radial_photons > 0 ? "Monte Carlo at theta_i_deg, exit bins by escapes, apart from the "
-	    "table (its method gives no Rd(r)): a pilot of 2000 photons per wavelength, then more where the mean radius's "
-	    "relative error is above target_rel_err" : "Monte Carlo, the table's jobs at theta_i_deg"));
+	if (r->radial_shared > 0)
+		add(rad, "method", jstr("white Monte Carlo at theta_i_deg, exit bins by escapes, apart from the table: one run per "
+		    "wavelength shared by the family's members (they differ only in absorption; each escape counts for a member "
+		    "with its weight times exp(-sum over layers of the member's extra mu_a times the path length there)), sized "
+		    "so that every member's mean radius reaches target_rel_err (a member it cannot reach within the photon cap "
+		    "runs its own); photons are the shared runs'"));
+	else
+		add(rad, "method", jstr(r->radial_photons > 0 ? "Monte Carlo at theta_i_deg, exit bins by escapes, apart from "
+		    "the table (its method gives no Rd(r)): a pilot of 2000 photons per wavelength, then more where the mean "
+		    "radius's relative error is above target_rel_err" : "Monte Carlo, the table's jobs at theta_i_deg"));
 	add(rad, "photons", json_object_new_int64(r->radial_photons > 0 ? r->radial_photons : r->table.entry[0].photons));
 	if (r->radial_photons > 0)
 		add(rad, "target_rel_err", json_num(s->radial_error > 0.0 ? s->radial_error : BAKE_RADIAL_ERROR));

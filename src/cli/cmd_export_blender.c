@@ -55,7 +55,7 @@ static int run_family(const char *fam_dir, const char *maps_dir, const char *tex
     const struct blender_options *o)
 {
 	char *cause = NULL;
-	struct family *f = family_load(fam_dir, &cause);
+	struct brdf_family *f = brdf_family_open(fam_dir, &cause);
 	struct mapset *m = f ? mapset_read(maps_dir, &cause) : NULL;
 	int rc = CLI_EXIT_OK, e;
 	if (f == NULL || m == NULL)
@@ -64,7 +64,7 @@ static int run_family(const char *fam_dir, const char *maps_dir, const char *tex
 		rc = e == -1 ? cli_usage_error(CMD, "%s", cause) : cli_fail(CMD, "%s", cause);
 	free(cause);
 	mapset_free(m);
-	family_free(f);
+	brdf_family_free(f);
 	return rc;
 }
 

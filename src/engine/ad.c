@@ -310,8 +310,9 @@ double ad_brdf(const struct ad_result *r, int k, double theta_o, double dphi, do
 }
 
 /* |f_hi - f_lo| at exit theta_o, the largest within a quarter node spacing
- * around (as ad_brdf), per dphi node, added to err[]. */
-static void points_quad_err(const struct ad_result *r, int k, double theta_o, const double *phi, int n_phi,
+ * around (as ad_brdf), per dphi node, added to err[]; cosm[ip * M + m] =
+ * cos(m phi[ip]). */
+static void points_quad_err(const struct ad_result *r, int k, double theta_o, const double *cosm, int n_phi,
     double *c_hi, double *c_lo, int M, double *err)
 {
 	double h = 0.25 * M_PI / r->n_quad;
@@ -323,7 +324,7 @@ static void points_quad_err(const struct ad_result *r, int k, double theta_o, co
 		for (int ip = 0; ip < n_phi; ip++) {
 			double v = 0.0;
 			for (int m = 0; m < mh || m < ml; m++)
-				v += ((m < mh ? c_hi[m] : 0.0) - (m < ml ? c_lo[m] : 0.0)) * cos(m * phi[ip]);
+				v += ((m < mh ? c_hi[m] : 0.0) - (m < ml ? c_lo[m] : 0.0)) * cosm[(size_t)ip * M + m];
 			d[ip] = fmax(d[ip], fabs(v));
 		}
 	}
@@ -344,13 +345,19 @@ void ad_brdf_points(const struct ad_result *r, int k, const double *theta_o, int
 	int mk = ad_err_kept_orders(hi);
 	double tf = ad_err_tail_factor(hi);
 	double *c = xcalloc((size_t)2 * M, sizeof(double)), *c2 = c + M;
+	/* cos(m phi) once per call, not per exit angle and error probe (a
+	 * profiled hot spot of family bakes). */
+	double *cosm = xmalloc(sizeof(double) * (size_t)n_phi * (size_t)M);
+	for (int ip = 0; ip < n_phi; ip++)
+		for (int m = 0; m < M; m++)
+			cosm[(size_t)ip * M + m] = cos(m * phi[ip]);
 	for (int it = 0; it < n_to; it++) {
 		double *fo = f + (size_t)it * n_phi, *eo = err + (size_t)it * n_phi;
 		int mh = ad_series_fourier(hi, k, theta_o[it], c, M);
 		for (int ip = 0; ip < n_phi; ip++) {
 			double v = 0.0, tail = 0.0;
 			for (int m = 0; m < mh; m++) {
-				double x = c[m] * cos(m * phi[ip]);
+				double x = c[m] * cosm[(size_t)ip * M + m];
 				v += x;
 				if (m >= mk)
 					tail += x;
@@ -361,8 +368,9 @@ void ad_brdf_points(const struct ad_result *r, int k, const double *theta_o, int
 		/* At grazing exit the BRDF is 0 in every solve (no transmittance),
 		 * not by coincidence: exact. */
 		if (r->series_lo && theta_o[it] < 0.5 * M_PI)
-			points_quad_err(r, k, theta_o[it], phi, n_phi, c, c2, M, eo);
+			points_quad_err(r, k, theta_o[it], cosm, n_phi, c, c2, M, eo);
 	}
+	free(cosm);
 	free(c);
 }
 

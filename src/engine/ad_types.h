@@ -15,14 +15,17 @@ struct ad_value {
 /* Results for one incidence angle. */
 struct ad_beam {
 	double theta_i;			/* [rad] */
-	double rsp;			/* specular reflectance of the smooth top and clear layers on it (exact) */
+	double rsp;			/* specular reflectance of the smooth top and clear
+					 * layers on it (exact) */
 	struct ad_value rd;		/* diffuse reflectance: leaves the top, excluding rsp */
 	double rd_unscat;		/* part of rd that never scattered */
 	struct ad_value tt;		/* leaves the bottom, unscattered included */
 	double tt_unscat;		/* part of tt that never scattered */
 	struct ad_value a[SLAB_MAX_LAYERS + 2];	/* absorbed per layer, index as in struct slab */
-	double balance;			/* rsp + rd + tt + sum a - 1 (absorption from each layer's own R, T) */
-	double *fr, *fr_err;		/* [n_to * n_phi] diffuse BRDF bin means [1/sr], it * n_phi + ip */
+	double balance;			/* rsp + rd + tt + sum a - 1 (absorption from each layer's
+					 * own R, T) */
+	double *fr, *fr_err;		/* [n_to * n_phi] diffuse BRDF bin means [1/sr],
+					 * it * n_phi + ip */
 	double *fr_az, *fr_az_err;	/* [n_to] their azimuthal means [1/sr] */
 	double rms_rel_err;		/* this angle's table */
 };
@@ -37,10 +40,13 @@ struct ad_result {
 	int n_quad;			/* nodes per unit cosine used */
 	int n_nodes;			/* quadrature nodes per hemisphere */
 	int n_orders;			/* Fourier orders kept */
-	int series_complete;		/* 1 if the phase function has no higher orders (no truncation) */
+	int series_complete;		/* 1 if the phase function has no higher orders
+					 * (no truncation) */
 	long doublings;			/* doubling steps, all orders and layers */
-	double delta_m_f;		/* largest delta-M forward fraction moved to the unscattered beam */
-	double norm_max;		/* largest correction of the phase function's discrete normalization */
+	double delta_m_f;		/* largest delta-M forward fraction moved to the
+					 * unscattered beam */
+	double norm_max;		/* largest correction of the phase function's discrete
+					 * normalization */
 	double conv_factor;		/* factor on |X_N - X_N/2| in the errors, >= 1 (ad_err.h) */
 	double seconds;			/* wall time [s] */
 	struct ad_series *series, *series_lo;	/* for ad_brdf */

@@ -6,12 +6,26 @@
 #include <stdint.h>
 #include "engine/slab.h"
 
+/* Absorption variants of the walked slab, scored by white Monte Carlo
+ * (absorption reweighting): a variant differs from the slab only by mu_a,
+ * and an escaping photon counts for it with its weight times
+ * exp(-sum_l dmua_l L_l), L_l its path length in layer l.  This is exact
+ * because with implicit capture the weight over a path is the scattering
+ * part alone times exp(-mu_a L) per layer (Alerstam, Andersson-Engels &
+ * Svensson, J. Biomed. Opt. 13:041304, 2008). */
+struct tally_variants {
+	int n;			/* variants */
+	const double *dmua;	/* [n * (SLAB_MAX_LAYERS + 2)] mu_a of the variant minus the
+				 * slab's, per layer [1/cm] */
+};
+
 /* Resolution of the exit tallies. */
 struct tally_grid {
 	int n_theta;	/* exit bands in theta_out over [0, 90] deg, uniform in angle */
 	int n_phi;	/* bins in delta_phi over [0, 180] deg, uniform in angle */
 	int n_r;	/* radial bins of Rd(r); 0 turns off lateral tracking */
 	double dr;	/* radial bin width [cm] */
+	const struct tally_variants *var;	/* Rd(r) of absorption variants too; NULL: none */
 };
 
 struct tally {
@@ -27,6 +41,8 @@ struct tally {
 	double events;		/* scattering events (a count, for throughput) */
 	double *exit;		/* [n_theta * n_phi] scattered weight leaving the top */
 	double *radial;		/* [n_r] weight leaving the top by exit radius */
+	double *radial_var;	/* [var->n * n_r] the same per variant (grid.var), reweighted;
+				 * NULL without */
 };
 
 /* Allocate zeroed arrays for grid (caller frees with tally_free). */

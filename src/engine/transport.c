@@ -19,6 +19,7 @@
 #include "engine/transport.h"
 
 #include <math.h>
+#include <string.h>
 
 #include "engine/microfacet.h"
 #include "engine/phase.h"
@@ -56,10 +57,26 @@ void transport_launch(const struct slab *s, double theta_in, enum optics_fresnel
 	ln->uz = sqrt(fmax(0.0, 1.0 - st * st));
 }
 
+/* White Monte Carlo (tally.h): the escape at radial bin ir for every
+ * absorption variant, its weight times exp(-sum dmua L) over the path
+ * lengths path[] [cm] per layer. */
+static void score_variants(const struct tally_grid *g, struct tally *t, double w,
+    const double *path, long ir)
+{
+	enum { NS = SLAB_MAX_LAYERS + 2 };
+	for (int v = 0; v < g->var->n; v++) {
+		const double *d = g->var->dmua + (size_t)v * NS;
+		double tau = 0.0;
+		for (int l = 0; l < NS; l++)
+			tau += d[l] * path[l];
+		t->radial_var[(size_t)v * (size_t)g->n_r + (size_t)ir] += w * exp(-tau);
+	}
+}
+
 /* Score a photon leaving the top with weight w, ambient direction cosines
  * (ux, uy, uz > 0 pointing up out of the skin) at lateral position (x, y). */
 static inline void score_top(const struct tally_grid *g, struct tally *t, double w, int scattered, int bin,
-    double ux, double uy, double cos_o, double x, double y)
+    double ux, double uy, double cos_o, double x, double y, const double *path)
 {
 	t->rd += w;
 	if (!scattered) {
@@ -71,6 +88,8 @@ static inline void score_top(const struct tally_grid *g, struct tally *t, double
 		long ir = (long)(r / g->dr);
 		if (ir < g->n_r)
 			t->radial[ir] += w;
+		if (ir < g->n_r && t->radial_var)
+			score_variants(g, t, w, path, ir);
 	}
 	if (!bin)
 		return;
@@ -101,6 +120,7 @@ struct photon {
 	int direct;	/* flying straight on since the last scattering (what nee scores) */
 	int entered;	/* has reached the first turbid layer (else a return is specular) */
 	long steps;	/* interactions so far */
+	double path[SLAB_MAX_LAYERS + 2];	/* path length per layer so far [cm] (wmc.h) */
 };
 
 /* Launch: the refracted direction and weight of struct launch, at the top
@@ -120,6 +140,7 @@ static inline void launch(struct photon *ph, const struct launch *ln)
 	ph->direct = 0;
 	ph->entered = ln->layer > 0;
 	ph->steps = 0;
+	memset(ph->path, 0, sizeof ph->path);
 }
 
 /* Hop: draw a step as optical depth, or finish the one carried across a
@@ -136,6 +157,7 @@ static inline int hop(struct photon *ph, const struct slab *s, struct rng *r, do
 	 * step. */
 	if (*mu_t > 0.0 && ph->tau * fabs(ph->uz) < *mu_t * *dz) {
 		double step = ph->tau * s->inv_mu_t[ph->l];
+		ph->path[ph->l] += step;
 		ph->x += step * ph->ux;
 		ph->y += step * ph->uy;
 		ph->z += step * ph->uz;
@@ -203,6 +225,7 @@ static inline int boundary(struct photon *ph, const struct slab *s, const struct
 		return 1;
 	}
 	double db = dz / auz;
+	ph->path[ph->l] += db;
 	ph->x += db * ph->ux;
 	ph->y += db * ph->uy;
 	ph->tau -= mu_t * db;
@@ -249,7 +272,8 @@ static inline int boundary(struct photon *ph, const struct slab *s, const struct
 		if (!ph->entered)
 			t->rsp += ph->w;	/* back out of clear layers on top: specular */
 		else
-			score_top(grid, t, ph->w, ph->scattered, !(nee && ph->direct), ph->ux, ph->uy, ct, ph->x, ph->y);
+			score_top(grid, t, ph->w, ph->scattered, !(nee && ph->direct), ph->ux, ph->uy, ct,
+			    ph->x, ph->y, ph->path);
 		return 1;
 	}
 	if (nb == s->n_layers + 1) {

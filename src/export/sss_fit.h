@@ -11,7 +11,8 @@
  * power leaving beyond r (normal incidence, all exit directions), and the
  * far-field BRDF of the lit slab, pi f(theta_i, theta_o), which does not
  * depend on the length.  The fit matches the power and the mean radius
- * within the bake's profile (r_max), per channel. */
+ * within the bake's profile (r_max), per channel, where it helps the shape
+ * with a share of the power left to the table at the entry point (local). */
 #ifndef SKINBAKE_SSS_FIT_H
 #define SKINBAKE_SSS_FIT_H
 #include "bake/bakefile.h"
@@ -40,7 +41,8 @@ struct sss_fit {
 	double length_mm[3];		/* fitted translucency / radius [mm] */
 	double r_max_mm;		/* how far the bake's profile reaches [mm] */
 	double integral_bake[3];	/* the bake's power within r_max [-] */
-	double integral_fit[3];		/* the closure's (times scale) [-] */
+	double local[3];		/* power left to the table's remainder at the entry point (r = 0) [-] */
+	double integral_fit[3];		/* the closure's (times scale) plus local [-] */
 	double mean_bake_mm[3];		/* first moments within r_max [mm] */
 	double mean_fit_mm[3];
 	double rms_log[3];		/* RMS of ln(R_fit / R_bake) over the rings that hold 95 % of the bake's power [-] */
@@ -54,7 +56,8 @@ extern const double sss_ring_edges_mm[];
  * when B has no radial profile. */
 int sss_fit_bake(const struct sss_table *t, const struct bake *b, double scale, struct sss_fit *f, char **cause);
 
-/* The fitted closure's power on the ring [r1, r2] mm, channel c, times scale. */
+/* The fitted material's power on the ring [r1, r2] mm, channel c: the
+ * closure's times scale, plus local on the ring holding r = 0. */
 double sss_fit_ring(const struct sss_fit *f, int c, double r1_mm, double r2_mm);
 /* The bake's power on the ring [r1, r2] mm (bins by their centres), channel c. */
 double sss_bake_ring(const struct bake *b, int c, double r1_mm, double r2_mm);

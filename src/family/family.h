@@ -32,6 +32,7 @@
  * direct solve at off-node melanin and 0.06 % for blood (docs/maps.md). */
 #ifndef SKINBAKE_FAMILY_H
 #define SKINBAKE_FAMILY_H
+#include <math.h>
 #include <stddef.h>
 #include "bake/bake.h"
 #include "bake/bakefile.h"
@@ -101,6 +102,26 @@ struct family {
 int family_axis_init(struct family_axis *a, const char *key, double lo, double hi, int n, enum family_spacing spacing,
     const double *list, char **cause);
 const char *family_spacing_name(enum family_spacing s);
+/* The axis' interpolation coordinate of value v: log(v) on a log_coord
+ * axis, else v.  Every blend between members (family_stencil), the maps'
+ * fit and the exporters' sub-grids and blend maps work in it. */
+static inline double family_axis_coord(const struct family_axis *a, double v)
+{
+	return a->log_coord ? log(v) : v;
+}
+/* The value at coordinate c (family_axis_coord's inverse). */
+static inline double family_axis_value(const struct family_axis *a, double c)
+{
+	return a->log_coord ? exp(c) : c;
+}
+/* Where v lies between the first node (0) and the last (1) in the
+ * coordinate, clamped to [0, 1]. */
+static inline double family_axis_t(const struct family_axis *a, double v)
+{
+	double c0 = family_axis_coord(a, a->node[0]), c1 = family_axis_coord(a, a->node[a->n - 1]);
+	double t = (family_axis_coord(a, v) - c0) / (c1 - c0);
+	return t < 0 ? 0 : t > 1 ? 1 : t;
+}
 
 /* ---- the bake ---- */
 

@@ -13,11 +13,6 @@
 #include "base/check.h"
 #include "base/util.h"
 
-static double coord(const struct family_axis *a, double x)
-{
-	return a->log_coord ? log(x) : x;
-}
-
 /* Weights of axis a at x: nodes first .. first + *k - 1. */
 static void axis_weights(const struct family_axis *a, double x, int *first, int *k, double w[4])
 {
@@ -33,9 +28,9 @@ static void axis_weights(const struct family_axis *a, double x, int *first, int 
 	if (s < 0)
 		s = 0;
 	*first = s;
-	double t = coord(a, x), tj[4];
+	double t = family_axis_coord(a, x), tj[4];
 	for (int j = 0; j < *k; j++)
-		tj[j] = coord(a, a->node[s + j]);
+		tj[j] = family_axis_coord(a, a->node[s + j]);
 	for (int j = 0; j < *k; j++) {
 		double l = 1.0;
 		for (int m = 0; m < *k; m++)

@@ -115,7 +115,8 @@ void family_pack(const struct bake_spec *s, const struct bake_result *r, double 
 	double *p = v;
 	*p++ = 1.0;	/* status: baked */
 	*p++ = solver_mask(r->solver);
-	for (int i = 1; i < FAMILY_SOLVER_NAME_MAX; i++)
+	*p++ = (double)r->radial_shared;	/* in the room kept below */
+	for (int i = 2; i < FAMILY_SOLVER_NAME_MAX; i++)
 		*p++ = 0.0;	/* room kept: the record's length is unchanged */
 	*p++ = r->table.rms_rel_err;
 	*p++ = r->table.target_met;
@@ -176,6 +177,7 @@ void family_unpack(const struct bake_spec *s, const double *v, char *solver, str
 		n_solvers++;
 	if (p[0] < (double)(1u << n_solvers)) {
 		solver_joined((unsigned)p[0], solver);
+		r->radial_shared = (int)p[1];
 	} else {
 		/* A checkpoint from before the mask kept the name's characters. */
 		for (int i = 0; i < FAMILY_SOLVER_NAME_MAX; i++)

@@ -15,6 +15,7 @@
 #include "base/util.h"
 #include "bake/checkpoint.h"
 #include "family/family_pack.h"
+#include "family/family_radial.h"
 #include "bake/manifest.h"
 #include "skin/colour.h"
 #include "skin/preset.h"
@@ -186,15 +187,22 @@ static int write_member(const struct family_plan *pl, struct family *f, int m, c
 
 /* Bake member m on this process into v (status 1), or mark v failed (-1). */
 static void bake_member(const struct family_plan *pl, const struct family *f, int m, struct bake_spec *s, double *v,
-    char **cause)
+    const struct family_radial *fr, char **cause)
 {
 	struct skin_params *p = member_spec(pl, f, m, s, cause);
 	struct bake_result r;
+	struct bake_radial_given given;
 	s->rank = 0;
 	s->n_ranks = 1;
 	s->allreduce = NULL;
 	s->progress = NULL;
-	if (p == NULL || bake_run(s, &r, cause) != 0) {
+	if (fr) {
+		family_radial_given(fr, m, &given);
+		s->radial_given = &given;
+	}
+	int rc = p == NULL ? -1 : bake_run(s, &r, cause);
+	s->radial_given = NULL;
+	if (rc != 0) {
 		v[0] = -1.0;
 		preset_free(p);
 		return;
@@ -241,6 +249,35 @@ static uint64_t family_identity(const struct family_plan *pl, const struct famil
 		free(why);
 	}
 	return h;
+}
+
+/* The members' Rd(r) shared by white Monte Carlo (family_radial.h); under
+ * MPI the ranks split the wavelengths and all end with the same profiles
+ * (their random streams do not depend on the rank), so members come out
+ * the same over any number of ranks.  1 with fr filled. */
+static int shared_radial(const struct family_plan *pl, const struct family *f,
+    struct family_radial *fr, char **cause)
+{
+	if (pl->spec.method == BAKE_SOLVER_MC || pl->spec.n_r <= 0)
+		return 0;
+	int n = f->n_members, nw = pl->spec.n_wl;
+	struct bake_spec *s = xmalloc(sizeof *s);
+	*s = pl->spec;
+	struct slab *slabs = xmalloc(sizeof *slabs * (size_t)n * (size_t)nw);
+	int rc = 1;
+	for (int m = 0; m < n && rc == 1; m++) {
+		struct skin_params *p = member_spec(pl, f, m, s, cause);
+		if (p == NULL)
+			rc = -1;
+		else
+			memcpy(slabs + (size_t)m * (size_t)nw, s->slab, sizeof *slabs * (size_t)nw);
+		preset_free(p);
+	}
+	if (rc == 1)
+		rc = family_radial_run(s, slabs, n, fr);
+	free(slabs);
+	free(s);
+	return rc;
 }
 
 /* Open DIR.checkpoint (rank 0 writes it, one process only); *n_done the
@@ -316,6 +353,15 @@ int family_bake(const struct family_plan *pl, const char *dir, struct family **o
 	 * after the members carries rank 0's write failure to the others, so
 	 * that all stop at the same round.  Members the checkpoint restored
 	 * (one process only) are written from it, not baked again. */
+	struct family_radial fr;
+	int shared = n_done < n_members ? shared_radial(pl, f, &fr, cause) : 0;
+	if (shared < 0) {
+		if (rank == 0)
+			outdir_fail(&od, cause);
+		checkpoint_close(ck);
+		family_free(f);
+		return -1;
+	}
 	size_t L = family_pack_len(&pl->spec), nbuf = L * (size_t)R + 1, len;
 	double *buf = xmalloc(sizeof(double) * nbuf);
 	struct bake_spec *s = xmalloc(sizeof *s);
@@ -330,7 +376,7 @@ int family_bake(const struct family_plan *pl, const char *dir, struct family **o
 		else if (m < n_done)
 			memcpy(buf + (size_t)rank * L, checkpoint_unit(ck, m, &len), sizeof(double) * L);
 		else if (m < n_members)
-			bake_member(pl, f, m, s, buf + (size_t)rank * L, &why);
+			bake_member(pl, f, m, s, buf + (size_t)rank * L, shared ? &fr : NULL, &why);
 		if (R > 1 && pl->spec.allreduce)
 			pl->spec.allreduce(buf, (long)nbuf);
 		if (buf[nbuf - 1] != 0.0) {
@@ -360,6 +406,8 @@ int family_bake(const struct family_plan *pl, const char *dir, struct family **o
 	}
 	free(buf);
 	free(s);
+	if (shared)
+		family_radial_free(&fr);
 	if (rank == 0 && rc == 0)
 		rc = family_write_index(stage, f, pl->command, cause) || outdir_commit(&od, cause) ||
 		    checkpoint_remove(dir, cause) ? -2 : 0;

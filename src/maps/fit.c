@@ -45,17 +45,12 @@ struct lut {
 	int *start, *item;		/* CSR: bucket b holds item[start[b] .. start[b + 1]) */
 };
 
-static double axis_coord(const struct family_axis *a, double v)
-{
-	return a->log_coord ? log(v) : v;
-}
-
 /* Parameter values at grid coordinates g (continuous, in grid units). */
 static void grid_params(const struct lut *t, const double *g, double *x)
 {
 	for (int a = 0; a < t->k; a++) {
 		double c = t->c0[a] + (t->c1[a] - t->c0[a]) * g[a] / (t->g[a] - 1);
-		x[a] = t->f->axis[a].log_coord ? exp(c) : c;
+		x[a] = family_axis_value(&t->f->axis[a], c);
 		/* keep the ends exact (exp(log(v)) may differ in the last bit) */
 		const struct family_axis *ax = &t->f->axis[a];
 		x[a] = fmin(fmax(x[a], ax->node[0]), ax->node[ax->n - 1]);
@@ -80,8 +75,8 @@ static void lut_build(struct lut *t, const struct family *f, int threads)
 		t->g[a] = a < t->k ? per_axis[t->k] : 1;
 		if (a < t->k) {
 			const struct family_axis *ax = &f->axis[a];
-			t->c0[a] = axis_coord(ax, ax->node[0]);
-			t->c1[a] = axis_coord(ax, ax->node[ax->n - 1]);
+			t->c0[a] = family_axis_coord(ax, ax->node[0]);
+			t->c1[a] = family_axis_coord(ax, ax->node[ax->n - 1]);
 		}
 		t->n *= t->g[a];
 	}

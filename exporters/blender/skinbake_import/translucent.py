@@ -8,6 +8,19 @@ every lamp once."""
 from .common import ImageSetError, say
 
 
+def check_version(t):
+    """The fit holds for the Cycles it was calibrated on: refuse another Blender (major.minor) rather
+    than build a wrong material (Blender 5.0.1 rendered the 3.4.1 fit 12 % dark on the flat box)."""
+    import bpy
+    want = str(t.get("version", "?"))
+    have = "%d.%d" % tuple(bpy.app.version[:2])
+    if want.split(".")[:2] != have.split("."):
+        raise ImageSetError(f"manifest.json: translucent.version = {want!r}: the subsurface node was fitted to the "
+                            f"calibration of Cycles {want}, and this is Blender {bpy.app.version_string}, whose random "
+                            "walk answers differently (5.0.1: 12 % darker); use the exact or general set, or "
+                            "calibrate this Blender (`make calibrate`)")
+
+
 def add_subsurface(mat, m, unit_scale=1.0):
     """Add the fitted node beside the shader that reaches MAT's output, when the manifest M has a
     "translucent" section; returns MAT.  UNIT_SCALE: metres per scene unit."""
@@ -18,6 +31,7 @@ def add_subsurface(mat, m, unit_scale=1.0):
         v = t.get(key)
         if not isinstance(v, list) or len(v) != n or not all(isinstance(x, (int, float)) and x > 0 for x in v):
             raise ImageSetError(f"manifest.json: translucent.{key} = {v!r} must be {n} positive numbers")
+    check_version(t)
     nt = mat.node_tree
     out = next(n for n in nt.nodes if n.bl_idname == "ShaderNodeOutputMaterial" and n.is_active_output)
     link = out.inputs["Surface"].links[0]

@@ -10,7 +10,6 @@
 #include <string.h>
 
 #include "base/util.h"
-#include "export/source.h"
 #include "io/exrio.h"
 
 /* The sub-grid: per axis K points uniform in the axis coordinate over the
@@ -22,17 +21,8 @@ struct subgrid {
 	int slices;			/* product of n */
 };
 
-static double coord(const struct family_axis *a, double v)
-{
-	return a->log_coord ? log(v) : v;
-}
-
-static double value(const struct family_axis *a, double c)
-{
-	return a->log_coord ? exp(c) : c;
-}
-
-static void subgrid_make(const struct family *f, const struct mapset *m, int sub, struct subgrid *g)
+static void subgrid_make(const struct brdf_family *f, const struct mapset *m, int sub,
+    struct subgrid *g)
 {
 	size_t n = (size_t)m->w * m->h;
 	g->k = f->n_axes;
@@ -48,8 +38,8 @@ static void subgrid_make(const struct family *f, const struct mapset *m, int sub
 			lo = fmin(lo, v);
 			hi = fmax(hi, v);
 		}
-		g->c0[a] = coord(ax, lo);
-		g->c1[a] = coord(ax, hi);
+		g->c0[a] = family_axis_coord(ax, lo);
+		g->c1[a] = family_axis_coord(ax, hi);
 		/* A map that varies by less than 0.1 % is constant here. */
 		if (fabs(hi - lo) > 1e-3 * fmax(fabs(hi), fabs(lo)))
 			g->n[a] = sub;
@@ -58,26 +48,27 @@ static void subgrid_make(const struct family *f, const struct mapset *m, int sub
 }
 
 /* Parameters of sub-grid point s. */
-static void subgrid_point(const struct family *f, const struct subgrid *g, int s, double *x)
+static void subgrid_point(const struct brdf_family *f, const struct subgrid *g, int s,
+    double *x)
 {
 	for (int a = 0; a < g->k; a++) {
 		int i = s % g->n[a];
 		s /= g->n[a];
 		double t = g->n[a] > 1 ? (double)i / (g->n[a] - 1) : 0.5;
-		x[a] = value(&f->axis[a], g->c0[a] + t * (g->c1[a] - g->c0[a]));
+		x[a] = family_axis_value(&f->axis[a], g->c0[a] + t * (g->c1[a] - g->c0[a]));
 	}
 }
 
 /* The stacked atlases: slice s in file rows [H - (s + 1) nc, H - s nc). */
-static float *family_lut(const struct family *f, const struct subgrid *g, int nc, int nphi)
+static float *family_lut(const struct brdf_family *f, const struct subgrid *g, int nc,
+    int nphi)
 {
 	size_t w = (size_t)nc * nphi, h = (size_t)nc * g->slices, plane = w * h, sp = w * nc;
 	float *lut = xmalloc(sizeof(float) * 3 * plane);
 	for (int s = 0; s < g->slices; s++) {
 		double x[FAMILY_MAX_AXES];
 		subgrid_point(f, g, s, x);
-		struct bake *b = family_bake_at(f, x);
-		struct brdf_source *src = brdf_source_of_bake(b, 1);
+		struct brdf_source *src = brdf_family_at(f, x);
 		float *one = blender_lut(src, nc, nphi);
 		size_t row0 = h - (size_t)(s + 1) * nc;
 		for (int c = 0; c < 3; c++)
@@ -110,7 +101,7 @@ static json_object *file_entry(const char *name, int w, int h, const char *what)
 	return o;
 }
 
-static char *section(const struct family *f, const struct mapset *m, const struct subgrid *g, int nc, int nphi)
+static char *section(const struct brdf_family *f, const struct mapset *m, const struct subgrid *g, int nc, int nphi)
 {
 	json_object *o = json_object_new_object(), *axes = json_object_new_array(), *files = json_object_new_object();
 	json_object_object_add(o, "family_dir", json_object_new_string(f->dir ? f->dir : ""));
@@ -121,7 +112,7 @@ static char *section(const struct family *f, const struct mapset *m, const struc
 		json_object_object_add(x, "log_coordinate", json_object_new_boolean(f->axis[a].log_coord));
 		for (int i = 0; i < g->n[a]; i++) {
 			double t = g->n[a] > 1 ? (double)i / (g->n[a] - 1) : 0.5;
-			json_object_array_add(nodes, json_object_new_double(value(&f->axis[a], g->c0[a] + t * (g->c1[a] - g->c0[a]))));
+			json_object_array_add(nodes, json_object_new_double(family_axis_value(&f->axis[a], g->c0[a] + t * (g->c1[a] - g->c0[a]))));
 		}
 		json_object_object_add(x, "sub_nodes", nodes);
 		json_object_array_add(axes, x);
@@ -153,32 +144,31 @@ static char *section(const struct family *f, const struct mapset *m, const struc
 
 /* Per texel: albedo (members' bihemispherical albedos blended), radius,
  * sub-grid position; three planes each. */
-static void texel_maps(struct family *f, const struct mapset *m, const struct subgrid *g, float *alb, float *rad,
+static void texel_maps(const struct brdf_family *f, const struct mapset *m, const struct subgrid *g, float *alb, float *rad,
     float *pos)
 {
 	double *bm = xmalloc(sizeof(double) * 3 * (size_t)f->n_members);
 	for (int k = 0; k < f->n_members; k++) {
-		struct brdf_source *src = brdf_source_of_bake(f->bake[k], 0);
+		struct brdf_source *src = brdf_family_source(f, k);
 		blender_albedo_mean(src, bm + 3 * k);
 		brdf_source_free(src);
 	}
-	family_albedo_prepare(f);
 	long n = (long)m->w * m->h;
 #pragma omp parallel for schedule(static)
 	for (long i = 0; i < n; i++) {
-		double x[FAMILY_MAX_AXES], rgb[3], r[3];
-		struct family_stencil st;
+		double x[FAMILY_MAX_AXES], a3[3], r[3];
 		for (int a = 0; a < g->k; a++)
 			x[a] = m->p[a].v[i];
-		family_stencil(f, x, &st);
-		family_albedo(f, x, NULL, rgb, r);
+		brdf_family_blend(f, x, bm, 3, a3);
+		brdf_family_radius(f, x, r);
 		for (int c = 0; c < 3; c++) {
-			alb[(size_t)c * n + i] = (float)family_blend(&st, bm + c, 3);
+			alb[(size_t)c * n + i] = (float)a3[c];
 			rad[(size_t)c * n + i] = (float)(0.01 * r[c]);
 			double p = 0.0;
 			if (c < g->k && g->n[c] > 1) {
 				double v = fmin(fmax(x[c], f->axis[c].node[0]), f->axis[c].node[f->axis[c].n - 1]);
-				p = (coord(&f->axis[c], v) - g->c0[c]) / (g->c1[c] - g->c0[c]) * (g->n[c] - 1);
+				double cv = family_axis_coord(&f->axis[c], v);
+				p = (cv - g->c0[c]) / (g->c1[c] - g->c0[c]) * (g->n[c] - 1);
 				p = fmin(fmax(p, 0.0), g->n[c] - 1.0);
 			}
 			pos[(size_t)c * n + i] = (float)p;
@@ -187,7 +177,7 @@ static void texel_maps(struct family *f, const struct mapset *m, const struct su
 	free(bm);
 }
 
-int blender_family_export(struct family *f, const struct mapset *m, const struct blender_options *o, int sub,
+int blender_family_export(struct brdf_family *f, const struct mapset *m, const struct blender_options *o, int sub,
     const char *detail_dir, const char *out_dir, char **cause)
 {
 	if (sub < BLENDER_FAMILY_SUB_MIN || sub > BLENDER_FAMILY_SUB_MAX) {
@@ -195,15 +185,15 @@ int blender_family_export(struct family *f, const struct mapset *m, const struct
 		    BLENDER_FAMILY_SUB_MAX);
 		return -1;
 	}
-	if (mapset_check_family(m, m->family_dir ? m->family_dir : "maps", f, cause) != 0 ||
-	    family_load_tables(f, cause) != 0)
+	if (mapset_check_family(m, m->family_dir ? m->family_dir : "maps", f->family, cause) != 0 ||
+	    brdf_family_load_tables(f, cause) != 0)
 		return -1;
 	struct subgrid g;
 	subgrid_make(f, m, sub, &g);
 	double mid[FAMILY_MAX_AXES];
 	for (int a = 0; a < g.k; a++)
-		mid[a] = value(&f->axis[a], 0.5 * (g.c0[a] + g.c1[a]));
-	struct brdf_source *ref = brdf_source_of_bake(family_bake_at(f, mid), 1);
+		mid[a] = family_axis_value(&f->axis[a], 0.5 * (g.c0[a] + g.c1[a]));
+	struct brdf_source *ref = brdf_family_at(f, mid);
 	struct blender_set *set = NULL;
 	if ((detail_dir && brdf_source_add_textures(ref, detail_dir, cause) != 0) ||
 	    (set = blender_prepare(ref, o, cause)) == NULL) {

@@ -14,15 +14,15 @@
  *
  * The sub-grid spans each map's value range with K_a points uniform in the
  * axis' interpolation coordinate (one point when a map is constant); each
- * point's table is the family interpolated there (family_bake_at).  The
+ * point's table is the family interpolated there (brdf_family_at).  The
  * importer blends the atlases of the texel's 2^k neighbouring points
  * multilinearly, so the exact mode follows the maps per texel; the
  * general mode takes albedo and radius from the maps.  manifest.json gets
  * a "family" section naming these files and the sub-grid. */
 #ifndef SKINBAKE_BLENDER_FAMILY_H
 #define SKINBAKE_BLENDER_FAMILY_H
-#include "family/family.h"
 #include "export/blender/blender.h"
+#include "export/source_family.h"
 #include "maps/mapset.h"
 
 #define BLENDER_FAMILY_SUB_MIN 2
@@ -32,6 +32,7 @@
  * per varying axis; detail_dir (NULL: flat) is a texture directory.  -1
  * and *cause on bad input (before anything is written), -2 on an I/O
  * failure. */
-int blender_family_export(struct family *f, const struct mapset *m, const struct blender_options *o, int sub,
-    const char *detail_dir, const char *dir, char **cause);
+int blender_family_export(struct brdf_family *f, const struct mapset *m,
+    const struct blender_options *o, int sub, const char *detail_dir, const char *dir,
+    char **cause);
 #endif

@@ -9,8 +9,9 @@
 
 #include "base/util.h"
 
-/* The node's far field f [1/sr] from the calibration (about colour / pi:
- * Lambertian, but 10 % above at colour 0.01). */
+/* The node's far field f [1/sr] from the calibration: G(0) / pi, since
+ * the walk enters and leaves Lambertian (scripts/calibrate-translucency.py);
+ * G(0) is about the colour, 10 % above it at colour 0.01. */
 static double far_f(const struct blender_sss *w, int c, double ti, double to)
 {
 	return sss_far_pi_f(w->fit.table, c, w->fit.colour[c], ti, to) / M_PI;
@@ -64,7 +65,7 @@ static void jvec(char *buf, size_t n, const double v[3], double k)
 char *blender_sss_json(const struct blender_sss *w)
 {
 	const struct sss_fit *f = &w->fit;
-	char col[96], rad[96], ib[96], ifit[96], mb[96], mf[96], rl[96];
+	char col[96], rad[96], ib[96], ifit[96], mb[96], mf[96], rl[96], loc[96];
 	jvec(col, sizeof col, f->colour, 1.0);
 	jvec(rad, sizeof rad, f->length_mm, 1e-3);
 	jvec(ib, sizeof ib, f->integral_bake, 1.0);
@@ -72,13 +73,15 @@ char *blender_sss_json(const struct blender_sss *w)
 	jvec(mb, sizeof mb, f->mean_bake_mm, 1e-3);
 	jvec(mf, sizeof mf, f->mean_fit_mm, 1e-3);
 	jvec(rl, sizeof rl, f->rms_log, 1.0);
+	jvec(loc, sizeof loc, f->local, 1.0);
 	return xasprintf("{\"renderer\": \"%s\", \"version\": \"%s\", \"closure\": \"%s\", "
 	    "\"node\": \"ShaderNodeSubsurfaceScattering\", \"falloff\": \"RANDOM_WALK\", \"ior\": %g, \"colour\": %s, "
-	    "\"radius_m\": %s, \"scale\": 1.0, \"r_max_m\": %.8g, \"power_bake\": %s, \"power_fit\": %s, "
+	    "\"radius_m\": %s, \"scale\": 1.0, \"r_max_m\": %.8g, \"power_bake\": %s, \"power_fit\": %s, \"power_local\": %s, "
 	    "\"mean_radius_bake_m\": %s, \"mean_radius_fit_m\": %s, \"rms_ln_r_predicted\": %s, "
 	    "\"remainder_clipped_max\": %.6g, \"split\": \"brdf_lut.exr holds pi * max(0, f_bake - f_node): the "
-	    "baked BRDF (diffuse + surface specular) minus the node's far field from the calibration (Lambertian, about "
-	    "colour / pi); the importer adds the node beside it\"}",
-	    f->table->renderer, f->table->version, f->table->closure, f->table->ior, col, rad, f->r_max_mm * 1e-3, ib, ifit, mb, mf,
+	    "baked BRDF (diffuse + surface specular) minus the node's far field from the calibration (Lambertian, G(0) / pi "
+	    "with G(0) the node's measured albedo), so power_local of power_fit stays in it at the entry point; "
+	    "the importer adds the node beside it\"}",
+	    f->table->renderer, f->table->version, f->table->closure, f->table->ior, col, rad, f->r_max_mm * 1e-3, ib, ifit, loc, mb, mf,
 	    rl, w->clipped);
 }

@@ -12,16 +12,9 @@
 #include "export/pov/sdl.h"
 #include "maps/image.h"
 
-/* Axis coordinate of value x, 0 at the first node and 1 at the last. */
-static double axis_t(const struct family_axis *a, double x)
-{
-	double lo = a->node[0], hi = a->node[a->n - 1];
-	double t = a->log_coord ? (log(x) - log(lo)) / (log(hi) - log(lo)) : (x - lo) / (hi - lo);
-	return t < 0 ? 0 : t > 1 ? 1 : t;
-}
-
 /* The node interval [*i0, *i1] that covers the values of map p. */
-static void reach(const struct family_axis *a, const struct maps_param *p, size_t n, int *i0, int *i1)
+static void reach(const struct family_axis *a, const struct maps_param *p, size_t n, int *i0,
+    int *i1)
 {
 	float vmin = p->v[0], vmax = p->v[0];
 	for (size_t i = 1; i < n; i++) {
@@ -38,27 +31,21 @@ static void reach(const struct family_axis *a, const struct maps_param *p, size_
 		*i1 = *i0;
 }
 
-static int member_of(const struct family *f, const int *idx)
-{
-	int m = 0;
-	for (int a = f->n_axes - 1; a >= 0; a--)
-		m = m * f->axis[a].n + idx[a];
-	return m;
-}
-
-struct pov_maps *pov_maps_open(const char *family_dir, const char *maps_dir, const char *base, const char *skin,
-    char **cause)
+struct pov_maps *pov_maps_open(const char *family_dir, const char *maps_dir, const char *base,
+    const char *skin, char **cause)
 {
 	struct pov_maps *pm = xcalloc(1, sizeof *pm);
 	char *err = NULL;
-	if ((pm->fam = family_load(family_dir, &err)) == NULL || family_load_tables(pm->fam, &err) != 0 ||
-	    (pm->maps = mapset_read(maps_dir, &err)) == NULL || mapset_check_family(pm->maps, maps_dir, pm->fam, &err) != 0) {
+	if ((pm->fam = brdf_family_open(family_dir, &err)) == NULL ||
+	    brdf_family_load_tables(pm->fam, &err) != 0 ||
+	    (pm->maps = mapset_read(maps_dir, &err)) == NULL ||
+	    mapset_check_family(pm->maps, maps_dir, pm->fam->family, &err) != 0) {
 		*cause = xasprintf("--family %s --maps %s: %s", family_dir, maps_dir, err);
 		free(err);
 		pov_maps_free(pm);
 		return NULL;
 	}
-	const struct family *f = pm->fam;
+	const struct brdf_family *f = pm->fam;
 	size_t n = (size_t)pm->maps->w * pm->maps->h;
 	int mid[FAMILY_MAX_AXES];
 	for (int a = 0; a < f->n_axes; a++) {
@@ -73,15 +60,15 @@ struct pov_maps *pov_maps_open(const char *family_dir, const char *maps_dir, con
 				mid[a] = j;
 		pm->png[a] = xasprintf("%s_%s_%s.png", base, skin, f->axis[a].key);
 	}
-	pm->ref = member_of(f, mid);
+	pm->ref = brdf_family_member(f, mid);
 	pm->src = xcalloc((size_t)f->n_members, sizeof *pm->src);
 	for (int m = 0; m < f->n_members; m++) {
 		int idx[FAMILY_MAX_AXES], in = 1;
-		family_member_index(f, m, idx);
+		brdf_family_member_index(f, m, idx);
 		for (int a = 0; a < f->n_axes; a++)
 			in &= idx[a] >= pm->lo_idx[a] && idx[a] <= pm->hi_idx[a];
 		if (in)
-			pm->src[m] = brdf_source_of_bake(f->bake[m], 0);
+			pm->src[m] = brdf_family_source(f, m);
 	}
 	return pm;
 }
@@ -96,7 +83,7 @@ void pov_maps_free(struct pov_maps *pm)
 	for (int a = 0; a < FAMILY_MAX_AXES; a++)
 		free(pm->png[a]);
 	mapset_free(pm->maps);
-	family_free(pm->fam);
+	brdf_family_free(pm->fam);
 	free(pm);
 }
 
@@ -113,7 +100,7 @@ int pov_maps_write_images(const struct pov_maps *pm, const char *outdir, char **
 	for (int a = 0; a < pm->fam->n_axes; a++) {
 		struct image *im = image_new(m->w, m->h, 1, 16);
 		for (size_t i = 0; i < n; i++)
-			im->v[i] = (float)axis_t(&pm->fam->axis[a], m->p[a].v[i]);
+			im->v[i] = (float)family_axis_t(&pm->fam->axis[a], m->p[a].v[i]);
 		char *path = xasprintf("%s/%s", outdir, pm->png[a]);
 		int rc = image_write_png(path, im, 16, 0, 0, NULL, cause);
 		free(path);
@@ -126,8 +113,8 @@ int pov_maps_write_images(const struct pov_maps *pm, const char *outdir, char **
 
 /* The blend over axis a at the node indices idx[a + 1 ..] given: nested
  * image_pattern pigments down to the member tables. */
-static void write_blend(FILE *fp, const char *name, const struct pov_maps *pm, int a, int *idx, int depth, int top,
-    const char *mapping)
+static void write_blend(FILE *fp, const char *name, const struct pov_maps *pm, int a, int *idx,
+    int depth, int top, const char *mapping)
 {
 	const struct family_axis *ax = &pm->fam->axis[a];
 	/* A blend-map entry holds a pigment body, not `pigment { }` (pov.md). */
@@ -136,12 +123,13 @@ static void write_blend(FILE *fp, const char *name, const struct pov_maps *pm, i
 	fprintf(fp, "%*s  pigment_map {\n", depth, "");
 	for (int j = pm->lo_idx[a]; j <= pm->hi_idx[a]; j++) {
 		idx[a] = j;
-		double t = axis_t(ax, ax->node[j]);
+		double t = family_axis_t(ax, ax->node[j]);
 		if (a == 0)
-			fprintf(fp, "%*s    [%.7f %s_M%04d]  // %s = %g\n", depth, "", t, name, member_of(pm->fam, idx), ax->key,
-			    ax->node[j]);
+			fprintf(fp, "%*s    [%.7f %s_M%04d]  // %s = %g\n", depth, "", t, name,
+			    brdf_family_member(pm->fam, idx), ax->key, ax->node[j]);
 		else {
-			fprintf(fp, "%*s    [%.7f  // %s = %g\n", depth, "", t, ax->key, ax->node[j]);
+			fprintf(fp, "%*s    [%.7f  // %s = %g\n", depth, "", t, ax->key,
+			    ax->node[j]);
 			write_blend(fp, name, pm, a - 1, idx, depth + 6, 0, mapping);
 			fprintf(fp, "%*s    ]\n", depth, "");
 		}
@@ -149,10 +137,11 @@ static void write_blend(FILE *fp, const char *name, const struct pov_maps *pm, i
 	fprintf(fp, "%*s  }\n", depth, "");
 }
 
-int pov_maps_write_key(FILE *fp, const char *name, const struct pov_maps *pm, const struct pov_light *l,
-    const struct pov_view *v, const double lo[3], const double hi[3], int n_theta, int n_gamma, int uv)
+int pov_maps_write_key(FILE *fp, const char *name, const struct pov_maps *pm,
+    const struct pov_light *l, const struct pov_view *v, const double lo[3], const double hi[3],
+    int n_theta, int n_gamma, int uv)
 {
-	const struct family *f = pm->fam;
+	const struct brdf_family *f = pm->fam;
 	int g = 1;
 	fprintf(fp, "// Family %s blended by maps (%d x %d texels): one lit table per member the maps reach.\n",
 	    f->dir, pm->maps->w, pm->maps->h);

@@ -1,5 +1,5 @@
 /* pov_maps: a skin whose parameters vary per texel, a family of bakes
- * (family/family.h) plus a maps directory (maps/mapset.h), as one POV-Ray
+ * (export/source_family.h) plus a maps directory (maps/mapset.h), as one POV-Ray
  * pigment.  Each member the maps reach gets its own lit table
  * (littable.h); the pigment blends them by the maps:
  *
@@ -20,26 +20,26 @@
 #define SKINBAKE_POV_MAPS_H
 #include <stdio.h>
 
-#include "family/family.h"
 #include "export/pov/littable.h"
-#include "export/source.h"
+#include "export/source_family.h"
 #include "maps/mapset.h"
 
 struct pov_maps {
-	struct family *fam;		/* with its member tables */
+	struct brdf_family *fam;	/* with its member tables */
 	struct mapset *maps;
 	struct brdf_source **src;	/* [n_members], NULL for members the maps do not reach */
 	int lo_idx[FAMILY_MAX_AXES];	/* per axis the first and last node the maps reach */
 	int hi_idx[FAMILY_MAX_AXES];
-	int ref;			/* the member at the maps' median node: stand-ins, strategy */
+	int ref;			/* the member at the maps' median node: stand-ins,
+					 * strategy */
 	char *png[FAMILY_MAX_AXES];	/* coordinate map file names inside the output directory */
 };
 
 /* Read family FAMILY_DIR and maps MAPS_DIR and check that they fit each
  * other (mapset_check_family); the map files will be BASE_SKIN_KEY.png.
  * NULL and *cause (caller frees) on bad input. */
-struct pov_maps *pov_maps_open(const char *family_dir, const char *maps_dir, const char *base, const char *skin,
-    char **cause);
+struct pov_maps *pov_maps_open(const char *family_dir, const char *maps_dir, const char *base,
+    const char *skin, char **cause);
 void pov_maps_free(struct pov_maps *pm);	/* NULL is a no-op */
 /* The BRDF of member m for the table writers (m reached by the maps). */
 struct pov_brdf pov_maps_brdf(const struct pov_maps *pm, int m);
@@ -50,6 +50,7 @@ int pov_maps_write_images(const struct pov_maps *pm, const char *outdir, char **
  * blending them.  uv: map by the mesh's UVs; else planar along z over the
  * box's x-y extent (row 0 of the map at hi[1]).  Returns the gamma nodes
  * used (as littable_write_key). */
-int pov_maps_write_key(FILE *fp, const char *name, const struct pov_maps *pm, const struct pov_light *l,
-    const struct pov_view *v, const double lo[3], const double hi[3], int n_theta, int n_gamma, int uv);
+int pov_maps_write_key(FILE *fp, const char *name, const struct pov_maps *pm,
+    const struct pov_light *l, const struct pov_view *v, const double lo[3], const double hi[3],
+    int n_theta, int n_gamma, int uv);
 #endif

@@ -57,7 +57,9 @@ void povsss_write(FILE *fp, const char *skin, const struct pov_sss *sss, int ref
 	    f->table->renderer, f->table->version, f->table->closure, f->scale, 100 * sss->clipped);
 	fprintf(fp, "//   within %g mm        R          G          B\n", f->r_max_mm);
 	fprintf(fp, "//   power bake   %10.5f %10.5f %10.5f\n", f->integral_bake[0], f->integral_bake[1], f->integral_bake[2]);
-	fprintf(fp, "//   power fit    %10.5f %10.5f %10.5f\n", f->integral_fit[0], f->integral_fit[1], f->integral_fit[2]);
+	fprintf(fp, "//   power fit    %10.5f %10.5f %10.5f (of it local, left in the table)\n", f->integral_fit[0],
+	    f->integral_fit[1], f->integral_fit[2]);
+	fprintf(fp, "//   local        %10.5f %10.5f %10.5f\n", f->local[0], f->local[1], f->local[2]);
 	fprintf(fp, "//   mean r bake  %10.5f %10.5f %10.5f mm\n", f->mean_bake_mm[0], f->mean_bake_mm[1], f->mean_bake_mm[2]);
 	fprintf(fp, "//   mean r fit   %10.5f %10.5f %10.5f mm\n", f->mean_fit_mm[0], f->mean_fit_mm[1], f->mean_fit_mm[2]);
 	fprintf(fp, "//   RMS ln R(r)  %10.5f %10.5f %10.5f (predicted, rings holding 95 %%)\n", f->rms_log[0],

@@ -1,0 +1,120 @@
+#!/bin/sh
+# export blender --mode translucent with the real Blender (issue 27 steps 3-4): Cycles' random
+# walk fitted to the bake's Rd(r) beside the rest of the table (blender_sss.h, translucent.py).
+# 1. Flat skin under one sun: the importer's closed box (200 x 200 x 50 mm, so the walk has an
+#    inside and the centre is far from the edges), exact mode, sun at 45 deg, view at 30 deg,
+#    delta phi 45 deg, 64 px at 256 samples, centre quarter: within 1 % of E cos(theta_i) f from
+#    `skinbake eval` per channel (the node is about 94 % of the red signal, so this checks the
+#    split: the rest = table - the node's far field G(0) / pi).
+# 2. A slab 1, 2 and 4 mm thick lit from behind (scripts/sss_profile.py cycles --back with the
+#    fitted node): the transmitted exitance against `skinbake simulate` Tt of the same stack cut
+#    to that thickness (light entering the deepest layer), within 20 %: TAP TODO (the walk in a
+#    homogeneous medium with the half space's reflection transmits up to twice the layered
+#    slab's, docs/translucency.md).
+# 3. Bad input: a translucent section with a radius of 0, or fitted to another Cycles version
+#    (major.minor), is refused by the importer.
+# Paper bake (adding-doubling, Monte Carlo Rd(r)); about 1 minute.
+. "$top_srcdir/tests/tap.sh"
+imp="$top_srcdir/exporters/blender/import_skin.py"
+PROF="$top_srcdir/scripts/sss_profile.py"
+if [ -z "$BLENDER" ] || ! command -v "$BLENDER" >/dev/null 2>&1 || ! command -v python3 >/dev/null 2>&1; then
+	fail "blender or python3 is missing (BLENDER='$BLENDER'): the project's set-up installs them"
+	tap_done
+	exit 1
+fi
+B() { timeout 600 "$BLENDER" -b --factory-startup -noaudio --python-exit-code 1 "$@"; }
+# todo DESC REASON CMD...: a known limit, reported but not failing.
+todo() { d=$1; why=$2; shift 2; tap_n=$((tap_n+1)); if "$@"; then echo "ok $tap_n - $d # TODO $why"; \
+	else echo "not ok $tap_n - $d # TODO $why"; fi; }
+
+bake="$tmpd/paper"
+"$SKINBAKE" bake --preset paper --out "$bake" --quiet >"$tmpd/bake.log" 2>&1
+check "bake paper" test $? -eq 0
+set="$tmpd/set"
+"$SKINBAKE" export blender --bake "$bake" --out "$set" --mode translucent >"$tmpd/export.log" 2>&1
+check "export blender --mode translucent" test $? -eq 0 -a -f "$set/manifest.json"
+check "  ... the manifest has the fitted node" python3 -c 'import json,sys
+sys.exit(json.load(open(sys.argv[1]))["translucent"]["node"] != "ShaderNodeSubsurfaceScattering")' "$set/manifest.json"
+
+# 1. Flat skin, exact mode with the node.
+B --python "$imp" -- "$set" --mode exact --scene box --samples 256 --render "$tmpd/box.exr" >"$tmpd/box.log" 2>&1
+check "exact mode with the translucent set: import and render" test $? -eq 0
+check "  ... the importer added the subsurface node" grep -q "translucent: Cycles subsurface colour" "$tmpd/box.log"
+r=$(python3 - "$SKINBAKE" "$bake" "$set/manifest.json" "$tmpd/box.log" <<'PY'
+import json, math, subprocess, sys
+skinbake, bake, man, log = sys.argv[1:5]
+e = json.load(open(man))["exact"]
+ref = e["reference"]
+ti = math.degrees(math.acos(ref["cos_light"]))
+to = math.degrees(math.acos(ref["cos_view"]))
+out = subprocess.run([skinbake, "eval", "--bake", bake, "--theta-in", "%.6f" % ti, "--theta-out", "%.6f" % to,
+                      "--phi", "%.6f" % ref["delta_phi_deg"], "--json"], capture_output=True, text=True, check=True).stdout
+f = json.loads(out)["rgb_total"]
+want = [e["sun_strength_w_m2"] * ref["cos_light"] * x for x in f]
+got = None
+for line in open(log):
+    if line.startswith("SKINBAKE_CENTER "):
+        got = [float(x) for x in line.split()[1:4]]
+err = [g / w - 1 for g, w in zip(got, want)]
+print(" ".join("%+.4f" % x for x in err), int(max(abs(x) for x in err) <= 0.01))
+PY
+)
+echo "# flat box, translucent set in exact mode: render / eval - 1 per R, G, B: ${r% *}"
+check "flat skin within 1 % of eval per channel (${r% *})" test "${r##* }" = 1
+
+# 2. Back light through slabs of 1, 2 and 4 mm (the node alone: the rest of the table is a
+# surface BRDF and adds nothing behind).
+args=$(python3 -c 'import json,sys; t=json.load(open(sys.argv[1]))["translucent"]
+print("--colour " + ",".join("%.6g" % x for x in t["colour"]) + " --radius " + ",".join("%.6g" % (x * 1e3) for x in t["radius_m"]))' \
+	"$set/manifest.json")
+for d in 1 2 4; do
+	# shellcheck disable=SC2086
+	BLENDER="$BLENDER" python3 "$PROF" cycles $args --edges 0 --back --depth $d --samples 64 \
+		--json "$tmpd/back$d.json" 2>"$tmpd/back.log"
+	r=$(python3 - "$SKINBAKE" "$bake" "$d" "$tmpd/back$d.json" <<'PY'
+import json, re, subprocess, sys
+skinbake, bake, d_mm, prof = sys.argv[1], sys.argv[2], float(sys.argv[3]), sys.argv[4]
+m = json.load(open(bake + "/manifest.json"))
+tt = []
+for lw in m["layers"]:
+    layers, left = [], d_mm / 10
+    for l in lw["layers"]:
+        d = min(1e9 if l["d_cm"] == "inf" else l["d_cm"], left)
+        if d <= 0:
+            break
+        layers.append(dict(l, d_cm=d))
+        left -= d
+    layers[-1]["d_cm"] += max(left, 0.0)
+    args = []
+    for l in reversed(layers):
+        args += ["--layer", "d=%.6g,n=%g,mua=%g,mus=%g,g=%g" % (l["d_cm"], l["n"], l["mua_per_cm"], l["mus_per_cm"], l["g"])]
+    out = subprocess.run([skinbake, "simulate", "--solver", "ad", "--ad-tol", "1e-3"] + args, capture_output=True,
+                         text=True, check=True).stdout
+    tt.append(float(re.search(r"^\s*Tt\s+(\S+)", out, re.M).group(1)))
+w = m["rgb"]["rgb_from_wl"]
+sim = [sum(w[c][k] * tt[k] for k in range(len(tt))) for c in range(3)]
+ren = json.load(open(prof))["g"][0]
+ratio = [r / s if s > 1e-4 else 1.0 for r, s in zip(ren, sim)]
+print(" ".join("%.4g/%.4g" % (r, s) for r, s in zip(ren, sim)), int(all(abs(x - 1) <= 0.2 for x in ratio)))
+PY
+)
+	echo "# back light $d mm: rendered/simulated Tt per R, G, B (below 1e-4 not compared): ${r% *}"
+	todo "Cycles: back light through $d mm within 20 % of simulated Tt" \
+		"a homogeneous walk fitted to the reflection transmits up to 2x the layered slab" test "${r##* }" = 1
+done
+
+# 3. Bad input: the importer refuses a translucent section with a radius of 0.
+cp -r "$set" "$tmpd/bad"
+python3 -c 'import json,sys; p=sys.argv[1]; m=json.load(open(p)); m["translucent"]["radius_m"][0] = 0; json.dump(m, open(p, "w"))' \
+	"$tmpd/bad/manifest.json"
+B --python "$imp" -- "$tmpd/bad" --mode exact --scene box --samples 1 --render "$tmpd/bad.exr" >"$tmpd/bad.log" 2>&1
+check "a translucent radius of 0: the importer fails" test $? -ne 0 -a ! -s "$tmpd/bad.exr"
+check "  ... naming translucent.radius_m" grep -q "translucent.radius_m" "$tmpd/bad.log"
+# ... and a set calibrated on another Cycles (Blender 5.0.1 rendered the 3.4.1 fit 12 % dark).
+cp -r "$set" "$tmpd/bad2"
+python3 -c 'import json,sys; p=sys.argv[1]; m=json.load(open(p)); m["translucent"]["version"] = "2.79"; json.dump(m, open(p, "w"))' \
+	"$tmpd/bad2/manifest.json"
+B --python "$imp" -- "$tmpd/bad2" --mode exact --scene box --samples 1 --render "$tmpd/bad2.exr" >"$tmpd/bad2.log" 2>&1
+check "a set fitted to another Cycles version: the importer fails" test $? -ne 0 -a ! -s "$tmpd/bad2.exr"
+check "  ... naming translucent.version" grep -q "translucent.version = '2.79'" "$tmpd/bad2.log"
+tap_done

@@ -1,0 +1,19 @@
+#!/bin/sh
+# The docs' tables of keys are the program's: README.md's table of preset keys is what
+# scripts/doc_keys.py makes from `skinbake preset keys` (preset_key_table[]; `make doc-keys`
+# rewrites it); docs/presets.md's own table (its words, sources) has the same keys and the same
+# numbers as units, defaults and ranges. Probes: a row dropped, a default changed are caught.
+. "$top_srcdir/tests/tap.sh"
+G="$top_srcdir/scripts/doc_keys.py"
+check "README.md: the table of preset keys is the program's" python3 "$G" --check "$SKINBAKE" "$top_srcdir/README.md"
+n=$("$SKINBAKE" preset keys | tail -n +2 | wc -l)
+check "README.md lists all $n preset keys" test "$(sed -n '/<!-- preset keys:/,/<!-- end of preset keys/p' \
+	"$top_srcdir/README.md" | grep -c '^| `')" -eq "$n"
+grep -v '^| `dermis.blood` ' "$top_srcdir/README.md" >"$tmpd/README.md"
+check "probe: a row dropped is caught" sh -c "! python3 '$G' --check '$SKINBAKE' '$tmpd/README.md' >/dev/null"
+check "docs/presets.md: keys, units, defaults and ranges are the program's" \
+	python3 "$G" --check-values "$SKINBAKE" "$top_srcdir/docs/presets.md"
+sed 's/^| `dermis.blood` | - | 0.02 |/| `dermis.blood` | - | 0.03 |/' "$top_srcdir/docs/presets.md" >"$tmpd/presets.md"
+check "probe: a default changed in docs/presets.md is caught" \
+	sh -c "! python3 '$G' --check-values '$SKINBAKE' '$tmpd/presets.md' >/dev/null"
+tap_done
