@@ -1,0 +1,230 @@
+/* A rough interface's reflection and transmission per Fourier order, from
+ * a facet rule over the GGX visible normals (see ad_rough.h). */
+#include "config.h"
+#include "engine/ad_rough.h"
+
+#include <math.h>
+#include <stdlib.h>
+#include <string.h>
+
+#include "engine/microfacet.h"
+#include "base/util.h"
+
+/* One facet's outgoing light before it is spread: w0 to node i, w1 to
+ * node i + 1, at travel azimuth difference phi [rad]. */
+struct pt {
+	int i;
+	double w0, w1, phi;
+};
+
+int ad_rough_nu(double density)
+{
+	int n = (int)ceil(3.0 * density);
+	return n < AD_ROUGH_NU_MIN ? AD_ROUGH_NU_MIN : n > AD_ROUGH_NU_MAX ? AD_ROUGH_NU_MAX : n;
+}
+
+/* Shares of the direction with s between the two nodes around it, linear
+ * in the piece's Gauss variable; one node near a piece's ends.  Returns 0
+ * when s is past the quadrature (lost). */
+static int share(const struct ad_quad *q, double s, double w, struct pt *p)
+{
+	if (!(s < q->sigma[q->n_iv]))
+		return 0;
+	int k = ad_quad_piece(q, s), f = q->first[k], l = q->first[k + 1] - 1;
+	double t = asin(fmin(1.0, s / q->nstar[k]));
+	p->w1 = 0.0;
+	p->w0 = w;
+	if (t <= q->th[f] || f == l) {
+		p->i = f;
+		return 1;
+	}
+	if (t >= q->th[l]) {
+		p->i = l;
+		return 1;
+	}
+	int lo = f, hi = l;	/* th[lo] < t <= th[hi] */
+	while (hi - lo > 1) {
+		int mid = (lo + hi) / 2;
+		if (q->th[mid] < t)
+			lo = mid;
+		else
+			hi = mid;
+	}
+	double a = (t - q->th[lo]) / (q->th[hi] - q->th[lo]);
+	p->i = lo;
+	p->w0 = w * (1.0 - a);
+	p->w1 = w * a;
+	return 1;
+}
+
+/* s of direction v (unit, z the normal) in a medium of index n. */
+static double s_of(const double v[3], double n)
+{
+	return n * sqrt(fmax(0.0, v[0] * v[0] + v[1] * v[1]));
+}
+
+/* Spread weight w at azimuth phi over the azimuth points of node row a:
+ * 4-point Lagrange weights, folded at 0 and pi. */
+static void spread_phi(float *a, double phi, double w)
+{
+	const int np = AD_ROUGH_NPHI;
+	const double h = M_PI / (np - 1);
+	double x = fabs(phi) / h;
+	int b = (int)floor(x);
+	if (b > np - 2)
+		b = np - 2;
+	double t = x - b, l[4];
+	l[0] = -t * (t - 1.0) * (t - 2.0) / 6.0;
+	l[1] = (t + 1.0) * (t - 1.0) * (t - 2.0) / 2.0;
+	l[2] = -(t + 1.0) * t * (t - 2.0) / 2.0;
+	l[3] = (t + 1.0) * t * (t - 1.0) / 6.0;
+	for (int k = 0; k < 4; k++) {
+		int j = b - 1 + k;
+		if (j < 0)
+			j = -j;
+		if (j > np - 1)
+			j = 2 * (np - 1) - j;
+		a[j] += (float)(w * l[k]);
+	}
+}
+
+/* The facet points p[0 .. n-1] into column c. */
+static void gather(const struct pt *p, int n, struct ad_rough_col *c)
+{
+	int lo = -1, hi = -1;
+	for (int j = 0; j < n; j++) {
+		if (p[j].w0 == 0.0 && p[j].w1 == 0.0)
+			continue;
+		int top = p[j].w1 != 0.0 ? p[j].i + 1 : p[j].i;
+		if (lo < 0 || p[j].i < lo)
+			lo = p[j].i;
+		if (top > hi)
+			hi = top;
+	}
+	c->lo = lo < 0 ? 0 : lo;
+	c->cnt = lo < 0 ? 0 : hi - lo + 1;
+	c->a = xcalloc((size_t)c->cnt * AD_ROUGH_NPHI + 1, sizeof(float));
+	for (int j = 0; j < n; j++) {
+		float *row = c->a + (size_t)(p[j].i - c->lo) * AD_ROUGH_NPHI;
+		if (p[j].w0 != 0.0)
+			spread_phi(row, p[j].phi, p[j].w0);
+		if (p[j].w1 != 0.0)
+			spread_phi(row + AD_ROUGH_NPHI, p[j].phi, p[j].w1);
+	}
+}
+
+/* The facets of one incoming direction (cosine mu_i in medium n_i, s) into
+ * cr (reflected, into n_i) and ct (transmitted, into n_t); returns the
+ * power lost off the quadrature.  pr, pt: scratch of n_u^2 points each. */
+static double column(const struct ad_quad *q, const struct microfacet *mf, double n_i, double n_t, double s,
+    double mu_i, int n_u, struct pt *pr, struct pt *pt, struct ad_rough_col *cr, struct ad_rough_col *ct)
+{
+	const int ns = n_u * n_u;
+	double lost = 0.0;
+	memset(pr, 0, sizeof *pr * (size_t)ns);
+	memset(pt, 0, sizeof *pt * (size_t)ns);
+	if (mu_i > 0.0) {
+		double wi[3] = { -s / n_i, 0.0, mu_i };
+		for (int a = 0; a < n_u; a++)
+			for (int b = 0; b < n_u; b++) {
+				double wr[3], wt[3], gr, gt;
+				microfacet_sample_split(mf, n_i, n_t, wi, (a + 0.5) / n_u, (b + 0.5) / n_u, wr, &gr, wt, &gt);
+				int j = a * n_u + b;
+				gr /= ns;
+				gt /= ns;
+				if (gr > 0.0) {
+					pr[j].phi = atan2(wr[1], wr[0]);
+					if (!share(q, s_of(wr, n_i), gr, &pr[j]))
+						lost += gr;
+				}
+				if (gt > 0.0) {
+					pt[j].phi = atan2(wt[1], wt[0]);
+					if (!share(q, s_of(wt, n_t), gt, &pt[j]))
+						lost += gt;
+				}
+			}
+	}
+	gather(pr, ns, cr);
+	gather(pt, ns, ct);
+	return lost;
+}
+
+static double cos_of_s(double s, double n)
+{
+	return s < n ? sqrt((n - s) * (n + s)) / n : 0.0;
+}
+
+void ad_rough_init(struct ad_rough *r, const struct ad_quad *q, double n_above, double n_below, double alpha,
+    enum optics_fresnel model, const double *se, int E, int n_u)
+{
+	const int N = q->n;
+	const struct microfacet mf = { MICROFACET_GGX, alpha, model };
+	memset(r, 0, sizeof *r);
+	r->N = N;
+	r->E = E;
+	r->top_r = xcalloc((size_t)(N + E), sizeof *r->top_r);
+	r->top_t = xcalloc((size_t)(N + E), sizeof *r->top_t);
+	r->bot_r = xcalloc((size_t)N + 1, sizeof *r->bot_r);
+	r->bot_t = xcalloc((size_t)N + 1, sizeof *r->bot_t);
+	struct pt *pr = xcalloc((size_t)n_u * n_u, sizeof *pr), *pt = xcalloc((size_t)n_u * n_u, sizeof *pt);
+	for (int j = 0; j < N + E; j++) {
+		double s = j < N ? q->s[j] : se[j - N];
+		double mu = j < N ? (s < n_above ? ad_quad_mu(q, j, n_above) : 0.0) : cos_of_s(s, n_above);
+		double l = column(q, &mf, n_above, n_below, s, mu, n_u, pr, pt, &r->top_r[j], &r->top_t[j]);
+		r->lost_max = fmax(r->lost_max, l);
+	}
+	for (int j = 0; j < N; j++) {
+		double s = q->s[j], mu = s < n_below ? ad_quad_mu(q, j, n_below) : 0.0;
+		double l = column(q, &mf, n_below, n_above, s, mu, n_u, pr, pt, &r->bot_r[j], &r->bot_t[j]);
+		r->lost_max = fmax(r->lost_max, l);
+	}
+	free(pr);
+	free(pt);
+}
+
+/* Column out[N] of an operator from c at order m (cm: cos(m phi_b)): the
+ * powers, over sqrt(W_i), times in (sqrt(W_j) for a node column). */
+static void order_col(const struct ad_rough_col *c, const double *cm, const double *sqW, double in, double *out)
+{
+	for (int i = 0; i < c->cnt; i++) {
+		const float *row = c->a + (size_t)i * AD_ROUGH_NPHI;
+		double v = 0.0;
+		for (int b = 0; b < AD_ROUGH_NPHI; b++)
+			v += row[b] * cm[b];
+		out[c->lo + i] = v * in / sqW[c->lo + i];
+	}
+}
+
+void ad_rough_order(const struct ad_rough *r, int m, const double *sqW, struct ad_elem *x)
+{
+	const int N = r->N, E = r->E;
+	double cm[AD_ROUGH_NPHI];
+	for (int b = 0; b < AD_ROUGH_NPHI; b++)
+		cm[b] = cos(m * (M_PI * b / (AD_ROUGH_NPHI - 1)));
+	memset(x->rt, 0, sizeof(double) * ad_elem_size(N, E));
+	for (int j = 0; j < N + E; j++) {
+		double in = j < N ? sqW[j] : 1.0;
+		order_col(&r->top_r[j], cm, sqW, in, x->rt + (size_t)N * j);
+		order_col(&r->top_t[j], cm, sqW, in, x->td + (size_t)N * j);
+	}
+	for (int j = 0; j < N; j++) {
+		order_col(&r->bot_r[j], cm, sqW, sqW[j], x->rb + (size_t)N * j);
+		order_col(&r->bot_t[j], cm, sqW, sqW[j], x->tu + (size_t)N * j);
+	}
+}
+
+static void cols_free(struct ad_rough_col *c, int n)
+{
+	for (int j = 0; c && j < n; j++)
+		free(c[j].a);
+	free(c);
+}
+
+void ad_rough_free(struct ad_rough *r)
+{
+	cols_free(r->top_r, r->N + r->E);
+	cols_free(r->top_t, r->N + r->E);
+	cols_free(r->bot_r, r->N);
+	cols_free(r->bot_t, r->N);
+	memset(r, 0, sizeof *r);
+}
