@@ -320,7 +320,7 @@ static void setup(struct ctx *c, const double *se)
 			}
 	lv->t_air = xcalloc((size_t)lv->na + 1, sizeof(double));
 	for (int i = 0; i < lv->na; i++)
-		lv->t_air[i] = c->bnd[0].t[i];
+		lv->t_air[i] = md->brough[0] ? 1.0 : c->bnd[0].t[i];
 	double **fl[] = { &lv->rsp, &lv->rd, &lv->rd_d, &lv->tt, &lv->tt_d };
 	for (size_t j = 0; j < sizeof fl / sizeof fl[0]; j++)
 		*fl[j] = xcalloc((size_t)E, sizeof(double));

@@ -46,9 +46,13 @@
 #include "engine/ad_quad.h"
 #include "engine/optics.h"
 
-#define AD_ROUGH_NU_MIN 48
-#define AD_ROUGH_NU_MAX 384
+#define AD_ROUGH_NU 64
 #define AD_ROUGH_NPHI 128
+/* Lobes this many nodes wide (standard deviation) or more get point values. */
+#define AD_ROUGH_WIDE 2.0
+/* Point values' azimuth rule: intervals, points in all. */
+#define AD_ROUGH_GIV 8
+#define AD_ROUGH_GNP (8 * AD_ROUGH_GIV)
 
 /* The facet rule per axis for a quadrature of `density` nodes per unit
  * cosine. */
@@ -58,6 +62,8 @@ int ad_rough_nu(double density);
  * with AD_ROUGH_NPHI azimuth points, a[(i - lo) * AD_ROUGH_NPHI + b]. */
 struct ad_rough_col {
 	int lo, cnt;
+	int point;	/* 0: facet rule, AD_ROUGH_NPHI uniform azimuth points; 1: point values,
+			 * AD_ROUGH_GNP Gauss points (ad_rough.c) */
 	float *a;
 };
 
