@@ -49,7 +49,8 @@ void ad_elem_smooth(struct ad_elem *x, int N, int E, enum optics_fresnel model, 
 
 size_t ad_elem_work(int N, int E)
 {
-	return ad_elem_size(N, E) + 3 * (size_t)N * (size_t)(N + E) + (size_t)N * (size_t)N + (size_t)N + 4 * (size_t)E;
+	/* o, S and Su [N x (2N + E)], M [N x N], cdn [E], piv [N] (ints). */
+	return ad_elem_size(N, E) + 2 * (size_t)N * (size_t)(2 * N + E) + (size_t)N * (size_t)N + (size_t)E + (size_t)N + 1;
 }
 
 static void gemm(int m, int n, int k, const double *A, const double *B, double beta, double *C)
