@@ -5,9 +5,8 @@
 
 #include <cblas.h>
 #include <lapacke.h>
+#include <math.h>
 #include <string.h>
-
-#include "engine/ad_stack.h"
 
 size_t ad_elem_size(int N, int E)
 {
@@ -27,6 +26,23 @@ void ad_elem_bind(struct ad_elem *e, double *block, int N, int E)
 	e->tu_d = e->rb_d + E;
 }
 
+/* One smooth interface at s: ad_bnd_rt's rule (ad_stack.h) for two indices
+ * (r = 1 where the direction exists on one side only). */
+static void smooth_rt(enum optics_fresnel model, const double nl[2], double s, double *r, double *t)
+{
+	int above = s < nl[0], below = s < nl[1];
+	double ct;
+	*t = 0.0;
+	if (!above && !below)
+		*r = 0.0;
+	else if (!above || !below)
+		*r = 1.0;
+	else {
+		*r = optics_stack_reflectance(model, nl, 2, sqrt(fmax(0.0, (nl[0] - s) * (nl[0] + s))) / nl[0], &ct);
+		*t = 1.0 - *r;
+	}
+}
+
 void ad_elem_smooth(struct ad_elem *x, int N, int E, enum optics_fresnel model, double n_above, double n_below,
     const double *s, const double *se)
 {
@@ -34,14 +50,14 @@ void ad_elem_smooth(struct ad_elem *x, int N, int E, enum optics_fresnel model, 
 	memset(x->rt, 0, sizeof(double) * ad_elem_size(N, E));
 	for (int i = 0; i < N; i++) {
 		double r, t;
-		ad_bnd_rt(model, nl, 2, s[i], &r, &t);
+		smooth_rt(model, nl, s[i], &r, &t);
 		x->rt[i + (size_t)N * i] = r;
 		x->td[i + (size_t)N * i] = t;
 		x->rb[i + (size_t)N * i] = r;
 		x->tu[i + (size_t)N * i] = t;
 	}
 	for (int e = 0; e < E; e++) {
-		ad_bnd_rt(model, nl, 2, se[e], &x->rt_d[e], &x->td_d[e]);
+		smooth_rt(model, nl, se[e], &x->rt_d[e], &x->td_d[e]);
 		x->rb_d[e] = x->rt_d[e];
 		x->tu_d[e] = x->td_d[e];
 	}

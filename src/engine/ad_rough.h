@@ -50,6 +50,7 @@
 #define AD_ROUGH_NPHI 128
 /* Lobes this many nodes wide (standard deviation) or more get point values. */
 #define AD_ROUGH_WIDE 2.0
+#define AD_ROUGH_WIDE_PHI 0.1	/* [rad] */
 /* Point values' azimuth rule: intervals, points in all. */
 #define AD_ROUGH_GIV 8
 #define AD_ROUGH_GNP (8 * AD_ROUGH_GIV)
