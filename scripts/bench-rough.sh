@@ -17,17 +17,7 @@ REPS=${REPS:-3}
 W=$(mktemp -d "${TMPDIR:-/tmp}/skinbake-bench-rough.XXXXXX")
 trap 'rm -rf "$W"' EXIT INT TERM
 
-cpu() {
-	best=
-	i=0
-	while [ $i -lt "$REPS" ]; do
-		/usr/bin/time -f "%U %S" -o "$W/t" "$@" >/dev/null 2>&1
-		c=$(awk '{ printf "%.3f", $1 + $2 }' "$W/t")
-		best=$(awk -v a="$c" -v b="${best:-1e99}" 'BEGIN { print (a < b ? a : b) }')
-		i=$((i + 1))
-	done
-	echo "$best"
-}
+. "$(dirname "$0")/bench-lib.sh"
 
 echo "## Rough boundaries (issue 21)"
 echo

@@ -22,18 +22,7 @@ ADB="$top_builddir/tests/ad_bench"
 W=$(mktemp -d "${TMPDIR:-/tmp}/skinbake-bench-speed.XXXXXX")
 trap 'rm -rf "$W"' EXIT INT TERM
 
-# cpu CMD...: smallest user + system seconds of REPS runs of CMD (output discarded).
-cpu() {
-	best=
-	i=0
-	while [ $i -lt "$REPS" ]; do
-		/usr/bin/time -f "%U %S" -o "$W/t" "$@" >/dev/null 2>&1
-		c=$(awk '{ printf "%.3f", $1 + $2 }' "$W/t")
-		best=$(awk -v a="$c" -v b="${best:-1e99}" 'BEGIN { print (a < b ? a : b) }')
-		i=$((i + 1))
-	done
-	echo "$best"
-}
+. "$(dirname "$0")/bench-lib.sh"
 # field KEY LINE: the value after KEY in a "key value key value" line
 field() { echo "$2" | awk -v k="$1" '{ for (i = 1; i < NF; i++) if ($i == k) print $(i + 1) }'; }
 

@@ -5,6 +5,7 @@
 # configure and build.  Idempotent; extra arguments go to ./configure.
 set -eu
 cd "$(dirname "$0")/.."
+start=$(date +%s)
 PKGS="build-essential autoconf automake pkg-config autoconf-archive \
  libopenexr-dev openexr libpng-dev libjson-c-dev libinih-dev libqhull-dev \
  librandom123-dev libcmocka-dev libassimp-dev assimp-testmodels libopenmpi-dev openmpi-bin libopenblas-dev liblapacke-dev \
@@ -35,7 +36,8 @@ clangv=$(apt-cache depends clang 2>/dev/null | sed -n 's/^ *Depends: clang-\([0-
 [ -n "$clangv" ] || { echo "setup.sh: apt does not say which clang-NN the clang package is" >&2; exit 1; }
 PKGS="$PKGS $(pick "libclang-rt-$clangv-dev")"
 # Mitsuba's LLVM variants (drjit 1.5) need libLLVM >= 16: Debian 12's default 14 crashes them.
-PKGS="$PKGS $(pick libllvm19 libllvm20 libllvm18 libllvm17 libllvm16)"
+# (Debian 13 renamed some for 64-bit time: libllvm17t64.)
+PKGS="$PKGS $(pick libllvm19 libllvm20 libllvm18 libllvm18t64 libllvm17 libllvm17t64 libllvm16)"
 missing=
 for p in $PKGS; do
 	dpkg-query -W -f='${Status}' "$p" 2>/dev/null | grep -q "install ok installed" || missing="$missing $p"
@@ -50,3 +52,12 @@ sh scripts/setup-venv.sh
 if [ ! -f configure ] || [ configure.ac -nt configure ]; then autoreconf -fi; fi
 if [ ! -f Makefile ] || [ configure -nt Makefile ]; then ./configure --with-mpi "$@"; fi
 make -j"$(nproc)"
+# Which Blenders the tests run on here: Debian's package and each bpy venv (tests/blender_matrix.sh).
+ver() { sed 's/^[0-9]*://; s/[+~-].*//'; }
+bpyv() { "$1/bin/python" -c 'import importlib.metadata as m; print(m.version("bpy"))' 2>/dev/null || echo none; }
+tested="Debian's blender $(dpkg-query -W -f='${Version}' blender | ver), bpy $(bpyv .venv) (.venv)"
+if [ -x .venv-bpy45/bin/python ]; then tested="$tested, bpy $(bpyv .venv-bpy45) (.venv-bpy45)"; else
+	tested="$tested; not bpy 4.5 LTS (wheels for Python 3.11 only)"; fi
+echo "setup.sh: Debian $(cat /etc/debian_version), Python $(/usr/bin/python3 -c 'import platform; print(platform.python_version())')," \
+	"gcc $(gcc -dumpfullversion), clang $clangv; Blender tested here: $tested"
+echo "setup.sh: done in $(( $(date +%s) - start )) s"

@@ -10,7 +10,8 @@
 # Run by scripts/validate.sh, or alone:
 #   SKINBAKE=./skinbake sh scripts/validate-mitsuba.sh
 # Environment: SKINBAKE, POVRAY, MITSUBA_PYTHON (default: the project venv
-# .venv, else python3), VALIDATE_WORK (default validate-work), VALIDATE_QUICK
+# .venv, else python3), BLENDER (default: the venv's bpy through tests/bpy-blender,
+# else Debian's blender; empty: no Blender columns), VALIDATE_WORK (default validate-work), VALIDATE_QUICK
 # (1: half size, a quarter of the samples). Writes $VALIDATE_WORK/mitsuba/section.md
 # and $VALIDATE_WORK/png/mitsuba-bridge.png. Without mitsuba the section says so.
 set -eu
@@ -35,6 +36,15 @@ if [ -z "$MTS_PY" ] || [ ! -f "$MODEL" ]; then
 		>"$mw/section.md"
 	exit 0
 fi
+if [ -z "${BLENDER+x}" ]; then
+	BLENDER=blender
+	if "$MTS_PY" -c 'import bpy' >/dev/null 2>&1; then
+		BLENDER=$top_srcdir/tests/bpy-blender
+		BPY_PYTHON=$MTS_PY
+		export BPY_PYTHON
+	fi
+fi
+command -v "$BLENDER" >/dev/null 2>&1 || BLENDER=
 PYTHONPATH="$top_srcdir/exporters/mitsuba${PYTHONPATH:+:$PYTHONPATH}"
 export PYTHONPATH
 # Small: the volumetric reference costs about 8 minutes per light at 64 x 48 px
@@ -43,6 +53,8 @@ W=64 H=48 SPP_REF=512 SPP=128
 if [ "${VALIDATE_QUICK:-0}" = 1 ]; then W=32 H=24 SPP_REF=128 SPP=32; fi
 
 [ -f "$mw/bake/manifest.json" ] || "$SKINBAKE" bake --preset paper --solver ad --quiet --out "$mw/bake" >/dev/null
+[ -z "$BLENDER" ] || [ -f "$mw/blender-set/manifest.json" ] ||
+	"$SKINBAKE" export blender --bake "$mw/bake" --out "$mw/blender-set" >/dev/null
 # Lights ten times farther than scenes/human-head.scene's key light, so that a
 # point light's fall-off in Mitsuba (1/d^2, exact at the look_at point) stays
 # within 1 % over the head, where POV-Ray's does not fall off at all.
@@ -96,6 +108,22 @@ for s in front back; do
 	else
 		say "$s: POV-Ray failed (see $mw/pov-$s.log)"
 	fi
+	[ -n "$BLENDER" ] || continue
+	BL() { "$BLENDER" -b -noaudio --python-exit-code 1 "$@"; }
+	BL --factory-startup --python "$top_srcdir/scripts/blender_ply_scene.py" -- "$mw/mts-$s" "$mw/$s.blend" \
+		>"$mw/blender-$s.log" 2>&1 || { say "$s: Blender scene failed (see $mw/blender-$s.log)"; continue; }
+	for m in exact general; do
+		t0=$(date +%s)
+		if BL "$mw/$s.blend" --python "$top_srcdir/exporters/blender/import_skin.py" -- "$mw/blender-set" \
+			--objects head --mode $m --scene-json "$mw/mts-$s/scene.json" --samples $SPP \
+			--render "$mw/$s-blender-$m.exr" >>"$mw/blender-$s.log" 2>&1; then
+			ver=$(sed -n 's/^import_skin.py: .* in Blender \([0-9.]*\).*/\1/p' "$mw/blender-$s.log" | tail -1)
+			echo "$s	blender-$m	$(($(date +%s) - t0))	Blender ${ver:-?} Cycles, $SPP samples" >>"$times"
+			say "$s: Blender $m, $(($(date +%s) - t0)) s"
+		else
+			say "$s: Blender $m failed (see $mw/blender-$s.log)"
+		fi
+	done
 done
 
 "$MTS_PY" - "$mw" "$work/png/mitsuba-bridge.png" >"$mw/section.md" <<'PYEOF'
@@ -119,7 +147,8 @@ def load(path):
     return a[..., :3]
 
 cols = [("mitsuba-volumetric", "Mitsuba volumetric (reference)"), ("mitsuba-table", "Mitsuba, baked table"),
-        ("pov", "POV-Ray, baked table")]
+        ("pov", "POV-Ray, baked table"), ("blender-exact", "Blender, exact mode"),
+        ("blender-general", "Blender, general mode")]
 rows = []
 tiles = []
 for s, label in (("front", "front light"), ("back", "back light")):
@@ -167,7 +196,7 @@ for label, name, med, p95, t in rows:
                                            "-" if p95 is None else "%.2f" % p95, tt))
 print("\nThe reference is rendered per channel (R, G, B apart, grey media of that channel's wavelength) "
       "and is still grainy at this size and sample count: part of each dE00 is its noise, not the bridge's error.")
-print("\nBlender's modes are not in the table yet: its importer builds its own camera and lights "
-      "(exporters/blender/human_scene.py), not those of scene.json.")
+print("\nBlender renders the mesh that the Mitsuba export placed (scripts/blender_ply_scene.py), lit and framed "
+      "by the importer's `--scene-json` from the same scene file; its pixels are radiance, as Mitsuba's.")
 PYEOF
 say "the bridge: $mw/section.md"

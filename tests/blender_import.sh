@@ -71,13 +71,12 @@ fi
 B --python "$imp" -- "$set" --mode general --scene box --world 1 --sun-strength 0 \
 	--samples 64 --view 90 0 --render "$tmpd/furnace.exr" >"$tmpd/furnace.log" 2>&1
 check "general mode: furnace render succeeds" test $? -eq 0
-# Blender 4+ has no fitted mixture (its Principled BSDF is not the one the fit models): one
-# Principled BSDF whose Base Colour is calibrated per version (calibration.py: the table's nodes
-# are 0.5 % apart in noise, and interpolating between them adds up to 1 %), against the bake's own
-# furnace value, within 2 %.
+# Blender 4+ renders the mixture fitted for it (general_fit_v4), whose subsurface Base Colours come
+# from the measured response of calibration.VIEW_RESPONSE (its nodes 0.3 % apart in noise); 4.x's
+# random walk is noisier at 64 samples (4.5: +1.07 % here, -0.27 % at 512 samples), so 2 % there.
 bmajor=$(sed -n 's/^import_skin.py: .* in Blender \([0-9]*\)\..*/\1/p' "$tmpd/furnace.log")
 key=general_fit.furnace_rgb tol=0.01 what="the fitted mixture"
-[ "${bmajor:-3}" -ge 4 ] && key=general_fit.furnace_bake_rgb tol=0.02 what="Blender ${bmajor}'s calibrated Principled BSDF"
+[ "${bmajor:-3}" -ge 4 ] && key=general_fit_v4.furnace_rgb tol=0.02 what="the mixture fitted for Blender ${bmajor}"
 if relerr "$set/manifest.json" $key "$tmpd/furnace.log" $tol >"$tmpd/furnace.cmp"; then
 	ok "albedo round trip ($what) within $tol: $(cat "$tmpd/furnace.cmp")"
 else

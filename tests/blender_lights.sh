@@ -2,7 +2,8 @@
 # The Blender importer on a user's own .blend, with the real Blender (Cycles CPU): exact mode with
 # two suns, a point lamp and a spot lamp on a mesh against `skinbake eval` per pixel; the file keeps its other
 # objects, lamps, materials and world; general mode (the fitted mixture) against the exact
-# render on a sphere; bad input (missing object, mesh without UVs) exits 2.  About 1 minute.
+# render on a sphere, and on Blender 4+ the measured response it is built on; bad input (missing
+# object, mesh without UVs) exits 2.  About 1 minute.
 . "$top_srcdir/tests/tap.sh"
 
 imp="$top_srcdir/exporters/blender/import_skin.py"
@@ -79,25 +80,40 @@ B "$tmpd/kept.blend" --python "$top_srcdir/tests/blender_measure.py" -- "$tmpd/k
 check "the saved file renders (view layers and compositor sum)" test $? -eq 0 -a -s "$tmpd/kept.exr"
 
 # 3. General mode: the fitted mixture against the exact mode on a sphere (one sun, reference view),
-# 4 x 4 pixel blocks so that sampling noise stays well below the tolerance.
-r=$(python3 -c "import json; print(json.load(open('$tmpd/set/manifest.json'))['general_fit']['rms_error'])")
-check "manifest: general-mode fit RMS error $r below 5%" awk -v r="$r" 'BEGIN { exit !(r < 0.05) }'
+# 4 x 4 pixel blocks so that sampling noise stays well below the tolerance.  Blender 3.x renders
+# the manifest's general_fit, 4.x and 5.x its general_fit_v4 (Lambert subsurface term, Base Colour
+# from the measured response of calibration.VIEW_RESPONSE): both fits within 5 % RMS.
+for key in general_fit general_fit_v4; do
+	r=$(python3 -c "import json; print(json.load(open('$tmpd/set/manifest.json'))['$key']['rms_error'])")
+	check "manifest: $key RMS error $r below 5%" awk -v r="$r" 'BEGIN { exit !(r < 0.05) }'
+done
 for mode in exact general; do
 	BF --python "$imp" -- "$tmpd/set" --mode $mode --scene sphere --res 64 --samples 128 \
 		--render "$tmpd/sph_$mode.exr" >"$tmpd/sph_$mode.log" 2>&1
 done
 BF --python "$scn" -- blocks "$tmpd/sph_general.exr" "$tmpd/sph_exact.exr" 4 0.05 >"$tmpd/blk.log" 2>&1
-# Blender 4+ has no fitted mixture: one Principled BSDF, calibrated per version, whose subsurface
-# light does not fall off toward grazing light as the bake does (and shaders see no light
-# direction to make it): 6.2 % (4.5) and 6.4 % (5.0) mean measured on this bake, so 7.5 % there.
 bmajor=$(sed -n 's/^import_skin.py: .* in Blender \([0-9]*\)\..*/\1/p' "$tmpd/sph_general.log")
-lim=0.05 what="fitted mixture"
-[ "${bmajor:-3}" -ge 4 ] && lim=0.075 what="Blender ${bmajor}'s calibrated Principled BSDF"
+what="fitted mixture general_fit"
+[ "${bmajor:-3}" -ge 4 ] && what="fitted mixture general_fit_v4, Blender ${bmajor}"
 set -- $(val SKINBAKE_BLOCKS "$tmpd/blk.log")
-if [ $# -eq 3 ] && awk -v n="$1" -v m="$2" -v l="$lim" 'BEGIN { exit !(n >= 50 && m < l) }'; then
-	ok "general mode ($what) vs exact on a sphere: $1 blocks of 4x4 px, mean $2 (limit $lim), max $3"
+if [ $# -eq 3 ] && awk -v n="$1" -v m="$2" 'BEGIN { exit !(n >= 50 && m < 0.05) }'; then
+	ok "general mode ($what) vs exact on a sphere: $1 blocks of 4x4 px, mean $2 (limit 0.05), max $3"
 else
-	fail "general mode ($what) vs exact on a sphere (mean limit $lim): '$*'"
+	fail "general mode ($what) vs exact on a sphere (mean limit 0.05): '$*'"
+fi
+
+# The response table that general_fit_v4's Base Colours come from still holds for this Blender:
+# three Base Colours at cos_view 0.45 with the sun 60 deg off the normal (the cosine law) and along
+# the normal, against calibration.VIEW_RESPONSE.  The table's noise is 0.3 % and this check's at
+# 256 samples about 0.5 % (4.5: 0.25 %, 5.0: 0.47 % largest), so 1.5 %.
+if [ "${bmajor:-3}" -ge 4 ]; then
+	BF --python "$top_srcdir/scripts/blender-calibrate.py" -- check 256 >"$tmpd/vcheck.log" 2>&1
+	set -- $(val SKINBAKE_VIEW_CHECK "$tmpd/vcheck.log")
+	if [ $# -eq 7 ] && awk -v e="$1" 'BEGIN { exit !(e < 0.015) }'; then
+		ok "Blender ${bmajor}: the subsurface response matches calibration.VIEW_RESPONSE within 1.5 % (largest $1: $2 ... $7)"
+	else
+		fail "Blender ${bmajor}: subsurface response vs calibration.VIEW_RESPONSE: '$*' $(grep -i error "$tmpd/vcheck.log" | head -2)"
+	fi
 fi
 
 # 4. Bad input: a clear message and exit status 2, nothing saved.

@@ -17,6 +17,17 @@
 #   blender -b FILE.blend --python blender_scene.py -- addon IMPORTER SET/manifest.json MESH
 #       the add-on's File > Import operator (registered from IMPORTER) on the selected MESH in exact
 #       mode; prints SKINBAKE_ADDON result material view-layers
+#   blender -b --factory-startup --python blender_scene.py -- make-scene-json SCENE.json OUT.blend
+#       the spheres of SCENE.json (scene.json of `skinbake scene`, plain materials) as smooth meshes
+#       with Diffuse BSDFs, placed as the importer places scene.json's camera and lights; black
+#       world, Cycles with direct light only (as POV-Ray without radiosity), point-sampled pixels
+#   blender -b FILE.blend --python blender_scene.py -- scene-compare B.exr P.png SCENE.json
+#       Blender's render B of FILE (radiance; camera and lights imported from SCENE.json) against
+#       POV-Ray's P (16-bit linear, pi x radiance): pixels lit in one and not the other, the lit
+#       areas and centroids, and over the 2 x 2 blocks lit in both with the pixels within 2 px of
+#       them, the relative difference of pi B from P (a lone point light's 1/d^2 falloff taken
+#       out per pixel); prints SKINBAKE_SILHOUETTE mismatched n_b n_p dx dy and
+#       SKINBAKE_SHADING n mean p90
 #   blender -b --factory-startup --python blender_scene.py -- mean A.exr
 #       prints SKINBAKE_MEAN r g b, the mean of the whole image
 #   blender -b --factory-startup --python blender_scene.py -- blocks A.exr B.exr K THR
@@ -287,6 +298,113 @@ def measure_lights(helper, bake, stem, res, samples):
     print(f"SKINBAKE_LIGHTS {n} {sum(errs) / n:.6f} {errs[int(0.95 * n)]:.6f} {errs[-1]:.6f}")
 
 
+def make_scene_json(path, out):
+    """The spheres of scene.json PATH with Diffuse BSDFs, frame and scale as the importer's."""
+    with open(path) as f:
+        sc = json.load(f)
+    bpy.ops.wm.read_factory_settings(use_empty=True)
+    scene = bpy.context.scene
+    scale = sc["unit_mm"] / 1000.0
+    for ob in sc["objects"]:
+        if ob["shape"] != "sphere" or ob["material"] != "plain":
+            raise SystemExit(f"blender_scene.py: object {ob['name']}: only plain spheres are built")
+        m = ob["to_world"]
+        c = [sum(m[i][k] * ob["center"][k] for k in range(3)) + m[i][3] for i in range(3)]
+        bpy.ops.mesh.primitive_uv_sphere_add(segments=128, ring_count=64, radius=ob["radius"] * ob["scale"] * scale,
+                                             location=Vector((c[0], c[2], c[1])) * scale)
+        bpy.ops.object.shade_smooth()
+        o = bpy.context.active_object
+        o.name = ob["name"]
+        mt = bpy.data.materials.new(ob["name"])
+        mt.use_nodes = True
+        nt = mt.node_tree
+        nt.nodes.remove(nt.nodes["Principled BSDF"])
+        d = nt.nodes.new("ShaderNodeBsdfDiffuse")
+        d.inputs["Color"].default_value = tuple(ob["color"]) + (1.0,)
+        nt.links.new(d.outputs[0], nt.nodes["Material Output"].inputs["Surface"])
+        o.data.materials.append(mt)
+    wd = bpy.data.worlds.new("World")
+    scene.world = wd
+    wd.color = (0.0, 0.0, 0.0)
+    scene.render.engine = "CYCLES"
+    cy = scene.cycles
+    cy.device, cy.samples, cy.use_denoising, cy.use_adaptive_sampling, cy.seed = "CPU", 4, False, False, 0
+    cy.max_bounces = 0                 # direct light only: POV-Ray without radiosity
+    cy.filter_width = 0.01             # samples at the pixel centre, as POV-Ray without antialiasing
+    scene.view_settings.view_transform = "Standard"
+    bpy.ops.wm.save_as_mainfile(filepath=os.path.abspath(out))
+
+
+def _pixel_points(scene, w, h):
+    """The surface point [Blender units] seen at each pixel centre (row 0 at the bottom, as
+    read() gives pixels) by SCENE's camera, or None."""
+    cam = scene.camera
+    mw = cam.matrix_world
+    tr, br, bl, tl = cam.data.view_frame(scene=scene)
+    dg = bpy.context.evaluated_depsgraph_get()
+    fwd = (mw.to_quaternion() @ Vector((0.0, 0.0, -1.0))).normalized()
+    pts = []
+    for y in range(h):
+        for x in range(w):
+            q = mw @ (bl + (br - bl) * ((x + 0.5) / w) + (tl - bl) * ((y + 0.5) / h))
+            if cam.data.type == "ORTHO":
+                o, d = q - fwd * 1e3 * (q - mw.translation).length, fwd
+            else:
+                o, d = mw.translation, (q - mw.translation).normalized()
+            hit, loc = scene.ray_cast(dg, o, d)[:2]
+            pts.append(loc.copy() if hit else None)
+    return pts
+
+
+def scene_compare(b, p, sjson):
+    """B rendered from this file with SJSON's camera and lights against POV-Ray's P.  A point
+    light of a scene file does not fade, Blender's falls off as 1/d^2 from its value at the
+    look_at: with one point light (and no other) each pixel of pi B is scaled by d^2 / d_look^2,
+    d the distance from the lamp to the surface point the camera sees there."""
+    with open(sjson) as f:
+        sc = json.load(f)
+    w, h, pb = read(b)
+    w2, h2, pp = read(p)
+    if (w, h) != (w2, h2):
+        raise SystemExit(f"{b} and {p} differ in size")
+    pb = [[math.pi * v for v in px] for px in pb]
+    if [L["type"] for L in sc["lights"]] == ["point"]:
+        scale = sc["unit_mm"] / 1000.0
+
+        def bl(v):
+            return Vector((v[0], v[2], v[1])) * scale
+        lamp, look = bl(sc["lights"][0]["position"]), bl(sc["camera"]["look_at"])
+        pts = _pixel_points(bpy.context.scene, w, h)
+        for i, q in enumerate(pts):
+            if q is not None:
+                f = (lamp - q).length_squared / (lamp - look).length_squared
+                pb[i] = [v * f for v in pb[i]]
+    top = max(max(sum(px) for px in pp), 1e-12)
+    lit_b = [sum(px) > 0.02 * top for px in pb]
+    lit_p = [sum(px) > 0.02 * top for px in pp]
+
+    def centroid(lit):
+        pts = [(i % w, i // w) for i in range(w * h) if lit[i]]
+        return len(pts), sum(x for x, _ in pts) / max(len(pts), 1), sum(y for _, y in pts) / max(len(pts), 1)
+    nb, xb, yb = centroid(lit_b)
+    npv, xp, yp = centroid(lit_p)
+    bad = sum(1 for i in range(w * h) if lit_b[i] != lit_p[i])
+    print(f"SKINBAKE_SILHOUETTE {bad} {nb} {npv} {xb - xp:.3f} {yb - yp:.3f}")
+    errs = []
+    for by in range(0, h - 1, 2):
+        for bx in range(0, w - 1, 2):
+            ring = [y * w + x for y in range(max(by - 2, 0), min(by + 4, h)) for x in range(max(bx - 2, 0), min(bx + 4, w))]
+            if not all(lit_b[i] and lit_p[i] for i in ring):
+                continue
+            idx = [(by + dy) * w + bx + dx for dy in range(2) for dx in range(2)]
+            sb = [sum(pb[i][c] for i in idx) for c in range(3)]
+            sp = [sum(pp[i][c] for i in idx) for c in range(3)]
+            errs.append(max(abs(sb[c] / sp[c] - 1.0) for c in range(3) if sp[c] > 0))
+    errs.sort()
+    n = len(errs)
+    print(f"SKINBAKE_SHADING {n} {sum(errs) / max(n, 1):.6f} {errs[int(0.9 * n)] if n else 1.0:.6f}")
+
+
 def blocks(a, b, k, thr):
     w, h, pa = read(a)
     w2, h2, pb = read(b)
@@ -343,6 +461,10 @@ elif cmd == "addon":
     sc = bpy.context.scene
     print("SKINBAKE_ADDON", ",".join(sorted(r)), bpy.data.objects[args[3]].active_material.name.replace(" ", "_"),
           len([v for v in sc.view_layers if v.name.startswith("skinbake:")]))
+elif cmd == "make-scene-json":
+    make_scene_json(args[1], args[2])
+elif cmd == "scene-compare":
+    scene_compare(args[1], args[2], args[3])
 elif cmd == "mean":
     w, h, px = read(args[1])
     print("SKINBAKE_MEAN " + " ".join(f"{sum(p[c] for p in px) / len(px):.6f}" for c in range(3)))

@@ -38,7 +38,7 @@
 #include <stdlib.h>
 #include <string.h>
 
-#include "bake/family.h"
+#include "family/family.h"
 #include "base/srgb.h"
 #include "base/util.h"
 #include "maps/fit.h"

@@ -1,5 +1,5 @@
 #!/bin/sh
-# Family checkpoints (src/bake/family_run.c): a family bake (3 members,
+# Family checkpoints (src/family/family_run.c): a family bake (3 members,
 # adding-doubling) SIGKILLed once FAM.checkpoint holds its first member and
 # run again with --resume writes a family directory equal to the
 # uninterrupted one: every EXR and PNG byte for byte, family.json and the

@@ -13,7 +13,7 @@
 #include <string.h>
 #include <unistd.h>
 
-#include "bake/family.h"
+#include "family/family.h"
 #include "base/util.h"
 
 static void test_axes(void **state)

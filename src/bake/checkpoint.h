@@ -46,7 +46,7 @@ uint64_t checkpoint_seed(void);
  * to only read (MPI ranks), 1 to write every every_s seconds (0: after
  * every step).  NULL and *cause on error. */
 struct checkpoint *checkpoint_open(const char *out, uint64_t id, int resume, int write, double every_s, char **cause);
-/* Checkpoints of units, for family bakes (bake/family.h): the same file
+/* Checkpoints of units, for family bakes (family/family.h): the same file
  * format, one record per finished unit (a member's packed result, in
  * member order), under an identity the caller makes with checkpoint_hash
  * (seeded with 0 or with checkpoint_identity).  checkpoint_open_units acts

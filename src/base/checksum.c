@@ -108,52 +108,49 @@ static void name_add(struct name_list *l, char *name)
 	l->names[l->n++] = name;
 }
 
-/* The regular files of DIR/SUB but its manifest.json, as "SUB/NAME": the
- * data of a member output (a family's mNNNN).  Not the member's manifest
- * itself: it holds run times, and a checksum over it would make the outer
- * manifest differ between two identical runs (resume and kill tests). */
-static void add_member_files(struct name_list *l, const char *dir, const char *sub)
+/* Add the regular files of DIR/SUB (SUB NULL: DIR itself) but SKIP, as
+ * "SUB/NAME" or "NAME".  At the top, a subdirectory with a manifest.json is
+ * a member output (a family's mNNNN): its data files are added, not its
+ * manifest: that holds run times, and a checksum over it would make the
+ * outer manifest differ between two identical runs (resume and kill tests).
+ * 0, or -1 when DIR/SUB cannot be read. */
+static int add_files(struct name_list *l, const char *dir, const char *sub, const char *skip)
 {
-	char *p = xasprintf("%s/%s", dir, sub);
+	char *p = sub ? xasprintf("%s/%s", dir, sub) : xstrdup(dir);
 	DIR *d = opendir(p);
+	if (d == NULL) {
+		int err = errno;
+		free(p);
+		errno = err;
+		return -1;
+	}
 	struct dirent *e;
-	while (d != NULL && (e = readdir(d)) != NULL) {
-		if (e->d_name[0] == '.' || strcmp(e->d_name, "manifest.json") == 0)
+	while ((e = readdir(d)) != NULL) {
+		if (e->d_name[0] == '.' || strcmp(e->d_name, skip) == 0)
 			continue;
 		char *f = xasprintf("%s/%s", p, e->d_name);
+		char *m = xasprintf("%s/manifest.json", f);
 		struct stat st;
-		if (lstat(f, &st) == 0 && S_ISREG(st.st_mode))
-			name_add(l, xasprintf("%s/%s", sub, e->d_name));
+		int here = lstat(f, &st) == 0;	/* else gone since readdir: not part of the output */
+		if (here && S_ISREG(st.st_mode))
+			name_add(l, sub ? xasprintf("%s/%s", sub, e->d_name) : xstrdup(e->d_name));
+		else if (here && sub == NULL && S_ISDIR(st.st_mode) && access(m, F_OK) == 0)
+			(void)add_files(l, dir, e->d_name, "manifest.json");
+		free(m);
 		free(f);
 	}
-	if (d != NULL)
-		closedir(d);
+	closedir(d);
 	free(p);
+	return 0;
 }
 
 char *checksum_member_dir(const char *dir, const char *manifest, char **cause)
 {
-	DIR *d = opendir(dir);
-	if (d == NULL) {
+	struct name_list l = { NULL, 0, 0 };
+	if (add_files(&l, dir, NULL, manifest) != 0) {
 		*cause = xasprintf("%s: %s", dir, strerror(errno));
 		return NULL;
 	}
-	struct name_list l = { NULL, 0, 0 };
-	struct dirent *e;
-	while ((e = readdir(d)) != NULL) {
-		if (e->d_name[0] == '.' || strcmp(e->d_name, manifest) == 0)
-			continue;
-		char *p = xasprintf("%s/%s", dir, e->d_name);
-		char *m = xasprintf("%s/manifest.json", p);
-		struct stat st;
-		if (lstat(p, &st) == 0 && S_ISREG(st.st_mode))
-			name_add(&l, xstrdup(e->d_name));
-		else if (S_ISDIR(st.st_mode) && access(m, F_OK) == 0)
-			add_member_files(&l, dir, e->d_name);
-		free(m);
-		free(p);
-	}
-	closedir(d);
 	if (l.n > 0)
 		qsort(l.names, l.n, sizeof *l.names, cmp_str);
 	l.names = xreallocarray(l.names, l.n + 1, sizeof *l.names);

@@ -1,5 +1,5 @@
 /* skinbake bake --vary: the family bake's options and summary (the work is
- * bake/family.h). */
+ * family/family.h). */
 #include "config.h"
 #include "cli/cmd_bake_family.h"
 

@@ -1,11 +1,11 @@
 /* cmd_bake_family: `skinbake bake --vary KEY=...`, the family bake (one
- * preset varied over up to three numeric keys; bake/family.h).  cmd_bake.c
+ * preset varied over up to three numeric keys; family/family.h).  cmd_bake.c
  * declares the option and hands over to bake_family_run after it has read
  * the preset. */
 #ifndef SKINBAKE_CMD_BAKE_FAMILY_H
 #define SKINBAKE_CMD_BAKE_FAMILY_H
 #include "bake/bake.h"
-#include "bake/family.h"
+#include "family/family.h"
 #include "cli/opt.h"
 #include "skin/tissue.h"
 

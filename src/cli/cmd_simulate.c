@@ -26,7 +26,7 @@ static const struct opt_key layer_keys[] = {
 	  .help = "Henyey-Greenstein anisotropy" },
 	{ "rough", OPT_DOUBLE, offsetof(struct layer, rough), "0", .lo = 0, .hi = 1,
 	  .help = "GGX alpha of the boundary on the layer's top (0 = smooth; mc only)" },
-	{ NULL },
+	{ .name = NULL },
 };
 
 struct layers {

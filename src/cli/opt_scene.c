@@ -23,7 +23,7 @@ const struct opt_key opt_scene_light_keys[] = {
 	{ "color", OPT_VEC3, offsetof(struct light_spec, l.color), "1:1:1", .lo = 0, .hi = 1e6,
 	  .help = "irradiance at normal incidence, linear RGB" },
 	{ "name", OPT_STRING, offsetof(struct light_spec, l.name), .size = SCENE_NAME_MAX, .help = "default L1, L2, ..." },
-	{ NULL },
+	{ .name = NULL },
 };
 const struct opt_key opt_scene_camera_keys[] = {
 	{ "type", OPT_ENUM, offsetof(struct scene_camera, ortho), .choices = "perspective|orthographic",
@@ -35,7 +35,7 @@ const struct opt_key opt_scene_camera_keys[] = {
 	  .help = "perspective: horizontal field of view" },
 	{ "width", OPT_DOUBLE, offsetof(struct scene_camera, width), "2.4", .lo = 0, .hi = 1e9, .flags = OPT_LO_OPEN,
 	  .help = "orthographic: view width in units" },
-	{ NULL },
+	{ .name = NULL },
 };
 
 int opt_scene_light(struct opt_ctx *x, const struct opt *o, const char *v)

@@ -11,8 +11,8 @@
  * geometrically with the orders' decay. */
 #ifndef SKINBAKE_AD_ERR_H
 #define SKINBAKE_AD_ERR_H
-#include "engine/ad.h"
 #include "engine/ad_eval.h"
+#include "engine/ad_types.h"
 
 /* Orders whose sum is the kept value (the rest estimate the tail). */
 int ad_err_kept_orders(const struct ad_series *sr);

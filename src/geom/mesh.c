@@ -105,6 +105,52 @@ static void read_material(struct flat *f, const struct aiMaterial *mat)
 	snprintf(m->texture_type, sizeof m->texture_type, "%.7s", dot ? dot + 1 : "");
 }
 
+/* libassimp's computed bitangents changed handedness in 5.3 and 5.4 (Debian
+ * 13: -dP/dv; 5.2 and 6.0: +dP/dv; assimp pull requests 4397 and 5542).  So
+ * the handedness taken from them (tangent[v][3]) is checked against the UVs
+ * of the mesh's triangles (dP/dv, signed by the UV winding, area-weighted
+ * per vertex) and flipped for the whole mesh when most vertices disagree.
+ * A file's own consistent tangents agree and are kept. */
+static void check_handedness(struct mesh *m, int v0, int nv, int t0)
+{
+	double *acc = xcalloc((size_t)nv, sizeof *acc);
+	for (int t = t0; t < m->n_triangles; t++) {
+		const int *tri = m->triangle[t];
+		double e1[3], e2[3], dpdv[3];
+		double du1 = m->uv[tri[1]][0] - m->uv[tri[0]][0];
+		double dv1 = m->uv[tri[1]][1] - m->uv[tri[0]][1];
+		double du2 = m->uv[tri[2]][0] - m->uv[tri[0]][0];
+		double dv2 = m->uv[tri[2]][1] - m->uv[tri[0]][1];
+		double det = du1 * dv2 - du2 * dv1;
+		if (det == 0)
+			continue;
+		for (int i = 0; i < 3; i++) {
+			e1[i] = m->position[tri[1]][i] - m->position[tri[0]][i];
+			e2[i] = m->position[tri[2]][i] - m->position[tri[0]][i];
+			dpdv[i] = (du1 * e2[i] - du2 * e1[i]) * (det > 0 ? 1 : -1);
+		}
+		for (int j = 0; j < 3; j++) {
+			double nb[3];
+			cross(m->normal[tri[j]], m->tangent[tri[j]], nb);
+			acc[tri[j] - v0] += nb[0] * dpdv[0] + nb[1] * dpdv[1] + nb[2] * dpdv[2];
+		}
+	}
+	int agree = 0;
+	int disagree = 0;
+	for (int k = 0; k < nv; k++) {
+		if (acc[k] == 0)
+			continue;
+		if ((acc[k] > 0) == (m->tangent[v0 + k][3] > 0))
+			agree++;
+		else
+			disagree++;
+	}
+	if (disagree > agree)
+		for (int k = 0; k < nv; k++)
+			m->tangent[v0 + k][3] = -m->tangent[v0 + k][3];
+	free(acc);
+}
+
 /* Append mesh am under node transform t (normals through the inverse
  * transpose: the cofactor matrix, normalised). */
 static void append(struct flat *f, const struct aiMesh *am, const struct aiMatrix4x4 *t)
@@ -130,6 +176,7 @@ static void append(struct flat *f, const struct aiMesh *am, const struct aiMatri
 		f->cap_t = 2 * (m->n_triangles + nt);
 		m->triangle = xreallocarray(m->triangle, (size_t)f->cap_t, sizeof *m->triangle);
 	}
+	int t0 = m->n_triangles;
 	/* Cofactors of the upper 3x3: the inverse transpose up to a positive
 	 * factor when det > 0; a mirroring node (det < 0) flips them back. */
 	double a[3][3] = { { t->a1, t->a2, t->a3 }, { t->b1, t->b2, t->b3 }, { t->c1, t->c2, t->c3 } }, c[3][3];
@@ -177,6 +224,8 @@ static void append(struct flat *f, const struct aiMesh *am, const struct aiMatri
 		for (int j = 0; j < 3; j++)
 			tri[j] = m->n_vertices + (int)fc->mIndices[sgn < 0 ? 2 - j : j];
 	}
+	if (am->mTextureCoords[0] != NULL)
+		check_handedness(m, m->n_vertices, nv, t0);
 	m->n_vertices += nv;
 }
 

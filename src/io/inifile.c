@@ -58,6 +58,14 @@ static int header(struct inifile *f, const char *s, char *name, size_t size)
 static char *reader(char *str, int num, void *stream)
 {
 	struct inifile *f = stream;
+	/* libinih r56 and later (Debian 13) read on into a smaller buffer after
+	 * a line that filled theirs, to discard the rest of an over-long line;
+	 * r55 (Debian 12) goes on to the next line with the same buffer.  The
+	 * line was whole (its end of line stripped): there is no rest. */
+	int rest = f->filled && num < f->filled;
+	f->filled = 0;
+	if (rest)
+		return NULL;
 	if (f->too_long || f->bad_header || f->refused || *f->pos == '\0')
 		return NULL;
 	const char *eol = strchr(f->pos, '\n');
@@ -74,6 +82,8 @@ static char *reader(char *str, int num, void *stream)
 	}
 	memcpy(str, f->cur, content);
 	str[content] = '\0';
+	if (content == (size_t)num - 1)
+		f->filled = num;
 	char name[INI_MAX_LINE];
 	int h = header(f, str, name, sizeof name);
 	if (h < 0)

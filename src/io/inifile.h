@@ -22,6 +22,7 @@ struct inifile {
 	const char *pos;	/* next unread character of the text */
 	const char *cur;	/* start of the line last handed to libinih */
 	int line;		/* its number, 1-based */
+	int filled;		/* size of libinih's buffer if that line filled it, else 0 */
 	int too_long;		/* number of the first over-long line, 0 if none */
 	int max_line;		/* longest line accepted [characters] */
 	int bad_header;		/* number of the first header line with text after ']', 0 if none */

@@ -86,6 +86,7 @@ static void lut_build(struct lut *t, const struct family *f, int threads)
 		t->n *= t->g[a];
 	}
 	t->lab = xmalloc(sizeof(double) * 3 * (size_t)t->n);
+	(void)threads; /* only OpenMP's pragma reads it */
 #pragma omp parallel for schedule(static) num_threads(threads)
 	for (int i = 0; i < t->n; i++) {
 		double g[FAMILY_MAX_AXES] = { i % t->g[0], (i / t->g[0]) % t->g[1], i / (t->g[0] * t->g[1]) }, x[3];

@@ -24,7 +24,7 @@
  * threads. */
 #ifndef SKINBAKE_FIT_H
 #define SKINBAKE_FIT_H
-#include "bake/family.h"
+#include "family/family.h"
 #include "maps/image.h"
 #include "maps/mapset.h"
 

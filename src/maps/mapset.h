@@ -20,7 +20,7 @@
  * Written in DIR.staging and renamed into place. */
 #ifndef SKINBAKE_MAPSET_H
 #define SKINBAKE_MAPSET_H
-#include "bake/family.h"
+#include "family/family.h"
 
 #define MAPS_FORMAT_VERSION 1
 

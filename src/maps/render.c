@@ -20,8 +20,7 @@ struct image *maps_render_albedo(struct family *f, const struct mapset *m, struc
 #ifdef _OPENMP
 	int nt = threads > 0 ? threads : omp_get_max_threads();
 #else
-	int nt = 1;
-	(void)threads;
+	(void)threads; /* without OpenMP the pragma below is ignored */
 #endif
 #pragma omp parallel for schedule(static) num_threads(nt)
 	for (long i = 0; i < n; i++) {

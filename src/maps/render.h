@@ -4,7 +4,7 @@
  * the members exactly as the fit models them (family_albedo). */
 #ifndef SKINBAKE_RENDER_H
 #define SKINBAKE_RENDER_H
-#include "bake/family.h"
+#include "family/family.h"
 #include "maps/image.h"
 #include "maps/mapset.h"
 

@@ -28,7 +28,8 @@ SkinbakeError; on the command line they print "import_skin.py: error: ..." and e
 One module per concept: schema (the manifest's keys and ranges), imagefiles (EXR/PNG structure),
 imageset (reading and checking a set, loading its images), nodes, detail, calibration, general
 and exact (the materials), objects, layers (lights and view layers), compositor, scene (demo
-scene and render), importer, cli, ui (the add-on's operator).
+scene and render), scenejson (camera and lights from skinbake's scene.json), importer, cli, ui
+(the add-on's operator).
 """
 bl_info = {
     "name": "skinbake image set",
@@ -50,6 +51,7 @@ from .exact import build_exact  # noqa: E402
 from .objects import assign, find_objects, generate_uvs, measure_uv_size, prepare_objects  # noqa: E402
 from .layers import setup_exact_layers, world_is_dark  # noqa: E402
 from .scene import build_scene, centre_mean, fix_denoiser, render, render_settings  # noqa: E402
+from .scenejson import apply_scene_json, read_scene_json  # noqa: E402
 from .importer import import_set  # noqa: E402
 from .cli import main, run  # noqa: E402
 from .ui import IMPORT_OT_skinbake, register, unregister  # noqa: E402
@@ -58,4 +60,4 @@ __all__ = ["PREFIX", "ImageSetError", "SkinbakeError", "say", "FAMILY_FILES", "F
            "check_exr", "check_png", "load_family_image", "load_image", "read_manifest", "albedo_calibration",
            "build_general", "build_exact", "assign", "find_objects", "generate_uvs", "measure_uv_size",
            "prepare_objects", "setup_exact_layers", "world_is_dark", "build_scene", "centre_mean", "fix_denoiser",
-           "render", "render_settings", "import_set", "main", "run", "IMPORT_OT_skinbake", "register", "unregister"]
+           "render", "render_settings", "apply_scene_json", "read_scene_json", "import_set", "main", "run", "IMPORT_OT_skinbake", "register", "unregister"]

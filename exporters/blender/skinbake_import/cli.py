@@ -10,6 +10,7 @@ from .imageset import read_manifest
 from .importer import import_set
 from .objects import find_objects
 from .scene import build_scene, engine_id, render
+from .scenejson import apply_scene_json, read_scene_json
 from .schema import VERSION
 
 
@@ -33,7 +34,11 @@ def main(argv):
     ap.add_argument("--pack", action="store_true", help="pack the images into the .blend")
     ap.add_argument("--engine", choices=("CYCLES", "BLENDER_EEVEE"), default=None,
                     help="render engine (default: the file's; Cycles for the demo scene)")
-    ap.add_argument("--res", type=int, default=None, help="render size [px] (demo default 64)")
+    ap.add_argument("--scene-json", metavar="FILE",
+                    help="add the camera and lights of FILE (scene.json of `skinbake scene`, or a directory "
+                         "holding one), as the POV-Ray export of that scene has them (default: none)")
+    ap.add_argument("--res", type=int, default=None,
+                    help="render size [px] (demo default 64; with --scene-json the width, its aspect kept)")
     ap.add_argument("--samples", type=int, default=None, help="samples (demo default 16)")
     ap.add_argument("--world", type=float, default=0.0, help="demo world radiance (default 0)")
     ap.add_argument("--sun-strength", type=float, default=None,
@@ -59,7 +64,12 @@ def main(argv):
     say(f"{VERSION} in Blender {bpy.app.version_string.split()[0]}: {m['_dir']} (format {m['format_version']}, "
         f"{'flat' if m['detail']['flat'] else 'textured'} detail)")
     have_file = bool(bpy.data.filepath)
-    kind = a.scene or ("sphere" if (a.render or a.save) and not have_file and not a.objects else "none")
+    if a.scene_json and a.scene not in (None, "none"):
+        raise SkinbakeError(f"--scene {a.scene} has its own camera and sun; --scene-json lights and frames "
+                            "the file's objects (give a .blend or --scene none)")
+    sj = read_scene_json(a.scene_json) if a.scene_json else None
+    demo = (a.render or a.save) and not have_file and not a.objects and not sj
+    kind = a.scene or ("sphere" if demo else "none")
     if kind != "none" and have_file:
         raise SkinbakeError(f"--scene {kind} builds a new scene and would discard {bpy.data.filepath}; "
                             "use --objects to put the material on the file's own meshes")
@@ -75,7 +85,9 @@ def main(argv):
     else:
         if a.engine:
             scene.render.engine = engine_id(a.engine)
-        if a.res:
+        if sj:
+            apply_scene_json(sj, scene, a.res)
+        elif a.res:
             scene.render.resolution_x = scene.render.resolution_y = a.res
             scene.render.resolution_percentage = 100
         if a.samples:

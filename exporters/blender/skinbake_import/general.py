@@ -1,13 +1,17 @@
-"""The general mode: a material for any lights and engines.  With the manifest's fit (Blender
-3.x) a mixture of closures whose view-dependent weights reproduce the baked BRDF
-(blender_fit.h), else one Principled BSDF with random-walk subsurface."""
+"""The general mode: a material for any lights and engines.  With the manifest's fit a mixture of
+closures whose view-dependent weights reproduce the baked BRDF (blender_fit.h): "general_fit" on
+Blender 3.x, "general_fit_v4" on 4.x and 5.x, whose subsurface colour is made by the Base Colour
+that Blender's measured response turns into it (calibration.VIEW_RESPONSE); else one Principled
+BSDF with random-walk subsurface."""
 import math
+import os
 
 import bpy
 
 from . import calibration
+from .common import say
 from .detail import detail_normal
-from .imageset import load_family_image, load_image
+from .imageset import _check_fit, load_family_image, load_image
 from .nodes import Tree, sock, stamp
 
 
@@ -73,9 +77,31 @@ def _ramp(tr, cos_v, nodes, values, scale, loc, label):
     return r.outputs["Color"]
 
 
-def _general_fit(tr, m, nrm, area, geo, unit_scale, no_specular, calibrate, area_mean):
-    """The closure mixture fitted at export time (manifest general_fit, blender_fit.h)."""
-    f = m["general_fit"]
+def _v4_base(f, area_mean, calibrate):
+    """Blender 4+: the Base Colour per cos_view node and channel whose measured response R(base,
+    cos_view) is the fit's s(v) (calibration.VIEW_RESPONSE)."""
+    c = calibration.view_measurement() if calibrate else None
+    if calibrate and c is None:
+        say(f"Blender {bpy.app.version_string.split()[0]} has no measured subsurface response "
+            "(calibration.VIEW_RESPONSE): the fit's colours are used as Base Colours, uncorrected")
+    out, short = [], 0
+    for cv, s in zip(f["cos_view_nodes"], f["subsurface_rgb"]):
+        row = []
+        for x in s:
+            b, ok = calibration.base_for_response(x * area_mean, float(cv), c) if c else (x * area_mean, True)
+            short += not ok
+            row.append(b)
+        out.append(row)
+    if short:
+        say(f"general mode: {short} subsurface colours of the fit are brighter than Base Colour 1 renders "
+            "in this Blender: Base Colour 1 used there")
+    return out
+
+
+def _general_fit(tr, m, f, nrm, area, geo, unit_scale, no_specular, calibrate, area_mean):
+    """The closure mixture fitted at export time (manifest general_fit on 3.x, general_fit_v4 on 4+,
+    blender_fit.h)."""
+    v4 = bpy.app.version >= (4, 0, 0)
     N = nrm if nrm is not None else geo.outputs["Normal"]
     cos_v = tr.math("ADD", tr.vmath("DOT_PRODUCT", N, geo.outputs["Incoming"], (-1500, 1300)), 0.0,
                     loc=(-1300, 1300), clamp=True)
@@ -84,7 +110,12 @@ def _general_fit(tr, m, nrm, area, geo, unit_scale, no_specular, calibrate, area
     def sss_scale(c, v):
         k = calibration.sss_albedo_factor(v) if calibrate else 1.0
         return v / k * area_mean
-    col_s = _ramp(tr, cos_v, nodes, f["subsurface_rgb"], sss_scale, (-1000, 1500), "subsurface colour s(cos_view)")
+    if v4:
+        col_s = _ramp(tr, cos_v, nodes, _v4_base(f, area_mean, calibrate), lambda c, v: v, (-1000, 1500),
+                      "Base Colour b(cos_view): R(b, cos_view) = s(cos_view)")
+    else:
+        col_s = _ramp(tr, cos_v, nodes, f["subsurface_rgb"], sss_scale, (-1000, 1500),
+                      "subsurface colour s(cos_view)")
     fam_uv = tr.node("ShaderNodeTexCoord", (-1500, 1900)).outputs["UV"] if "family" in m else None
     if fam_uv is not None:                   # the fit's colour scaled by the texel's albedo
         amap = tr.tex(load_family_image(m, "albedo_map"), fam_uv, (-1300, 1900), "EXTEND", "albedo_map.exr")
@@ -95,12 +126,16 @@ def _general_fit(tr, m, nrm, area, geo, unit_scale, no_specular, calibrate, area
     col_g = _ramp(tr, cos_v, nodes, f["glossy_rgb"], lambda c, v: v, (-1000, 1100), "glossy colour g(cos_view)")
     if area is not None:
         col_g = tr.vmath("SCALE", col_g, loc=(-700, 1100), scale=area)
-    sss = tr.node("ShaderNodeBsdfPrincipled", (-400, 1700), "subsurface: s(v) (1 - F_L / 2)")
+    sss = tr.node("ShaderNodeBsdfPrincipled", (-400, 1700),
+                  "subsurface: s(v)" if v4 else "subsurface: s(v) (1 - F_L / 2)")
     sss.subsurface_method = "RANDOM_WALK"
     tr.link(col_s, sss.inputs["Base Color"])
     if sock(sss.inputs, "Subsurface Color"):
         tr.link(col_s, sock(sss.inputs, "Subsurface Color"))
     sock(sss.inputs, "Subsurface Weight", "Subsurface").default_value = 1.0
+    if v4:                                   # the inputs VIEW_RESPONSE was measured with
+        sock(sss.inputs, "Subsurface Scale").default_value = 1.0
+        sss.inputs["IOR"].default_value = calibration.VIEW_IOR
     sss.inputs["Subsurface Radius"].default_value = [x / unit_scale for x in m["sss_radius_m"]]
     if fam_uv is not None:
         tr.link(family_radius(tr, m, fam_uv, unit_scale, (-800, 1950)), sss.inputs["Subsurface Radius"])
@@ -137,13 +172,16 @@ def _general_fit(tr, m, nrm, area, geo, unit_scale, no_specular, calibrate, area
 
 
 def general_shader(tr, m, nrm, area, geo, unit_scale, no_specular, calibrate):
-    """The fitted mixture when the manifest has one (Blender 3.x), else one Principled BSDF."""
+    """The fitted mixture when the manifest has one for this Blender, else one Principled BSDF."""
     # Subsurface light is averaged over many facets, so its micro-area correction is the mean one.
     area_mean = 1.0
     if nrm is not None and m["detail"].get("mean_normal_z"):
         area_mean = 1.0 / float(m["detail"]["mean_normal_z"])
-    if isinstance(m.get("general_fit"), dict) and bpy.app.version < (4, 0, 0):
-        return _general_fit(tr, m, nrm, area, geo, unit_scale, no_specular, calibrate, area_mean)
+    f = m.get("general_fit_v4" if bpy.app.version >= (4, 0, 0) else "general_fit")
+    if isinstance(f, dict):
+        if f is m.get("general_fit_v4"):
+            _check_fit(f, os.path.join(m.get("_dir", "."), "manifest.json") + ": general_fit_v4")
+        return _general_fit(tr, m, f, nrm, area, geo, unit_scale, no_specular, calibrate, area_mean)
     return _general_principled(tr, m, nrm, unit_scale, no_specular, calibrate, area_mean)
 
 

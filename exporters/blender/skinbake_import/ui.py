@@ -6,6 +6,7 @@ import bpy
 from .common import SkinbakeError
 from .imageset import read_manifest
 from .importer import import_set
+from .scenejson import apply_scene_json, read_scene_json
 
 try:
     from bpy_extras.io_utils import ImportHelper
@@ -31,11 +32,16 @@ class IMPORT_OT_skinbake(bpy.types.Operator, ImportHelper):
     detail: bpy.props.BoolProperty(name="Detail normal map", default=True)
     generate_uvs: bpy.props.BoolProperty(name="Generate missing UVs", default=False,
                                          description="Smart UV Project on meshes without UVs")
+    scene_json: bpy.props.StringProperty(name="Scene (scene.json)", default="", subtype="FILE_PATH",
+                                         description="Add the camera and lights of this scene.json "
+                                                     "(skinbake scene) as POV-Ray has them; empty: none")
 
     def execute(self, context):
         obs = [o for o in context.selected_objects if o.type == "MESH"]
         try:
             m = read_manifest(os.path.dirname(self.filepath))
+            if self.scene_json:
+                apply_scene_json(read_scene_json(bpy.path.abspath(self.scene_json)), context.scene)
             mat = import_set(m, context.scene, obs, self.mode.lower(), no_detail=not self.detail,
                              uv_size=self.uv_size or None, gen_uvs=self.generate_uvs)
         except SkinbakeError as e:

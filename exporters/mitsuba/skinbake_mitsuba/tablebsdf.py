@@ -1,10 +1,11 @@
 """The baked table as a Mitsuba 3 BSDF ("skinbake_table"), written in Python over
 Dr.Jit gathers, so it runs in every variant (llvm_* vectorised, scalar_*).
 
-  f(wi, wo) = diffuse table (trilinear in theta_i, theta_o, delta_phi, clamped
-              at the ends: the same interpolation as skinbake eval,
-              bake/bakefile.c) + the analytic GGX surface specular (Smith
-              masking, facet reflectance of the clear top stack: engine/specular.c)
+  f(wi, wo) = diffuse table + the analytic GGX surface specular (Smith masking,
+              facet reflectance of the clear top stack: engine/specular.c).
+              The diffuse table is eval's own function (bake/bakeinterp.c:
+              series through point values, linear between bin means)
+              resampled on a fine grid (tablegrid.py) and looked up trilinearly.
   spectral variants: the table's wavelength planes, linear in wavelength
               between the bake's wavelengths and clamped outside them;
   rgb variants:      brdf_rgb.exr plus the specular through rgb_from_wl;
@@ -25,6 +26,8 @@ import numpy as np
 import drjit as dr
 import mitsuba as mi
 
+from . import tablegrid
+
 
 def _load_planes(path, prefix):
     """Planes of channels PREFIX<name>, in file order: (names, array [c][rows][cols])."""
@@ -36,9 +39,15 @@ def _load_planes(path, prefix):
     return [names[i] for i in keep], np.stack([arr[:, :, i] for i in keep])
 
 
+def _cell(x, n):
+    """Cell i0 in [0, n - 2] and weight t of the grid coordinate x in [0, n - 1]."""
+    i0 = mi.UInt32(dr.clip(dr.floor(x), 0, n - 2))
+    return i0, dr.clip(x - mi.Float(i0), 0.0, 1.0)
+
+
 def _axis(ax, x):
     """Index i0 and weight t of x on the ascending nodes ax (list), clamped at
-    the ends as bakefile.c's axis_weights."""
+    the ends (wavelength axis)."""
     n = len(ax)
     if n == 1:
         return mi.UInt32(0), mi.Float(0.0)
@@ -58,39 +67,30 @@ class TableBSDF(mi.BSDF):
         bake = props["bake"]
         with open(os.path.join(bake, "manifest.json")) as f:
             man = json.load(f)
-        self.ti = [math.radians(v) for v in man["theta_i_deg"]]
-        # Adding-doubling tables hold point values at their nodes (manifest
-        # table.values "points"), Monte Carlo tables bin means at the centres.
-        values = man.get("table", {}).get("values", [])
-        points = bool(values) and all(v == "points" for v in values) and "theta_o_nodes_deg" in man
-        to_key, ph_key = ("theta_o_nodes_deg", "delta_phi_nodes_deg") if points else \
-            ("theta_o_centres_deg", "delta_phi_centres_deg")
-        self.to = [math.radians(v) for v in man[to_key]]
-        self.ph = [math.radians(v) for v in man[ph_key]]
         self.wl = list(man["wavelengths_nm"])
-        self.npx = len(self.ti) * len(self.to) * len(self.ph)
         self.alpha = float(man["specular"]["alpha"])
         stacks = [tuple(s) for s in man["specular"]["stack_n"]]
         self.stacks = sorted(set(stacks))
         self.stack_of_wl = [self.stacks.index(s) for s in stacks]
         rgb_from_wl = np.array(man["rgb"]["rgb_from_wl"], dtype=np.float64).reshape(3, len(self.wl))
+        names, planes = _load_planes(os.path.join(bake, "brdf.exr"), "fr.")
+        grid = tablegrid.resample(man, planes)
         if mi.is_spectral:
-            names, planes = _load_planes(os.path.join(bake, "brdf.exr"), "fr.")
             self.mode = "spectral"
         elif mi.is_rgb:
-            names, planes = _load_planes(os.path.join(bake, "brdf_rgb.exr"), "")
-            order = [names.index(c) for c in ("R", "G", "B")]
-            planes = planes[order]
+            # linear sRGB of the resampled wavelengths: eval's rgb_total is
+            # the same linear map of its wavelength values
+            grid = np.tensordot(rgb_from_wl, grid.astype(np.float64), axes=(1, 0)).astype(np.float32)
             self.mode = "rgb"
         else:
-            names, planes = _load_planes(os.path.join(bake, "brdf.exr"), "fr.")
             k = int(np.argmin([abs(w - 550.0) for w in self.wl]))
-            planes = planes[k:k + 1]
+            grid = grid[k:k + 1]
             self.mono_wl = k
             self.mode = "mono"
         self.rgb_from_wl = rgb_from_wl
-        self.n_planes = planes.shape[0]
-        self.data = mi.Float(planes.astype(np.float32).ravel())
+        self.npx = tablegrid.N_THETA * tablegrid.N_THETA * tablegrid.N_PHI
+        self.n_planes = grid.shape[0]
+        self.data = mi.Float(grid.ravel())
         self.m_flags = mi.BSDFFlags.DiffuseReflection | mi.BSDFFlags.GlossyReflection | mi.BSDFFlags.FrontSide
         self.m_components = [mi.BSDFFlags.DiffuseReflection | mi.BSDFFlags.FrontSide]
 
@@ -105,19 +105,19 @@ class TableBSDF(mi.BSDF):
         return dr.acos(cl), dr.acos(cv), dphi
 
     def _diffuse_planes(self, ti, to, ph, planes):
-        """Trilinear table value of each plane index in planes (list of ints or UInt32)."""
-        a0, ta = _axis(self.ti, ti)
-        b0, tb = _axis(self.to, to)
-        c0, tc = _axis(self.ph, ph)
-        na, nb, nc = len(self.ti), len(self.to), len(self.ph)
-        a1 = dr.minimum(a0 + 1, na - 1)
-        b1 = dr.minimum(b0 + 1, nb - 1)
-        c1 = dr.minimum(c0 + 1, nc - 1)
+        """Trilinear value on the resampled grid (tablegrid: uniform in
+        u = acos(1 - 4 theta / pi) and in delta_phi) of each plane index in
+        planes (list of ints or UInt32)."""
+        nt, nph = tablegrid.N_THETA, tablegrid.N_PHI
+        scale = (nt - 1) / dr.pi
+        a0, ta = _cell(dr.acos(dr.clip(1.0 - 4.0 * ti / dr.pi, -1.0, 1.0)) * scale, nt)
+        b0, tb = _cell(dr.acos(dr.clip(1.0 - 4.0 * to / dr.pi, -1.0, 1.0)) * scale, nt)
+        c0, tc = _cell(ph * ((nph - 1) / dr.pi), nph)
         corners = []
-        for ia, wa in ((a0, 1.0 - ta), (a1, ta)):
-            for ib, wb in ((b0, 1.0 - tb), (b1, tb)):
-                for ic, wc in ((c0, 1.0 - tc), (c1, tc)):
-                    corners.append(((ia * nb + ib) * nc + ic, wa * wb * wc))
+        for ia, wa in ((a0, 1.0 - ta), (a0 + 1, ta)):
+            for ib, wb in ((b0, 1.0 - tb), (b0 + 1, tb)):
+                for ic, wc in ((c0, 1.0 - tc), (c0 + 1, tc)):
+                    corners.append(((ia * nt + ib) * nph + ic, wa * wb * wc))
         out = []
         for p in planes:
             v = mi.Float(0.0)

@@ -21,7 +21,7 @@
  * a "family" section naming these files and the sub-grid. */
 #ifndef SKINBAKE_BLENDER_FAMILY_H
 #define SKINBAKE_BLENDER_FAMILY_H
-#include "bake/family.h"
+#include "family/family.h"
 #include "export/blender/blender.h"
 #include "maps/mapset.h"
 

@@ -30,9 +30,12 @@ static double clamp01(double x)
 /* pi f / base of Cycles 3.x's Principled BSDF with random-walk subsurface:
  * the exit's Disney light falloff 1 - F_L / 2 plus the diffuse
  * retro-reflection term of roughness r, RR (F_L + F_V + F_L F_V (RR - 1)),
- * RR = r (1 + l.v), F = (1 - cos)^5. */
-static double sss_basis(double cl, double cv, double dphi)
+ * RR = r (1 + l.v), F = (1 - cos)^5.  Cycles 4.x and 5.x: 1 (the view and
+ * base dependence is the importer's, see blender_fit.h). */
+static double sss_basis(enum blender_fit_model model, double cl, double cv, double dphi)
 {
+	if (model == BLENDER_FIT_LAMBERT)
+		return 1.0;
 	double fl = pow(1.0 - cl, 5), fv = pow(1.0 - cv, 5);
 	double rr = BLENDER_FIT_SSS_ROUGHNESS * (1.0 + cl * cv + sqrt((1 - cl * cl) * (1 - cv * cv)) * cos(dphi));
 	return 1.0 - 0.5 * fl + rr * (fl + fv + fl * fv * (rr - 1.0));
@@ -59,8 +62,8 @@ static double spec_pi_f(const struct specular_stack *st, double alpha, double cl
 
 /* Weights at view cosine cv: weighted non-negative least squares of
  * s SSS(l, v) + g AS(l, v) against pi f - spec, relative error, weight cl cv. */
-static void fit_node(const double *pf, const double *spec, const double *as, double cmin, double cv,
-    double s[3], double g[3])
+static void fit_node(enum blender_fit_model model, const double *pf, const double *spec, const double *as,
+    double cmin, double cv, double s[3], double g[3])
 {
 	for (int c = 0; c < 3; c++) {
 		double xx = 0, xy = 0, yy = 0, xr = 0, yr = 0;
@@ -71,7 +74,7 @@ static void fit_node(const double *pf, const double *spec, const double *as, dou
 				double t = pf[3 * at + (size_t)c];
 				if (!(t > 0))
 					continue;
-				double x = sss_basis(cl, cv, M_PI * k / (FIT_N_PHI - 1));
+				double x = sss_basis(model, cl, cv, M_PI * k / (FIT_N_PHI - 1));
 				double w = cl * cv / (t * t), y = as[at], r = t - spec[at];
 				xx += w * x * x;
 				xy += w * x * y;
@@ -105,7 +108,7 @@ void blender_fit_eval(const struct blender_fit *fit, double cos_l, double cos_v,
 	int j = (int)floor(x);
 	if (j > fit->n_view - 2)
 		j = fit->n_view - 2;
-	double t = x - j, d = sss_basis(cl, cv, dphi), a = as_pi_f(fit->glossy_exponent, cl, cv, dphi);
+	double t = x - j, d = sss_basis(fit->model, cl, cv, dphi), a = as_pi_f(fit->glossy_exponent, cl, cv, dphi);
 	double sp = fit->specular ? spec_pi_f(&st, fit->spec_alpha, cl, cv, dphi) : 0.0;
 	for (int c = 0; c < 3; c++) {
 		double s = (1 - t) * fit->sss_rgb[j][c] + t * fit->sss_rgb[j + 1][c];
@@ -128,7 +131,7 @@ static void fit_all(struct blender_fit *fit, double e, double *const *pf, const 
 			for (int k = 0; k < FIT_N_PHI; k++)
 				as[(size_t)i * FIT_N_PHI + (size_t)k] = as_pi_f(e, cl, cv, M_PI * k / (FIT_N_PHI - 1));
 		}
-		fit_node(pf[j], spec + (size_t)j * FIT_N_COSL * FIT_N_PHI, as, fit->cos_min, cv, fit->sss_rgb[j],
+		fit_node(fit->model, pf[j], spec + (size_t)j * FIT_N_COSL * FIT_N_PHI, as, fit->cos_min, cv, fit->sss_rgb[j],
 		    fit->glossy_rgb[j]);
 		if (first < 0)
 			first = j;
@@ -184,7 +187,14 @@ static double score(const struct blender_fit *f)
 
 int blender_fit_general(const struct brdf_source *m, struct blender_fit *fit, char **cause)
 {
+	return blender_fit_general_model(m, BLENDER_FIT_CYCLES3, fit, cause);
+}
+
+int blender_fit_general_model(const struct brdf_source *m, enum blender_fit_model model, struct blender_fit *fit,
+    char **cause)
+{
 	memset(fit, 0, sizeof *fit);
+	fit->model = model;
 	fit->n_view = BLENDER_FIT_VIEW_NODES;
 	fit->spec_ior = m->ior;
 	fit->spec_alpha = m->roughness > 1e-4 ? m->roughness : 1e-4;
@@ -271,17 +281,25 @@ static json_object *jvec(const double *v, int n)
 	return a;
 }
 
+static const char *const fit_model_name[] = { "skinbake-cycles3-mix-1", "skinbake-cycles4-mix-1" };
+static const char *const fit_sss_description[] = {
+	"pi f = s(v) (1 - F_L / 2 + RR (F_L + F_V + F_L F_V (RR - 1))) with F = (1 - cos)^5, RR = "
+	"subsurface_roughness (1 + l.v) [Principled BSDF: subsurface 1 random walk, roughness "
+	"subsurface_roughness, specular 0, Base = Subsurface Color = s(v)]",
+	"pi f = s(v) [Principled BSDF of Blender 4.x/5.x: subsurface weight 1 random walk, roughness "
+	"subsurface_roughness, specular IOR level 0, Base Color b(v) such that Blender's measured response "
+	"R(b, cos_view) is s(v) (skinbake_import/calibration.py)]"
+};
+
 static json_object *fit_json(const struct blender_fit *f)
 {
 	json_object *x = json_object_new_object(), *a, *b, *c;
-	json_object_object_add(x, "model", json_object_new_string("skinbake-cycles3-mix-1"));
-	json_object_object_add(x, "description", json_object_new_string(
-	    "pi f = s(v) (1 - F_L / 2 + RR (F_L + F_V + F_L F_V (RR - 1))) with F = (1 - cos)^5, RR = "
-	    "subsurface_roughness (1 + l.v) [Principled BSDF: subsurface 1 random walk, roughness "
-	    "subsurface_roughness, specular 0, Base = Subsurface Color = s(v)] + g(v) pi f_AS [Glossy BSDF, "
-	    "Ashikhmin-Shirley, glossy_roughness] + pi f_GGX [Principled BSDF: black base, specular_ior, "
-	    "roughness sqrt(specular_alpha)]; s(v), g(v) RGB at cos_view_nodes (cos_view = N.I), linear "
-	    "between them"));
+	char *desc = xasprintf("%s + g(v) pi f_AS [Glossy BSDF, Ashikhmin-Shirley, glossy_roughness] + pi f_GGX "
+	    "[Principled BSDF: black base, specular_ior, roughness sqrt(specular_alpha)]; s(v), g(v) RGB at "
+	    "cos_view_nodes (cos_view = N.I), linear between them", fit_sss_description[f->model]);
+	json_object_object_add(x, "model", json_object_new_string(fit_model_name[f->model]));
+	json_object_object_add(x, "description", json_object_new_string(desc));
+	free(desc);
 	json_object_object_add(x, "subsurface_roughness", jd(BLENDER_FIT_SSS_ROUGHNESS));
 	a = json_object_new_array_ext(f->n_view);
 	b = json_object_new_array_ext(f->n_view);
@@ -340,15 +358,14 @@ static void albedo_normal_view(const struct brdf_source *m, const struct blender
 		rgb[c] = 2.0 * acc[c] / M_PI * (1.0 / NL) * (M_PI / NP);
 }
 
-void blender_fit_manifest(json_object *j, const struct brdf_source *m, const double sun[3], const double view[3],
-    double sun_strength, const float *lut, int lut_cos, int lut_phi, const uint16_t *normal, int w, int h)
+/* KEY: the fit of MODEL with its furnace values, or null and KEY_error. */
+static void add_fit(json_object *j, const struct brdf_source *m, enum blender_fit_model model, const char *key)
 {
 	struct blender_fit fit;
 	char *cause = NULL;
-	json_object *x, *ref;
-	if (blender_fit_general(m, &fit, &cause) == 0) {
+	if (blender_fit_general_model(m, model, &fit, &cause) == 0) {
 		double a[3];
-		x = fit_json(&fit);
+		json_object *x = fit_json(&fit);
 		albedo_normal_view(m, &fit, a);
 		json_object_object_add(x, "furnace_rgb", jvec(a, 3));
 		albedo_normal_view(m, NULL, a);
@@ -357,12 +374,22 @@ void blender_fit_manifest(json_object *j, const struct brdf_source *m, const dou
 		    "directional albedo at normal view (integral of f cos_l over the light hemisphere, "
 		    "specular included) of the mixture (furnace_rgb) and of the exported BRDF "
 		    "(furnace_bake_rgb): a white furnace seen along the normal"));
-		json_object_object_add(j, "general_fit", x);
+		json_object_object_add(j, key, x);
 	} else {
-		json_object_object_add(j, "general_fit", NULL);
-		json_object_object_add(j, "general_fit_error", json_object_new_string(cause));
+		char *ek = xasprintf("%s_error", key);
+		json_object_object_add(j, key, NULL);
+		json_object_object_add(j, ek, json_object_new_string(cause));
+		free(ek);
 		free(cause);
 	}
+}
+
+void blender_fit_manifest(json_object *j, const struct brdf_source *m, const double sun[3], const double view[3],
+    double sun_strength, const float *lut, int lut_cos, int lut_phi, const uint16_t *normal, int w, int h)
+{
+	json_object *x, *ref;
+	add_fit(j, m, BLENDER_FIT_CYCLES3, "general_fit");
+	add_fit(j, m, BLENDER_FIT_LAMBERT, "general_fit_v4");
 	if (json_object_object_get_ex(j, "detail", &x))
 		json_object_object_add(x, "mean_normal_z", jd(blender_detail_mean_nz(normal, (size_t)w * (size_t)h)));
 	if (json_object_object_get_ex(j, "exact", &x) && json_object_object_get_ex(x, "reference", &ref)) {

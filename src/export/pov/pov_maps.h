@@ -1,5 +1,5 @@
 /* pov_maps: a skin whose parameters vary per texel, a family of bakes
- * (bake/family.h) plus a maps directory (maps/mapset.h), as one POV-Ray
+ * (family/family.h) plus a maps directory (maps/mapset.h), as one POV-Ray
  * pigment.  Each member the maps reach gets its own lit table
  * (littable.h); the pigment blends them by the maps:
  *
@@ -20,7 +20,7 @@
 #define SKINBAKE_POV_MAPS_H
 #include <stdio.h>
 
-#include "bake/family.h"
+#include "family/family.h"
 #include "export/pov/littable.h"
 #include "export/source.h"
 #include "maps/mapset.h"

@@ -2,7 +2,7 @@
  * the file, the field, the value and what was expected for anything
  * missing, corrupt or of another format version; the member tables. */
 #include "config.h"
-#include "bake/family.h"
+#include "family/family.h"
 
 #include <errno.h>
 #include <json-c/json.h>

@@ -3,7 +3,7 @@
  * and written into the staging directory, then moved into place; finished
  * members saved in DIR.checkpoint for --resume. */
 #include "config.h"
-#include "bake/family.h"
+#include "family/family.h"
 
 #include <errno.h>
 #include <stdlib.h>
@@ -14,7 +14,7 @@
 #include "base/outdir.h"
 #include "base/util.h"
 #include "bake/checkpoint.h"
-#include "bake/family_pack.h"
+#include "family/family_pack.h"
 #include "bake/manifest.h"
 #include "skin/colour.h"
 #include "skin/preset.h"

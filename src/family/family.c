@@ -1,7 +1,7 @@
 /* family: the family directory (layout in family.h): axes, family.json
  * written and read, the swatch preview, the member tables. */
 #include "config.h"
-#include "bake/family.h"
+#include "family/family.h"
 
 #include <json-c/json.h>
 #include <math.h>

@@ -4,7 +4,7 @@
  * tables and albedos vary roughly exponentially with an absorber, so the
  * logarithm is the smoother function to interpolate). */
 #include "config.h"
-#include "bake/family.h"
+#include "family/family.h"
 
 #include <math.h>
 #include <stdlib.h>

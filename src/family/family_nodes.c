@@ -1,7 +1,7 @@
 /* family_nodes: the nodes of de axes of a family (family.h), placed by
  * equal CIEDE2000 steps of the albedo along a pilot of small bakes. */
 #include "config.h"
-#include "bake/family.h"
+#include "family/family.h"
 
 #include <math.h>
 #include <stdlib.h>

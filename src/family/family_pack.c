@@ -2,7 +2,7 @@
  * the record the MPI gather sends and the family checkpoint keeps. */
 #include "config.h"
 
-#include "bake/family_pack.h"
+#include "family/family_pack.h"
 
 #include <stdio.h>
 #include <stdlib.h>
