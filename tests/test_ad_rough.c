@@ -306,7 +306,8 @@ int main(void)
 		 * are 3.6e-3 of the column's largest off the direct integral (order
 		 * 0; 1.2e-3 with 120 azimuth points, then order 3 is 5e-3 off);
 		 * at alpha 0.05 the columns' R, T are up to 4.7e-3 off the albedo
-		 * (the facet rule near grazing).  Build with
+		 * (point values of the reflection from inside near the critical
+		 * angle, where the facets' Fresnel turns to total reflection).  Build with
 		 * -DAD_ROUGH_KNOWN_FAILURES to run them. */
 		cmocka_unit_test(test_point_values),
 		cmocka_unit_test(test_energy),

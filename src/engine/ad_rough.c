@@ -195,7 +195,8 @@ static void gather(const struct pt *p, int n, const struct side *sd, struct ad_r
  * cr (reflected, into n_i) and ct (transmitted, into n_t); returns the
  * power lost off the quadrature.  pr, pt: scratch of n_u^2 points each. */
 static double column(const struct ad_quad *q, const struct microfacet *mf, double n_i, double n_t, double s,
-    double mu_i, int n_u, struct pt *pr, struct pt *pt, struct ad_rough_col *cr, struct ad_rough_col *ct)
+    double mu_i, int n_u, const double *gx, const double *gw, struct pt *pr, struct pt *pt,
+    struct ad_rough_col *cr, struct ad_rough_col *ct)
 {
 	const int ns = n_u * n_u;
 	double lost = 0.0;
@@ -206,10 +207,10 @@ static double column(const struct ad_quad *q, const struct microfacet *mf, doubl
 		for (int a = 0; a < n_u; a++)
 			for (int b = 0; b < n_u; b++) {
 				double wr[3], wt[3], gr, gt;
-				microfacet_sample_split(mf, n_i, n_t, wi, (a + 0.5) / n_u, (b + 0.5) / n_u, wr, &gr, wt, &gt);
+				microfacet_sample_split(mf, n_i, n_t, wi, gx[a], (b + 0.5) / n_u, wr, &gr, wt, &gt);
 				int j = a * n_u + b;
-				gr /= ns;
-				gt /= ns;
+				gr *= gw[a] / n_u;
+				gt *= gw[a] / n_u;
 				if (gr > 0.0) {
 					pr[j].phi = atan2(wr[1], wr[0]);
 					if (!share(q, s_of(wr, n_i), gr, &pr[j]))
@@ -246,19 +247,26 @@ void ad_rough_init(struct ad_rough *r, const struct ad_quad *q, double n_above, 
 	r->bot_r = xcalloc((size_t)N + 1, sizeof *r->bot_r);
 	r->bot_t = xcalloc((size_t)N + 1, sizeof *r->bot_t);
 	struct pt *pr = xcalloc((size_t)n_u * n_u, sizeof *pr), *pt = xcalloc((size_t)n_u * n_u, sizeof *pt);
+	/* Gauss-Legendre in u1 (the visible-normal map has a square-root edge
+	 * there: the midpoint rule was 2.5e-3 off the albedo at alpha 0.05,
+	 * this 4e-4), midpoints in the periodic u2. */
+	double *gx = xcalloc((size_t)n_u, sizeof(double)), *gw = xcalloc((size_t)n_u, sizeof(double));
+	ad_gauss_legendre(n_u, 0.0, 1.0, gx, gw);
 	for (int j = 0; j < N + E; j++) {
 		double s = j < N ? q->s[j] : se[j - N];
 		double mu = j < N ? (s < n_above ? ad_quad_mu(q, j, n_above) : 0.0) : cos_of_s(s, n_above);
-		double l = column(q, &mf, n_above, n_below, s, mu, n_u, pr, pt, &r->top_r[j], &r->top_t[j]);
+		double l = column(q, &mf, n_above, n_below, s, mu, n_u, gx, gw, pr, pt, &r->top_r[j], &r->top_t[j]);
 		r->lost_max = fmax(r->lost_max, l);
 	}
 	for (int j = 0; j < N; j++) {
 		double s = q->s[j], mu = s < n_below ? ad_quad_mu(q, j, n_below) : 0.0;
-		double l = column(q, &mf, n_below, n_above, s, mu, n_u, pr, pt, &r->bot_r[j], &r->bot_t[j]);
+		double l = column(q, &mf, n_below, n_above, s, mu, n_u, gx, gw, pr, pt, &r->bot_r[j], &r->bot_t[j]);
 		r->lost_max = fmax(r->lost_max, l);
 	}
 	free(pr);
 	free(pt);
+	free(gx);
+	free(gw);
 }
 
 /* Column out[N] of an operator from c at order m (cm: cos(m phi_b)): the
