@@ -6,7 +6,10 @@
 #   2. a bake to equal target error, smooth (next-event estimation on) against the rough top
 #      (escapes only: next-event estimation follows smooth refraction), single and multiple
 #      scattering on the facets, --solver mc;
-#   3. adding-doubling: it refuses rough boundaries, so there is no rough AD time to give.
+#   3. adding-doubling on the stack of 1, smooth against the rough top, at fixed quadratures
+#      (`simulate --solver ad --ad-quad N`, one thread; each solve includes the one at N/2 for
+#      the error estimate): the cost of the rough interface (its facets once, then its matrices
+#      and the full adding per Fourier order).
 # Prints one markdown section.
 set -eu
 SKINBAKE=${SKINBAKE:-./skinbake}
@@ -52,6 +55,17 @@ done
 echo
 echo "The smooth bake meets the target with its minimum of batches, so 9-10 times is the least"
 echo "a rough top costs here; without next-event estimation the bins fill from the escapes only."
-echo "Adding-doubling refuses rough boundaries (\`--solver ad\`: exit 2; \`auto\` bakes them by Monte"
-echo "Carlo), so the cost of a rough interface per Fourier order is not measured: that part of"
-echo "issue 21 is not done."
+echo
+echo "| adding-doubling, stack above, θi 30°, 1 thread | nodes per unit cosine | CPU [s] | Fourier orders | Rd | facet loss | table error estimate |"
+echo "|---|---|---|---|---|---|---|"
+for a in 0 0.3; do
+	for nq in 32 64; do
+		# shellcheck disable=SC2046
+		t=$(cpu "$SKINBAKE" simulate $(stack "$a") --solver ad --ad-quad "$nq" --threads 1 --theta-in 30)
+		# shellcheck disable=SC2046
+		"$SKINBAKE" simulate $(stack "$a") --solver ad --ad-quad "$nq" --threads 1 --theta-in 30 --json >"$W/s.json"
+		echo "| top α = $a | $nq | $t | $(jq -r '.fourier_orders' "$W/s.json") | $(jq -r '.Rd * 10000 | round / 10000' "$W/s.json") | $(jq -r '(.facet_loss // 0) * 10000 | round / 10000' "$W/s.json") | $(jq -r '.rms_rel_err * 10000 | round / 10000' "$W/s.json") |"
+	done
+done
+echo
+echo "Single scattering on the facets only (\`--solver ad\` refuses multiple_scattering = 1)."

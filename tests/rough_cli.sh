@@ -2,7 +2,9 @@
 # Rough boundaries from the command line (issue 21): the preset keys'
 # ranges and the boundaries they need (exit 2, the key and value named, no
 # output), simulate --layer rough=, a small Monte Carlo bake of a rough
-# preset (the manifest books the facet loss) and `--solver ad` refusing it.
+# preset (the manifest books the facet loss) and `--solver ad` refusing
+# multiple scattering on the facets (single scattering it solves:
+# tests/test_ad_rough).
 . "$top_srcdir/tests/tap.sh"
 
 bad() { # name, ini text, expected words in the message
@@ -39,17 +41,26 @@ s = r['Rsp'] + r['Rd'] + r['Tt'] + sum(r['A']) + r['lost'] + r['facet_loss']
 sys.exit(0 if abs(s - 1) < 1e-9 and r['facet_loss'] > 0 and r['Rsp_err'] > 0 else 1)" \
 	&& ok "simulate rough: balance with the facet loss" || fail "simulate rough: balance"
 
-"$SKINBAKE" bake --preset-file "$tmpd/r.ini" --solver ad --out "$tmpd/ad" --theta-nodes 2 --resolution 6x4 \
+printf '[skin]\nbase = fair-oily\n[surface]\nroughness = 0.3\nmultiple_scattering = 1\n' >"$tmpd/ms.ini"
+"$SKINBAKE" bake --preset-file "$tmpd/ms.ini" --solver ad --out "$tmpd/ad" --theta-nodes 2 --resolution 6x4 \
 	--wavelengths 550 --quiet >"$tmpd/out" 2>"$tmpd/err"
-[ $? -ne 0 ] && grep -q 'rough' "$tmpd/err" && [ ! -e "$tmpd/ad" ] && ok "bake --solver ad refuses rough boundaries" \
-	|| fail "bake --solver ad on a rough preset: $(cat "$tmpd/err")"
-"$SKINBAKE" bake --preset-file "$tmpd/r.ini" --out "$tmpd/b" --theta-nodes 2 --resolution 6x4 --wavelengths 550 \
+[ $? -ne 0 ] && grep -q 'multiple' "$tmpd/err" && [ ! -e "$tmpd/ad" ] \
+	&& ok "bake --solver ad refuses multiple scattering on the facets" \
+	|| fail "bake --solver ad, multiple scattering: $(cat "$tmpd/err")"
+"$SKINBAKE" simulate --layer d=inf,n=1.4,mua=1,mus=100,g=0.8,rough=0.3 --solver ad --ad-quad 16 --json >"$tmpd/ad.json" \
+	&& python3 -c "
+import json, sys
+r = json.load(open('$tmpd/ad.json'))
+s = r['Rsp'] + r['Rd'] + r['Tt'] + sum(r['A']) + r['facet_loss']
+sys.exit(0 if abs(s - 1) < 1e-9 and r['facet_loss'] > 0 and r['solver'] == 'ad' else 1)" \
+	&& ok "simulate --solver ad rough: the facet loss closes the balance" || fail "simulate --solver ad rough"
+"$SKINBAKE" bake --preset-file "$tmpd/r.ini" --solver mc --out "$tmpd/b" --theta-nodes 2 --resolution 6x4 --wavelengths 550 \
 	--target-error 0.3 --batch-photons 500 --quiet 2>"$tmpd/err" \
 	&& python3 -c "
 import json, sys
 m = json.load(open('$tmpd/b/manifest.json'))
 txt = json.dumps(m)
 sys.exit(0 if '\"facet_loss\"' in txt and '\"rough_top\"' in txt else 1)" \
-	&& ok "bake (auto: Monte Carlo) of a rough preset; manifest has rough_top and facet_loss" \
+	&& ok "bake --solver mc of a rough preset; manifest has rough_top and facet_loss" \
 	|| fail "rough bake: $(cat "$tmpd/err")"
 tap_done

@@ -114,6 +114,13 @@ static json_object *specular_info(const struct bake_spec *s, const struct bake_r
 	for (int w = 0; w < s->n_wl; w++)
 		json_object_array_add(stacks, jarr(r->stack[w].n_list, r->stack[w].n));
 	add(sp, "stack_n", stacks);
+	int rough = 0;
+	for (int w = 0; w < s->n_wl; w++)
+		rough |= s->slab[w].rough_top;
+	if (rough)
+		add(sp, "split", jstr("rough top: this lobe is the surface's own reflection (Rsp of both solvers, light "
+		    "that never entered a turbid layer); the table holds only light that entered, so eval and the "
+		    "exporters add the two once each"));
 	return sp;
 }
 

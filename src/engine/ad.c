@@ -15,6 +15,7 @@
 #include "engine/ad_err.h"
 #include "engine/ad_eval.h"
 #include "engine/ad_order.h"
+#include "engine/ad_rough.h"
 #include "base/util.h"
 
 void ad_opts_default(struct ad_opts *o)
@@ -90,13 +91,18 @@ static double nstar_lowest(const struct ad_model *md, int k)
 	return fmax(ns, md->sigma[k + 1]);
 }
 
-/* Quadrature pieces: s cut at every index below the largest turbid one. */
+/* Quadrature pieces: s cut at every index below the largest turbid one
+ * (with rough boundaries: the largest of all, since a rough interface sends
+ * light into every direction its media have, e.g. those a film of higher
+ * index traps by total internal reflection). */
 static void model_pieces(const struct slab *s, struct ad_model *md)
 {
 	double nmax = 0.0, v[SLAB_MAX_LAYERS + 2];
 	int nv = 0;
 	for (int k = 0; k < md->K; k++)
 		nmax = fmax(nmax, md->n[k]);
+	for (int i = 0; s->rough_any && i <= s->n_layers + 1; i++)
+		nmax = fmax(nmax, s->layer[i].n);
 	for (int i = 0; i <= s->n_layers + 1; i++)
 		if (s->layer[i].n < nmax * (1.0 - 1e-12))
 			v[nv++] = s->layer[i].n;
@@ -120,8 +126,11 @@ static void model_build(const struct slab *s, enum optics_fresnel fresnel, struc
 	int cnt = 0;
 	double *list = md->bn[0];
 	list[cnt++] = s->n_above;
+	md->rough_nu = 0;
 	for (int i = 1; i <= s->n_layers; i++) {
 		const struct layer *l = &s->layer[i];
+		md->balpha[md->K][cnt - 1] = l->rough;	/* layer i's top: the interface into it */
+		md->brough[md->K] |= l->rough > 0.0;
 		list[cnt++] = l->n;
 		if (slab_layer_clear(s, i))
 			continue;
@@ -137,6 +146,8 @@ static void model_build(const struct slab *s, enum optics_fresnel fresnel, struc
 		cnt = 0;
 		list[cnt++] = l->n;
 	}
+	md->balpha[md->K][cnt - 1] = s->layer[s->n_layers + 1].rough;
+	md->brough[md->K] |= s->layer[s->n_layers + 1].rough > 0.0;
 	list[cnt++] = s->n_below;
 	md->bcnt[md->K] = cnt;
 	if (md->K > 0)
@@ -208,14 +219,20 @@ int ad_solve(const struct slab *s, enum optics_fresnel model, const double *thet
 {
 	if (check_opts(o, theta_i, n_beams, cause))
 		return -1;
-	if (s->rough_any) {
-		*cause = xasprintf("adding-doubling: rough boundaries are not supported (use the Monte Carlo solver)");
+	if (s->rough_any && s->rough_ms) {
+		*cause = xasprintf("adding-doubling: multiple scattering on rough boundaries' facets "
+		    "(multiple_scattering = 1) is Monte Carlo only; use --solver mc, or single scattering");
 		return -1;
 	}
 	double t0 = util_now();
 	struct ad_model md;
 	model_build(s, model, &md);
 	result_alloc(r, theta_i, n_beams, o);
+	if (md.K == 0 && s->rough_any) {
+		*cause = xasprintf("adding-doubling: rough boundaries need a turbid layer (use the Monte Carlo solver)");
+		ad_result_free(r);
+		return -1;
+	}
 	if (md.K == 0) {
 		solve_clear(s, model, theta_i, n_beams, r);
 		r->seconds = util_now() - t0;

@@ -3,7 +3,10 @@
  * layers (1..16, the last may be a half space) with refractive index,
  * mu_a, mu_s and a Henyey-Greenstein phase function; smooth Fresnel
  * interfaces (exact or Schlick, as in optics.h) with refraction and total
- * internal reflection; clear layers of any thickness crossed incoherently;
+ * internal reflection, or rough ones (GGX microfacets, single scattering:
+ * ad_rough.h; their shadowed light is the beam's facet_loss, their own
+ * reflection of the beam is rsp, not in the BRDF); clear layers of any
+ * thickness crossed incoherently;
  * ambient media above and below; collimated incidence at any angles.
  *
  * The parts carry the names of the adding-doubling literature (van de

@@ -150,6 +150,18 @@ static void assemble_totals(const struct ad_series *hi, const struct ad_series *
 			sum += a->v;
 		}
 		b->balance = sum - 1.0;
+		int rough = 0;
+		for (int k = 0; k <= K; k++)
+			rough |= hi->md.brough[k];
+		if (rough) {
+			/* What the fluxes leave is the facets' single-scattering loss:
+			 * balance then checks nothing (see ad.h). */
+			b->facet_loss.v = -b->balance;
+			b->facet_loss.err = b->rd.err + b->tt.err;
+			for (int k = 0; k < K; k++)
+				b->facet_loss.err += b->a[hi->md.slab_layer[k]].err;
+			b->balance = 0.0;
+		}
 	}
 	r->n_nodes = h->N;
 	r->n_orders = ad_err_kept_orders(hi);

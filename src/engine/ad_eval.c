@@ -14,6 +14,8 @@
 static double top_t(const struct ad_series *sr, double s)
 {
 	double r, t;
+	if (sr->md.brough[0])
+		return 1.0;
 	ad_bnd_rt(sr->md.fresnel, sr->md.bn[0], sr->md.bcnt[0], s, &r, &t);
 	return t;
 }

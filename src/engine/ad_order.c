@@ -13,6 +13,7 @@
 
 #include "engine/ad_layer.h"
 #include "engine/ad_phase.h"
+#include "engine/ad_rough.h"
 #include "engine/ad_stack.h"
 #include "base/util.h"
 
@@ -37,8 +38,9 @@ struct ctx {
 	struct medium med[SLAB_MAX_LAYERS];
 	struct ad_bnd bnd[SLAB_MAX_LAYERS + 1];
 	double *sqW;		/* [N] */
-	double *se;		/* [E] */
+	const double *se;	/* [E] */
 	int max_m;		/* orders that can be nonzero */
+	struct ad_rough rough[SLAB_MAX_LAYERS + 1][SLAB_MAX_LAYERS + 1];	/* boundary k's interface j, if rough */
 };
 
 /* Per-thread scratch for one order. */
@@ -46,6 +48,8 @@ struct ws {
 	double *Hpp, *Hpm, *hgw, *lR, *lT, *ldT, *lwork, *swork;
 	struct ad_op R[SLAB_MAX_LAYERS], T[SLAB_MAX_LAYERS], U[2 * SLAB_MAX_LAYERS + 1];
 	double *block;	/* one allocation behind the ops */
+	struct ad_elem xb[SLAB_MAX_LAYERS + 1], xi;	/* rough boundaries for the order; one interface */
+	double *eblock, *ework;	/* behind them; NULL when all boundaries are smooth */
 };
 
 static void ws_alloc(struct ws *w, const struct ctx *c)
@@ -74,6 +78,17 @@ static void ws_alloc(struct ws *w, const struct ctx *c)
 		all[j]->a = w->block + op * (size_t)j;
 		all[j]->d = all[j]->a + (size_t)N * (N + E);
 	}
+	int nr = 0;
+	for (int k = 0; k <= K; k++)
+		nr += c->md->brough[k];
+	if (nr == 0)
+		return;
+	size_t es = ad_elem_size(N, E);
+	w->eblock = xcalloc(es * (size_t)(K + 2), sizeof(double));
+	w->ework = xcalloc(ad_elem_work(N, E), sizeof(double));
+	for (int k = 0; k <= K; k++)
+		ad_elem_bind(&w->xb[k], w->eblock + es * (size_t)k, N, E);
+	ad_elem_bind(&w->xi, w->eblock + es * (size_t)(K + 1), N, E);
 }
 
 static void ws_free(struct ws *w)
@@ -87,6 +102,34 @@ static void ws_free(struct ws *w)
 	free(w->lwork);
 	free(w->swork);
 	free(w->block);
+	free(w->eblock);
+	free(w->ework);
+}
+
+/* Interface j of boundary k at order mo into x. */
+static void interface_order(const struct ctx *c, int k, int j, int mo, struct ad_elem *x)
+{
+	const struct ad_level *lv = c->lv;
+	const double *nl = c->md->bn[k];
+	if (c->md->balpha[k][j] > 0.0)
+		ad_rough_order(&c->rough[k][j], mo, c->sqW, x);
+	else
+		ad_elem_smooth(x, lv->N, lv->E, c->md->fresnel, nl[j], nl[j + 1], lv->q.s, c->se);
+}
+
+/* Rough boundary k at order mo: its interfaces added from the bottom up. */
+static int rough_boundary(const struct ctx *c, int k, int mo, struct ws *w, char **cause)
+{
+	const int cnt = c->md->bcnt[k];
+	interface_order(c, k, cnt - 2, mo, &w->xb[k]);
+	for (int j = cnt - 3; j >= 0; j--) {
+		interface_order(c, k, j, mo, &w->xi);
+		if (ad_elem_add(c->lv->N, c->lv->E, &w->xi, &w->xb[k], &w->xb[k], w->ework)) {
+			*cause = xasprintf("adding-doubling: adding a rough boundary's interfaces failed (LAPACK dgesv)");
+			return -1;
+		}
+	}
+	return 0;
 }
 
 /* Order 0: the discrete normalization of h_0 over the nodes.  Where the
@@ -181,23 +224,35 @@ static int solve_order(struct ctx *c, int mo, struct ws *w, char **cause)
 {
 	struct ad_level *lv = c->lv;
 	const int N = lv->N, E = lv->E, K = c->md->K, na = lv->na;
+	struct ad_bnd bnd[SLAB_MAX_LAYERS + 1];
 	for (int k = 0; k < K; k++)
 		if (layer_order(c, k, mo, w, cause))
 			return -1;
-	if (ad_stack_reflect(N, E, K, c->bnd, w->R, w->T, w->U, w->swork, cause))
+	for (int k = 0; k <= K; k++) {
+		bnd[k] = c->bnd[k];
+		if (c->md->brough[k]) {
+			if (rough_boundary(c, k, mo, w, cause))
+				return -1;
+			bnd[k].x = &w->xb[k];
+		}
+	}
+	if (ad_stack_reflect(N, E, K, bnd, w->R, w->T, w->U, w->swork, cause))
 		return -1;
+	/* A rough top's own reflection of the beams is rsp, not the diffuse
+	 * BRDF (the analytic specular lobe stands for it): take it out. */
+	const double *top = bnd[0].x ? bnd[0].x->rt + (size_t)N * N : NULL;
 	/* BRDF coefficient: flux per unit beam flux over kappa_m a_i, kappa_0 =
 	 * 2 pi, kappa_m = pi, a_i = W_i / n_above^2 (see ad_layer.h). */
 	double kap = mo == 0 ? 2.0 * M_PI : M_PI, n2 = c->md->n_above * c->md->n_above;
 	for (int e = 0; e < E; e++)
 		for (int i = 0; i < na; i++)
-			lv->F[((size_t)mo * E + e) * na + i] =
-			    n2 * w->U[0].a[i + (size_t)N * (N + e)] / (kap * c->sqW[i]);
+			lv->F[((size_t)mo * E + e) * na + i] = n2 *
+			    (w->U[0].a[i + (size_t)N * (N + e)] - (top ? top[i + (size_t)N * e] : 0.0)) / (kap * c->sqW[i]);
 	if (mo > 0)
 		return 0;
 	struct ad_flux fx = { .rsp = lv->rsp, .rd = lv->rd, .rd_d = lv->rd_d, .tt = lv->tt, .tt_d = lv->tt_d,
 		.a = lv->a };
-	return ad_stack_flux(N, E, K, c->bnd, w->R, w->T, w->U, c->sqW, &fx, w->swork, cause);
+	return ad_stack_flux(N, E, K, bnd, w->R, w->T, w->U, c->sqW, &fx, w->swork, cause);
 }
 
 static double cos_of_s(double s, double n)
@@ -255,9 +310,17 @@ static void setup(struct ctx *c, const double *se)
 		b->te = xcalloc((size_t)E + 1, sizeof(double));
 		ad_bnd_fill(b, md->fresnel, md->bn[k], md->bcnt[k], lv->q.s, N, se, E);
 	}
+	for (int k = 0; k <= K; k++)
+		for (int j = 0; md->brough[k] && j + 1 < md->bcnt[k]; j++)
+			if (md->balpha[k][j] > 0.0) {
+				struct ad_rough *r = &c->rough[k][j];
+				ad_rough_init(r, &lv->q, md->bn[k][j], md->bn[k][j + 1], md->balpha[k][j], md->fresnel, se, E,
+				    md->rough_nu > 0 ? md->rough_nu : ad_rough_nu(c->o->density));
+				lv->rough_lost = fmax(lv->rough_lost, r->lost_max);
+			}
 	lv->t_air = xcalloc((size_t)lv->na + 1, sizeof(double));
 	for (int i = 0; i < lv->na; i++)
-		lv->t_air[i] = c->bnd[0].t[i];
+		lv->t_air[i] = md->brough[0] ? 1.0 : c->bnd[0].t[i];
 	double **fl[] = { &lv->rsp, &lv->rd, &lv->rd_d, &lv->tt, &lv->tt_d };
 	for (size_t j = 0; j < sizeof fl / sizeof fl[0]; j++)
 		*fl[j] = xcalloc((size_t)E, sizeof(double));
@@ -281,6 +344,9 @@ static void teardown(struct ctx *c)
 		free(c->bnd[k].t);
 		free(c->bnd[k].re);
 		free(c->bnd[k].te);
+		for (int j = 0; j + 1 < c->md->bcnt[k]; j++)
+			if (c->md->balpha[k][j] > 0.0)
+				ad_rough_free(&c->rough[k][j]);
 	}
 	free(c->sqW);
 }
@@ -309,7 +375,7 @@ int ad_level_solve(const struct ad_model *md, const double *se, int E, const str
 	lv->N = lv->q.n;
 	lv->E = E;
 	lv->na = ad_quad_count(&lv->q, md->n_above);
-	struct ctx c = { .md = md, .o = o, .lv = lv };
+	struct ctx c = { .md = md, .o = o, .lv = lv, .se = se };
 	setup(&c, se);
 	int nt = o->threads > 0 ? o->threads : 1, rc = 0;
 	struct ws *w = xcalloc((size_t)nt, sizeof *w);

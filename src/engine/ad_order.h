@@ -22,6 +22,11 @@ struct ad_model {
 	int bcnt[SLAB_MAX_LAYERS + 1];		/* boundary k's index list length */
 	double bn[SLAB_MAX_LAYERS + 1][SLAB_MAX_LAYERS + 2];	/* its indices, medium above first [-] */
 	double n_above;				/* ambient above [-] */
+	/* Rough interfaces (ad_rough.h): GGX alpha of boundary k's interface j,
+	 * between bn[k][j] and bn[k][j + 1]; 0 = smooth. */
+	double balpha[SLAB_MAX_LAYERS + 1][SLAB_MAX_LAYERS + 1];
+	int brough[SLAB_MAX_LAYERS + 1];	/* 1 if boundary k has a rough interface */
+	int rough_nu;				/* facet rule per axis; 0 = ad_rough_nu of the quadrature */
 	enum optics_fresnel fresnel;		/* at every interface */
 	int n_iv;				/* quadrature pieces (ad_quad.h) */
 	double sigma[AD_MAX_IV + 1];		/* piece edges in s [-] */
@@ -47,7 +52,8 @@ struct ad_level {
 	int M;			/* Fourier orders computed */
 	int complete;		/* 1 if the phase function has no orders beyond M */
 	double *F;		/* [M * E * na] BRDF coefficient of cos(m psi) [1/sr] at (m, e, i) */
-	double *t_air;		/* [na] transmittance of the top boundary at the exit nodes */
+	double *t_air;		/* [na] transmittance of the top boundary at the exit nodes (smooth
+				 * interfaces: the exit interpolation's divisor, ad_eval.h) */
 	double *order_size;	/* [M] largest |F_m| / largest F_0 */
 	/* Order-0 fluxes per beam, fractions of the incident power. */
 	double *rsp, *rd, *rd_d, *tt, *tt_d;	/* [E] each */
@@ -57,6 +63,7 @@ struct ad_level {
 	double f_max;		/* largest delta-M forward fraction */
 	double norm_max;	/* largest |1 - discrete normalization| of h_0 */
 	double t_drop;		/* largest transmittance dropped as negligible */
+	double rough_lost;	/* largest power a rough interface sends off the quadrature */
 };
 
 /* Solve md for beams arriving at s = n_above sin(theta_i) given in se[E].

@@ -93,6 +93,7 @@ static void fill(struct ad_state *a, int w, const struct ad_result *r)
 			e->a_total.err += b->a[i].err;	/* the estimates are bounds: they add */
 		}
 		e->lost = (struct estimate){ 0.0, 0.0 };
+		e->facet_loss = (struct estimate){ b->facet_loss.v, b->facet_loss.err };
 		if (a->p.point_theta_o)
 			ad_brdf_points(r, k, a->p.point_theta_o, a->p.grid.n_theta, a->p.point_phi, a->p.grid.n_phi, e->fr,
 			    e->fr_err);
@@ -227,6 +228,7 @@ static void sim_of_ad(const struct ad_result *a, int n_layers, const struct tall
 	memcpy(out->fr_err, b->fr_err, sizeof(double) * (size_t)ne);
 	memcpy(out->fr_az, b->fr_az, sizeof(double) * (size_t)g->n_theta);
 	memcpy(out->fr_az_err, b->fr_az_err, sizeof(double) * (size_t)g->n_theta);
+	out->facet_loss = (struct estimate){ b->facet_loss.v, b->facet_loss.err };
 	out->balance = b->balance;
 }
 

@@ -91,12 +91,42 @@ static int add_layer(int N, int E, const struct ad_op *Rl, const struct ad_op *T
 	return 0;
 }
 
+/* Un = reflection of the full element x above the stack Ub (add_bnd with
+ * matrices for the diagonals). */
+static int add_elem(int N, int E, const struct ad_elem *x, const struct ad_op *Ub, struct ad_op *Un, double *w)
+{
+	const int nc = N + E;
+	double *P = w, *V = P + (size_t)N * nc, *A = V + (size_t)N * nc, *vd = A + (size_t)N * N;
+	int *piv = (int *)(vd + E);
+	gemm(N, N, N, Ub->a, N, x->rb, N, 0.0, P, N);	/* U Rb */
+	gemm(N, nc, N, Ub->a, N, x->td, N, 0.0, V, N);	/* U Td */
+	for (int e = 0; e < E; e++) {
+		double zd = Ub->d[e] * x->td_d[e];
+		vd[e] = zd == 0.0 ? 0.0 : zd / (1.0 - Ub->d[e] * x->rb_d[e]);
+		double *zc = V + (size_t)N * (N + e), *pc = P + (size_t)N * (N + e);
+		const double *uc = Ub->a + (size_t)N * (N + e);
+		for (int i = 0; i < N; i++) {
+			pc[i] = uc[i] * x->rb_d[e];
+			zc[i] += uc[i] * x->td_d[e] + pc[i] * vd[e];
+		}
+	}
+	if (solve_i_minus(N, E, P, V, A, piv))
+		return -1;
+	memcpy(Un->a, x->rt, sizeof(double) * (size_t)N * nc);
+	gemm(N, nc, N, x->tu, N, V, N, 1.0, Un->a, N);
+	for (int e = 0; e < E; e++)
+		Un->d[e] = x->rt_d[e] + x->tu_d[e] * vd[e];
+	return 0;
+}
+
 /* Un = reflection of boundary b above the stack Ub. */
 static int add_bnd(int N, int E, const struct ad_bnd *b, const struct ad_op *Ub, struct ad_op *Un, double *w)
 {
 	const int nc = N + E;
 	double *P = w, *V = P + (size_t)N * nc, *A = V + (size_t)N * nc, *vd = A + (size_t)N * N;
 	int *piv = (int *)(vd + E);
+	if (b->x)
+		return add_elem(N, E, b->x, Ub, Un, w);
 	for (int j = 0; j < nc; j++) {
 		double rj = j < N ? b->r[j] : b->re[j - N], tj = j < N ? b->t[j] : b->te[j - N];
 		const double *u = Ub->a + (size_t)N * j;
@@ -182,6 +212,35 @@ static void absorbed(int N, int E, const struct ad_op *Rl, const struct ad_op *T
 	}
 }
 
+/* step_down through a full element x: D' = (I - Rb U_below)^-1 Td D. */
+static int step_down_elem(int N, int E, const struct ad_elem *x, const struct ad_op *Ub, const double *D,
+    const double *Dd, double *Dn, double *Dnd, double *w)
+{
+	const int nc = N + E;
+	double *Q = w, *A = Q + (size_t)N * nc;
+	int *piv = (int *)(A + (size_t)N * N);
+	gemm(N, E, N, x->td, N, D, N, 0.0, Dn, N);
+	for (int e = 0; e < E; e++) {
+		const double *tc = x->td + (size_t)N * (N + e);
+		for (int i = 0; i < N; i++)
+			Dn[i + (size_t)N * e] += tc[i] * Dd[e];
+		Dnd[e] = x->td_d[e] * Dd[e];
+	}
+	if (!Ub)
+		return 0;
+	gemm(N, nc, N, x->rb, N, Ub->a, N, 0.0, Q, N);
+	for (int e = 0; e < E; e++) {
+		double qd = x->rb_d[e] * Ub->d[e];
+		Dnd[e] = Dnd[e] == 0.0 ? 0.0 : Dnd[e] / (1.0 - qd);
+		for (int i = 0; i < N; i++)
+			Dn[i + (size_t)N * e] += Q[i + (size_t)N * (N + e)] * Dnd[e];
+	}
+	for (int j = 0; j < N; j++)
+		for (int i = 0; i < N; i++)
+			A[i + (size_t)N * j] = (i == j) - Q[i + (size_t)N * j];
+	return LAPACKE_dgesv(LAPACK_COL_MAJOR, N, E, A, N, piv, Dn, N) == 0 ? 0 : -1;
+}
+
 /* One step down: the field below element j from the field above it,
  * D' = (I - R_j U_below)^-1 T_j D; Ub == NULL when nothing is below. */
 static int step_down(int N, int E, const struct ad_bnd *b, const struct ad_op *Rl, const struct ad_op *Tl,
@@ -190,6 +249,8 @@ static int step_down(int N, int E, const struct ad_bnd *b, const struct ad_op *R
 	const int nc = N + E;
 	double *Q = w, *A = Q + (size_t)N * nc;
 	int *piv = (int *)(A + (size_t)N * N);
+	if (b && b->x)
+		return step_down_elem(N, E, b->x, Ub, D, Dd, Dn, Dnd, w);
 	if (b) {
 		for (int e = 0; e < E; e++) {
 			for (int i = 0; i < N; i++)
@@ -223,6 +284,13 @@ static int step_down(int N, int E, const struct ad_bnd *b, const struct ad_op *R
 	return LAPACKE_dgesv(LAPACK_COL_MAJOR, N, E, A, N, piv, Dn, N) == 0 ? 0 : -1;
 }
 
+/* A rough top's reflection of beam e, collimated and diffuse (order 0). */
+static double top_reflect(int N, int E, const struct ad_elem *x, const double *sqW, int e)
+{
+	(void)E;
+	return field_flux(N, sqW, x->rt + (size_t)N * N, x->rt_d, e);
+}
+
 int ad_stack_flux(int N, int E, int K, const struct ad_bnd *bnd, const struct ad_op *R, const struct ad_op *T,
     const struct ad_op *U, const double *sqW, struct ad_flux *fx, double *work, char **cause)
 {
@@ -249,9 +317,11 @@ int ad_stack_flux(int N, int E, int K, const struct ad_bnd *bnd, const struct ad
 	memset(fx->a, 0, sizeof(double) * (size_t)K * E);
 	for (int e = 0; e < E; e++) {
 		const double *u0 = up, *bot = dn + ne * fs;
-		fx->rsp[e] = bnd[0].re[e];
+		fx->rsp[e] = bnd[0].x ? top_reflect(N, E, bnd[0].x, sqW, e) : bnd[0].re[e];
 		fx->rd[e] = field_flux(N, sqW, u0, u0 + (size_t)N * E, e) - u0[(size_t)N * E + e];
-		fx->rd_d[e] = u0[(size_t)N * E + e] - fx->rsp[e];
+		if (bnd[0].x)
+			fx->rd[e] -= fx->rsp[e] - bnd[0].x->rt_d[e];	/* the diffuse part of rsp */
+		fx->rd_d[e] = u0[(size_t)N * E + e] - (bnd[0].x ? bnd[0].x->rt_d[e] : fx->rsp[e]);
 		fx->tt_d[e] = bot[(size_t)N * E + e];
 		fx->tt[e] = field_flux(N, sqW, bot, bot + (size_t)N * E, e) - fx->tt_d[e];
 	}

@@ -18,6 +18,7 @@
 #ifndef SKINBAKE_AD_STACK_H
 #define SKINBAKE_AD_STACK_H
 #include <stddef.h>
+#include "engine/ad_elem.h"
 #include "engine/optics.h"
 #include "engine/slab.h"
 
@@ -27,10 +28,13 @@ struct ad_op {
 	double *d;
 };
 
-/* A boundary: reflectance and transmittance per node and per beam. */
+/* A boundary: reflectance and transmittance per node and per beam; a
+ * boundary with a rough interface has full operators for the order in x
+ * (ad_elem.h), which then stand for it (r, t, re, te unused). */
 struct ad_bnd {
 	double *r, *t;		/* [N] */
 	double *re, *te;	/* [E] */
+	const struct ad_elem *x;	/* NULL: smooth (diagonal) */
 };
 
 /* The order-0 fluxes for every beam, fractions of the incident power. */
@@ -65,7 +69,8 @@ int ad_stack_reflect(int N, int E, int K, const struct ad_bnd *bnd, const struct
     struct ad_op *U, double *work, char **cause);
 
 /* Order 0: the fields between the elements for unit collimated flux from
- * above, and from them the fluxes (absorption from each layer's own R and T,
+ * above, and from them the fluxes (a rough top's reflection of the beam,
+ * diffuse or collimated, is rsp: the light that never entered) (absorption from each layer's own R and T,
  * so Rsp + Rd + Tt + sum A = 1 checks the adding).  sqW[N] = sqrt(W). */
 int ad_stack_flux(int N, int E, int K, const struct ad_bnd *bnd, const struct ad_op *R, const struct ad_op *T,
     const struct ad_op *U, const double *sqW, struct ad_flux *fx, double *work, char **cause);

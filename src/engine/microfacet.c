@@ -175,6 +175,37 @@ double microfacet_sample(const struct microfacet *m, double n_i, double n_t, con
 	return ih * microfacet_g1(m, wi[2]) * g1o / (wi[2] * h[2]);
 }
 
+void microfacet_sample_split(const struct microfacet *m, double n_i, double n_t, const double wi[3], double u1,
+    double u2, double wr[3], double *w_r, double wt[3], double *w_t)
+{
+	*w_r = 0.0;
+	*w_t = 0.0;
+	if (n_i == n_t) {
+		for (int k = 0; k < 3; k++)
+			wt[k] = -wi[k];
+		*w_t = 1.0;
+		return;
+	}
+	double h[3];
+	ggx_visible_normal(m->alpha, wi, u1, u2, h);
+	double ih = dot3(wi, h), ct;
+	if (ih <= 0.0)
+		return;
+	double F = facet_fresnel(m, n_i, n_t, ih, &ct);
+	for (int k = 0; k < 3; k++)
+		wr[k] = 2.0 * ih * h[k] - wi[k];
+	if (wr[2] > 0.0)
+		*w_r = F * microfacet_g1(m, wr[2]);
+	if (F >= 1.0)
+		return;
+	double eta = n_i / n_t;
+	for (int k = 0; k < 3; k++)
+		wt[k] = (eta * ih - ct) * h[k] - eta * wi[k];
+	normalize3(wt);
+	if (wt[2] < 0.0)
+		*w_t = (1.0 - F) * microfacet_g1(m, wt[2]);
+}
+
 void microfacet_albedo(const struct microfacet *m, double n_i, double n_t, double cos_i, int n_mu, int n_phi,
     double *R, double *T)
 {

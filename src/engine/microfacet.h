@@ -59,6 +59,15 @@ double microfacet_bsdf(const struct microfacet *m, double n_i, double n_t, const
 double microfacet_sample(const struct microfacet *m, double n_i, double n_t, const double wi[3], double u1,
     double u2, double u3, double wo[3]);
 
+/* Both outcomes of microfacet_sample at once (GGX only), for deterministic
+ * rules over the facets: the facet chosen by u1, u2 reflects into wr with
+ * weight *w_r = F G1(wr) and refracts into wt with *w_t = (1 - F) G1(wt);
+ * a weight is 0 where that path is shadowed or impossible (total internal
+ * reflection on the facet).  Their means over u1, u2 are the directional
+ * albedos R and T.  n_i == n_t passes straight through with *w_t = 1. */
+void microfacet_sample_split(const struct microfacet *m, double n_i, double n_t, const double wi[3], double u1,
+    double u2, double wr[3], double *w_r, double wt[3], double *w_t);
+
 /* The multiple-scattering alternative to microfacet_sample (GGX only):
  * the random walk on the Smith microsurface of Heitz, Hanika, d'Eon &
  * Dachsbacher (SIGGRAPH 2016) with uniform heights, which reflects or
