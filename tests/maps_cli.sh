@@ -108,6 +108,20 @@ bad "fit: mask of another size" "small.png is 32 x 32 texels, but --albedo .*a.p
 	--family "$fam" --albedo "$tmpd/a.png" --mask "$tmpd/small.png" --out "$tmpd/bad"
 bad "fit: albedo not an image" "notimage.png: not a PNG or OpenEXR image" maps fit --family "$fam" \
 	--albedo "$tmpd/notimage.png" --out "$tmpd/bad"
+# Limits said before work (issue 23): a 60000 x 60000 PNG (its header only) needs about 144 GB.
+python3 -c "
+import struct, sys, zlib
+def chunk(t, d): return struct.pack('>I', len(d)) + t + d + struct.pack('>I', zlib.crc32(t + d) & 0xffffffff)
+open(sys.argv[1], 'wb').write(b'\\x89PNG\\r\\n\\x1a\\n' + chunk(b'IHDR', struct.pack('>IIBBBBB', 60000, 60000, 8, 2, 0, 0, 0))
+    + chunk(b'IDAT', zlib.compress(bytes(100))) + chunk(b'IEND', b''))" "$tmpd/huge.png"
+avail=$(awk '/^MemAvailable/ { print $2 }' /proc/meminfo)
+if [ -n "$avail" ] && [ "$avail" -lt 100000000 ]; then
+	bad "fit: an albedo far larger than the memory is refused at once, with the numbers" \
+		"a fit of the 60000 x 60000 texel --albedo needs about [0-9.]* GB of memory (estimated), [0-9.]* GB are available; use a smaller --albedo" \
+		maps fit --family "$fam" --albedo "$tmpd/huge.png" --out "$tmpd/bad"
+else
+	skip "more than 100 GB of memory available: the 60000 x 60000 fit would fit"
+fi
 bad "fit: not a family" "not a family directory" maps fit --family "$tmpd/fit" --albedo "$tmpd/a.png" --out "$tmpd/bad"
 cp -r "$fam" "$tmpd/fam2"
 sed -i 's/"format_version":1/"format_version":7/' "$tmpd/fam2/family.json"

@@ -43,6 +43,15 @@ struct maps_fit_summary {
 	double seconds;		/* wall time of the fit [s] */
 };
 
+/* Estimated needs of maps fit per texel of the albedo (the budget check of
+ * `maps fit`): peak memory measured 50 MB at 1024^2 and 151 MB at 2048^2 texels
+ * (a 3 x 3 family, 8-bit RGB PNG): 33 bytes per texel over about 16 MB, so
+ * 40 per texel (a mask image adds to it) over 32 MB; files at most 2 bytes
+ * (16-bit PNG) or 4 (EXR) per map (the family's axes and de2000) and 1 for
+ * the status map, uncompressed. */
+#define MAPS_FIT_MEM_PER_TEXEL 40.0
+#define MAPS_FIT_MEM_FIXED 32e6
+
 /* Fit f (family_albedo_prepare'd or not) to the colours of albedo (RGB or
  * grey, optional alpha); mask (NULL: all) must have albedo's size.  *out
  * gets the maps with de2000 and status (caller frees).  -1 and *cause when
