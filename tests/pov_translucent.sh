@@ -60,41 +60,11 @@ for mode in exact translucent; do
 	tol=0.01
 	[ $mode = exact ] && tol=0.005
 	r=$(python3 - "$tmpd/$mode/r.png" "$exp" "$tol" <<'PY'
-import struct, sys, zlib
-def png16(p):
-    d = open(p, "rb").read()
-    i, idat = 8, b""
-    while i < len(d):
-        n, t = struct.unpack(">I4s", d[i:i + 8])
-        if t == b"IHDR":
-            w, h, bd, ct = struct.unpack(">IIBB", d[i + 8:i + 18])
-        if t == b"IDAT":
-            idat += d[i + 8:i + 8 + n]
-        i += 12 + n
-    raw, ch = zlib.decompress(idat), (3 if ct == 2 else 4)
-    bpp, stride = 2 * ch, 2 * ch * w
-    prev, px = bytearray(stride), []
-    for y in range(h):
-        f, line = raw[y * (stride + 1)], bytearray(raw[y * (stride + 1) + 1:(y + 1) * (stride + 1)])
-        for x in range(stride):
-            a = line[x - bpp] if x >= bpp else 0
-            b = prev[x]
-            c = prev[x - bpp] if x >= bpp else 0
-            if f == 1:
-                line[x] = (line[x] + a) & 255
-            elif f == 2:
-                line[x] = (line[x] + b) & 255
-            elif f == 3:
-                line[x] = (line[x] + (a + b) // 2) & 255
-            elif f == 4:
-                p = a + b - c
-                pa, pb, pc = abs(p - a), abs(p - b), abs(p - c)
-                line[x] = (line[x] + (a if pa <= pb and pa <= pc else b if pb <= pc else c)) & 255
-        prev = line
-        px += [[int.from_bytes(line[2 * (x * ch + k):2 * (x * ch + k) + 2], "big") / 65535 for k in range(3)]
-               for x in range(w)]
-    return px
-px = png16(sys.argv[1])
+import os, sys
+sys.path.insert(0, os.path.join(os.environ["top_srcdir"], "tests", "lib"))
+from images import read_png
+w, h, ch, bits, rows, _ = read_png(sys.argv[1])
+px = [[v / (2 ** bits - 1) for v in p[:3]] for row in rows for p in row]
 exp = [float(x) for x in sys.argv[2].split()]
 mean = [sum(p[c] for p in px) / len(px) for c in range(3)]
 err = [m / e - 1 for m, e in zip(mean, exp)]
