@@ -72,27 +72,12 @@ for d in 1 2 4; do
 	BLENDER="$BLENDER" python3 "$PROF" cycles $args --edges 0 --back --depth $d --samples 64 \
 		--json "$tmpd/back$d.json" 2>"$tmpd/back.log"
 	r=$(python3 - "$SKINBAKE" "$bake" "$d" "$tmpd/back$d.json" <<'PY'
-import json, re, subprocess, sys
+import json, os, sys
+sys.path.insert(0, os.path.join(os.environ["top_srcdir"], "tests", "lib"))
+from slab_tt import slab_tt_rgb
 skinbake, bake, d_mm, prof = sys.argv[1], sys.argv[2], float(sys.argv[3]), sys.argv[4]
 m = json.load(open(bake + "/manifest.json"))
-tt = []
-for lw in m["layers"]:
-    layers, left = [], d_mm / 10
-    for l in lw["layers"]:
-        d = min(1e9 if l["d_cm"] == "inf" else l["d_cm"], left)
-        if d <= 0:
-            break
-        layers.append(dict(l, d_cm=d))
-        left -= d
-    layers[-1]["d_cm"] += max(left, 0.0)
-    args = []
-    for l in reversed(layers):
-        args += ["--layer", "d=%.6g,n=%g,mua=%g,mus=%g,g=%g" % (l["d_cm"], l["n"], l["mua_per_cm"], l["mus_per_cm"], l["g"])]
-    out = subprocess.run([skinbake, "simulate", "--solver", "ad", "--ad-tol", "1e-3"] + args, capture_output=True,
-                         text=True, check=True).stdout
-    tt.append(float(re.search(r"^\s*Tt\s+(\S+)", out, re.M).group(1)))
-w = m["rgb"]["rgb_from_wl"]
-sim = [sum(w[c][k] * tt[k] for k in range(len(tt))) for c in range(3)]
+sim = slab_tt_rgb(skinbake, m, d_mm)
 ren = json.load(open(prof))["g"][0]
 ratio = [r / s if s > 1e-4 else 1.0 for r, s in zip(ren, sim)]
 print(" ".join("%.4g/%.4g" % (r, s) for r, s in zip(ren, sim)), int(all(abs(x - 1) <= 0.2 for x in ratio)))

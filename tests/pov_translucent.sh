@@ -89,27 +89,13 @@ for d in 1 2 4; do
 	# shellcheck disable=SC2086
 	python3 "$PROF" pov $args --edges 0 --back --depth $d --samples 400 --json "$tmpd/back$d.json"
 	r=$(python3 - "$B" "$bake" "$d" "$tmpd/back$d.json" <<'PY'
-import json, re, subprocess, sys
+import json, os, sys
+sys.path.insert(0, os.path.join(os.environ["top_srcdir"], "tests", "lib"))
+from slab_tt import slab_tt_rgb
 skinbake, bake, d_mm, prof = sys.argv[1], sys.argv[2], float(sys.argv[3]), sys.argv[4]
 m = json.load(open(bake + "/manifest.json"))
-tt = []
-for lw in m["layers"]:
-    layers, left = [], d_mm / 10
-    for l in lw["layers"]:
-        d = min(1e9 if l["d_cm"] == "inf" else l["d_cm"], left)
-        if d <= 0:
-            break
-        layers.append(dict(l, d_cm=d))
-        left -= d
-    layers[-1]["d_cm"] += max(left, 0.0)
-    args = []
-    for l in reversed(layers):
-        args += ["--layer", "d=%.6g,n=%g,mua=%g,mus=%g,g=%g" % (l["d_cm"], l["n"], l["mua_per_cm"], l["mus_per_cm"], l["g"])]
-    out = subprocess.run([skinbake, "simulate", "--solver", "ad", "--ad-tol", "1e-3"] + args, capture_output=True,
-                         text=True, check=True).stdout
-    tt.append(float(re.search(r"^\s*Tt\s+(\S+)", out, re.M).group(1)))
+sim = slab_tt_rgb(skinbake, m, d_mm)
 w = m["rgb"]["rgb_from_wl"]
-sim = [sum(w[c][k] * tt[k] for k in range(len(tt))) for c in range(3)]
 ren = json.load(open(prof))["g"][0]
 ratio = [r / s if s > 1e-4 else 1.0 for r, s in zip(ren, sim)]
 # The bake's own reflected power beyond r = d: POV-Ray's dipole lights the exit point from the
