@@ -59,6 +59,7 @@ import sys
 import time
 
 TRAIN_THETA_I = (11.25, 33.75)
+SATURATED = (202, 203, 204, 205)  # grazing mirror points where CUReT saturates (validate-brdf.sh)
 SEBUM_ON_CM = 0.0005            # the physiological presets' oily film (5 um)
 BASE_EPI_MUSP500 = 69.0         # base presets' musp500 (docs/presets.md)
 BASE_DERM_MUSP500 = 45.6
@@ -260,6 +261,50 @@ def nelder_mead(f, x0, steps, noise, max_evals):
     return simplex[i], vals[i], evals
 
 
+def evaluate(a, ini):
+    """--evaluate: the preset file's BRDF by adding-doubling at all 205 CUReT
+    points; RMS relative error on the training points, on the 181 held out
+    (not training, not the 4 saturated grazing mirror points, idx 202-205),
+    the back-side fall f(-78.75)/f(-33.75) at 11.25 deg and the forward
+    rise f(78.75)/f(33.75) at 33.75 deg (in plane), as validate-brdf.sh."""
+    rows = read_curet(a.curet)
+    pts = os.path.join(a.out, "all-points.txt")
+    os.makedirs(a.out, exist_ok=True)
+    with open(pts, "w") as f:
+        for r in rows:
+            f.write("%g %g %g\n" % (r[1], r[2], r[3]))
+    acc = ["--nodes", str(a.nodes)] if a.nodes else ["--tol", str(a.tol)]
+    with open(pts) as f:
+        out = subprocess.run([a.brdf_model, "--preset-file", ini] + acc, stdin=f, check=True,
+                             capture_output=True, text=True).stdout
+    sim, _ = parse_columns(out)
+    sat = set(SATURATED)
+    train = [(r, v) for r, v in zip(rows, sim) if r[1] in TRAIN_THETA_I]
+    held = [(r, v) for r, v in zip(rows, sim) if r[1] not in TRAIN_THETA_I and r[0] not in sat]
+
+    def rms(sel):
+        return 100 * math.sqrt(sum(((v - r[4]) / r[4]) ** 2 for r, v in sel) / len(sel))
+
+    def at(ti, tv, dphi):
+        for r, v in zip(rows, sim):
+            if abs(r[1] - ti) < 0.01 and abs(r[2] - tv) < 0.01 and abs(r[3] - dphi) < 0.01:
+                return v, r[4]
+        return None
+    b1, b0 = at(11.25, 78.75, 0), at(11.25, 33.75, 0)
+    f1, f0 = at(33.75, 78.75, 180), at(33.75, 33.75, 180)
+    worst = max(held, key=lambda rv: abs(rv[1] - rv[0][4]) / rv[0][4])
+    print("# %s: RMS relative %.1f %% on the %d training points, %.1f %% on the %d held out "
+          "(theta_i < 60: %.1f %%, >= 60: %.1f %%); back-side fall %.2f (CUReT %.2f), forward rise %.2f "
+          "(CUReT %.2f); worst held out idx %d (ti %.2f tv %.2f dphi %.2f) %+.0f %%"
+          % (os.path.basename(ini), rms(train), len(train), rms(held), len(held),
+             rms([h for h in held if h[0][1] < 60]), rms([h for h in held if h[0][1] >= 60]),
+             b1[0] / b0[0], b1[1] / b0[1], f1[0] / f0[0], f1[1] / f0[1], worst[0][0], worst[0][1],
+             worst[0][2], worst[0][3], 100 * (worst[1] - worst[0][4]) / worst[0][4]))
+    for r, v in zip(rows, sim):
+        print("%d\t%g\t%g\t%g\t%g\t%.5g\t%s" % (r[0], r[1], r[2], r[3], r[4], v,
+              "train" if r[1] in TRAIN_THETA_I else "sat" if r[0] in sat else "held"))
+
+
 def main():
     ap = argparse.ArgumentParser(description=__doc__.split("\n")[0])
     here = os.path.dirname(os.path.abspath(__file__))
@@ -291,6 +336,11 @@ def main():
     ap.add_argument("--sebum", default="both", choices=("on", "off", "both"), help="films to fit")
     ap.add_argument("--start", default=None,
                     help="starting point melanin,blood,scatter,alpha[,alpha_epi] (default 0.025,0.02,1,0.35)")
+    ap.add_argument("--train", default="low", choices=("low", "all"),
+                    help="low: the 20 points at 11.25/33.75 deg (the fit); all: every point but the 4 "
+                    "saturated ones (a diagnostic of the model's best, not a fit to report as held out)")
+    ap.add_argument("--evaluate", default=None, metavar="INI",
+                    help="no fit: the preset file at all 205 points (adding-doubling), its errors, fall and rise")
     a = ap.parse_args()
     if a.rough_epi and not a.rough:
         sys.exit("fit-curet: --rough-epi needs --rough")
@@ -307,8 +357,14 @@ def main():
                 break
     if a.curet is None:
         sys.exit("fit-curet: give --curet PATH/curet_sample39_brdf_205.tsv")
+    if a.evaluate:
+        evaluate(a, a.evaluate)
+        return
     t_start = time.time()
-    points = [r for r in read_curet(a.curet) if r[1] in TRAIN_THETA_I]
+    if a.train == "all":    # diagnostic: what the model can do at best on every point
+        points = [r for r in read_curet(a.curet) if r[0] not in SATURATED]
+    else:
+        points = [r for r in read_curet(a.curet) if r[1] in TRAIN_THETA_I]
     model = Model(a, points)
     log = open(a.log, "w") if a.log else None
     hdr = "eval\tsebum\tmelanin\tblood\tscatter\talpha\talpha_epi\tJ\tJ_sd\trms_rel_pct"
