@@ -171,7 +171,8 @@ static void dense_grid(const struct bake *b, const char *what, struct grid_stats
 		for (int o = 0; o < NT; o++)
 			for (int j = 0; j < NP; j++) {
 				size_t k = ((size_t)i * NT + o) * NP + j;
-				double err, f = eval_in(b, th[i], th[o], ph[j], &err), d = fabs(f - ref[k]);
+				double err, f = eval_in(b, th[i], th[o], ph[j], &err);
+				double d = fabs(f - ref[k]);
 				if (ref[k] <= 0.0)
 					continue;
 				ratio[g->n++] = d > 0.0 ? (err + ref_err[k]) / d : INFINITY;
@@ -192,10 +193,10 @@ static void dense_grid(const struct bake *b, const char *what, struct grid_stats
 	print_message("# %s: reported error over actual: 5th percentile %.3g, median %.3g\n", what,
 	    ratio[g->n / 20], ratio[g->n / 2]);
 	free(ratio);
-	print_message("# %s: dense grid: %ld points; reported error covers the actual at %.2f %%\n", what,
-	    g->n, 100.0 * g->covered / g->n);
-	print_message("# %s: interior (theta_i <= 81, theta_o < 80 deg): RMS relative error %.3g %%, "
-	    "worst %.3g %%\n", what, 100 * g->rms_int, 100 * g->worst_int);
+	print_message("# %s: dense grid: %ld points; reported error covers the actual at %.2f %%\n",
+	    what, g->n, 100.0 * g->covered / g->n);
+	print_message("# %s: interior (theta_i <= 81, theta_o < 80 deg): RMS relative error "
+	    "%.3g %%, worst %.3g %%\n", what, 100 * g->rms_int, 100 * g->worst_int);
 	print_message("# %s: grazing: worst |eval - ref| %.3g %% of the largest f at that theta_i "
 	    "(at %.1f, %.1f deg)\n", what, 100 * g->worst_graz, g->at[0], g->at[1]);
 }

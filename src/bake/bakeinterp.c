@@ -359,13 +359,14 @@ static double bin_width(const double *ax, int n, int i, double end)
  * zero_end) or (x - a)^2 / 2 where the end value is held (f' = 0 there:
  * the delta_phi axis; theta_o below its first centre adds |f'| (a - x)),
  * f'' from axis_d2 at the nodes beside x. */
-static double axis_err(const float *v, size_t stride, const double *ax, int n, double end, int means,
-    int zero_end, double x)
+static double axis_err(const float *v, size_t stride, const double *ax, int n, double end,
+    int means, int zero_end, double x)
 {
 	int i0 = 0;
 	while (i0 + 1 < n && ax[i0 + 1] <= x)
 		i0++;
-	double d2 = fabs(axis_d2(v, stride, ax, n, i0, zero_end)), h = bin_width(ax, n, i0, end), step, held = 0.0;
+	double d2 = fabs(axis_d2(v, stride, ax, n, i0, zero_end)), h = bin_width(ax, n, i0, end);
+	double step, held = 0.0;
 	if (x < ax[0]) {
 		step = 0.5 * (ax[0] - x) * (ax[0] - x);
 		if (zero_end && n > 1)
@@ -386,7 +387,8 @@ static double axis_err(const float *v, size_t stride, const double *ax, int n, d
  * theta_o (means, to 0 at 90 deg) and along delta_phi (means, held at the
  * ends), weighted as the values; and along theta_i (point values at the
  * nodes, to 0 at 90 deg) on the values interpolated in the other two. */
-static double bins_interp_err(const struct bake *b, const float *plane, double ti, double to, double ph)
+static double bins_interp_err(const struct bake *b, const float *plane, double ti, double to,
+    double ph)
 {
 	int ia[2], ib[2], ic[2];
 	double ta, tb, tc;
@@ -404,14 +406,18 @@ static double bins_interp_err(const struct bake *b, const float *plane, double t
 				if (ib[y] >= 0)
 					v += wb[y] * wc[z] * r[(size_t)ib[y] * P + (size_t)ic[z]];
 		col[a] = (float)v;
-		double w = (a == ia[0] ? wa[0] : 0.0) + (a == ia[1] && ia[1] != ia[0] ? wa[1] : 0.0);
+		double w = a == ia[0] ? wa[0] : 0.0;
+		if (a == ia[1] && ia[1] != ia[0])
+			w += wa[1];
 		if (w == 0.0)
 			continue;
 		for (int z = 0; z < 2; z++)
-			e += w * wc[z] * axis_err(r + ic[z], P, b->theta_o, b->n_to, 0.5 * M_PI, 1, 1, to);
+			e += w * wc[z] * axis_err(r + ic[z], P, b->theta_o, b->n_to, 0.5 * M_PI,
+			    1, 1, to);
 		for (int y = 0; y < 2; y++)
 			if (ib[y] >= 0)
-				e += w * wb[y] * axis_err(r + (size_t)ib[y] * P, 1, b->phi, b->n_phi, M_PI, 1, 0, ph);
+				e += w * wb[y] * axis_err(r + (size_t)ib[y] * P, 1, b->phi,
+				    b->n_phi, M_PI, 1, 0, ph);
 	}
 	e += axis_err(col, 1, b->theta_i, b->n_ti, 0.5 * M_PI, 0, 1, ti);
 	free(col);
