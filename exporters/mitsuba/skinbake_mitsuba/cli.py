@@ -145,6 +145,7 @@ def _render_parser(sub):
     p.add_argument("--mode", default="table", help="table or volumetric (default table)")
     p.add_argument("--width", type=int, default=None, help="image width in [8, 8192] px (default the scene's)")
     p.add_argument("--spp", type=int, default=64, help="samples per pixel in [1, 1e6]")
+    p.add_argument("--seed", type=int, default=0, help="sampler seed in [0, 2^31-1] (default 0)")
     p.add_argument("--variant", default=None, help="Mitsuba variant (default llvm_ad_rgb, else scalar_rgb)")
     p.add_argument("--out", required=True, help="output image: .exr (linear) or .png (sRGB)")
     return p
@@ -159,11 +160,12 @@ def cmd_render(a):
     if a.width is not None:
         _int_range("--width", a.width, 8, 8192)
     _int_range("--spp", a.spp, 1, 10 ** 6)
+    _int_range("--seed", a.seed, 0, 2 ** 31 - 1)
     if not (a.out.endswith(".exr") or a.out.endswith(".png")):
         raise UsageError("--out %s: give a .exr or .png name" % a.out)
     from . import scene
     try:
-        seconds, used = scene.render(a.export, a.mode, a.out, a.width, a.spp, a.variant)
+        seconds, used = scene.render(a.export, a.mode, a.out, a.width, a.spp, a.variant, a.seed)
     except ValueError as e:
         raise UsageError(str(e)) from None
     sys.stderr.write("skinbake_mitsuba render: %s mode, %s, %d spp, %.1f s\n" % (a.mode, used, a.spp, seconds))

@@ -210,7 +210,7 @@ def _shells(name, ply, centre, view_dist, bake, unit_mm, tmp, spectral, channel=
     if n_below != ns[-1]:
         _note("%s: the bake's half space below has n %.3g, not the last layer's %.3g: the innermost shell "
               "absorbs without a Fresnel boundary" % (name, n_below, ns[-1]))
-    return shapes, keep
+    return shapes, keep, (alpha, ns[0])
 
 
 def _max_depth(keep):
@@ -222,7 +222,7 @@ def _max_depth(keep):
     return stk.max_depth(layers)
 
 
-def build(export_dir, mode, width=None, spp=64, tmp=None, channel=None):
+def build(export_dir, mode, width=None, spp=64, tmp=None, channel=None, estimator="exit"):
     """The scene dict of the export in mode 'table' or 'volumetric' with the
     current variant; tmp: a directory for the shells (volumetric); channel
     (mono variants): 0, 1, 2 for R, G, B, each the bake wavelength with the
@@ -274,6 +274,7 @@ def build(export_dir, mode, width=None, spp=64, tmp=None, channel=None):
     objs = {o["name"]: o for o in man["objects"]}
     bake_of = {}
     depth = 8
+    top = None
     for ob in sc["objects"]:
         name = ob["name"]
         mo = objs[name]
@@ -294,7 +295,8 @@ def build(export_dir, mode, width=None, spp=64, tmp=None, channel=None):
                 if mi.is_spectral:
                     spectral = _bake_layers(bake)["wavelengths_nm"]
                 view_dist = float(np.linalg.norm(_f(cam["location"]) - centre))
-                shapes, keep = _shells(name, ply, centre, view_dist, bake, sc["unit_mm"], tmp, spectral, channel)
+                shapes, keep, top = _shells(name, ply, centre, view_dist, bake, sc["unit_mm"], tmp, spectral,
+                                            channel)
                 scene.update(shapes)
                 depth = max(depth, _max_depth(keep))
                 continue
@@ -313,14 +315,18 @@ def build(export_dir, mode, width=None, spp=64, tmp=None, channel=None):
         else:
             shape["bsdf"] = bsdf
         scene[name] = shape
-    if mode == "volumetric":
+    if mode == "volumetric" and top is not None and top[0] > 0.0 and estimator == "exit":
+        # exitnee.py: the light through the rough top estimated at every medium vertex
+        scene["integrator"] = {"type": "skinbake_volpath", "max_depth": depth, "rr_depth": 1 << 30,
+                               "alpha": top[0], "eta": top[1]}
+    elif mode == "volumetric":
         scene["integrator"] = {"type": "volpath", "max_depth": depth, "rr_depth": 1 << 30}
     else:
         scene["integrator"] = {"type": "path", "max_depth": 8}
     return scene
 
 
-def render(export_dir, mode, out, width=None, spp=64, variant_name=None):
+def render(export_dir, mode, out, width=None, spp=64, variant_name=None, seed=0):
     """Render the export to OUT (.exr: linear; .png: sRGB 8-bit); returns
     (seconds, variant). Volumetric mode renders R, G and B apart in a mono
     variant, each with its wavelength's grey media: in an rgb variant the
@@ -333,6 +339,8 @@ def render(export_dir, mode, out, width=None, spp=64, variant_name=None):
     import mitsuba as mi
     from . import tablebsdf
     tablebsdf.register()
+    from . import exitnee
+    exitnee.register()
     tmp = tempfile.mkdtemp(prefix="skinbake-mitsuba-")
     try:
         t0 = time.time()
@@ -340,11 +348,11 @@ def render(export_dir, mode, out, width=None, spp=64, variant_name=None):
             chans = []
             for c in range(3):
                 scene = mi.load_dict(build(export_dir, mode, width, spp, tmp, channel=c))
-                chans.append(np.array(mi.render(scene, spp=spp))[..., 0])
+                chans.append(np.array(mi.render(scene, spp=spp, seed=seed))[..., 0])
             arr = np.stack(chans, axis=-1)
         else:
             scene = mi.load_dict(build(export_dir, mode, width, spp, tmp))
-            arr = np.array(mi.render(scene, spp=spp))        # forces the (lazy) render
+            arr = np.array(mi.render(scene, spp=spp, seed=seed))   # forces the (lazy) render
         seconds = time.time() - t0
     finally:
         shutil.rmtree(tmp, ignore_errors=True)
