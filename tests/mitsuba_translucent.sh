@@ -18,7 +18,8 @@
 . "$top_srcdir/tests/mitsuba_env.sh"
 [ -n "$MTS_PY" ] || mts_skip_all
 
-"$SKINBAKE" bake --preset paper --solver ad --quiet --out "$tmpd/bake" >/dev/null 2>&1 || fail "bake paper"
+"$SKINBAKE" bake --preset paper --solver ad --quiet --out "$tmpd/bake" >/dev/null 2>&1 ||
+	fail "bake paper"
 
 # ---- bad input -------------------------------------------------------------------
 mkdir "$tmpd/norad"
@@ -28,9 +29,11 @@ m = json.load(open(sys.argv[1]))
 del m["radial"]
 json.dump(m, open(sys.argv[2], "w"))
 PYEOF
-"$MTS_PY" -m skinbake_mitsuba fit --bake "$tmpd/norad" --out "$tmpd/f0" --skinbake "$SKINBAKE" 2>"$tmpd/e0"
+"$MTS_PY" -m skinbake_mitsuba fit --bake "$tmpd/norad" --out "$tmpd/f0" --skinbake "$SKINBAKE" \
+	2>"$tmpd/e0"
 rc=$?
-if [ $rc -eq 2 ] && [ ! -e "$tmpd/f0" ] && grep -q "no radial profile (radial.rd_r)" "$tmpd/e0"; then
+if [ $rc -eq 2 ] && [ ! -e "$tmpd/f0" ] && grep -q "no radial profile (radial.rd_r)" "$tmpd/e0"
+then
 	ok "fit on a bake without Rd(r): exit 2 naming radial.rd_r, no output"
 else
 	fail "fit without radial: rc $rc, $(cat "$tmpd/e0")"
@@ -44,8 +47,9 @@ else
 fi
 
 # ---- the fit ------------------------------------------------------------------------
-if nice "$MTS_PY" -m skinbake_mitsuba fit --bake "$tmpd/bake" --out "$tmpd/fit" --skinbake "$SKINBAKE" \
-	--photons 50000 2>"$tmpd/fit.err" && [ -f "$tmpd/fit/fit.json" ] && [ -f "$tmpd/fit/medium/manifest.json" ]; then
+if nice "$MTS_PY" -m skinbake_mitsuba fit --bake "$tmpd/bake" --out "$tmpd/fit" \
+	--skinbake "$SKINBAKE" --photons 50000 2>"$tmpd/fit.err" && [ -f "$tmpd/fit/fit.json" ] &&
+	[ -f "$tmpd/fit/medium/manifest.json" ]; then
 	ok "fit: $(grep -c channel "$tmpd/fit.err") channels fitted, the medium baked"
 else
 	fail "fit: $(tail -3 "$tmpd/fit.err")"
@@ -64,9 +68,10 @@ fit = json.load(open(fitdir + "/fit.json"))
 for ch in fit["channels"]:
     dp = ch["medium_power"] / ch["bake_power"] - 1
     dm = ch["medium_mean_radius_cm"] / ch["bake_mean_radius_cm"] - 1
-    print("%s|fit %s (%g nm): albedo %.4f, mu_t %.3g /cm; power %+.2f %%, mean radius %+.2f %% of the bake's"
-          % ("ok" if abs(dp) < 0.005 and abs(dm) < 0.01 else "fail", ch["channel"], ch["wavelength_nm"],
-             ch["albedo"], ch["mu_t_per_cm"], 100 * dp, 100 * dm))
+    good = abs(dp) < 0.005 and abs(dm) < 0.01
+    print("%s|fit %s (%g nm): albedo %.4f, mu_t %.3g /cm; power %+.2f %%, mean radius %+.2f %% "
+          "of the bake's" % ("ok" if good else "fail", ch["channel"], ch["wavelength_nm"],
+                             ch["albedo"], ch["mu_t_per_cm"], 100 * dp, 100 * dm))
 points = [(0, 30, 0), (30, 0, 0), (45, 30, 90), (20, 45, 180)]
 gt = tablegrid.grid_theta()
 gp = tablegrid.grid_phi()
@@ -76,13 +81,15 @@ for c in range(3):
     name = "RGB"[c]
     res = transmeasure.flat(bake, fitdir, c, points, 4096, 4)
     for (ti, to, dph), (v, e) in zip(points, res):
-        ev = json.loads(subprocess.run([skinbake, "eval", "--bake", bake, "--theta-in", str(ti), "--theta-out",
-                                        str(to), "--phi", str(dph), "--json"], check=True, capture_output=True,
-                                       text=True).stdout)["total"][k]
+        cmd = [skinbake, "eval", "--bake", bake, "--theta-in", str(ti), "--theta-out", str(to),
+               "--phi", str(dph), "--json"]
+        out = subprocess.run(cmd, check=True, capture_output=True, text=True).stdout
+        ev = json.loads(out)["total"][k]
         dev = v / ev - 1
         tol = 0.01 + 3 * e / ev
-        print("%s|flat %s, light %d, view %d, dphi %d: Mitsuba %.5f +- %.5f, eval %.5f: %+.2f %% (tolerance %.2f %%)"
-              % ("ok" if abs(dev) <= tol else "fail", name, ti, to, dph, v, e, ev, 100 * dev, 100 * tol))
+        print("%s|flat %s, light %d, view %d, dphi %d: Mitsuba %.5f +- %.5f, eval %.5f: %+.2f %% "
+              "(tolerance %.2f %%)" % ("ok" if abs(dev) <= tol else "fail", name, ti, to, dph, v, e,
+                                      ev, 100 * dev, 100 * tol))
     rings = transmeasure.rings(bake, fitdir, c, edges, 4096, 4)
     ref = transmeasure.bake_rings(bake, k, edges)
     p = sum(v for v, _ in rings)
@@ -98,12 +105,15 @@ for c in range(3):
     mean_b = sum(m * v for m, v in zip(mids, ref)) / sum(ref)
     dev = p / expect - 1
     tol = 0.03 + 3 * pe / expect
-    print("%s|profile %s: power within 0.5 cm %.4f +- %.4f, expected %.4f (medium %.4f + remainder %.4f; bake %.4f): "
-          "%+.1f %% (tolerance %.1f %%)" % ("ok" if abs(dev) <= tol else "fail", name, p, pe, expect,
-                                             fit["channels"][c]["medium_power"], a_rem, sum(ref), 100 * dev, 100 * tol))
-    print("%s|profile %s: mean radius (ring midpoints) %.4f cm, bake %.4f cm: %+.1f %%; rings Mitsuba / bake: %s"
-          % ("ok" if abs(mean / mean_b - 1) <= 0.2 else "fail", name, mean, mean_b, 100 * (mean / mean_b - 1),
-             " ".join("%.2f" % (v / b) for (v, _), b in zip(rings, ref))))
+    print("%s|profile %s: power within 0.5 cm %.4f +- %.4f, expected %.4f (medium %.4f + "
+          "remainder %.4f; bake %.4f): %+.1f %% (tolerance %.1f %%)"
+          % ("ok" if abs(dev) <= tol else "fail", name, p, pe, expect,
+             fit["channels"][c]["medium_power"], a_rem, sum(ref), 100 * dev, 100 * tol))
+    dmean = mean / mean_b - 1
+    ratios = " ".join("%.2f" % (v / b) for (v, _), b in zip(rings, ref))
+    print("%s|profile %s: mean radius (ring midpoints) %.4f cm, bake %.4f cm: %+.1f %%; "
+          "rings Mitsuba / bake: %s" % ("ok" if abs(dmean) <= 0.2 else "fail", name, mean, mean_b,
+                                        100 * dmean, ratios))
 PYEOF
 [ -s "$tmpd/res.txt" ] || fail "measurements: $(tail -5 "$tmpd/res.err")"
 while IFS='|' read -r verdict text; do

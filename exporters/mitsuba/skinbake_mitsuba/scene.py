@@ -232,16 +232,18 @@ def _translucent(name, ply, centre, bake, fitdir, unit_mm, channel):
                          % (name, fitdir, fit["bake"], bake))
     ch = fit["channels"][channel]
     unit_cm = unit_mm / 10.0
-    medium = {"type": "homogeneous", "sigma_t": float(ch["mu_t_per_cm"]) * unit_cm, "albedo": float(ch["albedo"]),
-              "phase": {"type": "isotropic"}}
+    medium = {"type": "homogeneous", "sigma_t": float(ch["mu_t_per_cm"]) * unit_cm,
+              "albedo": float(ch["albedo"]), "phase": {"type": "isotropic"}}
     shape = {"type": "ply", "filename": ply, "face_normals": False,
              "to_world": mi.ScalarTransform4f().translate((-centre).tolist()),
-             "bsdf": {"type": "skinbake_translucent", "bake": bake, "fit": fitdir, "channel": channel},
+             "bsdf": {"type": "skinbake_translucent", "bake": bake, "fit": fitdir,
+                      "channel": channel},
              "interior": medium}
     return shape, (float(fit["alpha"]), float(fit["n"])), float(ch["albedo"])
 
 
-def build(export_dir, mode, width=None, spp=64, tmp=None, channel=None, estimator="exit", fitdir=None):
+def build(export_dir, mode, width=None, spp=64, tmp=None, channel=None, estimator="exit",
+          fitdir=None):
     """The scene dict of the export in mode 'table' or 'volumetric' with the
     current variant; tmp: a directory for the shells (volumetric); channel
     (mono variants): 0, 1, 2 for R, G, B, each the bake wavelength with the
@@ -311,7 +313,8 @@ def build(export_dir, mode, width=None, spp=64, tmp=None, channel=None, estimato
         if ob["shape"] == "mesh":
             ply = os.path.join(export_dir, mo["ply"])
             if mat == "skin" and mode == "translucent":
-                shape, top, albedo = _translucent(name, ply, centre, bake, fitdir, sc["unit_mm"], channel)
+                shape, top, albedo = _translucent(name, ply, centre, bake, fitdir, sc["unit_mm"],
+                                                  channel)
                 scene[name] = shape
                 from . import stack as stk
                 depth = max(depth, stk.max_depth([stk.Layer(d=1.0, mua=1.0 - albedo, mus=albedo)]))
@@ -321,8 +324,8 @@ def build(export_dir, mode, width=None, spp=64, tmp=None, channel=None, estimato
                 if mi.is_spectral:
                     spectral = _bake_layers(bake)["wavelengths_nm"]
                 view_dist = float(np.linalg.norm(_f(cam["location"]) - centre))
-                shapes, keep, top = _shells(name, ply, centre, view_dist, bake, sc["unit_mm"], tmp, spectral,
-                                            channel)
+                shapes, keep, top = _shells(name, ply, centre, view_dist, bake, sc["unit_mm"], tmp,
+                                            spectral, channel)
                 scene.update(shapes)
                 depth = max(depth, _max_depth(keep))
                 continue
@@ -333,7 +336,8 @@ def build(export_dir, mode, width=None, spp=64, tmp=None, channel=None, estimato
             c = _f((m @ np.array(list(ob["center"]) + [1.0]))[:3]) - centre
             shape = {"type": "sphere", "center": c.tolist(), "radius": ob["radius"] * ob["scale"]}
             if mat == "skin" and mode in ("volumetric", "translucent"):
-                raise ValueError("object '%s': %s spheres are not written yet (meshes are)" % (name, mode))
+                raise ValueError("object '%s': %s spheres are not written yet (meshes are)"
+                                 % (name, mode))
         else:
             raise ValueError("object '%s': shape %s is not rendered by skinbake_mitsuba" % (name, ob["shape"]))
         if mat == "skin":
@@ -341,7 +345,8 @@ def build(export_dir, mode, width=None, spp=64, tmp=None, channel=None, estimato
         else:
             shape["bsdf"] = bsdf
         scene[name] = shape
-    if mode in ("volumetric", "translucent") and top is not None and top[0] > 0.0 and estimator == "exit":
+    layered = mode in ("volumetric", "translucent")
+    if layered and top is not None and top[0] > 0.0 and estimator == "exit":
         # exitnee.py: the light through the rough top estimated at every medium vertex
         scene["integrator"] = {"type": "skinbake_volpath", "max_depth": depth, "rr_depth": 1 << 30,
                                "alpha": top[0], "eta": top[1]}
@@ -352,7 +357,8 @@ def build(export_dir, mode, width=None, spp=64, tmp=None, channel=None, estimato
     return scene
 
 
-def render(export_dir, mode, out, width=None, spp=64, variant_name=None, seed=0, fitdir=None):
+def render(export_dir, mode, out, width=None, spp=64, variant_name=None, seed=0, fitdir=None,
+           estimator="exit"):
     """Render the export to OUT (.exr: linear; .png: sRGB 8-bit); returns
     (seconds, variant). Volumetric mode renders R, G and B apart in a mono
     variant, each with its wavelength's grey media: in an rgb variant the
@@ -374,7 +380,8 @@ def render(export_dir, mode, out, width=None, spp=64, variant_name=None, seed=0,
         if per_channel:
             chans = []
             for c in range(3):
-                scene = mi.load_dict(build(export_dir, mode, width, spp, tmp, channel=c, fitdir=fitdir))
+                scene = mi.load_dict(build(export_dir, mode, width, spp, tmp, channel=c,
+                                           fitdir=fitdir, estimator=estimator))
                 chans.append(np.array(mi.render(scene, spp=spp, seed=seed))[..., 0])
             arr = np.stack(chans, axis=-1)
         else:

@@ -67,16 +67,17 @@ class TranslucentBSDF(tablebsdf.TableBSDF):
         self.npx = tablegrid.N_THETA * tablegrid.N_THETA * tablegrid.N_PHI
         self.n_planes = 1
         self.data = mi.Float(rem.astype(np.float32).ravel())
-        self.rough = mi.load_dict({"type": "roughdielectric", "distribution": "ggx", "alpha": self.alpha,
-                                   "int_ior": float(fit["n"]), "ext_ior": 1.0})
+        self.rough = mi.load_dict({"type": "roughdielectric", "distribution": "ggx",
+                                   "alpha": self.alpha, "int_ior": float(fit["n"]),
+                                   "ext_ior": 1.0})
         self.eta = float(fit["n"])
         # specular = false: the remainder without the bake's GGX lobe (profile measurements)
         self.with_specular = bool(props.get("specular", True))
-        self.m_flags = (mi.BSDFFlags.DiffuseReflection | mi.BSDFFlags.GlossyReflection
-                        | mi.BSDFFlags.GlossyTransmission | mi.BSDFFlags.FrontSide | mi.BSDFFlags.BackSide
-                        | mi.BSDFFlags.NonSymmetric)
-        self.m_components = [mi.BSDFFlags.DiffuseReflection | mi.BSDFFlags.FrontSide,
-                             mi.BSDFFlags.GlossyTransmission | mi.BSDFFlags.FrontSide | mi.BSDFFlags.BackSide]
+        F = mi.BSDFFlags
+        self.m_flags = (F.DiffuseReflection | F.GlossyReflection | F.GlossyTransmission
+                        | F.FrontSide | F.BackSide | F.NonSymmetric)
+        self.m_components = [F.DiffuseReflection | F.FrontSide,
+                             F.GlossyTransmission | F.FrontSide | F.BackSide]
 
     def _f(self, si, wo):
         if self.with_specular:
@@ -105,7 +106,8 @@ class TranslucentBSDF(tablebsdf.TableBSDF):
         co = mi.Frame3f.cos_theta(wo)
         out = ci > 0.0
         p_table = P_TABLE * mi.warp.square_to_cosine_hemisphere_pdf(wo)
-        p_trans = (1.0 - P_TABLE) * self.rough.pdf(self._trans_ctx(ctx), si, wo, active & out & (co < 0.0))
+        p_trans = (1.0 - P_TABLE) * self.rough.pdf(self._trans_ctx(ctx), si, wo,
+                                                   active & out & (co < 0.0))
         p_in = self.rough.pdf(ctx, si, wo, active & ~out)
         v = dr.select(out, dr.select(co > 0.0, p_table, p_trans), p_in)
         return dr.select(active, v, 0.0)
@@ -120,7 +122,8 @@ class TranslucentBSDF(tablebsdf.TableBSDF):
         # the dielectric: from outside its transmission only (sample1 rescaled)
         s1 = dr.select(out, (sample1 - P_TABLE) / (1.0 - P_TABLE), sample1)
         s1 = dr.clip(s1, 0.0, 0.99999994)
-        bs_o, w_o = self.rough.sample(self._trans_ctx(ctx), si, s1, sample2, active & out & ~pick_table)
+        bs_o, w_o = self.rough.sample(self._trans_ctx(ctx), si, s1, sample2,
+                                      active & out & ~pick_table)
         bs, w = self.rough.sample(ctx, si, s1, sample2, active & ~out)
         bs.wo = dr.select(out, bs_o.wo, bs.wo)
         bs.pdf = dr.select(out, bs_o.pdf, bs.pdf)
@@ -133,7 +136,8 @@ class TranslucentBSDF(tablebsdf.TableBSDF):
         bs.pdf = dr.select(pick_table, P_TABLE * mi.warp.square_to_cosine_hemisphere_pdf(wt),
                            dr.select(out, (1.0 - P_TABLE) * bs.pdf, bs.pdf))
         bs.eta = dr.select(pick_table, 1.0, bs.eta)
-        bs.sampled_type = dr.select(pick_table, mi.UInt32(+mi.BSDFFlags.DiffuseReflection), bs.sampled_type)
+        bs.sampled_type = dr.select(pick_table, mi.UInt32(+mi.BSDFFlags.DiffuseReflection),
+                                    bs.sampled_type)
         bs.sampled_component = dr.select(pick_table, mi.UInt32(0), mi.UInt32(1))
         w = dr.select(pick_table, table, dr.select(out, w / (1.0 - P_TABLE), w))
         return bs, dr.select(active & (bs.pdf > 0.0), w, 0.0)

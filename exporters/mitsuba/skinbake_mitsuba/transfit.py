@@ -47,14 +47,13 @@ def _profile_target(man, k):
 def _simulate(skinbake, albedo, n, alpha, photons, seed=1):
     """R_1(r) at mu_t = 1/cm: (bin edges [cm], ring powers)."""
     layer = "d=inf,n=%.9g,mua=%.12g,mus=%.12g,g=0,rough=%.9g" % (n, 1.0 - albedo, albedo, alpha)
-    cmd = [skinbake, "simulate", "--layer", layer, "--n-below", "%.9g" % n, "--photons", str(photons),
-           "--seed", str(seed), "--r-step", "%g" % R_STEP_MFP, "--r-bins", str(R_BINS), "--json"]
+    cmd = [skinbake, "simulate", "--layer", layer, "--n-below", "%.9g" % n,
+           "--photons", str(photons), "--seed", str(seed), "--r-step", "%g" % R_STEP_MFP,
+           "--r-bins", str(R_BINS), "--json"]
     out = subprocess.run(cmd, check=True, capture_output=True, text=True).stdout
     js = json.loads(out)
     vals = np.array(js["Rd_r"]["rd_per_cm2"], dtype=float)
     edges = np.array(js["Rd_r"]["r_edges_cm"], dtype=float)
-    if len(edges) == len(vals):
-        edges = np.concatenate([[0.0], edges]) if edges[0] > 0 else np.append(edges, edges[-1] + R_STEP_MFP)
     ring = vals * math.pi * (edges[1:] ** 2 - edges[:-1] ** 2)
     return edges, ring, js
 
@@ -124,12 +123,12 @@ def fit(bake, out, skinbake="skinbake", photons=PHOTONS, log=None):
     with open(os.path.join(bake, "manifest.json")) as f:
         man = json.load(f)
     if "radial" not in man or not man["radial"].get("rd_r"):
-        raise ValueError("%s: the bake has no radial profile (radial.rd_r), which the translucent mode is "
-                         "fitted to" % bake)
+        raise ValueError("%s: the bake has no radial profile (radial.rd_r), which the translucent "
+                         "mode is fitted to" % bake)
     alpha = float(man["specular"]["alpha"])
     if alpha <= 0.0:
-        raise ValueError("%s: specular.alpha is 0: the translucent mode needs a rough top (alpha in (0, 1])"
-                         % bake)
+        raise ValueError("%s: specular.alpha is 0: the translucent mode needs a rough top "
+                         "(alpha in (0, 1])" % bake)
     layers = man["layers"]
     nw = len(man["wavelengths_nm"])
     rgb_from_wl = np.array(man["rgb"]["rgb_from_wl"]).reshape(3, nw)
@@ -145,29 +144,32 @@ def fit(bake, out, skinbake="skinbake", photons=PHOTONS, log=None):
     for c, k in enumerate(chan_wl):
         power_t, mean_t, r_max = _profile_target(man, k)
         a, mu, p, m = fit_channel(skinbake, power_t, mean_t, r_max, n, alpha, photons)
-        ch = {"channel": "RGB"[c], "wavelength_nm": man["wavelengths_nm"][k], "albedo": a, "mu_t_per_cm": mu,
-              "mua_per_cm": (1.0 - a) * mu, "mus_per_cm": a * mu, "g": 0.0,
+        ch = {"channel": "RGB"[c], "wavelength_nm": man["wavelengths_nm"][k], "albedo": a,
+              "mu_t_per_cm": mu, "mua_per_cm": (1.0 - a) * mu, "mus_per_cm": a * mu, "g": 0.0,
               "bake_power": power_t, "medium_power": p, "bake_mean_radius_cm": mean_t,
               "medium_mean_radius_cm": m, "r_max_cm": r_max}
         channels.append(ch)
         media[k] = ((1.0 - a) * mu, a * mu)
         if log:
-            log("channel %s (%g nm): albedo %.6f, mu_t %.4g /cm; power %.4f (bake %.4f), mean radius %.4g cm "
-                "(bake %.4g)" % ("RGB"[c], ch["wavelength_nm"], a, mu, p, power_t, m, mean_t))
+            log("channel %s (%g nm): albedo %.6f, mu_t %.4g /cm; power %.4f (bake %.4f), "
+                "mean radius %.4g cm (bake %.4g)"
+                % ("RGB"[c], ch["wavelength_nm"], a, mu, p, power_t, m, mean_t))
     # wavelengths no channel uses: the nearest channel's medium (the bake needs every one)
     for k in range(nw):
         if media[k] is None:
-            near = min(chan_wl, key=lambda j: abs(man["wavelengths_nm"][j] - man["wavelengths_nm"][k]))
+            wls = man["wavelengths_nm"]
+            near = min(chan_wl, key=lambda j: abs(wls[j] - wls[k]))
             media[k] = media[near]
     os.makedirs(out, exist_ok=True)
     ini = os.path.join(out, "medium.ini")
     _preset(ini, man, media, alpha, n)
     medium = os.path.join(out, "medium")
-    cmd = [skinbake, "bake", "--preset-file", ini, "--solver", "ad", "--ad-quad", "128", "--ad-tol", "0.01",
-           "--quiet", "--out", medium]
+    cmd = [skinbake, "bake", "--preset-file", ini, "--solver", "ad", "--ad-quad", "128",
+           "--ad-tol", "0.01", "--quiet", "--out", medium]
     subprocess.run(cmd, check=True, capture_output=True, text=True)
-    res = {"format": "skinbake-mitsuba-translucent", "bake": os.path.abspath(bake), "n": n, "alpha": alpha,
-           "photons": photons, "channels": channels, "chan_wl": chan_wl, "medium_bake": "medium"}
+    res = {"format": "skinbake-mitsuba-translucent", "bake": os.path.abspath(bake), "n": n,
+           "alpha": alpha, "photons": photons, "channels": channels, "chan_wl": chan_wl,
+           "medium_bake": "medium"}
     with open(os.path.join(out, "fit.json"), "w") as f:
         json.dump(res, f, indent=1)
     return res

@@ -28,14 +28,15 @@ def _base(bake, fitdir, channel, profile=False):
         fit = json.load(f)
     ch = fit["channels"][channel]
     from . import stack as stk
-    medium = {"type": "homogeneous", "sigma_t": float(ch["mu_t_per_cm"]), "albedo": float(ch["albedo"]),
-              "phase": {"type": "isotropic"}}
+    medium = {"type": "homogeneous", "sigma_t": float(ch["mu_t_per_cm"]),
+              "albedo": float(ch["albedo"]), "phase": {"type": "isotropic"}}
     bsdf = {"type": "skinbake_translucent", "bake": bake, "fit": fitdir, "channel": channel,
             "specular": not profile}
     # analytic rectangles as stack.py (a mesh 20 cm wide intersects too coarsely for the
     # ring emitter 1e-3 cm above it)
     top = stk._rect(0.0, bsdf, None, medium, HALF_WIDTH_CM)
-    bottom = stk._rect(-DEPTH_CM, {"type": "diffuse", "reflectance": 0.0}, medium, None, HALF_WIDTH_CM)
+    black = {"type": "diffuse", "reflectance": 0.0}
+    bottom = stk._rect(-DEPTH_CM, black, medium, None, HALF_WIDTH_CM)
     depth = stk.max_depth([stk.Layer(d=1.0, mua=1.0 - ch["albedo"], mus=ch["albedo"])])
     integ = {"type": "skinbake_volpath", "max_depth": depth, "rr_depth": 1 << 30,
              "alpha": float(fit["alpha"]), "eta": float(fit["n"])}
@@ -72,7 +73,8 @@ def flat(bake, fitdir, channel, points, spp=4096, batches=8):
 def rings(bake, fitdir, channel, edges, spp=4096, batches=8):
     """[(power, err)] leaving between consecutive edges [cm] for a normal beam."""
     _register()
-    return [measure.rd_ring(None, r0, r1, spp, batches, base=_base(bake, fitdir, channel, profile=True))
+    base = _base(bake, fitdir, channel, profile=True)
+    return [measure.rd_ring(None, r0, r1, spp, batches, base=base)
             for r0, r1 in zip(edges, edges[1:])]
 
 
