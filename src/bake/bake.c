@@ -108,17 +108,20 @@ static int fallback_mc(const struct bake_spec *s, const struct solver_problem *p
 }
 
 /* Rd(r) at theta_i[0] by Monte Carlo with `photons` per wavelength, for
- * the n wavelengths w[] (random streams stream0 + i); into r's entries. */
+ * the n wavelengths w[] (random streams stream0 + i), into r's entries:
+ * with have == NULL in place of what they hold, else merged with the
+ * have[i] photons' profile they hold (means weighted by photons, standard
+ * errors of independent runs), have[i] then counting the new photons too. */
 static int radial_run(const struct bake_spec *s, const struct solver_problem *p, const struct solver_run *run,
-    const int *w, int n, long photons, uint32_t stream0, struct bake_result *r, char **cause)
+    const int *w, int n, long photons, uint32_t stream0, long *have, struct bake_result *r,
+    char **cause)
 {
-	enum { BATCHES = 16 };
 	struct mc_settings mc;
 	mc_from_spec(s, &mc);
 	mc.nee = 0;
-	mc.batch_photons = (photons + BATCHES - 1) / BATCHES;
-	mc.min_batches = BATCHES;
-	mc.max_photons = (long)n * BATCHES * mc.batch_photons;
+	mc.batch_photons = (photons + BAKE_RADIAL_BATCHES - 1) / BAKE_RADIAL_BATCHES;
+	mc.min_batches = BAKE_RADIAL_BATCHES;
+	mc.max_photons = (long)n * BAKE_RADIAL_BATCHES * mc.batch_photons;
 	mc.stream0 = stream0;
 	struct solver_problem q = *p;
 	q.n_ti = 1;
@@ -127,10 +130,16 @@ static int radial_run(const struct bake_spec *s, const struct solver_problem *p,
 	struct brdf_table t;
 	if (solve_part(&mc_solver, &mc, &q, run, w, n, &t, cause) != 0)
 		return -1;
+	long got = BAKE_RADIAL_BATCHES * mc.batch_photons;
 	for (int i = 0; i < n; i++) {
 		struct brdf_entry *e = &r->table.entry[w[i] * s->n_ti];
-		memcpy(e->rd_r, t.entry[i].rd_r, sizeof(double) * (size_t)s->n_r);
-		memcpy(e->rd_r_err, t.entry[i].rd_r_err, sizeof(double) * (size_t)s->n_r);
+		double fa = have ? (double)have[i] / (double)(have[i] + got) : 0.0, fb = 1.0 - fa;
+		for (int k = 0; k < s->n_r; k++) {
+			e->rd_r[k] = fa * e->rd_r[k] + fb * t.entry[i].rd_r[k];
+			e->rd_r_err[k] = hypot(fa * e->rd_r_err[k], fb * t.entry[i].rd_r_err[k]);
+		}
+		if (have)
+			have[i] += got;
 	}
 	r->radial_photons += t.photons;
 	r->radial_seconds += t.seconds;
@@ -163,8 +172,16 @@ static int take_given(const struct bake_spec *s, struct bake_result *r, int *w, 
 	return left;
 }
 
-/* Rd(r) for the wavelengths whose method gave none: a pilot, then the
- * wavelengths whose mean radius is not yet within radial_error (bake.h). */
+/* The relative standard error of the mean radius of entry e. */
+static double radial_rel(const struct bake_spec *s, const struct brdf_entry *e)
+{
+	double m = tally_mean_radius(e->rd_r, s->n_r, s->dr);
+	return m > 0.0 ? tally_mean_radius_err(e->rd_r, e->rd_r_err, s->n_r, s->dr) / m : 0.0;
+}
+
+/* Rd(r) for the wavelengths whose method gave none: a pilot, then more
+ * photons added to it for the wavelengths whose mean radius is not yet
+ * within radial_error, in up to BAKE_RADIAL_ROUNDS rounds (bake.h). */
 static int radial_mc(const struct bake_spec *s, const struct solver_problem *p, const struct solver_run *run,
     struct bake_result *r, char **cause)
 {
@@ -177,16 +194,27 @@ static int radial_mc(const struct bake_spec *s, const struct solver_problem *p, 
 	double target = s->radial_error > 0.0 ? s->radial_error : BAKE_RADIAL_ERROR;
 	long cap = s->radial_photons > 0 ? s->radial_photons : BAKE_RADIAL_PHOTONS;
 	long pilot = cap < BAKE_RADIAL_PILOT ? cap : BAKE_RADIAL_PILOT;
-	if (radial_run(s, p, run, w, n, pilot, 0, r, cause) != 0)
+	if (radial_run(s, p, run, w, n, pilot, 0, NULL, r, cause) != 0)
 		return -1;
 	for (int i = 0; i < n; i++) {
 		const struct brdf_entry *e = &r->table.entry[w[i] * s->n_ti];
-		double m = tally_mean_radius(e->rd_r, s->n_r, s->dr);
-		double rel = m > 0.0 ? tally_mean_radius_err(e->rd_r, e->rd_r_err, s->n_r, s->dr) / m : 0.0;
-		double want = (double)pilot * (rel / target) * (rel / target) * 1.2;
-		if (rel > target && pilot < cap &&
-		    radial_run(s, p, run, &w[i], 1, want < (double)cap ? (long)ceil(want) : cap, (uint32_t)(n + i), r, cause))
-			return -1;
+		const long nb = BAKE_RADIAL_BATCHES;
+		long have = (pilot + nb - 1) / nb * nb;
+		for (int round = 1; round <= BAKE_RADIAL_ROUNDS; round++) {
+			double rel = radial_rel(s, e);
+			if (rel <= target || have >= cap)
+				break;
+			double q = rel / target;
+			double want = (double)have * (q * q * BAKE_RADIAL_MARGIN - 1.0);
+			long add = pilot / 2;
+			if (want > (double)add)
+				add = (long)ceil(fmin(want, 1e15));
+			if (add > cap - have)
+				add = cap - have;
+			uint32_t stream = (uint32_t)(round * n + i);
+			if (radial_run(s, p, run, &w[i], 1, add, stream, &have, r, cause) != 0)
+				return -1;
+		}
 	}
 	return 0;
 }
