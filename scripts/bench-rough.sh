@@ -9,7 +9,10 @@
 #   3. adding-doubling on the stack of 1, smooth against the rough top, at fixed quadratures
 #      (`simulate --solver ad --ad-quad N`, one thread; each solve includes the one at N/2 for
 #      the error estimate): the cost of the rough interface (its facets once, then its matrices
-#      and the full adding per Fourier order).
+#      and the full adding per Fourier order);
+#   4. `bake --solver ad` of a preset, smooth, rough top (single and multiple scattering on the
+#      facets) and two rough interfaces (film top and epidermis top), at 32 and 64 nodes and the
+#      automatic schedule (tolerance 1e-3, doubling up to 256 nodes).
 # Prints one markdown section.
 set -eu
 SKINBAKE=${SKINBAKE:-./skinbake}
@@ -68,4 +71,29 @@ for a in 0 0.3; do
 	done
 done
 echo
-echo "Single scattering on the facets only (\`--solver ad\` refuses multiple_scattering = 1)."
+printf '[skin]\nbase = fair-oily\n[surface]\nroughness = 0.2\nmultiple_scattering = 1\n[epidermis]\ntop_roughness = 0.45\n' \
+	>"$W/two.ini"
+echo "| \`bake --solver ad\` fair-oily, 550 nm, 2 incidence nodes, 9x6 bins | nodes per unit cosine | CPU [s] | table error estimate |"
+echo "|---|---|---|---|"
+for src in "--preset fair-oily" "--preset-file $W/rough.ini" "--preset-file $W/roughms.ini" "--preset-file $W/two.ini"; do
+	case $src in
+	*two*) l="film top α = 0.2 and epidermis top α = 0.45, multiple scattering" ;;
+	*roughms*) l="top α = 0.3, multiple scattering on the facets" ;;
+	*rough*) l="top α = 0.3, single scattering" ;;
+	*) l="smooth" ;;
+	esac
+	for nq in 32 64 auto; do
+		q="--ad-quad $nq"
+		[ "$nq" = auto ] && q=""
+		# shellcheck disable=SC2086
+		t=$(cpu "$SKINBAKE" bake $src --solver ad $q --wavelengths 550 --theta-nodes 2 --resolution 9x6 \
+			--threads 1 --out "$W/b" --quiet) || t=refused
+		e=$(jq -r '.solver.rms_rel_err * 10000 | round / 10000' "$W/b/manifest.json" 2>/dev/null || echo -)
+		[ "$nq" = auto ] && nq="auto ($(jq -r '[.. | objects | .n_quad? // empty | numbers] | max // "-"' "$W/b/manifest.json" 2>/dev/null || echo -))"
+		echo "| $l | $nq | $t | $e |"
+		rm -rf "$W/b"
+	done
+done
+echo
+echo "Multiple scattering on the facets in adding-doubling: the walk tables of src/engine/ad_rough.h"
+echo "(8192 walks at each of 24 incoming cosines per side, once per interface and quadrature)."

@@ -9,12 +9,14 @@
  * of the diffuse mean.
  *
  *   brdf_model (--preset NAME | --preset-file F) [--wavelengths LIST]
- *              [--alpha A] [--tol T] < points
+ *              [--alpha A] [--tol T] [--nodes N] < points
  *
  * Input lines: theta_i theta_o delta_phi [deg] (delta_phi 0 = back toward
  * the light, 180 = mirror side); '#' lines are skipped.  Default wavelengths
  * 470, 550, 656 nm (the camera's B, G, R stand-ins of docs/presets.md);
- * default tolerance 1e-3 (the solver's table RMS error estimate). */
+ * default tolerance 1e-3 (the solver's table RMS error estimate); --nodes N
+ * solves once at N nodes per unit cosine instead, without error estimates
+ * (the fit's fast path: scripts/fit-curet.py --nodes). */
 #include "config.h"
 
 #include <math.h>
@@ -33,7 +35,7 @@
 static int usage(void)
 {
 	fprintf(stderr, "usage: brdf_model (--preset NAME | --preset-file F) [--wavelengths LIST] [--alpha A] "
-	    "[--tol T] < points (theta_i theta_o delta_phi in deg)\n");
+	    "[--tol T] [--nodes N] < points (theta_i theta_o delta_phi in deg)\n");
 	return 2;
 }
 
@@ -53,6 +55,7 @@ int main(int argc, char **argv)
 {
 	const char *name = NULL, *file = NULL, *wls = "470,550,656";
 	double alpha = -1.0, tol = 1e-3;
+	int nodes = 0;
 	for (int i = 1; i < argc; i++) {
 		if (i + 1 >= argc)
 			return usage();
@@ -73,6 +76,12 @@ int main(int argc, char **argv)
 			tol = strtod(argv[++i], &end);
 			if (*end != '\0' || !(tol > 0.0 && tol <= 0.1)) {
 				fprintf(stderr, "brdf_model: --tol %s: not a number in (0, 0.1]\n", argv[i]);
+				return 2;
+			}
+		} else if (strcmp(argv[i], "--nodes") == 0) {
+			nodes = (int)strtol(argv[++i], &end, 10);
+			if (*end != '\0' || nodes < 4 || nodes > 1024) {
+				fprintf(stderr, "brdf_model: --nodes %s: not an integer in [4, 1024]\n", argv[i]);
 				return 2;
 			}
 		} else
@@ -122,6 +131,10 @@ int main(int argc, char **argv)
 	struct ad_opts o;
 	ad_opts_default(&o);
 	o.tol = tol;
+	if (nodes > 0) {
+		o.n_quad = nodes;
+		o.error_estimate = 0;
+	}
 	for (int w = 0; w < n_wl && rc == 0; w++) {
 		struct slab s;
 		struct ad_result r;

@@ -56,6 +56,16 @@ int main(int argc, char **argv)
 	arr("mean_bake_mm", f.mean_bake_mm, 0);
 	arr("mean_fit_mm", f.mean_fit_mm, 0);
 	arr("rms_log", f.rms_log, 0);
+	/* The closure's reflected power beyond d (times scale, no local part): what POV-Ray's
+	 * dipole transmits through a slab d thick, about (docs/translucency.md, back light). */
+	printf("\"closure_beyond\": [");
+	for (int k = 0; k < 3; k++) {
+		double d = k == 0 ? 1.0 : k == 1 ? 2.0 : 4.0, g[3];
+		for (int c = 0; c < 3; c++)
+			g[c] = sss_fit_ring(&f, c, d, 1e4);
+		printf("%s[%g, %.8g, %.8g, %.8g]", k ? ", " : "", d, g[0], g[1], g[2]);
+	}
+	printf("], ");
 	printf("\"bake_rings\": [");
 	for (int k = 0; sss_ring_edges_mm[k + 1] > 0 && sss_ring_edges_mm[k] < f.r_max_mm; k++) {
 		double r2 = sss_ring_edges_mm[k + 1] < f.r_max_mm ? sss_ring_edges_mm[k + 1] : f.r_max_mm;

@@ -127,6 +127,7 @@ static void model_build(const struct slab *s, enum optics_fresnel fresnel, struc
 	double *list = md->bn[0];
 	list[cnt++] = s->n_above;
 	md->rough_nu = 0;
+	md->rough_walks = s->rough_ms ? AD_ROUGH_MS_WALKS : 0;
 	for (int i = 1; i <= s->n_layers; i++) {
 		const struct layer *l = &s->layer[i];
 		md->balpha[md->K][cnt - 1] = l->rough;	/* layer i's top: the interface into it */
@@ -219,11 +220,6 @@ int ad_solve(const struct slab *s, enum optics_fresnel model, const double *thet
 {
 	if (check_opts(o, theta_i, n_beams, cause))
 		return -1;
-	if (s->rough_any && s->rough_ms) {
-		*cause = xasprintf("adding-doubling: multiple scattering on rough boundaries' facets "
-		    "(multiple_scattering = 1) is Monte Carlo only; use --solver mc, or single scattering");
-		return -1;
-	}
 	double t0 = util_now();
 	struct ad_model md;
 	model_build(s, model, &md);

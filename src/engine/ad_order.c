@@ -315,7 +315,7 @@ static void setup(struct ctx *c, const double *se)
 			if (md->balpha[k][j] > 0.0) {
 				struct ad_rough *r = &c->rough[k][j];
 				ad_rough_init(r, &lv->q, md->bn[k][j], md->bn[k][j + 1], md->balpha[k][j], md->fresnel, se, E,
-				    md->rough_nu > 0 ? md->rough_nu : ad_rough_nu(c->o->density));
+				    md->rough_nu > 0 ? md->rough_nu : ad_rough_nu(c->o->density), md->rough_walks);
 				lv->rough_lost = fmax(lv->rough_lost, r->lost_max);
 			}
 	lv->t_air = xcalloc((size_t)lv->na + 1, sizeof(double));

@@ -27,6 +27,8 @@ struct ad_model {
 	double balpha[SLAB_MAX_LAYERS + 1][SLAB_MAX_LAYERS + 1];
 	int brough[SLAB_MAX_LAYERS + 1];	/* 1 if boundary k has a rough interface */
 	int rough_nu;				/* facet rule per axis; 0 = ad_rough_nu of the quadrature */
+	int rough_walks;			/* multiple scattering on the facets: walks per direction
+						 * (ad_rough.h); 0 = single scattering */
 	enum optics_fresnel fresnel;		/* at every interface */
 	int n_iv;				/* quadrature pieces (ad_quad.h) */
 	double sigma[AD_MAX_IV + 1];		/* piece edges in s [-] */

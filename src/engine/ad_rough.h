@@ -39,7 +39,23 @@
  * points on [0, pi] by 4-point Lagrange weights (cos(m phi) is even about
  * 0 and pi, so the points fold over at the ends); each order is then one
  * sum over those points (ad_rough_order), exact for m = 0 and within
- * (m dphi)^4 / 100 of the facets' own sum above. */
+ * (m dphi)^4 / 100 of the facets' own sum above.
+ *
+ * Multiple scattering on the facets (walks > 0; [surface]
+ * multiple_scattering = 1, the Monte Carlo's microfacet_sample_ms, Heitz,
+ * Hanika, d'Eon & Dachsbacher 2016): the first order is the rule above
+ * with the height-correlated Smith terms of the uniform-height
+ * microsurface in place of the separable G1(wi) G1(wo) (1 / (1 + Li + Lo)
+ * for reflection, B(1 + Li, 1 + Lo) for refraction: the walk's first
+ * bounce exactly), and the higher orders, broad and smooth, from
+ * AD_ROUGH_MS_WALKS walks at each of AD_ROUGH_MS_NI incoming cosines on
+ * fixed streams of base/rng.h: their Fourier orders binned on
+ * AD_ROUGH_MS_NB outgoing cosines (tables built once per interface, the same
+ * at every node count, so the solver's error estimate from half the nodes
+ * does not see their noise), interpolated to the nodes as point values and
+ * scaled per column to 1 - its first order (the walk loses nothing; the
+ * scale absorbs the tables' interpolation and the first order's error:
+ * within 2e-2 of the incident power, test_ad_rough). */
 #ifndef SKINBAKE_AD_ROUGH_H
 #define SKINBAKE_AD_ROUGH_H
 #include "engine/ad_elem.h"
@@ -47,6 +63,13 @@
 #include "engine/optics.h"
 
 #define AD_ROUGH_NU 64
+/* Multiple scattering: walks per incoming cosine, incoming cosines, outgoing
+ * cosine bins, Fourier orders kept (the higher orders are broad), the seed. */
+#define AD_ROUGH_MS_WALKS 8192
+#define AD_ROUGH_MS_NI 24
+#define AD_ROUGH_MS_NB 24
+#define AD_ROUGH_MS_M 12
+#define AD_ROUGH_MS_SEED 21
 #define AD_ROUGH_NPHI 128
 /* Lobes this many nodes wide (standard deviation) or more get point values. */
 #define AD_ROUGH_WIDE 2.0
@@ -74,15 +97,23 @@ struct ad_rough {
 	struct ad_rough_col *top_t;	/* [N + E] from above: transmitted */
 	struct ad_rough_col *bot_r;	/* [N] from below: reflected */
 	struct ad_rough_col *bot_t;	/* [N] from below: transmitted */
+	/* Multiple scattering's orders >= 2 (NULL: single scattering): f_m tables
+	 * [AD_ROUGH_MS_NI][2: reflected, transmitted][AD_ROUGH_MS_NB][AD_ROUGH_MS_M + 1]
+	 * for light from above and below, and the columns' cosines above and below. */
+	double *ms_top, *ms_bot, *mu_a, *mu_b;
+	double *ms_scale_a, *ms_scale_b;	/* per column: the tables' power scaled to 1 - first order */
+	double n_above, n_below;
 	double lost_max;		/* largest power of a column sent off the quadrature [-] */
 };
 
 /* Work out the outgoing light of the interface between n_above and n_below
  * with GGX alpha in (0, 1] at quadrature q for the beams at se[0 .. E-1]
- * (s values), with n_u x n_u facets per incoming direction (n_u >= 2).
- * Allocates; free with ad_rough_free. */
+ * (s values), with n_u x n_u facets per incoming direction (n_u >= 2);
+ * walks = 0 single scattering, > 0 multiple scattering with that many
+ * walks per incoming direction for the higher orders.  Allocates; free
+ * with ad_rough_free. */
 void ad_rough_init(struct ad_rough *r, const struct ad_quad *q, double n_above, double n_below, double alpha,
-    enum optics_fresnel model, const double *se, int E, int n_u);
+    enum optics_fresnel model, const double *se, int E, int n_u, int walks);
 
 /* Order m of the interface into x (bound by ad_elem_bind, overwritten);
  * sqW[N] = sqrt(W).  The collimated factors are 0: nothing passes a rough

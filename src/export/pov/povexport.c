@@ -401,15 +401,20 @@ static int load_sss(const struct povexport_options *o, struct scene *s, int k, s
 	enum scene_strategy st = strategy_resolve(s, NULL, NULL);
 	if (!o->translucent)
 		return 0;
-	if (o->analytic || o->family)
-		return *cause = xstrdup("--mode translucent needs a bake and its radial profile, not --analytic or --family"),
-		       -1;
+	if (o->analytic)
+		return *cause = xstrdup("--mode translucent needs a bake and its radial profile, "
+					"not --analytic"), -1;
 	if (st != SCENE_LIGHTS_KEY && st != SCENE_LIGHTS_MIXTURE)
 		return *cause = xasprintf("--mode translucent: lights = %s, but the subsurface layer goes under one lit table "
 					  "per skin: lights key or mixture (one or two lights)", scene_strategy_name(st)),
 		       -1;
 	char *err = NULL;
-	if (povsss_setup(&ps->sss, &ps->brdf, &ps->ior, in->src[k]->bake, &err) != 0) {
+	if (o->family && pov_maps_sss_setup(in->maps[k], &ps->ior, &err) == 0) {
+		/* Each member its closure; the median member's stands in (stand-ins, messages). */
+		ps->sss = in->maps[k]->sss[in->maps[k]->ref];
+		ps->brdf = pov_maps_brdf(in->maps[k], in->maps[k]->ref);
+	} else if (o->family ||
+	    povsss_setup(&ps->sss, &ps->brdf, &ps->ior, in->src[k]->bake, &err) != 0) {
 		*cause = xasprintf("skin '%s': --mode translucent: %s", sn, err);
 		free(err);
 		return -1;
