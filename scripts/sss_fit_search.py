@@ -55,11 +55,12 @@ mean_b = sum(p * (r[0] + r[1]) / 2 for p, r in zip(pb, rings)) / total
 
 
 def stats(colour, length, local):
-    pf = [SCALE * (g_at(colour, r[0] / length) - g_at(colour, r[1] / length)) + (local if r[0] == 0 else 0)
-          for r in rings]
+    pf = [SCALE * (g_at(colour, r[0] / length) - g_at(colour, r[1] / length))
+          + (local if r[0] == 0 else 0) for r in rings]
     p = sum(pf)
     m = sum(x * (r[0] + r[1]) / 2 for x, r in zip(pf, rings)) / p
-    rms = math.sqrt(sum(math.log(a / b) ** 2 for a, b in zip(pf[:n95], pb[:n95]) if a > 0 and b > 0) / n95)
+    rms = math.sqrt(sum(math.log(a / b) ** 2 for a, b in zip(pf[:n95], pb[:n95])
+                        if a > 0 and b > 0) / n95)
     return rms, p / total - 1, m / mean_b - 1
 
 
