@@ -87,12 +87,12 @@ class ExitNEEVolpath(mi.ad.integrators.prbvolpath.PRBVolpathIntegrator):
             act = through & (k < 16)
         return si, tr, dist, solid & active
 
-    def sample_emitter(self, mei, si, active_medium, active_surface, scene, sampler, medium, channel,
-                       active, adj_emitted=None, δL=None, mode=None):
+    def sample_emitter(self, mei, si, active_medium, active_surface, scene, sampler, medium,
+                       channel, active, adj_emitted=None, δL=None, mode=None):
         # Surface vertices: the base class, but not for hits from inside.
         outside = active_surface & (mi.Frame3f.cos_theta(si.wi) > 0.0)
-        em_s, ds_s = super().sample_emitter(mei, si, mi.Bool(False), outside, scene, sampler, medium,
-                                            channel, outside, adj_emitted, δL, mode)
+        em_s, ds_s = super().sample_emitter(mei, si, mi.Bool(False), outside, scene, sampler,
+                                            medium, channel, outside, adj_emitted, δL, mode)
         am = active_medium & True    # a new mask: &= below must not change the caller's
         # The light seen from x, and the surface normal toward it.
         u_light = sampler.next_2d(am)
@@ -133,14 +133,16 @@ class ExitNEEVolpath(mi.ad.integrators.prbvolpath.PRBVolpathIntegrator):
         f = y.bsdf().eval(mi.BSDFContext(), y, y.to_local(ds_y.d), ok)
         val = dr.select(ok, tr * f * em_y / (dr.maximum(pdf, 1e-30) * q), 0.0)
         ds = dr.zeros(mi.DirectionSample3f)
-        # lanes without an estimate still get a finite direction (the caller evaluates the phase there)
+        # lanes without an estimate still get a finite direction (the caller evaluates the
+        # phase function there)
         ds.d = dr.select(active_medium, dr.select(am, d, wl), ds_s.d)
         ds.pdf = dr.select(active_medium, 1.0, ds_s.pdf)
         ds.delta = dr.select(active_medium, True, ds_s.delta)
         return dr.select(active_medium, val, dr.select(outside, em_s, 0.0)), ds
 
     def to_string(self):
-        return "ExitNEEVolpath[max_depth = %d, alpha = %g, eta = %g]" % (self.max_depth, self.alpha, self.eta)
+        return "ExitNEEVolpath[max_depth = %d, alpha = %g, eta = %g]" % (
+            self.max_depth, self.alpha, self.eta)
 
 
 def register():
