@@ -86,10 +86,11 @@ done
 (cd "$out" && povray +Icomplexions.pov +Ocomplexions.png +W960 +H240 -D +A0.1 >complexions.log 2>&1) ||
 	{ echo "demo.sh: povray failed, see $out/complexions.log" >&2; exit 1; }
 echo "wrote $out/complexions.png"
-echo "== close-up of the cheek (scenes/showcase-closeup.scene): a young cheek's relief, 1024 px over 20 mm"
+echo "== close-up of the cheek (scenes/showcase-closeup.scene), a young cheek's relief"
 # Shallower than the face site's default (primary lines 18 um, measured 25 um: the low end of
 # Hashimoto's 20-100 um), and a tile wider than the view, so that it does not repeat in it.
-$B texture --site face --size 1024 --tile-mm 20 --furrow-depth 18 --level-gain 0.2 --out "$out/cheek" --quiet
+$B texture --site face --size 1024 --tile-mm 20 --furrow-depth 18 --level-gain 0.2 \
+	--out "$out/cheek" --quiet
 render scenes/showcase-closeup.scene human-pores "$out/maps-fair" --textures "$out/cheek" --nodes 9 --gamma-nodes 3
 
 # ---- translucent head lit from behind: scripts/demo-translucent.sh (another helper's) goes here,
