@@ -484,6 +484,11 @@ static int load_bumps(const struct povexport_options *o, const struct scene *s, 
 		tdir = sk->textures;
 	if (tdir == NULL || !sk->bumps)
 		return 0;
+	if (in->ps[k].sss.on && in->ps[k].maps) {
+		/* The maps' texture_map of layered members is the object's whole texture. */
+		msg(r, "skin '%s': translucent maps are written without the bump map", sk->name);
+		return 0;
+	}
 	for (int i = 0; i < s->n_objects && in->ps[k].sss.on; i++)
 		if (s->objects[i].shape == SCENE_MESH && s->objects[i].material == SCENE_MAT_SKIN && s->objects[i].skin == k) {
 			/* A mesh's bump map is a texture per triangle, which cannot be layered. */
