@@ -165,4 +165,29 @@ bad "render: maps outside the family's range" "epidermis.melanin.png: texel (.*)
 	maps render-albedo --family "$tmpd/narrow" --maps "$tmpd/true" --out "$tmpd/bad.png"
 bad "render: output not .png or .exr" "does not end with .png or .exr" maps render-albedo --family "$fam" \
 	--maps "$tmpd/true" --out "$tmpd/bad.tif"
+# A full disk (issue 23: "maps fit says 'writing the PNG failed' without the cause"): the K-th
+# write fails with ENOSPC (strace): exit 1, the system's message, nothing left.
+if command -v strace > /dev/null 2>&1 && strace -f -qq -o /dev/null true 2> /dev/null; then
+	full() {	# K ARGS...: skinbake ARGS with its K-th write failing
+		k=$1
+		shift
+		strace -f -qq -o /dev/null -e inject=write:error=ENOSPC:when=$k "$B" "$@"
+	}
+	nospace='No space left on device'
+	for k in 1 3; do
+		rm -rf "$tmpd/full" "$tmpd/full.png"
+		full $k maps new --family "$fam" --size 8x8 --quiet --out "$tmpd/full" 2> "$tmpd/e"
+		rc=$?
+		check "maps new, disk full at write $k: exit 1 ($rc), '$(cat "$tmpd/e")', no file" \
+			sh -c "[ $rc = 1 ] && grep -q '$nospace' '$tmpd/e' && ! ls -A '$tmpd' |
+			grep -q full"
+	done
+	full 2 maps render-albedo --family "$fam" --maps "$tmpd/true" --out "$tmpd/full.png" \
+		--quiet 2> "$tmpd/e"
+	rc=$?
+	check "render-albedo, disk full: exit 1 ($rc), '$(cat "$tmpd/e")', no file" sh -c \
+		"[ $rc = 1 ] && grep -q '$nospace' '$tmpd/e' && [ ! -e '$tmpd/full.png' ]"
+else
+	skip "strace cannot inject faults here"
+fi
 tap_done
