@@ -7,6 +7,7 @@
 # masked edits clamped to the family's range, and bad input (sizes, ranges,
 # files, format versions) refused with exit 2 and nothing written.
 . "$top_srcdir/tests/tap.sh"
+. "$top_srcdir/tests/lib/refused.sh"
 B="$SKINBAKE"
 M="$top_builddir/tests/maps_check"
 fam="$tmpd/fam"
@@ -96,13 +97,10 @@ assert abs(mel['max']-0.3)<1e-5 and abs(mel['min']-0.0387298)<1e-5, mel
 assert abs(bl['max']-0.03)<1e-5 and abs(bl['min']-0.02)<1e-5, bl"
 
 # Bad input: exit 2, a message naming the file/field/value/expected, nothing written.
-bad() {
-	desc=$1; want=$2; shift 2
-	rm -rf "$tmpd/bad" "$tmpd/bad.png"
-	msg=$("$B" "$@" 2>&1 >/dev/null)
-	rc=$?
-	if [ "$rc" = 2 ] && echo "$msg" | grep -q -- "$want" && [ ! -e "$tmpd/bad" ] && [ ! -e "$tmpd/bad.png" ] &&
-		[ ! -e "$tmpd/bad.staging" ]; then ok "$desc"; else fail "$desc (rc $rc, message: $msg)"; fi
+bad() {	# DESC PATTERN ARGS...: skinbake ARGS refused (tests/lib/refused.sh)
+	b_d=$1 b_p=$2
+	shift 2
+	refused "$b_d" "$b_p" "$tmpd/bad $tmpd/bad.png $tmpd/bad.staging" "$B" "$@"
 }
 bad "fit: mask of another size" "small.png is 32 x 32 texels, but --albedo .*a.png is 96 x 64" maps fit \
 	--family "$fam" --albedo "$tmpd/a.png" --mask "$tmpd/small.png" --out "$tmpd/bad"
