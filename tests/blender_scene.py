@@ -11,9 +11,14 @@
 #   blender -b FILE.blend --python blender_scene.py -- material-summary NAME
 #       prints SKINBAKE_VERSION and SKINBAKE_MATERIAL: material NAME's node and link counts and images
 #   blender -b FILE.blend --python blender_scene.py -- measure-lights BRDF_HELPER BAKE OUT_STEM RES SAMPLES
-#       renders the imported file (direct light only, point-sampled pixels) with normal and
-#       position passes and compares each pixel with sum over lamps of E cos_l f_r, f_r from
-#       BRDF_HELPER (bake_eval_rgb, as `skinbake eval`); prints SKINBAKE_LIGHTS n mean p95 max
+#           [LO[:HI] [--ad]]
+#       renders the imported file (exact mode: direct light only; point-sampled pixels) with normal
+#       and position passes and compares each pixel with sum over lamps of E cos_l f_r, f_r from
+#       BRDF_HELPER (bake_eval_rgb, as `skinbake eval`; with --ad adding-doubling point values of
+#       the bake's stacks); prints SKINBAKE_LIGHTS n mean p95 max (each pixel's largest relative
+#       error over RGB) and SKINBAKE_RING r g b (the render's sum over those pixels divided by the
+#       reference's, per channel); with LO[:HI] only the pixels whose exit angle is in [LO, HI] deg
+#       (the silhouettes)
 #   blender -b FILE.blend --python blender_scene.py -- addon IMPORTER SET/manifest.json MESH
 #       the add-on's File > Import operator (registered from IMPORTER) on the selected MESH in exact
 #       mode; prints SKINBAKE_ADDON result material view-layers
@@ -212,19 +217,26 @@ def lamp_light(o, p):
     return d.normalized(), e
 
 
-def measure_lights(helper, bake, stem, res, samples):
+def measure_lights(helper, bake, stem, res, samples, exit_range=(0.0, 90.0), helper_args=()):
     sc = bpy.context.scene
     sc.render.resolution_x = sc.render.resolution_y = res
     sc.render.resolution_percentage = 100
     cy = sc.cycles
     cy.samples, cy.use_denoising, cy.use_adaptive_sampling, cy.seed = samples, False, False, 0
-    cy.max_bounces = 0                 # direct light only: the reference has no interreflection
+    layers = list(sc.get("skinbake_exact_layers", []))
+    if layers:                         # exact mode: direct light only, the reference has no
+        cy.max_bounces = 0             # interreflection
+    else:                              # general mode: its subsurface walk needs the bounces
+        layers = [v.name for v in sc.view_layers if v.use]
+    cy.light_sampling_threshold = 0.0  # no roulette of dim light samples (it quantizes dim pixels)
     cy.filter_width = 0.01             # every sample at the pixel centre, as the passes
     sc.view_settings.view_transform = "Standard"
-    layers = list(sc["skinbake_exact_layers"])
     vl = sc.view_layers[layers[0]]
     vl.use_pass_normal = vl.use_pass_position = True
     nt = sc.node_tree if hasattr(sc, "node_tree") else sc.compositing_node_group     # 5.0: a node group
+    if nt is None and hasattr(sc, "node_tree"):     # general mode (up to 4.x): no compositor yet
+        sc.use_nodes = True
+        nt = sc.node_tree
     rl = nt.nodes.new("CompositorNodeRLayers")
     rl.layer = vl.name
     fo = nt.nodes.new("CompositorNodeOutputFile")
@@ -255,6 +267,9 @@ def measure_lights(helper, bake, stem, res, samples):
     _, _, nrm = read(os.path.join(directory, pass_file["Normal"]))
     _, _, pos = read(os.path.join(directory, pass_file["Position"]))
     cam = sc.camera.matrix_world.translation
+    ortho = sc.camera.data.type == "ORTHO"
+    # an orthographic camera's view direction (toward the camera) is the same at every pixel
+    fwd = (sc.camera.matrix_world.to_quaternion() @ Vector((0.0, 0.0, 1.0))).normalized()
     lamps = [o for o in sc.objects if o.type == "LIGHT" and not o.hide_render]
     on = [Vector(n).length > 0.5 for n in nrm]
     jobs = []                          # (pixel, irradiance * cos_l, "ti to phi")
@@ -265,9 +280,10 @@ def measure_lights(helper, bake, stem, res, samples):
                 continue               # silhouette pixels mix object and background
             n = Vector(nrm[i]).normalized()
             p = Vector(pos[i])
-            v = (cam - p).normalized()
+            v = fwd if ortho else (cam - p).normalized()
             cv = n.dot(v)
-            if cv <= 0.02:
+            lo, hi = exit_range
+            if cv <= 0.02 or not lo <= math.degrees(math.acos(min(cv, 1.0))) <= hi:
                 continue
             for o in lamps:
                 lv, e = lamp_light(o, p)
@@ -279,8 +295,8 @@ def measure_lights(helper, bake, stem, res, samples):
                 ph = math.degrees(math.acos(max(-1.0, min(1.0, c))))
                 jobs.append((i, e * cl, f"{math.degrees(math.acos(min(cl, 1.0)))} "
                                         f"{math.degrees(math.acos(min(cv, 1.0)))} {ph}"))
-    r = subprocess.run([helper, bake], input="\n".join(j[2] for j in jobs) + "\n", capture_output=True,
-                       text=True, check=True)
+    r = subprocess.run([helper, bake, *helper_args], input="\n".join(j[2] for j in jobs) + "\n",
+                       capture_output=True, text=True, check=True)
     vals = [[float(t) for t in line.split()] for line in r.stdout.splitlines()]
     ref = {}
     for (i, ecl, _), f in zip(jobs, vals):
@@ -288,14 +304,18 @@ def measure_lights(helper, bake, stem, res, samples):
         for c in range(3):
             acc[c] += ecl * f[c]
     top = max(sum(v) for v in ref.values())
-    errs = []
+    errs, s_got, s_ref = [], [0.0] * 3, [0.0] * 3
     for i, v in ref.items():
         if sum(v) < 0.02 * top:
             continue
         errs.append(max(abs(col[i][c] / v[c] - 1.0) for c in range(3)))
+        for c in range(3):
+            s_got[c] += col[i][c]
+            s_ref[c] += v[c]
     errs.sort()
     n = len(errs)
     print(f"SKINBAKE_LIGHTS {n} {sum(errs) / n:.6f} {errs[int(0.95 * n)]:.6f} {errs[-1]:.6f}")
+    print("SKINBAKE_RING " + " ".join(f"{g / r:.6f}" for g, r in zip(s_got, s_ref)))
 
 
 def make_scene_json(path, out):
@@ -449,7 +469,9 @@ elif cmd == "make-keep":
 elif cmd == "check-keep":
     check_keep(args[1])
 elif cmd == "measure-lights":
-    measure_lights(os.path.abspath(args[1]), os.path.abspath(args[2]), args[3], int(args[4]), int(args[5]))
+    rng = [float(x) for x in args[6].split(":")] if len(args) > 6 else [0.0]
+    measure_lights(os.path.abspath(args[1]), os.path.abspath(args[2]), args[3], int(args[4]),
+                   int(args[5]), (rng[0], rng[1] if len(rng) > 1 else 90.0), args[7:])
 elif cmd == "addon":
     sys.path.insert(0, os.path.dirname(os.path.abspath(args[1])))
     sys.dont_write_bytecode = True

@@ -122,6 +122,25 @@ if [ -n "$avail" ] && [ "$avail" -lt 100000000 ]; then
 else
 	skip "more than 100 GB of memory available: the 60000 x 60000 fit would fit"
 fi
+# The other subcommands too (src/maps/mapset.h: MAPS_*_MEM_*): new from the size of --like, edit
+# and render-albedo from the size maps.json states, before any map is read (72, 86, 144 GB).
+if [ -n "$avail" ] && [ "$avail" -lt 70000000 ]; then
+	gb="needs about [0-9.]* GB of memory (estimated), [0-9.]* GB are available"
+	bad "new: maps far larger than the memory, refused at once with the numbers" \
+		"maps new of 60000 x 60000 texels $gb; use a smaller --size" \
+		maps new --family "$fam" --like "$tmpd/huge.png" --out "$tmpd/bad"
+	cp -r "$tmpd/true" "$tmpd/huge"
+	sed -i 's/"width":[0-9]*/"width":60000/; s/"height":[0-9]*/"height":60000/' \
+		"$tmpd/huge/maps.json"
+	bad "edit: maps.json of 60000 x 60000 texels, refused before the maps are read" \
+		"maps edit of 60000 x 60000 texels (--maps .*huge) $gb; edit smaller maps" \
+		maps edit --maps "$tmpd/huge" --scale epidermis.melanin=1.3 --out "$tmpd/bad"
+	bad "render: maps.json of 60000 x 60000 texels, refused before the maps are read" \
+		"maps render-albedo of 60000 x 60000 texels (--maps .*huge) $gb; render smaller" \
+		maps render-albedo --family "$fam" --maps "$tmpd/huge" --out "$tmpd/bad.png"
+else
+	skip "more than 70 GB of memory available: 60000 x 60000 maps would fit"
+fi
 bad "fit: not a family" "not a family directory" maps fit --family "$tmpd/fit" --albedo "$tmpd/a.png" --out "$tmpd/bad"
 cp -r "$fam" "$tmpd/fam2"
 sed -i 's/"format_version":1/"format_version":7/' "$tmpd/fam2/family.json"

@@ -38,8 +38,7 @@
 #include <stdlib.h>
 #include <string.h>
 
-#include "bake/manifest.h"
-#include "engine/ad.h"
+#include "ad_points.h"
 #include "export/source.h"
 #include "io/pngio.h"
 #include "export/pov/littable.h"
@@ -122,39 +121,29 @@ struct pixel {
 	double co;		/* cosine of the exit angle */
 };
 
-/* --ad: adding-doubling point values of the bake's stacks (see the top).
- * Two passes over the pixels: the first records the incidence angles asked
- * (in call order), which are then solved 256 beams at a time per
- * wavelength; the second evaluates, call by call in the same order. */
+/* --ad: adding-doubling point values of the bake's stacks (see the top,
+ * tests/ad_points.h).  Two passes over the pixels: the first records the
+ * angles asked (in call order), which are then solved together; the second
+ * returns their values, call by call in the same order. */
 struct ad_ref {
 	struct bake *b;
-	struct bake_provenance pv;
+	const char *dir;
 	double min_to;		/* [rad]: 0 returned below (pixels not counted) */
 	int pass;		/* 0: record, 1: evaluate */
 	long n, cap, next;	/* angles recorded; the next call's index */
-	double *ti;		/* [n] */
-	struct ad_result *res;	/* [n_chunks][n_wl] */
+	double *ti, *to, *dphi;	/* [n] */
+	double *rgb;		/* [n][3] */
 	long solves;
 };
 
 static void ad_solve_all(struct ad_ref *a)
 {
-	long nc = (a->n + AD_MAX_BEAMS - 1) / AD_MAX_BEAMS;
-	a->res = xcalloc((size_t)(nc * a->b->n_wl + 1), sizeof *a->res);
-	for (long k = 0; k < nc; k++)
-		for (int w = 0; w < a->b->n_wl; w++) {
-			struct ad_opts o;
-			char *cause = NULL;
-			long n = a->n - k * AD_MAX_BEAMS < AD_MAX_BEAMS ? a->n - k * AD_MAX_BEAMS : AD_MAX_BEAMS;
-			ad_opts_default(&o);
-			o.n_to = o.n_phi = 1;
-			if (ad_solve(&a->pv.slab[w], a->pv.fresnel, a->ti + k * AD_MAX_BEAMS, (int)n, &o,
-			    &a->res[k * a->b->n_wl + w], &cause) != 0) {
-				fprintf(stderr, "pov_compare: adding-doubling: %s\n", cause);
-				exit(2);
-			}
-			a->solves++;
-		}
+	char *cause = NULL;
+	a->rgb = xmalloc(sizeof(double) * 3 * (size_t)(a->n + 1));
+	if (ad_points_rgb(a->dir, a->b, a->n, a->ti, a->to, a->dphi, a->rgb, &a->solves, &cause)) {
+		fprintf(stderr, "pov_compare: adding-doubling: %s\n", cause);
+		exit(2);
+	}
 	a->pass = 1;
 	a->next = 0;
 }
@@ -162,8 +151,6 @@ static void ad_solve_all(struct ad_ref *a)
 static void ad_rgb(void *ctx, double ti, double to, double dphi, double rgb[3])
 {
 	struct ad_ref *a = ctx;
-	const struct bake *b = a->b;
-	double sp[BAKE_MAX_WL];
 	rgb[0] = rgb[1] = rgb[2] = 0.0;
 	if (to < a->min_to || ti >= 0.5 * M_PI)
 		return;
@@ -171,18 +158,17 @@ static void ad_rgb(void *ctx, double ti, double to, double dphi, double rgb[3])
 		if (a->n == a->cap) {
 			a->cap = a->cap ? 2 * a->cap : 1024;
 			a->ti = xreallocarray(a->ti, (size_t)a->cap, sizeof(double));
+			a->to = xreallocarray(a->to, (size_t)a->cap, sizeof(double));
+			a->dphi = xreallocarray(a->dphi, (size_t)a->cap, sizeof(double));
 		}
-		a->ti[a->n++] = ti;
+		a->ti[a->n] = ti;
+		a->to[a->n] = to;
+		a->dphi[a->n++] = dphi;
 		return;
 	}
 	long i = a->next++;
-	bake_eval_specular(b, ti, to, dphi, sp);
-	for (int w = 0; w < b->n_wl; w++) {
-		const struct ad_result *r = &a->res[(i / AD_MAX_BEAMS) * b->n_wl + w];
-		double f = ad_brdf(r, (int)(i % AD_MAX_BEAMS), to, dphi, NULL) + sp[w];
-		for (int c = 0; c < 3; c++)
-			rgb[c] += b->rgb_from_wl[c * b->n_wl + w] * f;
-	}
+	for (int c = 0; c < 3; c++)
+		rgb[c] = a->rgb[3 * i + c];
 }
 
 static void shade(const struct scene *s, const struct pov_brdf *f, int only, const double o[3], const double d[3],
@@ -288,10 +274,11 @@ static int cmd_expect(int argc, char **argv)
 			return fprintf(stderr, "pov_compare: %s\n", cause), 2;
 		f = (struct pov_brdf){ .f_rgb = b->f_rgb, .ctx = b->ctx };
 	}
-	struct ad_ref ar = { .b = b ? b->bake : NULL, .min_to = min_to_deg * M_PI / 180.0 };
+	struct ad_ref ar = { .b = b ? b->bake : NULL, .dir = bake_dir };
+	ar.min_to = min_to_deg * M_PI / 180.0;
 	if (ad) {
-		if (b == NULL || bake_provenance_read(bake_dir, &ar.pv, &cause) != 0)
-			return fprintf(stderr, "pov_compare: --ad: %s\n", cause ? cause : "needs --bake"), 2;
+		if (b == NULL)
+			return fprintf(stderr, "pov_compare: --ad needs --bake\n"), 2;
 		f = (struct pov_brdf){ .f_rgb = ad_rgb, .ctx = &ar };
 	}
 	int w, h;
@@ -378,13 +365,10 @@ static int cmd_expect(int argc, char **argv)
 		printf("(adding-doubling reference: %ld solves, exit angles from %g deg)\n", ar.solves, min_to_deg);
 	free(px);
 	free(img);
-	if (ad) {
-		for (long k = 0; k < ((ar.n + AD_MAX_BEAMS - 1) / AD_MAX_BEAMS) * ar.b->n_wl; k++)
-			ad_result_free(&ar.res[k]);
-		free(ar.res);
-		free(ar.ti);
-		bake_provenance_free(&ar.pv);
-	}
+	free(ar.ti);
+	free(ar.to);
+	free(ar.dphi);
+	free(ar.rgb);
 	brdf_source_free(b);
 	scene_free(s);
 	return mre <= tol && shadow_bad == 0 && n_px > 100 ? 0 : 1;

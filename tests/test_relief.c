@@ -14,6 +14,7 @@
 #include <string.h>
 
 #include "geom/relief.h"
+#include "geom/relief_impl.h"
 #include "geom/sites.h"
 
 static struct relief_params params(const char *site)
@@ -388,6 +389,55 @@ static void test_bad_params(void **state)
 	assert_float_equal(sites_get(&c, sites_param_find("orientation")), 90, 1e-12);
 }
 
+/* The primary net is drawn as long lines (relief_lines.c): with every
+ * random depth factor off, a primary furrow end is at full depth where its
+ * line goes on through the junction and at exp(-2 fade) where the line
+ * ends, nothing else; continuing ends pair up, so each junction has an even
+ * number of them, and most ends continue (a Poisson-disk Delaunay junction
+ * has about six edges, nearly opposite in pairs). */
+static void test_long_lines(void **state)
+{
+	(void)state;
+	struct relief_params p = params("face");
+	p.levels = 1;
+	p.bend = 0;
+	p.furrow_depth_sd = 0;
+	p.region_sd = 0;
+	p.direction_gain = 1;
+	p.stretch = 1;
+	char *cause = NULL;
+	struct relief *r = relief_new(&p, 3, &cause);
+	assert_non_null(r);
+	const struct level *l = &r->level[0];
+	double d = l->info.depth, dend = d * exp(-2 * p.furrow_fade);
+	int np = l->info.points, full = 0, ends = 0;
+	int *at = calloc((size_t)np, sizeof *at);
+	for (int f = 0; f < l->n_furrows; f++) {
+		const struct furrow *q = &l->furrows[f];
+		double x[2] = { q->x0, q->x1 }, y[2] = { q->y0, q->y1 }, dd[2] = { q->depth, q->depth1 };
+		for (int e = 0; e < 2; e++) {
+			int is_full = fabs(dd[e] - d) < 1e-9 * d;
+			assert_true(is_full || fabs(dd[e] - dend) < 1e-9 * d);
+			full += is_full;
+			ends++;
+			int v = 0;
+			for (; v < np; v++) {
+				double ex = x[e] - l->xy[2 * v], ey = y[e] - l->xy[2 * v + 1];
+				if (fabs(ex - nearbyint(ex)) < 1e-9 && fabs(ey - nearbyint(ey)) < 1e-9)
+					break;
+			}
+			assert_true(v < np);
+			at[v] += is_full;
+		}
+	}
+	for (int v = 0; v < np; v++)
+		assert_int_equal(at[v] % 2, 0);
+	assert_true(full > 0.75 * ends);
+	assert_true(full < ends);
+	free(at);
+	relief_free(r);
+}
+
 int main(void)
 {
 	const struct CMUnitTest tests[] = {
@@ -398,6 +448,7 @@ int main(void)
 		cmocka_unit_test(test_anisotropy),
 		cmocka_unit_test(test_components),
 		cmocka_unit_test(test_bad_params),
+		cmocka_unit_test(test_long_lines),
 	};
 	return cmocka_run_group_tests(tests, NULL, NULL);
 }

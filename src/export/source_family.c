@@ -55,6 +55,11 @@ void brdf_family_member_index(const struct brdf_family *f, int m, int idx[FAMILY
 	family_member_index(f->family, m, idx);
 }
 
+const struct bake *brdf_family_member_bake(const struct brdf_family *f, int m)
+{
+	return f->family->bake[m];
+}
+
 struct brdf_source *brdf_family_source(const struct brdf_family *f, int m)
 {
 	return brdf_source_of_bake(f->family->bake[m], 0);

@@ -33,6 +33,8 @@ int brdf_family_member(const struct brdf_family *f, const int *idx);
 void brdf_family_member_index(const struct brdf_family *f, int m, int idx[FAMILY_MAX_AXES]);
 /* Member m's BRDF; brdf_source_free it (the table stays the family's). */
 struct brdf_source *brdf_family_source(const struct brdf_family *f, int m);
+/* Member m's bake as read (its radial profile, for the translucent fit). */
+const struct bake *brdf_family_member_bake(const struct brdf_family *f, int m);
 /* The BRDF at parameters x[n_axes] (each clamped to its axis), the member
  * tables interpolated there (family_bake_at); brdf_source_free frees it. */
 struct brdf_source *brdf_family_at(const struct brdf_family *f, const double *x);

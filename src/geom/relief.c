@@ -25,6 +25,7 @@ enum {
 	STREAM_JUNCTION = 3,
 	STREAM_WAVES = 4,
 	STREAM_REGION = 5,
+	STREAM_LINES = 6,
 	STREAM_LEVEL = 16
 };
 
@@ -335,17 +336,20 @@ static void bent_point(const double a[2], const double b[2], const double w[2], 
 }
 
 /* Append the furrow a-b bent by w as BEND_SEGMENTS straight grooves (one
- * when straight); l->furrows and l->fbox have room.  The depth is full at
- * both ends (the junctions) and depth exp(-fade |z|), z standard normal,
- * at the inner joints, linear along each piece, so a line fades in and out
- * without getting deeper than at its ends. */
+ * when straight); l->furrows and l->fbox have room.  The depth is depth *
+ * fa at a and depth * fb at b (the junctions; 1 where a line goes on) and
+ * exp(-fade |z|), z standard normal, times the linear value in between at
+ * the inner joints, linear along each piece, so a line fades in and out
+ * without getting deeper than at its ends.  The box includes the groove's
+ * shoulder (relief_render.c). */
 static void emit(struct level *l, double T, const double a[2], const double b[2], const double w[2],
-    double depth, double half, double fade, struct rng *rg)
+    double depth, const double fab[2], double half, double fade, struct rng *rg)
 {
 	int segs = w[0] == 0 && w[1] == 0 ? 1 : BEND_SEGMENTS;
-	double p0[2] = { a[0], a[1] }, d0 = depth, e2 = half / T;
+	double p0[2] = { a[0], a[1] }, d0 = depth * fab[0], e2 = RELIEF_SHOULDER_WIDTH * half / T;
 	for (int s = 1; s <= segs; s++) {
-		double p1[2], d1 = s == segs ? depth : depth * exp(-fade * fabs(relief_normal(rg)));
+		double t = (double)s / segs, lin = depth * (fab[0] + t * (fab[1] - fab[0]));
+		double p1[2], d1 = s == segs ? lin : lin * exp(-fade * fabs(relief_normal(rg)));
 		bent_point(a, b, w, (double)s / segs, p1);
 		struct furrow f = { p0[0], p0[1], p1[0], p1[1], half, d0, d1 };
 		l->furrows[l->n_furrows] = f;
@@ -364,9 +368,9 @@ static void emit(struct level *l, double T, const double a[2], const double b[2]
  * a deeper furrow is also wider (constant flank slope would give width ~
  * depth; the square root keeps shallow ones visible). */
 static void furrow_size(const struct relief_params *p, const struct relief_level_info *li,
-    struct rng *rg, double phi, double theta, double region, double *depth, double *half)
+    struct rng *rg, double sd, double phi, double theta, double region, double *depth, double *half)
 {
-	double rel = exp(p->furrow_depth_sd * relief_normal(rg));
+	double rel = exp(sd * relief_normal(rg));
 	rel *= align_gain(p->direction_gain, phi, theta) * region;
 	*depth = li->depth * rel;
 	*half = 0.5 * li->width * sqrt(rel);
@@ -392,6 +396,7 @@ static void star_place(struct relief *r, int k, uint64_t seed)
 	rng_seed(&rg, seed, STREAM_LEVEL + 2 * (uint32_t)k + 1, 0);
 	level_alloc(l, 3 * d->n_tris);
 	int arms = 0;
+	static const double full[2] = { 1, 1 };
 	for (int t = 0; t < d->n_tris; t++) {
 		const struct delaunay_tri *tr = &d->tris[t];
 		double v[3][2], bw[3], sum = 0, c[2] = { 0, 0 };
@@ -426,8 +431,8 @@ static void star_place(struct relief *r, int k, uint64_t seed)
 			double mx = 0.5 * (c[0] + q[0]), my = 0.5 * (c[1] + q[1]);
 			double th = direction_at(p, mx, my);
 			double reg = relief_region_at(r, mx, my);
-			furrow_size(p, &l->info, &rg, phi, th, reg, &depth, &half);
-			emit(l, p->tile, c, q, aw, depth, half, p->furrow_fade, &rg);
+			furrow_size(p, &l->info, &rg, p->furrow_depth_sd, phi, th, reg, &depth, &half);
+			emit(l, p->tile, c, q, aw, depth, full, half, p->furrow_fade, &rg);
 			arms++;
 		}
 	}
@@ -456,6 +461,16 @@ static int level_place(struct relief *r, int k, uint64_t seed, char **cause)
 		return -1;
 
 	const struct delaunay *d = l->del;
+	/* The primary net as long lines (relief_lines.c): the depth sigma is
+	 * the lines', a third of it is left to each edge. */
+	double *fab = xmalloc(sizeof *fab * 2 * (size_t)d->n_edges), esd = p->furrow_depth_sd;
+	for (int e = 0; e < 2 * d->n_edges; e++)
+		fab[e] = 1;
+	if (k == 0) {
+		rng_seed(&rg, seed, STREAM_LINES, 0);
+		relief_lines_factors(d, l->xy, esd, exp(-2 * p->furrow_fade), &rg, fab);
+		esd /= 3;
+	}
 	rng_seed(&rg, seed, STREAM_LEVEL + 2 * (uint32_t)k + 1, 0);
 	level_alloc(l, d->n_edges);
 	for (int e = 0; e < d->n_edges; e++) {
@@ -470,9 +485,11 @@ static int level_place(struct relief *r, int k, uint64_t seed, char **cause)
 		double mx = 0.5 * (a[0] + b[0]), my = 0.5 * (a[1] + b[1]);
 		double th = direction_at(p, mx, my);
 		double reg = relief_region_at(r, mx, my);
-		furrow_size(p, &l->info, &rg, phi, th, reg, &depth, &half);
-		emit(l, p->tile, a, b, w, depth, half, p->furrow_fade, &rg);
+		furrow_size(p, &l->info, &rg, esd, phi, th, reg, &depth, &half);
+		double f2[2] = { fab[2 * e + flip], fab[2 * e + 1 - flip] };
+		emit(l, p->tile, a, b, w, depth, f2, half, p->furrow_fade, &rg);
 	}
+	free(fab);
 	l->n_plateaus = d->n_tris;
 	l->plateaus = xmalloc(sizeof *l->plateaus * (size_t)d->n_tris);
 	l->pbox = xmalloc(sizeof *l->pbox * (size_t)d->n_tris);

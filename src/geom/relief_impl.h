@@ -76,6 +76,19 @@ static inline double relief_normal(struct rng *r)
 	return fmax(-2.5, fmin(2.5, z));
 }
 
+/* A groove's shoulder (relief_render.c): a broad shallow valley of
+ * RELIEF_SHOULDER_WIDTH times the groove's half width and RELIEF_SHOULDER_DEPTH of
+ * its depth around the narrow groove, so that the plateaus between deep lines
+ * are domed cushions rather than flat tiles cut by hairlines. */
+#define RELIEF_SHOULDER_WIDTH 3.0
+#define RELIEF_SHOULDER_DEPTH 0.25
+
+/* relief_lines.c: depth factors of the primary net's edges as long lines:
+ * factor[2e] at edge e's point i, factor[2e + 1] at its point j: the line's
+ * log-normal factor exp(sd z), times end_factor where the line ends. */
+void relief_lines_factors(const struct delaunay *d, const double *xy, double sd, double end_factor,
+    struct rng *rg, double *factor);
+
 /* relief_waves.c: the regional depth field and the plateau texture. */
 void relief_region_place(struct relief *r, uint64_t seed, uint32_t stream);
 double relief_region_at(const struct relief *r, double x, double y);

@@ -165,11 +165,16 @@ static void draw_pores(const struct relief *r, const struct window *w, const str
 	}
 }
 
-/* Furrow groove along a segment: -depth (1 - s^2)^2 with s = distance /
- * half width, the depth linear from one end to the other along the
- * segment; grooves of one level combine by their minimum. */
+/* Furrow groove along a segment: -depth ((1 - k) g(s)) with g(s) = (1 -
+ * s^2)^2 inside, s = distance / half width, in buf, and its shoulder -depth
+ * k g(s / W) in sh, k and W the shoulder's depth and width (relief_impl.h):
+ * a narrow groove in a broad shallow valley; the depth linear from one end
+ * to the other along the segment.  Grooves of one level combine by their
+ * minimum (a crossing is no deeper than its deeper line), shoulders by their
+ * sum (smooth: a minimum of broad valleys would crease along the lines where
+ * two are equal, which shows as facets). */
 static void draw_furrows(const struct level *l, double T, const struct window *w,
-    const struct bins *bn, int blk, const struct rect *k, float *buf)
+    const struct bins *bn, int blk, const struct rect *k, float *buf, float *sh)
 {
 	for (int e = bn->start[blk]; e < bn->start[blk + 1]; e++) {
 		const struct bin_entry *be = &bn->entry[e];
@@ -180,19 +185,24 @@ static void draw_furrows(const struct level *l, double T, const struct window *w
 		double ax = (f->x0 + be->sx) * T, ay = (f->y0 + be->sy) * T;
 		double ex = (f->x1 - f->x0) * T, ey = (f->y1 - f->y0) * T;
 		double il2 = 1 / (ex * ex + ey * ey), ih2 = 1 / (f->half * f->half);
+		const double sk = RELIEF_SHOULDER_DEPTH;
+		const double iw2 = 1 / (RELIEF_SHOULDER_WIDTH * RELIEF_SHOULDER_WIDTH);
 		for (int row = c.r0; row <= c.r1; row++) {
 			double py = px_y(w, row) * T - ay;
-			float *o = buf + (row - k->r0) * BLOCK;
+			float *o = buf + (row - k->r0) * BLOCK, *os = sh + (row - k->r0) * BLOCK;
 			for (int col = c.c0; col <= c.c1; col++) {
 				double px = px_x(w, col) * T - ax;
 				double t = (px * ex + py * ey) * il2;
 				t = t < 0 ? 0 : t > 1 ? 1 : t;
 				double dx = px - t * ex, dy = py - t * ey;
-				double s2 = (dx * dx + dy * dy) * ih2;
-				if (s2 >= 1)
+				double s2 = (dx * dx + dy * dy) * ih2, w2 = s2 * iw2;
+				if (w2 >= 1)
 					continue;
 				double d = f->depth + t * (f->depth1 - f->depth);
-				float h = (float)(-d * (1 - s2) * (1 - s2));
+				os[col - k->c0] -= (float)(d * sk * (1 - w2) * (1 - w2));
+				if (s2 >= 1)
+					continue;
+				float h = (float)(-d * (1 - sk) * (1 - s2) * (1 - s2));
 				if (h < o[col - k->c0])
 					o[col - k->c0] = h;
 			}
@@ -284,7 +294,7 @@ void relief_render(const struct relief *r, int n, double x0, double y0, float *p
 	int nblk = w.nb * w.nb;
 #pragma omp parallel for schedule(dynamic, 4)
 	for (int blk = 0; blk < nblk; blk++) {
-		float acc[BLOCK * BLOCK], groove[BLOCK * BLOCK], dome[BLOCK * BLOCK];
+		float acc[BLOCK * BLOCK], groove[BLOCK * BLOCK], dome[BLOCK * BLOCK], sh[BLOCK * BLOCK];
 		struct rect k;
 		k.r0 = blk / w.nb * BLOCK;
 		k.c0 = blk % w.nb * BLOCK;
@@ -302,10 +312,11 @@ void relief_render(const struct relief *r, int n, double x0, double y0, float *p
 			for (int lv = 0; lv < r->n_levels; lv++) {
 				memset(groove, 0, sizeof groove);
 				memset(dome, 0, sizeof dome);
-				draw_furrows(&r->level[lv], r->p.tile, &w, &fb[lv], blk, &k, groove);
+				memset(sh, 0, sizeof sh);
+				draw_furrows(&r->level[lv], r->p.tile, &w, &fb[lv], blk, &k, groove, sh);
 				draw_plateaus(&r->level[lv], &w, &tb[lv], blk, &k, dome);
 				for (int q = 0; q < BLOCK * BLOCK; q++)
-					acc[q] += groove[q] + dome[q];
+					acc[q] += groove[q] + sh[q] + dome[q];
 			}
 			for (int row = k.r0; row <= k.r1; row++)
 				memcpy(furrows + (size_t)row * n + k.c0, acc + (row - k.r0) * BLOCK,

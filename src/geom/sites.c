@@ -76,11 +76,11 @@ static const struct site sites[] = {
 		.pore_depth = UM(35), .pore_depth_sd = 0.3,	/* assumption */
 		.pore_aspect = 1.3, .pore_junction = 1.0, .pore_regularity = 0.5,
 		.levels = 2,
-		.furrow_cell = MM(0.35), .furrow_width = UM(40),	/* assumption */
+		.furrow_cell = MM(0.35), .furrow_width = UM(60),	/* assumption */
 		/* Hashimoto 1974: 20-100 um, the shallow part. */
 		.furrow_depth = UM(25), .furrow_depth_sd = 0.35,
 		.ridge_height = UM(4),
-		.level_scale = 0.45, .level_gain = 0.35,
+		.level_scale = 0.45, .level_gain = 0.25,
 		.stretch = 1.15, .orientation = DEG(0), .furrow_regularity = 0.6,
 		.hierarchy = 1, .bend = 0.12, .furrow_fade = 0.5, .region_sd = 0.25,
 		.direction_gain = 1.3,
@@ -92,10 +92,10 @@ static const struct site sites[] = {
 		.pore_depth = UM(60), .pore_depth_sd = 0.3,	/* assumption */
 		.pore_aspect = 1.4, .pore_junction = 1.0, .pore_regularity = 0.5,
 		.levels = 2,
-		.furrow_cell = MM(0.35), .furrow_width = UM(40),
+		.furrow_cell = MM(0.35), .furrow_width = UM(60),
 		.furrow_depth = UM(25), .furrow_depth_sd = 0.35,	/* as face */
 		.ridge_height = UM(4),
-		.level_scale = 0.45, .level_gain = 0.35,
+		.level_scale = 0.45, .level_gain = 0.25,
 		.stretch = 1.15, .orientation = DEG(0), .furrow_regularity = 0.6,
 		.hierarchy = 1, .bend = 0.12, .furrow_fade = 0.5, .region_sd = 0.25,
 		.direction_gain = 1.3,
@@ -107,10 +107,10 @@ static const struct site sites[] = {
 		.pore_depth = UM(25), .pore_depth_sd = 0.3,	/* assumption */
 		.pore_aspect = 1.2, .pore_junction = 1.0, .pore_regularity = 0.5,
 		.levels = 2,
-		.furrow_cell = MM(0.4), .furrow_width = UM(40),
+		.furrow_cell = MM(0.4), .furrow_width = UM(60),
 		.furrow_depth = UM(25), .furrow_depth_sd = 0.35,	/* as face */
 		.ridge_height = UM(4),
-		.level_scale = 0.45, .level_gain = 0.35,
+		.level_scale = 0.45, .level_gain = 0.25,
 		.stretch = 1.3, .orientation = DEG(0), .furrow_regularity = 0.6,
 		.hierarchy = 1, .bend = 0.12, .furrow_fade = 0.5, .region_sd = 0.25,
 		.direction_gain = 1.5,
@@ -210,7 +210,8 @@ static const struct texture_param params[] = {
 	{ "furrow-depth", "um", 1e-4, 0, 2000, SITES_REAL, R(furrow_depth),
 	  "median depth of a primary furrow" },
 	{ "furrow-depth-sd", "1", 1, 0, 1.5, SITES_REAL, R(furrow_depth_sd),
-	  "log-normal sigma of the depth of each furrow" },
+	  "log-normal sigma of the depth of each primary line (a third of it per "
+	  "edge) and of each finer furrow" },
 	{ "ridge-height", "um", 1e-4, 0, 1000, SITES_REAL, R(ridge_height),
 	  "dome height of the plateaus between primary furrows" },
 	{ "level-scale", "1", 1, 0.1, 0.8, SITES_REAL, R(level_scale),

@@ -1,9 +1,20 @@
-"""The detail normal map (pores and furrows) tiled at its physical size on each object."""
+"""The detail normal map (pores and furrows) tiled at its physical size on each object, and the
+relief as roughness where it is smaller than a pixel (roughness_far.png, docs/relief.md)."""
+import math
+import os
+
+import bpy
+
 from .common import UV_SIZE_PROP
 from .imageset import load_image
 
+# Where the far roughness takes over: from a primary cell (one block of roughness_far.png) over
+# FAR_NEAR_PX pixels, where the normal map still resolves it, to one over FAR_FAR_PX pixels.
+FAR_NEAR_PX = 2.0
+FAR_FAR_PX = 0.5
 
-def detail_normal(tr, m, no_detail, geo):
+
+def detail_normal(tr, m, no_detail, geo, far=False):
     """(normal, area) sockets from normal.png tiled at its physical size, or (None, None).
 
     The tiling is per object: tiles per UV unit = object["skinbake_uv_size"] [m] / tile size,
@@ -13,6 +24,7 @@ def detail_normal(tr, m, no_detail, geo):
     alone loses the light that falls on the extra area of tilted facets (a Lambert surface under
     the face maps, mean n_z 0.87, rendered 13 % dark); with it the mean irradiance is exact."""
     d = m["detail"]
+    tr.far = None
     if no_detail or d.get("flat") or not d.get("tile_mm"):
         return None, None
     img = load_image(m, "normal")
@@ -26,8 +38,94 @@ def detail_normal(tr, m, no_detail, geo):
     t = tr.tex(img, co, (-1300, -700), label="normal.png (OpenGL +Y)")
     nm = tr.node("ShaderNodeNormalMap", (-1000, -700), space="TANGENT")
     tr.link(t.outputs["Color"], nm.inputs["Color"])
+    if far:
+        _far_setup(tr, m, co, size, nm)
     nz = tr.math("MAXIMUM", tr.vmath("DOT_PRODUCT", nm.outputs["Normal"], geo.outputs["Normal"], (-800, -850)),
                  0.2, loc=(-650, -850))
     area = tr.math("DIVIDE", 1.0, nz, loc=(-500, -850))
     area.node.label = "micro-surface area 1 / n_z"
+    if tr.far is not None:        # the normal map fades out, and with it the area it loses
+        area = tr.math("MULTIPLY_ADD", tr.math("SUBTRACT", 1.0, area, loc=(-500, -1000)), tr.far[0], area,
+                       loc=(-350, -900))
     return nm.outputs["Normal"], area
+
+
+def _pixel_m_per_m():
+    """(ortho, k): the scene camera's pixel footprint, k [m] for an orthographic camera, k [m per
+    m of distance] for a perspective one; None without a camera."""
+    sc = bpy.context.scene
+    cam = sc.camera
+    if cam is None or cam.type != "CAMERA":
+        return None
+    res = sc.render.resolution_x * sc.render.resolution_percentage / 100.0
+    if cam.data.type == "ORTHO":
+        return True, cam.data.ortho_scale / res
+    return False, 2.0 * math.tan(cam.data.angle / 2.0) / res
+
+
+def _far_setup(tr, m, co, size, nm):
+    """Fade the normal map out and keep its spread as roughness where a primary cell (one block of
+    roughness_far.png) goes below a pixel: f = 0 while a block spans FAR_NEAR_PX pixels or more,
+    1 at FAR_FAR_PX and less (linear in between, in the camera's view distance for a perspective
+    camera, a constant for an orthographic one).  Sets tr.far = (f, alpha_relief) for
+    far_roughness, or None (no map in the set, no camera, or SKINBAKE_FAR=off)."""
+    if "roughness_far" not in m["files"] or os.environ.get("SKINBAKE_FAR") == "off":
+        return
+    px = _pixel_m_per_m()
+    if px is None:
+        print("skinbake: no scene camera yet, so the far roughness (roughness_far.png) is not used")
+        return
+    e = m["files"]["roughness_far"]
+    n = int(e["width"])
+    img = load_image(m, "roughness_far")
+    ft = tr.tex(img, co, (-1300, -1000), label="roughness_far.png (alpha_relief)")
+    # One block [m] = size [m per UV unit] / (tiles per UV unit) / n = tile / n.
+    block = float(m["detail"]["tile_mm"]) * 1e-3 / n
+    ortho, k = px
+    if ortho:
+        cells = block / k
+        f = min(max((FAR_NEAR_PX - cells) / (FAR_NEAR_PX - FAR_FAR_PX), 0.0), 1.0)
+        if f == 0.0:
+            return
+        fs = f
+    else:
+        cd = tr.node("ShaderNodeCameraData", (-1300, -1250))
+        mr = tr.node("ShaderNodeMapRange", (-1100, -1250), label="far: relief below a pixel")
+        mr.clamp = True
+        tr.link(cd.outputs["View Distance"], mr.inputs[0])
+        mr.inputs[1].default_value = block / (FAR_NEAR_PX * k)
+        mr.inputs[2].default_value = block / (FAR_FAR_PX * k)
+        mr.inputs[3].default_value = 0.0
+        mr.inputs[4].default_value = 1.0
+        fs = mr.outputs[0]
+    strength = tr.math("SUBTRACT", 1.0, fs, loc=(-1100, -600))
+    tr.link(strength, nm.inputs["Strength"])
+    tr.far = (fs, ft.outputs["Color"])
+
+
+def far_roughness(tr, r, loc=(-200, 600)):
+    """Perceptual roughness r (a socket or a number; GGX alpha = r^2) with the relief's spread
+    added where it is below a pixel: alpha^2 = alpha_skin^2 + f alpha_relief^2, so r' =
+    (r^4 + f alpha_relief^2)^(1/4).  r itself when the set has no far roughness."""
+    far = getattr(tr, "far", None)
+    if far is None:
+        return r
+    f, a = far
+    x, y = loc
+    r4 = tr.math("POWER", r, 4.0, loc=(x - 600, y))
+    a2 = tr.math("MULTIPLY", a, a, loc=(x - 600, y - 150))
+    fa2 = tr.math("MULTIPLY", a2, f, loc=(x - 400, y - 150))
+    tot = tr.math("ADD", r4, fa2, loc=(x - 200, y))
+    out = tr.math("POWER", tot, 0.25, loc=(x, y))
+    out.node.label = "roughness with the far relief"
+    return out
+
+
+def far_area_mean(tr, area_mean):
+    """The mean micro-area correction 1 / mean n_z of the normal map, faded with it where the far
+    roughness replaces it (a constant f: orthographic camera; with a perspective camera the
+    correction stays, at most 1 / mean n_z - 1, about 5 % on the face, too bright far away)."""
+    far = getattr(tr, "far", None)
+    if far is None or not isinstance(far[0], float):
+        return area_mean
+    return 1.0 + (1.0 - far[0]) * (area_mean - 1.0)

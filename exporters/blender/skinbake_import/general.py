@@ -10,7 +10,7 @@ import bpy
 
 from . import calibration
 from .common import say
-from .detail import detail_normal
+from .detail import detail_normal, far_area_mean, far_roughness
 from .imageset import _check_fit, load_family_image, load_image
 from .nodes import Tree, sock, stamp
 
@@ -51,7 +51,7 @@ def _general_principled(tr, m, nrm, unit_scale, no_specular, calibrate, area_mea
     elif sock(bsdf.inputs, "Specular IOR Level") is not None:      # 4.x: 0.5 = as the IOR says
         sock(bsdf.inputs, "Specular IOR Level").default_value = 0.0 if no_specular else 0.5
     rough = tr.tex(load_image(m, "roughness"), uv.outputs["UV"], (-600, 400), label="roughness.png")
-    tr.link(rough.outputs["Color"], bsdf.inputs["Roughness"])
+    tr.link(far_roughness(tr, rough.outputs["Color"]), bsdf.inputs["Roughness"])
     if nrm is not None:
         tr.link(nrm, bsdf.inputs["Normal"])
     return bsdf.outputs["BSDF"]
@@ -160,6 +160,9 @@ def _general_fit(tr, m, f, nrm, area, geo, unit_scale, no_specular, calibrate, a
         if sock(sp.inputs, "Specular") is not None:
             sp.inputs["Specular"].default_value = ((n - 1) / (n + 1)) ** 2 / 0.08
         sp.inputs["Roughness"].default_value = math.sqrt(float(f["specular_alpha"]))
+        r_far = far_roughness(tr, math.sqrt(float(f["specular_alpha"])), loc=(-700, 600))
+        if not isinstance(r_far, float):
+            tr.link(r_far, sp.inputs["Roughness"])
         add = tr.node("ShaderNodeAddShader", (100, 1200))
         tr.link(out, add.inputs[0])
         tr.link(sp.outputs["BSDF"], add.inputs[1])
@@ -177,6 +180,7 @@ def general_shader(tr, m, nrm, area, geo, unit_scale, no_specular, calibrate):
     area_mean = 1.0
     if nrm is not None and m["detail"].get("mean_normal_z"):
         area_mean = 1.0 / float(m["detail"]["mean_normal_z"])
+    area_mean = far_area_mean(tr, area_mean)
     f = m.get("general_fit_v4" if bpy.app.version >= (4, 0, 0) else "general_fit")
     if isinstance(f, dict):
         if f is m.get("general_fit_v4"):
@@ -192,7 +196,7 @@ def build_general(m, name="skinbake general", no_detail=False, no_specular=False
     tr = Tree(mat)
     out = tr.node("ShaderNodeOutputMaterial", (1600, 0))
     geo = tr.node("ShaderNodeNewGeometry", (-2300, 300))
-    nrm, area = detail_normal(tr, m, no_detail, geo)
+    nrm, area = detail_normal(tr, m, no_detail, geo, far=True)
     tr.link(general_shader(tr, m, nrm, area, geo, unit_scale, no_specular, calibrate), out.inputs["Surface"])
     stamp(mat, m, "general")
     return mat

@@ -142,9 +142,16 @@ def cmd_sphere(a):
 def _render_parser(sub):
     p = sub.add_parser("render", help="render a `skinbake export mitsuba` directory")
     p.add_argument("export", help="the directory written by skinbake export mitsuba")
-    p.add_argument("--mode", default="table", help="table or volumetric (default table)")
+    p.add_argument("--mode", default="table",
+                   help="table, volumetric or translucent (default table)")
+    p.add_argument("--fit", default=None,
+                   help="translucent mode: the directory `fit` wrote for the skin's bake")
     p.add_argument("--width", type=int, default=None, help="image width in [8, 8192] px (default the scene's)")
     p.add_argument("--spp", type=int, default=64, help="samples per pixel in [1, 1e6]")
+    p.add_argument("--seed", type=int, default=0, help="sampler seed in [0, 2^31-1] (default 0)")
+    p.add_argument("--estimator", default="exit",
+                   help="volumetric and translucent modes: exit (the light estimated through the "
+                   "rough top at every medium vertex, exitnee.py) or volpath (Mitsuba's)")
     p.add_argument("--variant", default=None, help="Mitsuba variant (default llvm_ad_rgb, else scalar_rgb)")
     p.add_argument("--out", required=True, help="output image: .exr (linear) or .png (sRGB)")
     return p
@@ -152,21 +159,66 @@ def _render_parser(sub):
 
 def cmd_render(a):
     import os
-    if a.mode not in ("table", "volumetric"):
-        raise UsageError("--mode %s is not table or volumetric" % a.mode)
+    if a.mode not in ("table", "volumetric", "translucent"):
+        raise UsageError("--mode %s is not table, volumetric or translucent" % a.mode)
+    fitted = a.fit is not None and os.path.isfile(os.path.join(a.fit, "fit.json"))
+    if a.mode == "translucent" and not fitted:
+        raise UsageError("--mode translucent needs --fit DIR with fit.json "
+                         "(python -m skinbake_mitsuba fit), "
+                         "got %s" % a.fit)
     if not os.path.isfile(os.path.join(a.export, "manifest.json")):
         raise UsageError("%s: no manifest.json there (not a skinbake export mitsuba directory)" % a.export)
     if a.width is not None:
         _int_range("--width", a.width, 8, 8192)
     _int_range("--spp", a.spp, 1, 10 ** 6)
+    _int_range("--seed", a.seed, 0, 2 ** 31 - 1)
+    if a.estimator not in ("exit", "volpath"):
+        raise UsageError("--estimator %s is not exit or volpath" % a.estimator)
     if not (a.out.endswith(".exr") or a.out.endswith(".png")):
         raise UsageError("--out %s: give a .exr or .png name" % a.out)
     from . import scene
     try:
-        seconds, used = scene.render(a.export, a.mode, a.out, a.width, a.spp, a.variant)
+        seconds, used = scene.render(a.export, a.mode, a.out, a.width, a.spp, a.variant, a.seed,
+                                     a.fit, a.estimator)
     except ValueError as e:
         raise UsageError(str(e)) from None
     sys.stderr.write("skinbake_mitsuba render: %s mode, %s, %d spp, %.1f s\n" % (a.mode, used, a.spp, seconds))
+    return 0
+
+
+def _fit_parser(sub):
+    p = sub.add_parser("fit", help="fit the translucent mode's medium to a bake's Rd(r) per "
+                       "colour channel and bake the medium's own BRDF (transfit.py)")
+    p.add_argument("--bake", required=True,
+                   help="a directory written by skinbake bake (with its radial profile)")
+    p.add_argument("--out", required=True, help="output directory (fit.json, medium.ini, medium/)")
+    p.add_argument("--skinbake", default="skinbake",
+                   help="the skinbake program (default: skinbake on PATH)")
+    p.add_argument("--photons", type=int, default=100000,
+                   help="Monte Carlo photons per profile in [1000, 1e8]")
+    return p
+
+
+def cmd_fit(a):
+    import os
+    import shutil
+    if not os.path.isfile(os.path.join(a.bake, "manifest.json")):
+        raise UsageError("--bake %s: no manifest.json there (not a bake directory)" % a.bake)
+    _int_range("--photons", a.photons, 1000, 10 ** 8)
+    if shutil.which(a.skinbake) is None:
+        raise UsageError("--skinbake %s: not an executable program" % a.skinbake)
+    if os.path.exists(a.out):
+        raise UsageError("--out %s exists (give a new directory)" % a.out)
+    from . import transfit
+    try:
+        transfit.fit(a.bake, a.out, a.skinbake, a.photons,
+                     log=lambda t: sys.stderr.write("skinbake_mitsuba fit: %s\n" % t))
+    except ValueError as e:
+        shutil.rmtree(a.out, ignore_errors=True)
+        raise UsageError(str(e)) from None
+    except BaseException:
+        shutil.rmtree(a.out, ignore_errors=True)
+        raise
     return 0
 
 
@@ -177,12 +229,14 @@ def main(argv):
     _slab_parser(sub)
     _sphere_parser(sub)
     _render_parser(sub)
+    _fit_parser(sub)
     try:
         a = parser.parse_args(argv)
         if a.command is None:
             parser.print_help(sys.stderr)
             return USAGE_ERROR
-        return {"slab": cmd_slab, "sphere": cmd_sphere, "render": cmd_render}[a.command](a)
+        cmds = {"slab": cmd_slab, "sphere": cmd_sphere, "render": cmd_render, "fit": cmd_fit}
+        return cmds[a.command](a)
     except UsageError as e:
         sys.stderr.write("skinbake_mitsuba: %s\n" % e)
         return USAGE_ERROR

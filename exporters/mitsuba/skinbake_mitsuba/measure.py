@@ -87,12 +87,16 @@ def _ring_obj(r0, r1, z, path, segments=256):
             f.write("f %d %d %d\n" % (k + 1, k1 + 1, segments + k1 + 1))
 
 
-def rd_ring(layers, r0, r1, spp=4096, batches=16, n_above=1.0, n_below=None):
+def rd_ring(layers, r0, r1, spp=4096, batches=16, n_above=1.0, n_below=None, base=None):
     """Fraction of a normal beam's power leaving between radii r0 and r1 [cm]
-    (Rsp excluded): (value, error)."""
+    (Rsp excluded): (value, error). base: a scene dict (slab and integrator)
+    to use instead of the layers' (then nothing is subtracted for Rsp)."""
     import mitsuba as mi
-    scene = {"type": "scene", "integrator": _integrator(layers)}
-    scene.update(stk.slab_shapes(layers, n_above, n_below))
+    if base is not None:
+        scene = dict(base)
+    else:
+        scene = {"type": "scene", "integrator": _integrator(layers)}
+        scene.update(stk.slab_shapes(layers, n_above, n_below))
     black = {"type": "diffuse", "reflectance": 0.0}
     emitter = {"type": "area", "radiance": {"type": "spectrum", "value": 1.0}}
     if r0 <= 0.0:
@@ -111,7 +115,7 @@ def rd_ring(layers, r0, r1, spp=4096, batches=16, n_above=1.0, n_below=None):
     finally:
         if r0 > 0.0:
             shutil.rmtree(tmp, ignore_errors=True)
-    if r0 <= 0.0:
+    if r0 <= 0.0 and base is None:
         mean -= stk.specular_rsp(layers, 0.0, n_above)
     return mean, err
 

@@ -210,7 +210,7 @@ def _shells(name, ply, centre, view_dist, bake, unit_mm, tmp, spectral, channel=
     if n_below != ns[-1]:
         _note("%s: the bake's half space below has n %.3g, not the last layer's %.3g: the innermost shell "
               "absorbs without a Fresnel boundary" % (name, n_below, ns[-1]))
-    return shapes, keep
+    return shapes, keep, (alpha, ns[0])
 
 
 def _max_depth(keep):
@@ -222,7 +222,28 @@ def _max_depth(keep):
     return stk.max_depth(layers)
 
 
-def build(export_dir, mode, width=None, spp=64, tmp=None, channel=None):
+def _translucent(name, ply, centre, bake, fitdir, unit_mm, channel):
+    """Scene-dict shape of a translucent skin (transbsdf.py, transfit.py) on mesh PLY."""
+    import mitsuba as mi
+    with open(os.path.join(fitdir, "fit.json")) as f:
+        fit = json.load(f)
+    if os.path.realpath(fit["bake"]) != os.path.realpath(bake):
+        raise ValueError("object '%s': --fit %s was fitted to the bake %s, not to its bake %s"
+                         % (name, fitdir, fit["bake"], bake))
+    ch = fit["channels"][channel]
+    unit_cm = unit_mm / 10.0
+    medium = {"type": "homogeneous", "sigma_t": float(ch["mu_t_per_cm"]) * unit_cm,
+              "albedo": float(ch["albedo"]), "phase": {"type": "isotropic"}}
+    shape = {"type": "ply", "filename": ply, "face_normals": False,
+             "to_world": mi.ScalarTransform4f().translate((-centre).tolist()),
+             "bsdf": {"type": "skinbake_translucent", "bake": bake, "fit": fitdir,
+                      "channel": channel},
+             "interior": medium}
+    return shape, (float(fit["alpha"]), float(fit["n"])), float(ch["albedo"])
+
+
+def build(export_dir, mode, width=None, spp=64, tmp=None, channel=None, estimator="exit",
+          fitdir=None):
     """The scene dict of the export in mode 'table' or 'volumetric' with the
     current variant; tmp: a directory for the shells (volumetric); channel
     (mono variants): 0, 1, 2 for R, G, B, each the bake wavelength with the
@@ -234,7 +255,8 @@ def build(export_dir, mode, width=None, spp=64, tmp=None, channel=None):
         sc = json.load(f)
     if man.get("format") != "skinbake-mitsuba":
         raise ValueError("%s is not a skinbake export mitsuba directory" % export_dir)
-    if man["mode"] not in ("both", mode):
+    # the translucent mode needs closed meshes, as the volumetric one
+    if man["mode"] not in ("both", "volumetric" if mode == "translucent" else mode):
         raise ValueError("%s was exported for mode %s, not %s" % (export_dir, man["mode"], mode))
     cam = sc["camera"]
     centre = _f(cam["look_at"])
@@ -274,6 +296,7 @@ def build(export_dir, mode, width=None, spp=64, tmp=None, channel=None):
     objs = {o["name"]: o for o in man["objects"]}
     bake_of = {}
     depth = 8
+    top = None
     for ob in sc["objects"]:
         name = ob["name"]
         mo = objs[name]
@@ -289,12 +312,20 @@ def build(export_dir, mode, width=None, spp=64, tmp=None, channel=None):
                              % (name, mat))
         if ob["shape"] == "mesh":
             ply = os.path.join(export_dir, mo["ply"])
+            if mat == "skin" and mode == "translucent":
+                shape, top, albedo = _translucent(name, ply, centre, bake, fitdir, sc["unit_mm"],
+                                                  channel)
+                scene[name] = shape
+                from . import stack as stk
+                depth = max(depth, stk.max_depth([stk.Layer(d=1.0, mua=1.0 - albedo, mus=albedo)]))
+                continue
             if mat == "skin" and mode == "volumetric":
                 spectral = None
                 if mi.is_spectral:
                     spectral = _bake_layers(bake)["wavelengths_nm"]
                 view_dist = float(np.linalg.norm(_f(cam["location"]) - centre))
-                shapes, keep = _shells(name, ply, centre, view_dist, bake, sc["unit_mm"], tmp, spectral, channel)
+                shapes, keep, top = _shells(name, ply, centre, view_dist, bake, sc["unit_mm"], tmp,
+                                            spectral, channel)
                 scene.update(shapes)
                 depth = max(depth, _max_depth(keep))
                 continue
@@ -304,8 +335,9 @@ def build(export_dir, mode, width=None, spp=64, tmp=None, channel=None):
             m = np.array(ob["to_world"])
             c = _f((m @ np.array(list(ob["center"]) + [1.0]))[:3]) - centre
             shape = {"type": "sphere", "center": c.tolist(), "radius": ob["radius"] * ob["scale"]}
-            if mat == "skin" and mode == "volumetric":
-                raise ValueError("object '%s': volumetric spheres are not written yet (meshes are)" % name)
+            if mat == "skin" and mode in ("volumetric", "translucent"):
+                raise ValueError("object '%s': %s spheres are not written yet (meshes are)"
+                                 % (name, mode))
         else:
             raise ValueError("object '%s': shape %s is not rendered by skinbake_mitsuba" % (name, ob["shape"]))
         if mat == "skin":
@@ -313,14 +345,20 @@ def build(export_dir, mode, width=None, spp=64, tmp=None, channel=None):
         else:
             shape["bsdf"] = bsdf
         scene[name] = shape
-    if mode == "volumetric":
+    layered = mode in ("volumetric", "translucent")
+    if layered and top is not None and top[0] > 0.0 and estimator == "exit":
+        # exitnee.py: the light through the rough top estimated at every medium vertex
+        scene["integrator"] = {"type": "skinbake_volpath", "max_depth": depth, "rr_depth": 1 << 30,
+                               "alpha": top[0], "eta": top[1]}
+    elif mode in ("volumetric", "translucent"):
         scene["integrator"] = {"type": "volpath", "max_depth": depth, "rr_depth": 1 << 30}
     else:
         scene["integrator"] = {"type": "path", "max_depth": 8}
     return scene
 
 
-def render(export_dir, mode, out, width=None, spp=64, variant_name=None):
+def render(export_dir, mode, out, width=None, spp=64, variant_name=None, seed=0, fitdir=None,
+           estimator="exit"):
     """Render the export to OUT (.exr: linear; .png: sRGB 8-bit); returns
     (seconds, variant). Volumetric mode renders R, G and B apart in a mono
     variant, each with its wavelength's grey media: in an rgb variant the
@@ -328,23 +366,27 @@ def render(export_dir, mode, out, width=None, spp=64, variant_name=None):
     the others by exponentials of the path length (coloured fireflies)."""
     import time
     from . import variant
-    per_channel = mode == "volumetric" and variant_name is None
+    per_channel = mode in ("volumetric", "translucent") and variant_name is None
     used = variant.choose("mono" if per_channel else "rgb", variant_name)
     import mitsuba as mi
     from . import tablebsdf
     tablebsdf.register()
+    from . import exitnee, transbsdf
+    exitnee.register()
+    transbsdf.register()
     tmp = tempfile.mkdtemp(prefix="skinbake-mitsuba-")
     try:
         t0 = time.time()
         if per_channel:
             chans = []
             for c in range(3):
-                scene = mi.load_dict(build(export_dir, mode, width, spp, tmp, channel=c))
-                chans.append(np.array(mi.render(scene, spp=spp))[..., 0])
+                scene = mi.load_dict(build(export_dir, mode, width, spp, tmp, channel=c,
+                                           fitdir=fitdir, estimator=estimator))
+                chans.append(np.array(mi.render(scene, spp=spp, seed=seed))[..., 0])
             arr = np.stack(chans, axis=-1)
         else:
             scene = mi.load_dict(build(export_dir, mode, width, spp, tmp))
-            arr = np.array(mi.render(scene, spp=spp))        # forces the (lazy) render
+            arr = np.array(mi.render(scene, spp=spp, seed=seed))   # forces the (lazy) render
         seconds = time.time() - t0
     finally:
         shutil.rmtree(tmp, ignore_errors=True)

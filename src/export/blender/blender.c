@@ -115,12 +115,17 @@ struct detail {
 	const char *tile_mm;	/* tEXt values as read, or NULL */
 	const char *hmin_um, *hmax_um;
 	uint16_t *own_height, *own_normal;	/* flat maps */
+	/* The relief as roughness for distant views (DIR/roughness_far.png of
+	 * `skinbake texture`, docs/relief.md), or NULL when the textures have none. */
+	uint16_t *far;		/* [far_n][far_n] alpha_relief * 65535 */
+	int far_n;		/* its edge [px] */
 };
 
 static void detail_free(struct detail *d)
 {
 	free(d->own_height);
 	free(d->own_normal);
+	free(d->far);
 }
 
 static void detail_use(const struct texdir *t, struct detail *d)
@@ -132,6 +137,22 @@ static void detail_use(const struct texdir *t, struct detail *d)
 	d->tile_mm = t->tile_mm_text;
 	d->hmin_um = t->h_min_text;
 	d->hmax_um = t->h_max_text;
+	/* roughness_far.png, when the texture directory has it (older ones do
+	 * not): a square 16-bit gray map, else left out. */
+	char *fp = xasprintf("%s/roughness_far.png", t->dir), *why = NULL;
+	FILE *f = fopen(fp, "rb");
+	if (f != NULL) {
+		int w, h, ch, bits;
+		fclose(f);
+		d->far = pngio_read(fp, &w, &h, &ch, &bits, &why);
+		if (d->far != NULL && (w != h || ch != 1 || bits != 16)) {
+			free(d->far);
+			d->far = NULL;
+		}
+		d->far_n = d->far != NULL ? w : 0;
+	}
+	free(why);
+	free(fp);
 }
 
 static void detail_flat(int size, struct detail *d)
@@ -331,6 +352,10 @@ static json_object *manifest_build(const struct brdf_source *m, const struct ble
 	    "height, 0 lowest .. 65535 highest (for a Bump node or displacement)"));
 	json_object_object_add(x, "normal", jfile("normal.png", d->w, d->h, "RGB", "16-bit PNG", "Non-Color",
 	    "tangent-space normal, OpenGL (+Y) convention, for a Normal Map node"));
+	if (d->far != NULL)
+		json_object_object_add(x, "roughness_far", jfile("roughness_far.png", d->far_n, d->far_n, "gray",
+		    "16-bit PNG", "Non-Color", "alpha_relief = value / 65535 per block of the tile (docs/relief.md): "
+		    "GGX alpha^2 = alpha_skin^2 + alpha_relief^2 where the relief is below a pixel"));
 	json_object_object_add(j, "files", x);
 
 	x = json_object_new_object();
@@ -474,7 +499,7 @@ struct blender_set *blender_prepare(const struct brdf_source *m, const struct bl
 }
 
 static const char *const blender_names[] = { "albedo.exr", "brdf_lut.exr", "roughness.png", "height.png",
-	"normal.png", "family_lut.exr", "family_coord.exr", "albedo_map.exr", "sss_radius_map.exr", NULL };
+	"normal.png", "roughness_far.png", "family_lut.exr", "family_coord.exr", "albedo_map.exr", "sss_radius_map.exr", NULL };
 const struct outdir_kind blender_outdir_kind = { "Blender image set", "manifest.json", "format",
 	"skinbake-blender-image-set", blender_names };
 
@@ -538,6 +563,10 @@ int blender_write_files(const struct blender_set *s, const char *dir, char **cau
 	free(path);
 	path = xasprintf("%s/normal.png", dir);
 	if (pngio_write(path, d->w, d->h, 3, 16, d->normal, 0, d->tile_mm ? 1 : 0, htext, cause) != 0)
+		goto out;
+	free(path);
+	path = d->far != NULL ? xasprintf("%s/roughness_far.png", dir) : NULL;
+	if (path != NULL && pngio_write(path, d->far_n, d->far_n, 1, 16, d->far, 0, 0, NULL, cause) != 0)
 		goto out;
 	free(path);
 	/* The manifest goes last: its presence marks a complete image set. */

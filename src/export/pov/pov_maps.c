@@ -61,6 +61,7 @@ struct pov_maps *pov_maps_open(const char *family_dir, const char *maps_dir, con
 		pm->png[a] = xasprintf("%s_%s_%s.png", base, skin, f->axis[a].key);
 	}
 	pm->ref = brdf_family_member(f, mid);
+	pm->sss_exr = xasprintf("%s_%s_sss.exr", base, skin);
 	pm->src = xcalloc((size_t)f->n_members, sizeof *pm->src);
 	for (int m = 0; m < f->n_members; m++) {
 		int idx[FAMILY_MAX_AXES], in = 1;
@@ -82,6 +83,8 @@ void pov_maps_free(struct pov_maps *pm)
 	free(pm->src);
 	for (int a = 0; a < FAMILY_MAX_AXES; a++)
 		free(pm->png[a]);
+	free(pm->sss);
+	free(pm->sss_exr);
 	mapset_free(pm->maps);
 	brdf_family_free(pm->fam);
 	free(pm);
@@ -90,7 +93,113 @@ void pov_maps_free(struct pov_maps *pm)
 struct pov_brdf pov_maps_brdf(const struct pov_maps *pm, int m)
 {
 	const struct brdf_source *b = pm->src[m];
+	if (pm->sss && pm->sss[m].on)
+		return (struct pov_brdf){ povsss_remainder, &pm->sss[m], b->n_ti, b->n_to,
+			b->theta_i, b->theta_o };
 	return (struct pov_brdf){ b->f_rgb, b->ctx, b->n_ti, b->n_to, b->theta_i, b->theta_o };
+}
+
+int pov_maps_sss_setup(struct pov_maps *pm, double *ior, char **cause)
+{
+	const struct brdf_family *f = pm->fam;
+	pm->sss = xcalloc((size_t)f->n_members, sizeof *pm->sss);
+	char **err = xcalloc((size_t)f->n_members, sizeof *err);
+	double *ior_m = xcalloc((size_t)f->n_members, sizeof *ior_m);
+	/* About 4 s of CPU per member (export/sss_fit.c): the members in parallel. */
+#pragma omp parallel for schedule(dynamic)
+	for (int m = 0; m < f->n_members; m++) {
+		if (pm->src[m] == NULL)
+			continue;
+		const struct brdf_source *b = pm->src[m];
+		struct pov_brdf t = { b->f_rgb, b->ctx, b->n_ti, b->n_to, b->theta_i, b->theta_o };
+		povsss_setup(&pm->sss[m], &t, &ior_m[m], brdf_family_member_bake(f, m), &err[m]);
+	}
+	int rc = 0;
+	for (int m = 0; m < f->n_members; m++) {
+		if (err[m] != NULL && rc == 0)
+			*cause = xasprintf("family member %d: %s", m, err[m]);
+		rc = err[m] != NULL ? -1 : rc;
+		if (pm->src[m] != NULL)
+			*ior = ior_m[m];	/* the calibration's, the same for every member */
+		free(err[m]);
+	}
+	free(err);
+	free(ior_m);
+	return rc;
+}
+
+/* Axis a's bracket at v among the nodes the maps reach: node j and the
+ * weight w of node j + 1, in t (clamped, as a blend map is). */
+static int bracket(const struct pov_maps *pm, int a, double v, double *w)
+{
+	const struct family_axis *ax = &pm->fam->axis[a];
+	int j = pm->lo_idx[a];
+	*w = 0.0;
+	if (pm->hi_idx[a] == j)
+		return j;
+	double t = family_axis_t(ax, v);
+	while (j + 1 < pm->hi_idx[a] && t > family_axis_t(ax, ax->node[j + 1]))
+		j++;
+	double t0 = family_axis_t(ax, ax->node[j]), t1 = family_axis_t(ax, ax->node[j + 1]);
+	*w = fmin(fmax((t - t0) / (t1 - t0), 0.0), 1.0);
+	return j;
+}
+
+void pov_maps_sss_at(const struct pov_maps *pm, const double *v, double colour[3],
+    double length_mm[3])
+{
+	const struct brdf_family *f = pm->fam;
+	int j[FAMILY_MAX_AXES];
+	double w[FAMILY_MAX_AXES], lnl[3] = { 0, 0, 0 };
+	for (int a = 0; a < f->n_axes; a++)
+		j[a] = bracket(pm, a, v[a], &w[a]);
+	for (int c = 0; c < 3; c++)
+		colour[c] = 0.0;
+	for (int corner = 0; corner < (1 << f->n_axes); corner++) {
+		int idx[FAMILY_MAX_AXES];
+		double wt = 1.0;
+		for (int a = 0; a < f->n_axes; a++) {
+			int up = (corner >> a) & 1;
+			idx[a] = j[a] + (up && w[a] > 0 ? 1 : 0);
+			wt *= up ? w[a] : 1.0 - w[a];
+		}
+		if (wt <= 0)
+			continue;
+		const struct sss_fit *fit = &pm->sss[brdf_family_member(f, idx)].fit;
+		for (int c = 0; c < 3; c++) {
+			colour[c] += wt * fit->colour[c];
+			lnl[c] += wt * log(fit->length_mm[c]);
+		}
+	}
+	for (int c = 0; c < 3; c++)
+		length_mm[c] = exp(lnl[c]);
+}
+
+/* The per-texel closure parameters (pov_maps_sss_at) as float OpenEXR. */
+static int write_sss_exr(const struct pov_maps *pm, const char *outdir, char **cause)
+{
+	static const char *const names[] = { "colour.R", "colour.G", "colour.B", "length_mm.R",
+		"length_mm.G", "length_mm.B" };
+	static const char *const attr[] = { "skinbake", "POV-Ray subsurface closure per texel, "
+		"interpolated between the family members as the maps blend them (docs/maps.md)" };
+	const struct mapset *m = pm->maps;
+	size_t n = (size_t)m->w * m->h;
+	struct image *im = image_new(m->w, m->h, 6, 32);
+	for (size_t i = 0; i < n; i++) {
+		double v[FAMILY_MAX_AXES], col[3], len[3];
+		for (int a = 0; a < pm->fam->n_axes; a++)
+			v[a] = m->p[a].v[i];
+		pov_maps_sss_at(pm, v, col, len);
+		for (int c = 0; c < 3; c++) {
+			im->v[i * 6 + c] = (float)col[c];
+			im->v[i * 6 + 3 + c] = (float)len[c];
+		}
+	}
+	char *path = xasprintf("%s/%s", outdir, pm->sss_exr);
+	int rc = image_write_exr(path, im, names, 1, attr, cause);
+	free(path);
+	image_free(im);
+	return rc;
 }
 
 int pov_maps_write_images(const struct pov_maps *pm, const char *outdir, char **cause)
@@ -108,29 +217,31 @@ int pov_maps_write_images(const struct pov_maps *pm, const char *outdir, char **
 		if (rc != 0)
 			return -1;
 	}
-	return 0;
+	return pm->sss ? write_sss_exr(pm, outdir, cause) : 0;
 }
+
+static void write_planar(FILE *fp, const double lo[3], const double hi[3], int uv);
 
 /* The blend over axis a at the node indices idx[a + 1 ..] given: nested
  * image_pattern pigments down to the member tables. */
-static void write_blend(FILE *fp, const char *name, const struct pov_maps *pm, int a, int *idx,
-    int depth, int top, const char *mapping)
+static void write_blend(FILE *fp, const char *name, const char *kind, const char *post,
+    const struct pov_maps *pm, int a, int *idx, int depth, int top, const char *mapping)
 {
 	const struct family_axis *ax = &pm->fam->axis[a];
-	/* A blend-map entry holds a pigment body, not `pigment { }` (pov.md). */
-	fprintf(fp, "%*s%s%simage_pattern { png \"%s\" gamma 1.0 map_type 0 interpolate 2 }\n", depth, "",
-	    top ? "pigment { " : "", top ? mapping : "", pm->png[a]);
-	fprintf(fp, "%*s  pigment_map {\n", depth, "");
+	/* A blend-map entry holds a pigment (texture) body, not `pigment { }` (pov.md). */
+	fprintf(fp, "%*s%s%s%simage_pattern { png \"%s\" gamma 1.0 map_type 0 interpolate 2 }\n",
+	    depth, "", top ? kind : "", top ? " { " : "", top ? mapping : "", pm->png[a]);
+	fprintf(fp, "%*s  %s_map {\n", depth, "", kind);
 	for (int j = pm->lo_idx[a]; j <= pm->hi_idx[a]; j++) {
 		idx[a] = j;
 		double t = family_axis_t(ax, ax->node[j]);
 		if (a == 0)
-			fprintf(fp, "%*s    [%.7f %s_M%04d]  // %s = %g\n", depth, "", t, name,
-			    brdf_family_member(pm->fam, idx), ax->key, ax->node[j]);
+			fprintf(fp, "%*s    [%.7f %s_M%04d%s]  // %s = %g\n", depth, "", t, name,
+			    brdf_family_member(pm->fam, idx), post, ax->key, ax->node[j]);
 		else {
 			fprintf(fp, "%*s    [%.7f  // %s = %g\n", depth, "", t, ax->key,
 			    ax->node[j]);
-			write_blend(fp, name, pm, a - 1, idx, depth + 6, 0, mapping);
+			write_blend(fp, name, kind, post, pm, a - 1, idx, depth + 6, 0, mapping);
 			fprintf(fp, "%*s    ]\n", depth, "");
 		}
 	}
@@ -156,7 +267,49 @@ int pov_maps_write_key(FILE *fp, const char *name, const struct pov_maps *pm,
 	}
 	int idx[FAMILY_MAX_AXES] = { 0 };
 	fprintf(fp, "#declare %s =\n", name);
-	write_blend(fp, name, pm, f->n_axes - 1, idx, 0, 1, uv ? "uv_mapping " : "");
+	write_blend(fp, name, "pigment", "", pm, f->n_axes - 1, idx, 0, 1, uv ? "uv_mapping " : "");
+	write_planar(fp, lo, hi, uv);
+	return g;
+}
+
+void pov_maps_write_sss(FILE *fp, const char *skin, const struct pov_maps *pm, int reflection,
+    const double lo[3], const double hi[3], int uv)
+{
+	const struct brdf_family *f = pm->fam;
+	for (int m = 0; m < f->n_members; m++) {
+		if (pm->src[m] == NULL)
+			continue;
+		char *nm = xasprintf("%s_M%04d", skin, m);
+		fprintf(fp, "// family member %d\n", m);
+		povsss_write(fp, nm, &pm->sss[m], reflection);
+		free(nm);
+	}
+	for (int m = 0; m < f->n_members; m++) {
+		if (pm->src[m] == NULL)
+			continue;
+		fprintf(fp, "#declare SKIN_%s_M%04d_Layered =\n", skin, m);
+		fprintf(fp, "  texture { SKIN_%s_M%04d_Subsurface }\n", skin, m);
+		fprintf(fp, "  texture { pigment { average pigment_map {\n"
+		    "    [1 SKIN_%s_Remainder_M%04d] [%d rgbt <0, 0, 0, 1>] } }\n", skin, m,
+		    POVSSS_CLEAR);
+		fprintf(fp, "    finish { SKIN_%s_Finish } }\n", skin);
+	}
+	char *name = xasprintf("SKIN_%s", skin);
+	int idx[FAMILY_MAX_AXES] = { 0 };
+	/* POV-Ray cannot layer over a patterned texture: each member's layers go into the map. */
+	fprintf(fp, "// Each member's closure under its remainder, blended by the maps as the lit\n"
+	    "// tables are; the closure's parameters per texel: %s.\n"
+	    "#declare SKIN_%s_Translucent =\n", pm->sss_exr, skin);
+	write_blend(fp, name, "texture", "_Layered", pm, f->n_axes - 1, idx, 0, 1,
+	    uv ? "uv_mapping " : "");
+	write_planar(fp, lo, hi, uv);
+	free(name);
+}
+
+/* The planar projection of the maps over the box's x-y extent, and the
+ * closing brace of the outer pigment or texture. */
+static void write_planar(FILE *fp, const double lo[3], const double hi[3], int uv)
+{
 	if (!uv) {
 		double s[3] = { hi[0] - lo[0], hi[1] - lo[1], 1 }, t[3] = { lo[0], lo[1], 0 };
 		fputs("  scale ", fp);
@@ -166,5 +319,4 @@ int pov_maps_write_key(FILE *fp, const char *name, const struct pov_maps *pm,
 		fputs("\n", fp);
 	}
 	fputs("}\n", fp);
-	return g;
 }

@@ -21,6 +21,7 @@
 #include <stdio.h>
 
 #include "export/pov/littable.h"
+#include "export/pov/povsss.h"
 #include "export/source_family.h"
 #include "maps/mapset.h"
 
@@ -33,6 +34,9 @@ struct pov_maps {
 	int ref;			/* the member at the maps' median node: stand-ins,
 					 * strategy */
 	char *png[FAMILY_MAX_AXES];	/* coordinate map file names inside the output directory */
+	struct pov_sss *sss;		/* [n_members] translucent: each member reached fitted
+					 * (povsss.h), else NULL */
+	char *sss_exr;			/* translucent: the per-texel parameters' file name */
 };
 
 /* Read family FAMILY_DIR and maps MAPS_DIR and check that they fit each
@@ -41,10 +45,33 @@ struct pov_maps {
 struct pov_maps *pov_maps_open(const char *family_dir, const char *maps_dir, const char *base,
     const char *skin, char **cause);
 void pov_maps_free(struct pov_maps *pm);	/* NULL is a no-op */
+/* Translucent (docs/maps.md, docs/translucency.md): POV-Ray's closure
+ * fitted to each member's Rd(r) the maps reach; from then on
+ * pov_maps_brdf gives each member's remainder.  *ior becomes the
+ * calibration's.  -1 and *cause (a member without a radial profile). */
+int pov_maps_sss_setup(struct pov_maps *pm, double *ior, char **cause);
+/* The per-texel closure parameters, interpolated between the members the
+ * way POV-Ray blends them (multilinear in the axis coordinates t between
+ * the neighbouring nodes; the colour linearly, the length as its log):
+ * colour[3] [-] and length_mm[3] at the axis values v[n_axes]. */
+void pov_maps_sss_at(const struct pov_maps *pm, const double *v, double colour[3],
+    double length_mm[3]);
 /* The BRDF of member m for the table writers (m reached by the maps). */
 struct pov_brdf pov_maps_brdf(const struct pov_maps *pm, int m);
-/* Write the coordinate maps into OUTDIR; -1 and *cause. */
+/* Write the coordinate maps into OUTDIR, and when translucent the per-texel
+ * parameters (pov_maps_sss_at) as float OpenEXR BASE_SKIN_sss.exr, channels
+ * colour.R/G/B [-] and length_mm.R/G/B [mm]; -1 and *cause. */
 int pov_maps_write_images(const struct pov_maps *pm, const char *outdir, char **cause);
+/* Translucent, after the members' remainder tables (pov_maps_write_key
+ * named SKIN_<skin>_Remainder) and SKIN_<skin>_Finish: per member reached
+ * `SKIN_<skin>_M<m>_Subsurface` (povsss_write) and `..._Layered` (it under
+ * its remainder, as povsss.h layers one bake), and `SKIN_<skin>_Translucent`,
+ * a texture_map blending the layered members by the maps as the lit tables
+ * are (POV-Ray cannot layer over a patterned texture; a texture_map of
+ * layered textures renders their blend: measured 0.3-1 % from the mean of
+ * the single renders). */
+void pov_maps_write_sss(FILE *fp, const char *skin, const struct pov_maps *pm, int reflection,
+    const double lo[3], const double hi[3], int uv);
 /* `#declare NAME_M<m> = pigment {...}` per member reached (littable_write_key
  * with light l and view v over [lo, hi]) and `#declare NAME = pigment {...}`
  * blending them.  uv: map by the mesh's UVs; else planar along z over the

@@ -116,12 +116,12 @@ void povinc_write(FILE *fp, const struct scene *s, const struct pov_skin *skins,
 			fputs(" reflection { 0, 1 fresnel on } conserve_energy", fp);
 		fputs(" }\n", fp);
 		fprintf(fp, "#declare SKIN_%s_Interior = interior { ior " SDL_G " }\n", sk->name, ps->ior);
-		if (ps->sss.on)
+		if (ps->sss.on && !ps->maps)
 			povsss_write(fp, sk->name, &ps->sss, sk->reflection);
 		if (st == SCENE_LIGHTS_KEY) {
 			nm = xasprintf("SKIN_%s_%s", sk->name, table);
 			int g = ps->maps ? pov_maps_write_key(fp, nm, ps->maps, &pl[0], &v, lo, hi, o->n_theta, o->n_gamma,
-			    ps->maps_uv) : littable_write_key(fp, nm, &ps->brdf, &pl[0], &v, lo, hi, o->n_theta, o->n_gamma);
+			    ps->maps_uv) : povfar_write_key(fp, nm, &ps->far, &ps->brdf, &pl[0], &v, lo, hi, o->n_theta, o->n_gamma);
 			r->n_gamma_used = g > r->n_gamma_used ? g : r->n_gamma_used;
 			free(nm);
 		} else if (st == SCENE_LIGHTS_MIXTURE) {
@@ -134,10 +134,13 @@ void povinc_write(FILE *fp, const struct scene *s, const struct pov_skin *skins,
 		if (ps->sss.on)
 			fprintf(fp, "#declare SKIN_%s_Pigment = pigment { average pigment_map { [1 SKIN_%s_Remainder] "
 			    "[%d rgbt <0, 0, 0, 1>] } }\n", sk->name, sk->name, POVSSS_CLEAR);
+		if (ps->sss.on && ps->maps)
+			pov_maps_write_sss(fp, sk->name, ps->maps, sk->reflection, lo, hi,
+			    ps->maps_uv);
 		if (st == SCENE_LIGHTS_PASSES)
 			for (int i = 0; i < s->n_lights; i++) {
 				nm = xasprintf("SKIN_%s_Pigment_%s", sk->name, s->lights[i].name);
-				int g = littable_write_key(fp, nm, &ps->brdf, &pl[i], &v, lo, hi, o->n_theta,
+				int g = povfar_write_key(fp, nm, &ps->far, &ps->brdf, &pl[i], &v, lo, hi, o->n_theta,
 				    o->n_gamma);
 				r->n_gamma_used = g > r->n_gamma_used ? g : r->n_gamma_used;
 				free(nm);

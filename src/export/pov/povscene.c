@@ -160,7 +160,10 @@ static void write_skin_texture(FILE *fp, const struct scene *s, const struct sce
     const struct pov_skin *skins, const char *pigment, const char *finish, int rest)
 {
 	const struct scene_skin *sk = &s->skins[o->skin];
-	if (o->shape == SCENE_MESH && bumped(s, skins, o)) {
+	if (skins[o->skin].sss.on && skins[o->skin].maps) {
+		/* A maps set: the members' layered textures blended (pov_maps.h); no bump map. */
+		fprintf(fp, "\n  texture { SKIN_%s_Translucent }", sk->name);
+	} else if (o->shape == SCENE_MESH && bumped(s, skins, o)) {
 		/* The per-triangle textures are in the mesh2. */
 	} else if (rest > 0) {
 		fprintf(fp, "\n  texture { average texture_map { [1 pigment { %s }", pigment);
