@@ -764,6 +764,8 @@ fi
 		echo "rough_ad_held=$(hs "$rough_ad" 3)"
 		echo "rough_ad_back=$(f5 "$rough_ad" total 9)"
 		echo "rough_ad_fwd=$(f5 "$rough_ad" total 10)"
+		all=$top_srcdir/docs/validation/fit-curet39-rough-all.tsv
+		[ -f "$all" ] && echo "rough_all=$(awk -F'\t' '/^[0-9]/ { if (m == "" || $8 < m) { m = $8; r = $10 } } END { print r }' "$all")"
 	fi
 	echo "bake_time=$bake_time"
 	echo "solver_note='$solver_note'"
