@@ -93,7 +93,7 @@ $B texture --site face --size 1024 --tile-mm 20 --furrow-depth 18 --level-gain 0
 	--out "$out/cheek" --quiet
 render scenes/showcase-closeup.scene human-pores "$out/maps-fair" --textures "$out/cheek" --nodes 9 --gamma-nodes 3
 
-# ---- translucent head lit from behind: scripts/demo-translucent.sh (another helper's) goes here,
-# ---- one line calling it with "$out" ----
+# The translucent head lit from behind the ear (issue 27), exact and translucent mode.
+sh scripts/demo-translucent.sh "$out"
 
 echo "demo.sh: done in $(($(date +%s) - t0)) s"
