@@ -6,7 +6,8 @@
 # skin's table); the face's pores and furrows (docs/relief.md).  Writes (OUT: out/demo):
 #   OUT/human-head.png     640x480, scenes/showcase-head.scene (one soft key light)
 #   OUT/complexions.png    the same head with three complexions (the same family, other maps)
-#   OUT/human-pores.png    the cheek at 0.05 mm per pixel, scenes/showcase-closeup.scene
+#   OUT/human-pores.png    the cheek at 0.05 mm per pixel, scenes/showcase-closeup.scene, with
+#                          the pores and furrows of a young cheek (docs/relief.md)
 # Run after scripts/setup.sh (it uses the binary built in this tree).
 set -eu
 cd "$(dirname "$0")/.."
@@ -25,8 +26,6 @@ fam=$out/fam
 [ -f "$fam/family.json" ] ||
 	$B bake --preset fair-oily --vary epidermis.melanin=0.004,0.02,0.06,0.16 \
 		--vary dermis.blood=0.008,0.03,0.08 --out "$fam" --quiet
-echo "== texture: the face's pores and furrows, 512 px over 10 mm"
-$B texture --site face --size 512 --tile-mm 10 --out "$out/face" --quiet
 
 # maps NAME MELANIN FRECKLES: a complexion's maps.  Dermal blood 0.02 (the presets'), lips 0.07,
 # cheeks x1.8, nose tip x1.5, ears x1.6 (assumed flush; docs/maps.md has the measured colour
@@ -87,8 +86,12 @@ done
 (cd "$out" && povray +Icomplexions.pov +Ocomplexions.png +W960 +H240 -D +A0.1 >complexions.log 2>&1) ||
 	{ echo "demo.sh: povray failed, see $out/complexions.log" >&2; exit 1; }
 echo "wrote $out/complexions.png"
-echo "== close-up of the cheek (scenes/showcase-closeup.scene)"
-render scenes/showcase-closeup.scene human-pores "$out/maps-fair" --textures "$out/face" --nodes 9 --gamma-nodes 3
+echo "== close-up of the cheek (scenes/showcase-closeup.scene), a young cheek's relief"
+# Shallower than the face site's default (primary lines 18 um, measured 25 um: the low end of
+# Hashimoto's 20-100 um), and a tile wider than the view, so that it does not repeat in it.
+$B texture --site face --size 1024 --tile-mm 20 --furrow-depth 18 --level-gain 0.2 \
+	--out "$out/cheek" --quiet
+render scenes/showcase-closeup.scene human-pores "$out/maps-fair" --textures "$out/cheek" --nodes 9 --gamma-nodes 3
 
 # ---- translucent head lit from behind: scripts/demo-translucent.sh (another helper's) goes here,
 # ---- one line calling it with "$out" ----

@@ -630,7 +630,7 @@ the freedoms it has: melanin, blood, the scattering scale, the roughness of the 
 (\`[surface] roughness\`, also the analytic lobe's α) and, separately, the roughness of the
 epidermis's top under the film (\`[epidermis] top_roughness\`: the paper's sebum smoothing a rough
 skin surface). Its preset is \`$p\` above: film top α $(sed -n 's/^roughness *= *\([0-9.]*\).*/\1/p' "$ini"), epidermis top α
-$(sed -n 's/^top_roughness *= *\([0-9.]*\).*/\1/p' "$ini") (the fit did not make the film smoother than the skin under it), $(grep -c '^[0-9]' "$log") evaluations
+$(sed -n 's/^top_roughness *= *\([0-9.]*\).*/\1/p' "$ini") ($(awk '/^roughness *=/ { t = $3 } /^top_roughness *=/ { e = $3 } END { print (t < e ? "the film'"'"'s top a little smoother than the skin under it, as the paper has it" : "the fit did not make the film smoother than the skin under it") }' "$ini")), $(grep -c '^[0-9]' "$log") evaluations
 (log: docs/validation/fit-curet39-rough-ad.tsv). Held out it is no better than the Monte Carlo
 fit with one roughness: the new freedom is spent on the 20 training points.
 
@@ -652,8 +652,9 @@ EOF
 		done
 	cat <<EOF
 
-So no fit of melanin, blood, scattering or the two roughnesses (GGX; a Beckmann lobe of the
-same α is smaller still at the worst points: its tail falls faster) can close these points,
+So no fit of melanin, blood, scattering or the two roughnesses can close these points (a
+Beckmann lobe, not selectable by a key yet, is smaller there at the fit's α, its tail falling
+faster, and of the same order at α = 1),
 and the training points (θi ≤ 33.75°) pin the α that the lobe near normal needs. At the same
 time the model is *too bright* toward grazing exit at small incidence (back-side fall and
 forward rise above CUReT's), so no single roughness serves both: what is missing is roughness
@@ -763,6 +764,8 @@ fi
 		echo "rough_ad_held=$(hs "$rough_ad" 3)"
 		echo "rough_ad_back=$(f5 "$rough_ad" total 9)"
 		echo "rough_ad_fwd=$(f5 "$rough_ad" total 10)"
+		all=$top_srcdir/docs/validation/fit-curet39-rough-all.tsv
+		[ -f "$all" ] && echo "rough_all=$(awk -F'\t' '/^[0-9]/ { if (m == "" || $8 < m) { m = $8; r = $10 } } END { print r }' "$all")"
 	fi
 	echo "bake_time=$bake_time"
 	echo "solver_note='$solver_note'"

@@ -12,7 +12,7 @@
 #    homogeneous medium with the half space's reflection transmits up to twice the layered
 #    slab's, docs/translucency.md).
 # 3. Bad input: a translucent section with a radius of 0, or without a fit for this Blender
-#    (major.minor), is refused by the importer.
+#    (major.minor), is refused by the importer; a bake without a radial profile by the export.
 # Runs on the Blender $BLENDER names (Debian's 3.4, or a bpy venv through tests/bpy-blender:
 # tests/blender_matrix.sh runs it on 4.5 and 5.0), with that version's fit from the set.
 # Paper bake (adding-doubling, Monte Carlo Rd(r)); about 1 minute per version.
@@ -117,4 +117,13 @@ check "a set without a fit for this Blender: the importer fails" \
 	test $? -ne 0 -a ! -s "$tmpd/bad2.exr"
 check "  ... naming translucent.versions" \
 	grep -q "translucent.versions has fits for Blender" "$tmpd/bad2.log"
+# ... and a bake without a radial profile: export refuses it (exit 2, naming radial.rd_r, no set).
+cp -r "$bake" "$tmpd/norad"
+python3 -c 'import json,sys; p=sys.argv[1]; m=json.load(open(p)); del m["radial"]["rd_r"]
+json.dump(m, open(p, "w"))' "$tmpd/norad/manifest.json"
+"$SKINBAKE" export blender --bake "$tmpd/norad" --out "$tmpd/noradset" --mode translucent \
+	>/dev/null 2>"$tmpd/norad.log"
+check "a bake without a radial profile: export exits 2 and writes nothing" \
+	test $? -eq 2 -a ! -e "$tmpd/noradset"
+check "  ... naming radial.rd_r" grep -q "radial.rd_r" "$tmpd/norad.log"
 tap_done

@@ -46,6 +46,8 @@ for py in $BPY_PYTHONS; do
 	runs="$runs cycles-$v"
 	eval "bpy_$(echo "$v" | tr . _)=\$py"
 done
+# SSS_PROFILE_RUNS="cycles-4.5 ..." renders only those (while developing).
+runs=${SSS_PROFILE_RUNS:-$runs}
 for r in $runs; do
 samples=800
 prof=$r bl=$BLENDER bpy=${BPY_PYTHON:-} method=random_walk
