@@ -126,11 +126,13 @@ for p in ${BENCH_PRESETS:-paper fair-oily dark-dry}; do
 	t0=$(date +%s.%N)
 	"$SKINBAKE" bake --preset "$p" --solver ad --threads 1 --out "$W/b" --quiet
 	t1=$(date +%s.%N)
-	rad=$(python3 -c "import json; r = json.load(open('$W/b/manifest.json'))['radial']; print('%.0f %%' % (100 * r['seconds'] / ($t1 - $t0)), r['photons'])")
+	rad=$(python3 -c "import json; r = json.load(open('$W/b/manifest.json'))['radial']
+print(r['photons'], '%.0f' % (100 * r['seconds'] / ($t1 - $t0)))")
 	bare=$(cpu "$SKINBAKE" bake --preset "$p" --solver ad --threads 1 --out "$W/b" --quiet \
 		--radial-photons 100 --radial-error 1)
 	est=$(python3 -c "import json; print('%.3g' % json.load(open('$W/b/manifest.json'))['result']['rms_rel_err'])")
-	echo "| $p | $full | $bare | $(awk -v a="$full" -v b="$bare" 'BEGIN { printf "%.0f %%", (a > 0 ? 100 * (a - b) / a : 0) }') | ${rad% *} | ${rad#* } | $est |"
+	share=$(awk -v a="$full" -v b="$bare" 'BEGIN { printf "%.0f %%", (a > 0 ? 100 * (a - b) / a : 0) }')
+	echo "| $p | $full | $bare | $share | ${rad#* } % | ${rad% *} | $est |"
 done
 if [ -n "${BASE_SKINBAKE:-}" ]; then
 	echo

@@ -19,7 +19,7 @@
  * wavelength gives each mean radius with its relative standard error e;
  * where e is above radial_error, that wavelength runs N ((e /
  * radial_error)^2 BAKE_RADIAL_MARGIN - 1) more photons (N the photons so
- * far; at least N / 4, at most radial_photons in all), continuing its
+ * far; at least N / 4 and at most 3 N, radial_photons in all), continuing its
  * random stream, estimated again from all of them, and so on for at most
  * BAKE_RADIAL_ROUNDS rounds.  The result carries the standard errors
  * reached.

@@ -1,27 +1,31 @@
 /* radial: a bake's Rd(r) by Monte Carlo with control variates from
  * adding-doubling, for the wavelengths whose table method gives no Rd(r).
  *
- * Every photon that leaves the top scattered also scores, for K absorption
- * shifts s_k (RADIAL_CV_SHIFTS, added to every turbid layer's mu_a), its
- * weight times exp(-s_k L), L its path length in the turbid layers (white
- * Monte Carlo, engine/wmc.h), at any radius.  The expectation of each such
- * control is the diffuse reflectance (scattered, Rsp excluded) of the stack
- * with mu_a + s_k, which adding-doubling gives (m = 0 order, RADIAL_CV_TOL).
- * The controls follow the path length, and the exit radius follows it too,
- * so the regression estimator (profile bins, and the mean radius's numerator
- * and denominator, each regressed on the controls over the batches; Glasserman,
- * Monte Carlo Methods in Financial Engineering, 2003, section 4.1) has 2.5-4x
- * less variance than the plain mean on the skin stacks.  Exact up to Monte
- * Carlo noise and adding-doubling's error in the controls' means: their
- * effect (|d mean radius / d mean_k| times each error estimate) is added in
- * quadrature to the mean radius's standard error.  Standard errors from the
- * residuals over the batches (B - K - 1 degrees of freedom).  Without a
- * usable adding-doubling solve the controls are dropped (the plain
+ * Every photon that leaves the top scattered also scores, for absorption
+ * shifts s_k (0 and 2/cm, radial.c; added to every turbid layer's mu_a),
+ * its weight times exp(-s_k L), L its path length in the turbid layers
+ * (white Monte Carlo, engine/wmc.h), at any radius.  The expectation of
+ * each such control is the scattered diffuse reflectance (Rsp excluded) of
+ * the stack with mu_a + s_k, which adding-doubling gives: for s = 0 the
+ * table's albedo (rd0), else an m = 0 solve at RADIAL_CV_TOL.  The
+ * controls follow the path length, and the exit radius follows it too, so
+ * the regression estimator (profile bins, and the mean radius's numerator
+ * and denominator, each regressed on the controls over batches of
+ * RADIAL_BATCH photons; Glasserman, Monte Carlo Methods in Financial
+ * Engineering, 2003, section 4.1) has 2.5-3.9x less variance in the mean
+ * radius than the plain mean on the skin stacks (a single ring's power
+ * gains little).  Exact up to Monte Carlo noise and adding-doubling's
+ * error in the controls' means: their effect (|d mean radius / d mean_k|
+ * times each error estimate) is added in quadrature to the mean radius's
+ * standard error.  Standard errors from the residuals over the batches
+ * (B - K - 1 degrees of freedom).  Without a usable adding-doubling solve,
+ * or with fewer than K + 9 batches, the controls are dropped (the plain
  * estimator, errors from the batches).
  *
- * Sizing as bake.h says: a pilot, then batches added until the mean
- * radius's relative standard error is within target (at most RADIAL_ROUNDS
- * rounds and `cap` photons). */
+ * Sizing as bake.h says: a pilot (at least 32 batches where the cap
+ * allows), then batches added until the mean radius's relative standard
+ * error is within target (at most `rounds` more runs, each at most 3x the
+ * batches so far, and `cap` photons in all). */
 #ifndef SKINBAKE_RADIAL_H
 #define SKINBAKE_RADIAL_H
 #include <stdint.h>
