@@ -98,39 +98,44 @@ times=$mw/times.tsv
 : >"$times"
 # VALIDATE_KEEP=1: a render already in $mw is kept, with its time from the last run
 kept() { # LIGHT RENDERER FILE
-	[ "${VALIDATE_KEEP:-0}" = 1 ] && [ -f "$3" ] && grep "^$1	$2	" "$times.old" >>"$times"
+	[ "${VALIDATE_KEEP:-0}" = 1 ] && [ -f "$3" ] &&
+		grep "^$1	$2	" "$times.old" >>"$times"
 }
 for s in front back; do
 	"$SKINBAKE" export mitsuba --scene "$mw/$s.scene" --bake "$mw/bake" --out "$mw/mts-$s" >/dev/null
 	if kept "$s" mitsuba-volumetric "$mw/$s-mitsuba-volumetric-2.exr"; then :; else
 	t0=$(date +%s)
 	for seed in 1 2; do
-		"$MTS_PY" -m skinbake_mitsuba render "$mw/mts-$s" --mode volumetric --spp $((SPP_REF / 2)) --seed $seed \
+		"$MTS_PY" -m skinbake_mitsuba render "$mw/mts-$s" --mode volumetric \
+			--spp $((SPP_REF / 2)) --seed $seed \
 			--out "$mw/$s-mitsuba-volumetric-$seed.exr" 2>"$mw/$s-volumetric-$seed.log"
 	done
-	echo "$s	mitsuba-volumetric	$(($(date +%s) - t0))	2 x $((SPP_REF / 2)) spp per channel" >>"$times"
+	sec=$(($(date +%s) - t0))
+	half=$((SPP_REF / 2))
+	echo "$s	mitsuba-volumetric	$sec	2 x $half spp per channel" >>"$times"
 	say "$s: Mitsuba volumetric, 2 x $((SPP_REF / 2)) spp, $(($(date +%s) - t0)) s"
 	fi
 	kept "$s" mitsuba-table "$mw/$s-mitsuba-table.exr" || {
 	t0=$(date +%s)
-	"$MTS_PY" -m skinbake_mitsuba render "$mw/mts-$s" --mode table --spp $SPP --out "$mw/$s-mitsuba-table.exr" \
-		2>"$mw/$s-table.log"
+	"$MTS_PY" -m skinbake_mitsuba render "$mw/mts-$s" --mode table --spp $SPP \
+		--out "$mw/$s-mitsuba-table.exr" 2>"$mw/$s-table.log"
 	echo "$s	mitsuba-table	$(($(date +%s) - t0))	$SPP spp" >>"$times"
 	say "$s: Mitsuba table, $SPP spp, $(($(date +%s) - t0)) s"
 	}
 	t0=$(date +%s)
 	if kept "$s" mitsuba-translucent "$mw/$s-mitsuba-translucent.exr"; then :
-	elif "$MTS_PY" -m skinbake_mitsuba render "$mw/mts-$s" --mode translucent --fit "$mw/fit" --spp $SPP \
-		--out "$mw/$s-mitsuba-translucent.exr" 2>"$mw/$s-translucent.log"; then
-		echo "$s	mitsuba-translucent	$(($(date +%s) - t0))	$SPP spp per channel" >>"$times"
+	elif "$MTS_PY" -m skinbake_mitsuba render "$mw/mts-$s" --mode translucent --fit "$mw/fit" \
+		--spp $SPP --out "$mw/$s-mitsuba-translucent.exr" 2>"$mw/$s-translucent.log"; then
+		sec=$(($(date +%s) - t0))
+		echo "$s	mitsuba-translucent	$sec	$SPP spp per channel" >>"$times"
 		say "$s: Mitsuba translucent, $SPP spp, $(($(date +%s) - t0)) s"
 	else
 		say "$s: Mitsuba translucent failed (see $mw/$s-translucent.log)"
 	fi
 	t0=$(date +%s)
 	if kept "$s" pov "$mw/$s-pov.png"; then :
-	elif "$SKINBAKE" export pov --scene "$mw/$s.scene" --bake "$mw/bake" --data-dir "$top_srcdir/exporters/pov" \
-		--out "$mw/pov-$s" >"$mw/pov-$s.log" 2>&1 &&
+	elif "$SKINBAKE" export pov --scene "$mw/$s.scene" --bake "$mw/bake" \
+		--data-dir "$top_srcdir/exporters/pov" --out "$mw/pov-$s" >"$mw/pov-$s.log" 2>&1 &&
 		(cd "$mw/pov-$s" && "$POVRAY" "$s.ini" +FN16 File_Gamma=1.0 -D +O"$mw/$s-pov.png" >pov.log 2>&1); then
 		echo "$s	pov	$(($(date +%s) - t0))	POV-Ray 3.7, the exporter's defaults" >>"$times"
 		say "$s: POV-Ray, $(($(date +%s) - t0)) s"
@@ -145,8 +150,9 @@ for s in front back; do
 	for m in exact general; do
 		t0=$(date +%s)
 		if kept "$s" blender-$m "$mw/$s-blender-$m.exr"; then :
-		elif BL "$mw/$s.blend" --python "$top_srcdir/exporters/blender/import_skin.py" -- "$mw/blender-set" \
-			--objects head --mode $m --scene-json "$mw/mts-$s/scene.json" --samples $SPP \
+		elif BL "$mw/$s.blend" --python "$top_srcdir/exporters/blender/import_skin.py" -- \
+			"$mw/blender-set" --objects head --mode $m \
+			--scene-json "$mw/mts-$s/scene.json" --samples $SPP \
 			--render "$mw/$s-blender-$m.exr" >>"$mw/blender-$s.log" 2>&1; then
 			ver=$(sed -n 's/^import_skin.py: .* in Blender \([0-9.]*\).*/\1/p' "$mw/blender-$s.log" | tail -1)
 			echo "$s	blender-$m	$(($(date +%s) - t0))	Blender ${ver:-?} Cycles, $SPP samples" >>"$times"
@@ -225,7 +231,8 @@ mi.Bitmap((srgb * 255 + 0.5).astype(np.uint8)).write(out)
 print("### 5b. The bridge measured: a volumetric reference on the head\n")
 print("The MakeHuman head with `paper`'s layers as participating media in shells under the mesh "
       "(Mitsuba 3's volumetric path tracer with the exit estimator, `skinbake export mitsuba`, "
-      "`python -m skinbake_mitsuba render --mode volumetric`; docs/mitsuba.md) is the reference; each "
+      "`python -m skinbake_mitsuba render --mode volumetric`; docs/mitsuba.md) is the reference; "
+      "each "
       "mode of each renderer (the baked table; Mitsuba's translucent mode) is compared with it "
       "pixel by pixel over the skin (CIEDE2000 under D65, L* = 100 at the reference's 99th-percentile "
       "green). One point light, from the front or from behind. Columns of the figure: "
@@ -237,14 +244,16 @@ for label, name, med, p95, t in rows:
     tt = "%d s (%s)" % t if t else "not run"
     print("| %s | %s | %s | %s | %s |" % (label, name, "-" if med is None else "%.2f" % med,
                                            "-" if p95 is None else "%.2f" % p95, tt))
-print("\nThe reference's own noise: its two halves (independent seeds, half the samples each) against each "
-      "other, over the same pixels; the reference is their mean, whose noise is about half of this.\n")
+print("\nThe reference's own noise: its two halves (independent seeds, half the samples each) "
+      "against each other, over the same pixels; the reference is their mean, whose noise is "
+      "about half of this.\n")
 print("| light | pixels | median dE00, seed 1 vs seed 2 | 95th percentile |")
 print("|---|---|---|---|")
 for label, med, p95, n in noise:
     print("| %s | %d | %.2f | %.2f |" % (label, n, med, p95))
-print("\nThe reference is rendered per channel (R, G, B apart, grey media of that channel's wavelength) with "
-      "the light estimated through the rough top at every medium vertex (skinbake_mitsuba/exitnee.py).")
+print("\nThe reference is rendered per channel (R, G, B apart, grey media of that channel's "
+      "wavelength) with the light estimated through the rough top at every medium vertex "
+      "(skinbake_mitsuba/exitnee.py).")
 print("\nBlender renders the mesh that the Mitsuba export placed (scripts/blender_ply_scene.py), lit and framed "
       "by the importer's `--scene-json` from the same scene file; its pixels are radiance, as Mitsuba's.")
 print("""
