@@ -7,7 +7,8 @@
 #      (its code never enters this repository; scripts/iad_time.c calls its ez_RT); without it,
 #      that part is skipped.  The whole `simulate --solver ad` command against `ad`'s command.
 #   2. `bake --preset paper` and the 16-wavelength presets by adding-doubling, with the share of
-#      the Rd(r) Monte Carlo run (the same bake with --radial-photons 100 --radial-error 1).
+#      the Rd(r) Monte Carlo run (the same bake with --radial-photons 100 --radial-error 1, and
+#      the manifest's radial.seconds); with BASE_SKINBAKE, the full bakes against the older binary.
 #   3. A small family (the two 17-point pilots and 4 members); with BASE_SKINBAKE, it (and with
 #      BENCH_FAMILY86=1 the 8 x 6 family) against the older binary: Rd(r) shared by white Monte Carlo.
 #   4. With BASE_SKINBAKE (an older binary) and valgrind: instructions (callgrind, independent of
@@ -111,18 +112,40 @@ echo
 echo "### Bakes by adding-doubling"
 echo
 echo "\`skinbake bake --preset NAME --solver ad --threads 1 --out DIR --quiet\`; \"no Rd(r)\" adds"
-echo "\`--radial-photons 100 --radial-error 1\` (the radial Monte Carlo run at its minimum), so the"
-echo "difference is the Rd(r) run's CPU time. \"estimated\" is the table's RMS error estimate."
+echo "\`--radial-photons 100 --radial-error 1\` (the radial Monte Carlo run at its minimum; it still"
+echo "makes the controls' means, one m = 0 adding-doubling solve per wavelength, bake/radial.h), so the"
+echo "difference is the Rd(r) run's Monte Carlo CPU time.  \"Rd(r) wall share\" is the manifest's"
+echo "radial.seconds over the bake's wall time in the full run (one thread, controls included)."
+echo "\"estimated\" is the table's RMS error estimate; \"photons\" the Rd(r) run's (target 2 % on the"
+echo "mean radius)."
 echo
-echo "| preset | CPU [s] | CPU no Rd(r) [s] | Rd(r) share | estimated |"
-echo "|---|---|---|---|---|"
+echo "| preset | CPU [s] | CPU no Rd(r) [s] | Rd(r) share | Rd(r) wall share | Rd(r) photons | estimated |"
+echo "|---|---|---|---|---|---|---|"
 for p in ${BENCH_PRESETS:-paper fair-oily dark-dry}; do
 	full=$(cpu "$SKINBAKE" bake --preset "$p" --solver ad --threads 1 --out "$W/b" --quiet)
+	t0=$(date +%s.%N)
+	"$SKINBAKE" bake --preset "$p" --solver ad --threads 1 --out "$W/b" --quiet
+	t1=$(date +%s.%N)
+	rad=$(python3 -c "import json; r = json.load(open('$W/b/manifest.json'))['radial']; print('%.0f %%' % (100 * r['seconds'] / ($t1 - $t0)), r['photons'])")
 	bare=$(cpu "$SKINBAKE" bake --preset "$p" --solver ad --threads 1 --out "$W/b" --quiet \
 		--radial-photons 100 --radial-error 1)
 	est=$(python3 -c "import json; print('%.3g' % json.load(open('$W/b/manifest.json'))['result']['rms_rel_err'])")
-	echo "| $p | $full | $bare | $(awk -v a="$full" -v b="$bare" 'BEGIN { printf "%.0f %%", (a > 0 ? 100 * (a - b) / a : 0) }') | $est |"
+	echo "| $p | $full | $bare | $(awk -v a="$full" -v b="$bare" 'BEGIN { printf "%.0f %%", (a > 0 ? 100 * (a - b) / a : 0) }') | ${rad% *} | ${rad#* } | $est |"
 done
+if [ -n "${BASE_SKINBAKE:-}" ]; then
+	echo
+	echo "The same full bakes by the older binary (\`$(basename "$BASE_SKINBAKE")\`), one after the other:"
+	echo
+	echo "| preset | old CPU [s] | new CPU [s] | new / old | old Rd(r) photons | new Rd(r) photons |"
+	echo "|---|---|---|---|---|---|"
+	for p in ${BENCH_PRESETS:-paper fair-oily dark-dry}; do
+		o=$(cpu "$BASE_SKINBAKE" bake --preset "$p" --solver ad --threads 1 --out "$W/bo" --quiet)
+		n=$(cpu "$SKINBAKE" bake --preset "$p" --solver ad --threads 1 --out "$W/bn" --quiet)
+		po=$(python3 -c "import json; print(json.load(open('$W/bo/manifest.json'))['radial']['photons'])")
+		pn=$(python3 -c "import json; print(json.load(open('$W/bn/manifest.json'))['radial']['photons'])")
+		echo "| $p | $o | $n | $(awk -v a="$o" -v b="$n" 'BEGIN { printf "%.2f", b / a }') | $po | $pn |"
+	done
+fi
 echo
 
 # ---- 3. family ----
@@ -173,6 +196,9 @@ if [ -n "${BASE_SKINBAKE:-}" ] && command -v valgrind >/dev/null 2>&1; then
 	SAME="AD values within 1.2e-8 relative (same-outputs.sh)"
 	row "bake --preset paper --solver ad --threads 1 --radial-photons 100 --radial-error 1" \
 		bake --preset paper --solver ad --threads 1 --quiet --radial-photons 100 --radial-error 1
+	SAME="tables identical; Rd(r) within its stated error (tests/test_radial)"
+	row "bake --preset paper --solver ad --threads 1" bake --preset paper --solver ad --threads 1 --quiet
+	row "bake --preset fair-oily --solver ad --threads 1" bake --preset fair-oily --solver ad --threads 1 --quiet
 	"$top_builddir/tests/maps_check" synth "$W/f" "$W/true" 256 256 >/dev/null
 	"$SKINBAKE" maps render-albedo --family "$W/f" --maps "$W/true" --out "$W/a.png" --quiet
 	o=$(ir "$BASE_SKINBAKE" maps fit --family "$W/f" --albedo "$W/a.png" --out "$W/m1" --quiet --threads 1)

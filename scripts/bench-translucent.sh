@@ -17,13 +17,14 @@ cat <<EOT
 ## Translucent mode (POV-Ray)
 
 The MakeHuman head at ${SIZE:-320x240} (\`scripts/render-translucent.sh\`; \`paper\`, 10 incidence
-nodes; lights mixture; POV-Ray 3.7.0.10, 2 threads), $(uname -m), load $(cut -d' ' -f1 /proc/loadavg) when
-the section was written:
+nodes; front: lights mixture, back: one light, key; POV-Ray $(povray --version 2>&1 | sed -n \
+'s/^POV-Ray \([0-9.]*[0-9]\).*/\1/p' | head -1), 2 threads), $(uname -m), load $(cut -d' ' -f1 /proc/loadavg)
+when the section was written:
 
 | shot | exact wall / CPU [s] | translucent wall / CPU [s] | CPU ratio |
 |---|---|---|---|
 | front-lit (scenes/human-head.scene) | $(t pov-front-exact 2) / $(t pov-front-exact 3) | $(t pov-front-translucent 2) / $(t pov-front-translucent 3) | $(awk -v a="$(t pov-front-exact 3)" -v b="$(t pov-front-translucent 3)" 'BEGIN { printf "%.0f", b / a }') |
-| back-lit (scenes/human-head-backlit.scene) | $(t pov-back-exact 2) / $(t pov-back-exact 3) | $(t pov-back-translucent 2) / $(t pov-back-translucent 3) | $(awk -v a="$(t pov-back-exact 3)" -v b="$(t pov-back-translucent 3)" 'BEGIN { printf "%.0f", b / a }') |
+| lit from behind the ear (scenes/human-head-earglow.scene, the demo's) | $(t pov-back-exact 2) / $(t pov-back-exact 3) | $(t pov-back-translucent 2) / $(t pov-back-translucent 3) | $(awk -v a="$(t pov-back-exact 3)" -v b="$(t pov-back-translucent 3)" 'BEGIN { printf "%.0f", b / a }') |
 
 POV-Ray's subsurface traces a sample ray and its shadow rays per pixel into a 100,000-triangle
 mesh, with adaptive antialiasing (0.3) triggered by its grain.

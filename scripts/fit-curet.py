@@ -27,6 +27,15 @@ searched by Nelder-Mead in their logarithms; with adding-doubling (no bake to
 save) all four are in one Nelder-Mead.  Each is run once with and once
 without sebum.
 
+--rough-epi (issue 21, round 3) frees the roughness of the epidermis's top
+under the film ([epidermis] top_roughness) from the film's top ([surface]
+roughness): the paper's sebum smoothing a rough skin surface.  --solver ad
+takes multiple scattering on the facets too (src/engine/ad_rough.h) and, with
+--nodes 32 (default), solves once per evaluation at a fixed quadrature.
+--evaluate INI prints a preset file's errors on the training and held-out
+points, fall and rise (adding-doubling at all 205 points); --train all fits
+every point but the 4 saturated ones (a diagnostic of the model's best).
+
 With --rough (issue 21) the roughness is also the GGX alpha of the top
 boundary in the subsurface transport ([surface] roughness): light enters and
 leaves the skin through the microfacets, so every roughness needs its own
@@ -122,7 +131,7 @@ class Model:
     def bake(self, q):
         """Bake the Monte Carlo part (cached: roughness does not enter it)."""
         key = (q["sebum"], round(q["melanin"], 7), round(q["blood"], 7), round(q["scatter"], 6),
-               round(q["alpha"], 6) if self.a.rough else 0)
+               round(q["alpha"], 6) if self.a.rough else 0, round(q.get("alpha_epi", 0.0), 6))
         if key in self.cache:
             return self.cache[key]
         d = os.path.join(self.a.out, "bake%04d" % len(self.cache))
@@ -370,8 +379,9 @@ def main():
     hdr = "eval\tsebum\tmelanin\tblood\tscatter\talpha\talpha_epi\tJ\tJ_sd\trms_rel_pct"
     print(hdr)
     if log:
-        log.write("# scripts/fit-curet.py: %d training points (CUReT theta_i %s), solver %s, bake target %g, bounds %s\n"
-                  % (len(points), "/".join("%g" % t for t in TRAIN_THETA_I), a.solver, a.target_error,
+        log.write("# scripts/fit-curet.py: %d training points (%s), solver %s, bake target %g, bounds %s\n"
+                  % (len(points), "--train all: every CUReT point but the 4 saturated ones" if a.train == "all"
+                     else "CUReT theta_i " + "/".join("%g" % t for t in TRAIN_THETA_I), a.solver, a.target_error,
                      ", ".join("%s %g-%g" % (k, v[0], v[1]) for k, v in BOUNDS.items())))
         log.write(hdr + "\n")
     k = [0]
@@ -423,7 +433,8 @@ def main():
                "RMS relative %.2f %% "
                "(J %.6f +- %.6f) on %d training points; solver %s: %d bakes or solves (%.0f s of bake time), %.0f s in all"
                % ("on" if q["sebum"] else "off", q["melanin"], q["blood"], q["scatter"], q["alpha"],
-                  q.get("alpha_epi", 0.0), 100 * math.sqrt(max(j, 0)), j, sd, len(points), a.solver, model.n_bakes, model.seconds,
+                  q.get("alpha_epi", 0.0), 100 * math.sqrt(max(j, 0)), j, sd, len(points), a.solver,
+                  model.n_bakes, model.seconds,
                   time.time() - t_start))
     print(summary)
     print(model.preset_ini(q, q["alpha"]))

@@ -7,6 +7,8 @@
 # head (back).  scripts/render-translucent-blender.sh [OUT_DIR] (default out/translucent);
 # SIZE (320x240), SAMPLES (32).  Writes OUT_DIR/blender-{front,back}-{exact,translucent,baseline}.png
 # and appends "label wall_s cpu_s" lines to OUT_DIR/times.txt.  Run after scripts/setup.sh.
+# BLENDER=tests/bpy-blender BPY_PYTHON=.venv/bin/python renders in a bpy venv instead (the
+# translucent set holds a fit per calibrated Blender; the importer takes its own).
 set -eu
 cd "$(dirname "$0")/.."
 B=${SKINBAKE:-./skinbake}
@@ -14,7 +16,8 @@ out=${1:-out/translucent}
 size=${SIZE:-320x240}
 samples=${SAMPLES:-32}
 imp=exporters/blender/import_skin.py
-BL() { blender -b -noaudio --python-exit-code 1 "$@"; }
+bl=${BLENDER:-blender}
+BL() { "$bl" -b -noaudio --python-exit-code 1 "$@"; }
 mkdir -p "$out"
 [ -f "$out/bake/manifest.json" ] || $B bake --preset paper --theta-nodes 10 --out "$out/bake" --quiet
 $B export blender --bake "$out/bake" --out "$out/bl-exact" >/dev/null
@@ -56,7 +59,7 @@ for shot in front back; do
 		fi
 		[ $shot = back ] && BL "$f.blend" --python-expr "$back" >>"$f.log" 2>&1
 		/usr/bin/time -f "blender-$shot-$mode %e %U" -a -o "$out/times.txt" \
-			blender -b -noaudio "$f.blend" -o "//blender-$shot-$mode-render_" -f 1 >>"$f.log" 2>&1
+			"$bl" -b -noaudio "$f.blend" -o "//blender-$shot-$mode-render_" -f 1 >>"$f.log" 2>&1
 		mv "$out/blender-$shot-$mode-render_0001.png" "$f.png"
 		echo "wrote $f.png"
 	done

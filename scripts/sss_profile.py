@@ -244,6 +244,11 @@ def _cycles_material(a):
         if "IOR" in node.inputs:
             node.inputs["IOR"].default_value = a.ior
     node.inputs["Color"].default_value = (*a.colour, 1.0)
+    if a.weight != 1.0:                         # the closure times WEIGHT: Mix Shader with nothing
+        mix = nt.nodes.new("ShaderNodeMixShader")
+        mix.inputs["Fac"].default_value = a.weight
+        nt.links.new(node.outputs[0], mix.inputs[2])
+        node = mix
     if a.local:                                 # the remainder's local part: a Lambertian beside it
         dif = nt.nodes.new("ShaderNodeBsdfDiffuse")
         dif.inputs["Color"].default_value = (*a.local, 1.0)
@@ -323,7 +328,8 @@ def cycles_inner(a):
     far = cycles_far(a, sc, occ) if a.far else None
     return {"far_pi_f": far, "renderer": "cycles", "version": bpy.app.version_string,
             "closure": "Subsurface Scattering node, falloff " + a.method,
-            "params": {"colour": a.colour, "radius_mm": rad, "scale": 1.0, "ior": a.ior, "samples": a.samples,
+            "params": {"colour": a.colour, "radius_mm": rad, "scale": 1.0, "weight": a.weight,
+                       "ior": a.ior, "samples": a.samples,
                        "size": a.size}, "g": g}
 
 
@@ -336,11 +342,11 @@ def cycles_far(a, sc, occ):
     cam.data.type = "ORTHO"
     cam.data.ortho_scale = 2.0
     cam.data.clip_start = 0.1
-    sc.render.resolution_x = sc.render.resolution_y = 8
+    sc.render.resolution_x = sc.render.resolution_y = a.far_size
     sun = bpy.data.objects["sun"]
     far = []
     with tempfile.TemporaryDirectory() as tmp:
-        for ti in FAR_ANGLES:
+        for ti in (FAR_ANGLES if a.far_all else FAR_ANGLES[:1]):
             for to in FAR_ANGLES:
                 li, vo = far_dirs(math.radians(ti), math.radians(to))
                 # y up in far_dirs, z up here
@@ -384,6 +390,8 @@ def parse(argv):
     p.add_argument("--radius", type=numbers, required=True, help="POV-Ray translucency / Cycles radius [mm]")
     p.add_argument("--local", type=numbers, default=None, help="R,G,B: add a Lambertian of this albedo, the "
                    "part of the power the fit leaves to the table at the entry point (sss_fit.h: local)")
+    p.add_argument("--weight", type=float, default=1.0, help="Cycles: the closure's weight in the "
+                   "material (a Mix Shader with nothing; sss_fit.h: scale)")
     p.add_argument("--method", default="random_walk", help="Cycles falloff (random_walk, random_walk_fixed, "
                    "random_walk_skin, burley)")
     p.add_argument("--ior", type=float, default=1.4)
@@ -399,6 +407,10 @@ def parse(argv):
                    "G(0) is then the diffuse transmittance over all exit directions")
     p.add_argument("--far", action="store_true", help="also the closure's far-field pi f(theta_i, theta_o) "
                    "at FAR_ANGLES (fully lit slab, orthographic camera)")
+    p.add_argument("--far-theta-i-0", dest="far_all", action="store_false",
+                   help="Cycles --far: light at theta_i = 0 only, one row of theta_o (the skin "
+                   "walk of 4.x enters Lambertian: its far field does not depend on theta_i)")
+    p.add_argument("--far-size", type=int, default=8, help="Cycles --far: image size [px]")
     p.add_argument("--json", help="write the result here (default stdout)")
     p.add_argument("--inner", action="store_true", help=argparse.SUPPRESS)
     a = p.parse_args(argv)

@@ -22,6 +22,7 @@ set -eu
 top_srcdir=${top_srcdir:-$(cd "$(dirname "$0")/.." && pwd)}
 SKINBAKE=${SKINBAKE:-./skinbake}
 BRDF_POINTS=${BRDF_POINTS:-./tests/brdf_points}
+BRDF_MODEL=${BRDF_MODEL:-$(dirname "$BRDF_POINTS")/brdf_model}
 GNUPLOT=${GNUPLOT:-gnuplot}
 [ -n "$GNUPLOT" ] || GNUPLOT=gnuplot
 THREADS=${THREADS:-0}
@@ -58,10 +59,9 @@ paperset="paper paper-literal paper-dry refstack"
 fitted=""
 "$SKINBAKE" preset show curet39 >/dev/null 2>&1 && fitted=curet39
 fitted=${VALIDATE_FITTED:-$fitted}	# for developing: a preset standing in for the fit
-# Issue 21: the fit with a rough top in the transport (section 3.4).  Monte
-# Carlo bakes of the Monte Carlo fits without next-event estimation, so at
-# their own target BAKE_TARGET_ROUGH (0.05); adding-doubling for its own fits
-# (curet39-rough-ad*).
+# Issue 21: the fit with a rough top in the transport (section 3.4), baked by
+# adding-doubling (deterministic; Monte Carlo's bakes of rough stacks have no
+# next-event estimation and took most of this section's time).
 # Not built-in presets (they did not earn one): the fits' preset files,
 # docs/validation/curet39-rough*.ini; curet39-rough is the report's.
 roughs=""
@@ -70,8 +70,6 @@ for f in "$top_srcdir"/docs/validation/curet39-rough*.ini; do
 done
 rough="" rough_ini=$top_srcdir/docs/validation/curet39-rough.ini
 [ -f "$rough_ini" ] && rough=curet39-rough
-BAKE_TARGET_ROUGH=${BAKE_TARGET_ROUGH:-0.05}
-[ "${VALIDATE_QUICK:-0}" = 1 ] && BAKE_TARGET_ROUGH=0.3
 presets="$paperset $fitted $roughs $physio"
 
 ###########################################################################
@@ -85,10 +83,9 @@ for p in $presets; do
 	# VALIDATE_REUSE=1 keeps the bakes of an earlier run (for developing the script).
 	[ "${VALIDATE_REUSE:-0}" = 1 ] && [ -f "$br/bake-$p/manifest.json" ] && continue
 	sv=$BAKE_SOLVER tg=$BAKE_TARGET src="--preset $p"
-	case " $roughs " in *" $p "*) sv=mc tg=$BAKE_TARGET_ROUGH src="--preset-file $top_srcdir/docs/validation/$p.ini" ;; esac
-	# The adding-doubling fits (fit-curet.py --solver ad) are baked by it, at a fixed
-	# 64 nodes per unit cosine (the fit's 32 are within 1.1 % of 64 at its points).
-	case $p in curet39-rough-ad*) sv=ad src="$src --ad-quad 64" ;; esac
+	# The rough fits by adding-doubling (single or multiple scattering on the facets), at a
+	# fixed 64 nodes per unit cosine (32 are within 1.1 % of 64 at the CUReT training points).
+	case " $roughs " in *" $p "*) sv=ad src="--preset-file $top_srcdir/docs/validation/$p.ini --ad-quad 64" ;; esac
 	# shellcheck disable=SC2086
 	"$SKINBAKE" bake $src --solver "$sv" --theta-nodes 8 --wavelengths 470,550,656 \
 		--out "$br/bake-$p" --batch-photons "$BAKE_BATCH" --target-error "$tg" --threads "$THREADS" --quiet
@@ -600,6 +597,84 @@ coarser relief (furrows, the sample's mounting) as a second missing effect.
 EOF
 	} >>"$br/section.md"
 fi
+# Issue 21, round 3: the adding-doubling fit (curet39-rough-ad) and why the goal is out of reach.
+rough_ad=""
+case " $roughs " in *" curet39-rough-ad "*) rough_ad=curet39-rough-ad ;; esac
+rough_ad_section() {
+	p=$rough_ad
+	ini=$top_srcdir/docs/validation/$p.ini
+	log=$top_srcdir/docs/validation/fit-curet39-rough-ad.tsv
+	all=$top_srcdir/docs/validation/fit-curet39-rough-all.tsv
+	tab=$(printf '\t')
+	# Held-out points by their share of the squared relative error.
+	awk -F'\t' -v OFS='\t' '$6 == "held" { r = ($10 - $5) / $5; print r * r, $0 }' "$br/pts-$p.tsv" |
+		sort -t"$tab" -k1,1gr >"$br/held-sorted-$p.tsv"
+	shares=$(awk -F'\t' '{ e[NR] = $1; t += $1 } END { n = NR; for (k = 1; k <= n; k++) { c += e[k]
+			if (k == 20) { s20 = c / t; r20 = 100 * sqrt((t - c) / (n - 20)) } }
+		printf "%.0f %% of the squared error is in the 20 worst of the %d held-out points; without them the RMS is %.1f %%", 100 * s20, n, r20 }' \
+		"$br/held-sorted-$p.tsv")
+	head -4 "$br/held-sorted-$p.tsv" | awk -F'\t' '{ print $3, $4, $5 }' >"$br/worst-$p.txt"
+	# The largest surface lobe any roughness gives there: the bake's analytic GGX lobe on the
+	# film (brdf_model's specular column) for alpha 0.3 .. 1.
+	for a in 0.3 0.4 0.5 0.6 0.7 0.8 0.9 1.0; do
+		"$BRDF_MODEL" --preset-file "$ini" --nodes 32 --alpha "$a" <"$br/worst-$p.txt" | cut -f3 | sed "s/^/$a$tab/"
+	done >"$br/lobes-$p.tsv"
+	cat <<EOF
+
+#### The adding-doubling fit, two rough interfaces (round 3)
+
+\`scripts/fit-curet.py --solver ad --rough --rough-epi --multiple\` fits with adding-doubling (the
+multiple scattering on the facets of \`src/engine/ad_rough.h\`; deterministic, 32 nodes per unit
+cosine, within 1.1 % of 64 at the training points, about 5 s per evaluation) and gives the model
+the freedoms it has: melanin, blood, the scattering scale, the roughness of the sebum film's top
+(\`[surface] roughness\`, also the analytic lobe's α) and, separately, the roughness of the
+epidermis's top under the film (\`[epidermis] top_roughness\`: the paper's sebum smoothing a rough
+skin surface). Its preset is \`$p\` above: film top α $(sed -n 's/^roughness *= *\([0-9.]*\).*/\1/p' "$ini"), epidermis top α
+$(sed -n 's/^top_roughness *= *\([0-9.]*\).*/\1/p' "$ini") ($(awk '/^roughness *=/ { t = $3 } /^top_roughness *=/ { e = $3 } END { print (t < e ? "the film'"'"'s top a little smoother than the skin under it, as the paper has it" : "the fit did not make the film smoother than the skin under it") }' "$ini")), $(grep -c '^[0-9]' "$log") evaluations
+(log: docs/validation/fit-curet39-rough-ad.tsv). Held out it is no better than the Monte Carlo
+fit with one roughness: the new freedom is spent on the 20 training points.
+
+**Why 8 % is out of reach for this model.** The misses are not spread evenly: $shares.
+They are the grazing geometries, θi ≈ 65-79° with θv ≈ 60-84°, mostly on the mirror side
+20-65° from the mirror direction, where the simulation is 20-56 % too low. There the measured
+skin returns 0.3-0.4 /sr; the subsurface part gives much less, and the surface reflection of a
+flat microfacet surface cannot supply the rest at any roughness: the largest analytic GGX lobe
+over α = 0.3 ... 1 at the four worst points (the film's lobe, brdf_model's specular column):
+
+| idx | θi | θv | Δφ | CUReT | simulated total | of it subsurface | surface lobe at the fit's α | largest lobe, α 0.3-1 (at α) |
+|---|---|---|---|---|---|---|---|---|
+EOF
+	head -4 "$br/held-sorted-$p.tsv" | awk -F'\t' -v OFS='\t' '{ print $2, $3, $4, $5, $6, $11, $12, $13 }' |
+		while IFS="$tab" read -r idx ti tv dp me tot dif spe; do
+			k=$(awk -v ti="$ti" -v tv="$tv" -v dp="$dp" '$1 == ti && $2 == tv && $3 == dp { print NR; exit }' "$br/worst-$p.txt")
+			best=$(awk -F'\t' -v k="$k" '(NR - 1) % 4 + 1 == k { if ($2 > m) { m = $2; a = $1 } } END { printf "%.3f (%s)", m, a }' "$br/lobes-$p.tsv")
+			printf '| %s | %.2f | %.2f | %.2f | %.3f | %.3f | %.3f | %.3f | %s |\n' "$idx" "$ti" "$tv" "$dp" "$me" "$tot" "$dif" "$spe" "$best"
+		done
+	cat <<EOF
+
+So no fit of melanin, blood, scattering or the two roughnesses can close these points (a
+Beckmann lobe, not selectable by a key yet, is smaller there at the fit's α, its tail falling
+faster, and of the same order at α = 1),
+and the training points (θi ≤ 33.75°) pin the α that the lobe near normal needs. At the same
+time the model is *too bright* toward grazing exit at small incidence (back-side fall and
+forward rise above CUReT's), so no single roughness serves both: what is missing is roughness
+at a larger scale than the facets, relief and the sample's own tilt and curvature (furrows,
+the mounted skin), which light at 78° meets at much smaller local angles, with the shadowing
+between them. The model has no such scale in its BRDF (the relief maps of docs/texture.md are
+rendered, not in the table).
+EOF
+	if [ -f "$all" ]; then
+		cat <<EOF
+
+A check of that: the same fit on every point but the 4 saturated ones (\`fit-curet.py --train
+all\`, a diagnostic, not a fit to quote as held out; log docs/validation/fit-curet39-rough-all.tsv).
+The best of its $(grep -c '^[0-9]' "$all") evaluations is $(awk -F'\t' '/^[0-9]/ { if (m == "" || $8 < m) { m = $8; l = $0 } }
+	END { split(l, f, "\t"); printf "%.1f %% RMS over the 201 points (melanin %s, blood %s, scattering scale %s, film top α %s, epidermis top α %s)", f[10], f[3], f[4], f[5], f[6], f[7] }' "$all"):
+even fitted to the held-out points themselves, this model stays above 8 %.
+EOF
+	fi
+}
+
 if [ -n "$roughs" ] && [ "$fit_ok" = 1 ]; then
 	{
 		cat <<EOF
@@ -614,9 +689,10 @@ scattering scale and the roughness (the transport's and the lobe's), the sebum f
 facet models: single scattering (Walter et al. 2007, separable Smith G; what shadowing and
 masking stop is lost and booked as \`facet_loss\`) and multiple scattering
 (\`[surface] multiple_scattering = 1\`: the random walk on the Smith microsurface of Heitz et
-al. 2016, which loses nothing). The first two fits are Monte Carlo's, baked by it at
-$BAKE_TARGET_ROUGH target RMS error; \`curet39-rough-ad\` is the adding-doubling fit below (baked by
-adding-doubling at 64 nodes per unit cosine). The preset files (docs/validation/, with the fits' logs):
+al. 2016, which loses nothing). The first two were fitted with Monte Carlo bakes,
+\`curet39-rough-ad\` by adding-doubling (below); all three are baked here by adding-doubling at 64
+nodes per unit cosine (Monte Carlo agrees within its errors, section 3.5). The preset files
+(docs/validation/, with the fits' logs):
 EOF
 		for r in $roughs; do
 			printf -- '- `%s`: `%s`\n' "$r" "$(sed 's/ *;.*//' "$top_srcdir/docs/validation/$r.ini" | grep -v '^$' | grep -v '^description' | tr '\n' ' ' | sed 's/ $//')"
@@ -649,6 +725,9 @@ beyond the critical angle. A single crossing from air into n = 1.5 loses 0.5-5.5
 table). The multiple-scattering walk returns that light (its first bounce matches the
 height-correlated single-scattering closed form in the same test).
 EOF
+		[ -n "$rough_ad" ] && rough_ad_section
+		printf '\n'
+		sed '1{/^<!--/d}' "$top_srcdir/scripts/validate-ad-rough.md"
 	} >>"$br/section.md"
 fi
 # Numbers for the last section of the report.
@@ -679,6 +758,14 @@ fi
 		echo "rough_fwd=$(f5 "$rough" total 10)"
 		echo "rough_alpha=$(sed -n 's/^roughness *= *\([0-9.]*\).*/\1/p' "$rough_ini")"
 		grep -q '^multiple_scattering *= *1' "$rough_ini" && echo "rough_facets=multiple" || echo "rough_facets=single"
+	fi
+	if [ -n "$rough_ad" ] && [ "$fit_ok" = 1 ]; then
+		echo "rough_ad_train=$(hs "$rough_ad" 2)"
+		echo "rough_ad_held=$(hs "$rough_ad" 3)"
+		echo "rough_ad_back=$(f5 "$rough_ad" total 9)"
+		echo "rough_ad_fwd=$(f5 "$rough_ad" total 10)"
+		all=$top_srcdir/docs/validation/fit-curet39-rough-all.tsv
+		[ -f "$all" ] && echo "rough_all=$(awk -F'\t' '/^[0-9]/ { if (m == "" || $8 < m) { m = $8; r = $10 } } END { print r }' "$all")"
 	fi
 	echo "bake_time=$bake_time"
 	echo "solver_note='$solver_note'"

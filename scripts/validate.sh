@@ -420,7 +420,11 @@ $( [ -n "${rough_held:-}" ] && cat <<EOR
    fitted again with melanin, blood and the scattering scale on the same $n_train points, Monte
    Carlo): $rough_train % RMS on them, **$rough_held % on the $n_held held-out points** (goal under 8 %;
    \`$fitted\` with a smooth top: $fit_held %), back-side fall **$rough_back** and forward rise
-   **$rough_fwd** (CUReT $f5_curet_total_back and $f5_curet_total_fwd), $rough_mar % against the Marschner fit.
+   **$rough_fwd** (CUReT $f5_curet_total_back and $f5_curet_total_fwd), $rough_mar % against the Marschner fit.$( [ -n "${rough_ad_held:-}" ] && printf '%s' "
+   Fitted by adding-doubling with a rough film top and a rough epidermis top (\`curet39-rough-ad\`, multiple
+   scattering on the facets): $rough_ad_train % and **$rough_ad_held %**, fall $rough_ad_back, rise $rough_ad_fwd. Why 8 % is
+   out of reach for this model (grazing points no facet roughness can reach): section 3.4.$( [ -n "${rough_all:-}" ] && printf '%s' " Even
+   fitted to every point but the 4 saturated ones (a diagnostic), it stays at $rough_all %.")")
 EOR
 )
 EOF

@@ -11,9 +11,11 @@
 #    to that thickness (light entering the deepest layer), within 20 %: TAP TODO (the walk in a
 #    homogeneous medium with the half space's reflection transmits up to twice the layered
 #    slab's, docs/translucency.md).
-# 3. Bad input: a translucent section with a radius of 0, or fitted to another Cycles version
-#    (major.minor), is refused by the importer.
-# Paper bake (adding-doubling, Monte Carlo Rd(r)); about 1 minute.
+# 3. Bad input: a translucent section with a radius of 0, or without a fit for this Blender
+#    (major.minor), is refused by the importer; a bake without a radial profile by the export.
+# Runs on the Blender $BLENDER names (Debian's 3.4, or a bpy venv through tests/bpy-blender:
+# tests/blender_matrix.sh runs it on 4.5 and 5.0), with that version's fit from the set.
+# Paper bake (adding-doubling, Monte Carlo Rd(r)); about 1 minute per version.
 . "$top_srcdir/tests/tap.sh"
 imp="$top_srcdir/exporters/blender/import_skin.py"
 PROF="$top_srcdir/scripts/sss_profile.py"
@@ -27,6 +29,9 @@ B() { timeout 600 "$BLENDER" -b --factory-startup -noaudio --python-exit-code 1 
 todo() { d=$1; why=$2; shift 2; tap_n=$((tap_n+1)); if "$@"; then echo "ok $tap_n - $d # TODO $why"; \
 	else echo "not ok $tap_n - $d # TODO $why"; fi; }
 
+blver=$(B --python-expr 'import bpy; print("BLVER %d.%d" % tuple(bpy.app.version[:2]))' \
+	2>/dev/null | sed -n 's/^BLVER //p' | head -n 1)
+echo "# Blender $blver ($BLENDER)"
 bake="$tmpd/paper"
 "$SKINBAKE" bake --preset paper --out "$bake" --quiet >"$tmpd/bake.log" 2>&1
 check "bake paper" test $? -eq 0
@@ -39,7 +44,8 @@ sys.exit(json.load(open(sys.argv[1]))["translucent"]["node"] != "ShaderNodeSubsu
 # 1. Flat skin, exact mode with the node.
 B --python "$imp" -- "$set" --mode exact --scene box --samples 256 --render "$tmpd/box.exr" >"$tmpd/box.log" 2>&1
 check "exact mode with the translucent set: import and render" test $? -eq 0
-check "  ... the importer added the subsurface node" grep -q "translucent: Cycles subsurface colour" "$tmpd/box.log"
+check "  ... the importer added this Blender's fitted node" \
+	grep -q "translucent: Cycles $blver" "$tmpd/box.log"
 r=$(python3 - "$SKINBAKE" "$bake" "$set/manifest.json" "$tmpd/box.log" <<'PY'
 import json, math, subprocess, sys
 skinbake, bake, man, log = sys.argv[1:5]
@@ -65,8 +71,11 @@ check "flat skin within 1 % of eval per channel (${r% *})" test "${r##* }" = 1
 # 2. Back light through slabs of 1, 2 and 4 mm (the node alone: the rest of the table is a
 # surface BRDF and adds nothing behind).
 args=$(python3 -c 'import json,sys; t=json.load(open(sys.argv[1]))["translucent"]
-print("--colour " + ",".join("%.6g" % x for x in t["colour"]) + " --radius " + ",".join("%.6g" % (x * 1e3) for x in t["radius_m"]))' \
-	"$set/manifest.json")
+v = [v for v in t["versions"] if v["blender"] == sys.argv[2]][0]
+print("--colour " + ",".join("%.6g" % x for x in v["colour"]) + " --radius "
+      + ",".join("%.6g" % (x * 1e3) for x in v["radius_m"])
+      + " --method " + v["falloff"].lower())' \
+	"$set/manifest.json" "$blver")
 for d in 1 2 4; do
 	# shellcheck disable=SC2086
 	BLENDER="$BLENDER" python3 "$PROF" cycles $args --edges 0 --back --depth $d --samples 64 \
@@ -90,16 +99,31 @@ done
 
 # 3. Bad input: the importer refuses a translucent section with a radius of 0.
 cp -r "$set" "$tmpd/bad"
-python3 -c 'import json,sys; p=sys.argv[1]; m=json.load(open(p)); m["translucent"]["radius_m"][0] = 0; json.dump(m, open(p, "w"))' \
-	"$tmpd/bad/manifest.json"
+python3 -c 'import json,sys; p=sys.argv[1]; m=json.load(open(p))
+for v in m["translucent"]["versions"]: v["radius_m"][0] = 0
+json.dump(m, open(p, "w"))' "$tmpd/bad/manifest.json"
 B --python "$imp" -- "$tmpd/bad" --mode exact --scene box --samples 1 --render "$tmpd/bad.exr" >"$tmpd/bad.log" 2>&1
 check "a translucent radius of 0: the importer fails" test $? -ne 0 -a ! -s "$tmpd/bad.exr"
-check "  ... naming translucent.radius_m" grep -q "translucent.radius_m" "$tmpd/bad.log"
-# ... and a set calibrated on another Cycles (Blender 5.0.1 rendered the 3.4.1 fit 12 % dark).
+check "  ... naming translucent.versions[$blver].radius_m" \
+	grep -q "translucent.versions\[$blver\].radius_m" "$tmpd/bad.log"
+# ... and a set without a fit for this Blender (5.0.1 rendered the 3.4.1 fit 12 % dark).
 cp -r "$set" "$tmpd/bad2"
-python3 -c 'import json,sys; p=sys.argv[1]; m=json.load(open(p)); m["translucent"]["version"] = "2.79"; json.dump(m, open(p, "w"))' \
-	"$tmpd/bad2/manifest.json"
+python3 -c 'import json,sys; p=sys.argv[1]; m=json.load(open(p))
+t = m["translucent"]
+t["versions"] = [v for v in t["versions"] if v["blender"] != sys.argv[2]]
+json.dump(m, open(p, "w"))' "$tmpd/bad2/manifest.json" "$blver"
 B --python "$imp" -- "$tmpd/bad2" --mode exact --scene box --samples 1 --render "$tmpd/bad2.exr" >"$tmpd/bad2.log" 2>&1
-check "a set fitted to another Cycles version: the importer fails" test $? -ne 0 -a ! -s "$tmpd/bad2.exr"
-check "  ... naming translucent.version" grep -q "translucent.version = '2.79'" "$tmpd/bad2.log"
+check "a set without a fit for this Blender: the importer fails" \
+	test $? -ne 0 -a ! -s "$tmpd/bad2.exr"
+check "  ... naming translucent.versions" \
+	grep -q "translucent.versions has fits for Blender" "$tmpd/bad2.log"
+# ... and a bake without a radial profile: export refuses it (exit 2, naming radial.rd_r, no set).
+cp -r "$bake" "$tmpd/norad"
+python3 -c 'import json,sys; p=sys.argv[1]; m=json.load(open(p)); del m["radial"]["rd_r"]
+json.dump(m, open(p, "w"))' "$tmpd/norad/manifest.json"
+"$SKINBAKE" export blender --bake "$tmpd/norad" --out "$tmpd/noradset" --mode translucent \
+	>/dev/null 2>"$tmpd/norad.log"
+check "a bake without a radial profile: export exits 2 and writes nothing" \
+	test $? -eq 2 -a ! -e "$tmpd/noradset"
+check "  ... naming radial.rd_r" grep -q "radial.rd_r" "$tmpd/norad.log"
 tap_done

@@ -97,6 +97,8 @@ m = json.load(open(bake + "/manifest.json"))
 sim = slab_tt_rgb(skinbake, m, d_mm)
 w = m["rgb"]["rgb_from_wl"]
 ren = json.load(open(prof))["g"][0]
+fit = json.load(open(os.path.join(os.path.dirname(prof), "fit.json")))
+closure = [row[1:] for row in fit["closure_beyond"] if row[0] == d_mm][0]
 ratio = [r / s if s > 1e-4 else 1.0 for r, s in zip(ren, sim)]
 # The bake's own reflected power beyond r = d: POV-Ray's dipole lights the exit point from the
 # back face at distances >= d with the half-space profile, so a closure fitted to the reflection
@@ -106,7 +108,9 @@ tail = [sum(sum(w[c][j] * rd[j][k] for j in range(len(rd))) * 0.01 * 3.141592653
             (((k + 1) * dr) ** 2 - max(k * dr, d_mm) ** 2) for k in range(len(rd[0])) if (k + 1) * dr > d_mm)
         for c in range(3)]
 print(" ".join("%.4g/%.4g" % (r, s) for r, s in zip(ren, sim)), "; the bake's reflected power beyond d:",
-      " ".join("%.3g" % x for x in tail), int(all(abs(x - 1) <= 0.2 for x in ratio)))
+      " ".join("%.3g" % x for x in tail), "; render / the fitted closure's own G(d):",
+      " ".join("%.2f" % (r / g) if g > 1e-5 else "-" for r, g in zip(ren, closure)),
+      int(all(abs(x - 1) <= 0.2 for x in ratio)))
 PY
 )
 	echo "# back light $d mm: rendered/simulated Tt per R, G, B (below 1e-4 not compared): ${r% *}"

@@ -15,7 +15,9 @@
 # closure's measured shape, the check is a TAP TODO: one closure cannot
 # follow that profile, docs/translucency.md).  A bake without a radial profile and a renderer without a
 # calibration exit 2 with a message.  About 20 small renders per preset and
-# renderer (POV-Ray about 1 s each, Cycles at 32 samples 2 s).
+# renderer (POV-Ray about 1 s each, Cycles at 32 samples 2 s).  Cycles also in
+# each bpy venv of $BPY_PYTHONS (4.5 LTS, 5.0: "Random Walk (Skin)", their own
+# calibrations tests/data/sss_calib/cycles-M.N.json) through tests/bpy-blender.
 . "$top_srcdir/tests/tap.sh"
 B="$SKINBAKE"
 FIT="$top_builddir/tests/sss_fit_print"
@@ -35,9 +37,25 @@ for p in paper fair-dry dark-dry; do
 	"$B" bake --preset "$p" --out "$tmpd/$p" --quiet >"$tmpd/bake.log" 2>&1
 	check "$p: bake" test $? -eq 0
 done
-for r in pov cycles; do
+runs="pov cycles"
+for py in $BPY_PYTHONS; do
+	[ -x "$py" ] || continue
+	v=$(timeout 120 "$py" -c "import bpy; print('V %d.%d' % tuple(bpy.app.version[:2]))" \
+		2>/dev/null | sed -n 's/^V //p')
+	[ -n "$v" ] || continue
+	runs="$runs cycles-$v"
+	eval "bpy_$(echo "$v" | tr . _)=\$py"
+done
+# SSS_PROFILE_RUNS="cycles-4.5 ..." renders only those (while developing).
+runs=${SSS_PROFILE_RUNS:-$runs}
+for r in $runs; do
 samples=800
-[ $r = cycles ] && samples=32
+prof=$r bl=$BLENDER bpy=${BPY_PYTHON:-} method=random_walk
+case $r in
+cycles) samples=32 ;;
+cycles-*) samples=32 prof=cycles bl="$top_srcdir/tests/bpy-blender" method=random_walk_skin
+	eval "bpy=\$bpy_$(echo "${r#cycles-}" | tr . _)" ;;
+esac
 for p in paper fair-dry dark-dry; do
 	scale=1
 	[ $r = pov ] && scale=0.999	# the exporter's layering shows POV-Ray's closure at 0.999
@@ -49,7 +67,8 @@ print("--colour " + ",".join("%.6g" % x for x in f["colour"]) + " --radius " + "
       + " --local " + ",".join("%.6g" % x for x in f["local"])
       + " --edges " + ",".join("%.6g" % r[0] for r in f["bake_rings"]) + ",%.6g" % f["bake_rings"][-1][1])' "$tmpd/$p.fit")
 	# shellcheck disable=SC2086
-	BLENDER="$BLENDER" python3 "$PROF" $r $args --samples $samples --json "$tmpd/$p.prof" 2>"$tmpd/prof.log"
+	BLENDER="$bl" BPY_PYTHON="$bpy" python3 "$PROF" $prof $args --method $method \
+		--samples $samples --json "$tmpd/$p.prof" 2>"$tmpd/prof.log"
 	check "$r $p: the renderer renders the fitted slab" test -s "$tmpd/$p.prof"
 	python3 - "$tmpd/$p.fit" "$tmpd/$p.prof" >"$tmpd/cmp.txt" <<'PY'
 import json, math, sys

@@ -12,6 +12,7 @@
 #include "base/check.h"
 #include "base/util.h"
 #include "bake/checkpoint.h"
+#include "bake/radial.h"
 #include "engine/ad_solver.h"
 #include "engine/mc.h"
 #include "engine/solvers.h"
@@ -107,46 +108,6 @@ static int fallback_mc(const struct bake_spec *s, const struct solver_problem *p
 	return 0;
 }
 
-/* Rd(r) at theta_i[0] by Monte Carlo with `photons` per wavelength, for
- * the n wavelengths w[] (random streams stream0 + i), into r's entries:
- * with have == NULL in place of what they hold, else merged with the
- * have[i] photons' profile they hold (means weighted by photons, standard
- * errors of independent runs), have[i] then counting the new photons too. */
-static int radial_run(const struct bake_spec *s, const struct solver_problem *p, const struct solver_run *run,
-    const int *w, int n, long photons, uint32_t stream0, long *have, struct bake_result *r,
-    char **cause)
-{
-	struct mc_settings mc;
-	mc_from_spec(s, &mc);
-	mc.nee = 0;
-	mc.batch_photons = (photons + BAKE_RADIAL_BATCHES - 1) / BAKE_RADIAL_BATCHES;
-	mc.min_batches = BAKE_RADIAL_BATCHES;
-	mc.max_photons = (long)n * BAKE_RADIAL_BATCHES * mc.batch_photons;
-	mc.stream0 = stream0;
-	struct solver_problem q = *p;
-	q.n_ti = 1;
-	q.grid.n_theta = q.grid.n_phi = 1;
-	q.target_error = 0.0;
-	struct brdf_table t;
-	if (solve_part(&mc_solver, &mc, &q, run, w, n, &t, cause) != 0)
-		return -1;
-	long got = BAKE_RADIAL_BATCHES * mc.batch_photons;
-	for (int i = 0; i < n; i++) {
-		struct brdf_entry *e = &r->table.entry[w[i] * s->n_ti];
-		double fa = have ? (double)have[i] / (double)(have[i] + got) : 0.0, fb = 1.0 - fa;
-		for (int k = 0; k < s->n_r; k++) {
-			e->rd_r[k] = fa * e->rd_r[k] + fb * t.entry[i].rd_r[k];
-			e->rd_r_err[k] = hypot(fa * e->rd_r_err[k], fb * t.entry[i].rd_r_err[k]);
-		}
-		if (have)
-			have[i] += got;
-	}
-	r->radial_photons += t.photons;
-	r->radial_seconds += t.seconds;
-	brdf_table_free(&t);
-	return 0;
-}
-
 /* Copy the given profiles (bake_spec.radial_given) among the n wavelengths
  * w[]; returns how many are left, compacted in w[]. */
 static int take_given(const struct bake_spec *s, struct bake_result *r, int *w, int n)
@@ -172,49 +133,41 @@ static int take_given(const struct bake_spec *s, struct bake_result *r, int *w, 
 	return left;
 }
 
-/* The relative standard error of the mean radius of entry e. */
-static double radial_rel(const struct bake_spec *s, const struct brdf_entry *e)
-{
-	double m = tally_mean_radius(e->rd_r, s->n_r, s->dr);
-	return m > 0.0 ? tally_mean_radius_err(e->rd_r, e->rd_r_err, s->n_r, s->dr) / m : 0.0;
-}
-
-/* Rd(r) for the wavelengths whose method gave none: a pilot, then more
- * photons added to it for the wavelengths whose mean radius is not yet
- * within radial_error, in up to BAKE_RADIAL_ROUNDS rounds (bake.h). */
+/* Rd(r) for the wavelengths whose method gave none (bake.h, radial.h), one
+ * after the other (random streams by wavelength). */
 static int radial_mc(const struct bake_spec *s, const struct solver_problem *p, const struct solver_run *run,
     struct bake_result *r, char **cause)
 {
+	(void)cause;
 	int w[BAKE_MAX_WL], n = pick(s, &r->table, no_radial, w);
 	if (n == 0 || s->n_r <= 0)
 		return 0;
 	n = take_given(s, r, w, n);
 	if (n == 0)
 		return 0;
-	double target = s->radial_error > 0.0 ? s->radial_error : BAKE_RADIAL_ERROR;
 	long cap = s->radial_photons > 0 ? s->radial_photons : BAKE_RADIAL_PHOTONS;
-	long pilot = cap < BAKE_RADIAL_PILOT ? cap : BAKE_RADIAL_PILOT;
-	if (radial_run(s, p, run, w, n, pilot, 0, NULL, r, cause) != 0)
-		return -1;
+	struct radial_spec sp = {
+		.theta_in = p->theta_i[0], .opts = &s->opts, .n_r = s->n_r, .dr = s->dr,
+		.target = s->radial_error > 0.0 ? s->radial_error : BAKE_RADIAL_ERROR,
+		.pilot = cap < BAKE_RADIAL_PILOT ? cap : BAKE_RADIAL_PILOT, .cap = cap,
+		.margin = BAKE_RADIAL_MARGIN, .rounds = BAKE_RADIAL_ROUNDS, .seed = s->seed,
+		.threads = run->threads,
+	};
+	if (r->radial_err_cm == NULL)
+		r->radial_err_cm = xcalloc((size_t)s->n_wl, sizeof *r->radial_err_cm);
 	for (int i = 0; i < n; i++) {
-		const struct brdf_entry *e = &r->table.entry[w[i] * s->n_ti];
-		const long nb = BAKE_RADIAL_BATCHES;
-		long have = (pilot + nb - 1) / nb * nb;
-		for (int round = 1; round <= BAKE_RADIAL_ROUNDS; round++) {
-			double rel = radial_rel(s, e);
-			if (rel <= target || have >= cap)
-				break;
-			double q = rel / target;
-			double want = (double)have * (q * q * BAKE_RADIAL_MARGIN - 1.0);
-			long add = pilot / 2;
-			if (want > (double)add)
-				add = (long)ceil(fmin(want, 1e15));
-			if (add > cap - have)
-				add = cap - have;
-			uint32_t stream = (uint32_t)(round * n + i);
-			if (radial_run(s, p, run, &w[i], 1, add, stream, &have, r, cause) != 0)
-				return -1;
-		}
+		struct brdf_entry *e = &r->table.entry[w[i] * s->n_ti];
+		sp.slab = &p->slab[w[i]];
+		sp.stream = (uint32_t)w[i];
+		sp.rd0 = e->albedo.v;
+		sp.rd0_err = e->albedo.err;
+		struct radial_out o = { .rd_r = e->rd_r, .rd_r_err = e->rd_r_err };
+		radial_solve(&sp, &o);
+		r->radial_err_cm[w[i]] = o.mean_radius_err_cm;
+		r->radial_photons += o.photons;
+		r->radial_seconds += o.seconds;
+		if (r->radial_controls == 0 || o.controls < r->radial_controls)
+			r->radial_controls = o.controls;
 	}
 	return 0;
 }
@@ -440,7 +393,11 @@ static int bake_solve_p(const struct bake_spec *s, const struct solver_problem *
 		specular_stack_of_slab(&s->slab[w], s->opts.fresnel, &r->stack[w]);
 		const struct brdf_entry *e = &r->table.entry[w * s->n_ti];
 		r->mean_radius_cm[w] = tally_mean_radius(e->rd_r, s->n_r, s->dr);
-		r->mean_radius_err_cm[w] = tally_mean_radius_err(e->rd_r, e->rd_r_err, s->n_r, s->dr);
+		if (r->radial_err_cm && r->radial_err_cm[w] > 0.0)
+			r->mean_radius_err_cm[w] = r->radial_err_cm[w];
+		else
+			r->mean_radius_err_cm[w] =
+			    tally_mean_radius_err(e->rd_r, e->rd_r_err, s->n_r, s->dr);
 	}
 	return 0;
 }
@@ -455,6 +412,7 @@ void bake_result_free(struct bake_result *r)
 	free(r->stack);
 	free(r->mean_radius_cm);
 	free(r->mean_radius_err_cm);
+	free(r->radial_err_cm);
 	free(r->notes);
 	memset(r, 0, sizeof *r);
 }

@@ -14,15 +14,15 @@
  * cause.  Adding-doubling has no radial profile: Rd(r) (and the mean exit
  * radius behind a renderer's subsurface radius) then comes from a separate
  * Monte Carlo run per wavelength at theta_i[0] (exit bins by escapes on a
- * 1 x 1 grid, BAKE_RADIAL_BATCHES batches per run): a pilot of
- * BAKE_RADIAL_PILOT photons per wavelength gives each mean radius with its
- * relative standard error e; where e is above radial_error, that wavelength
- * runs N ((e / radial_error)^2 BAKE_RADIAL_MARGIN - 1) more photons (N the
- * photons so far; at least BAKE_RADIAL_PILOT / 2, at most radial_photons
- * in all; other random streams), merged with what it has (profiles
- * weighted by photons, standard errors of independent runs), and so on for
- * at most BAKE_RADIAL_ROUNDS rounds.  The result carries the standard
- * errors reached.
+ * 1 x 1 grid, bake/radial.h: a regression on control variates whose means
+ * adding-doubling gives): a pilot of BAKE_RADIAL_PILOT photons per
+ * wavelength gives each mean radius with its relative standard error e;
+ * where e is above radial_error, that wavelength runs N ((e /
+ * radial_error)^2 BAKE_RADIAL_MARGIN - 1) more photons (N the photons so
+ * far; at least N / 4, at most radial_photons in all), continuing its
+ * random stream, estimated again from all of them, and so on for at most
+ * BAKE_RADIAL_ROUNDS rounds.  The result carries the standard errors
+ * reached.
  *
  * A solver runs in steps whose state can be saved between them
  * (engine/solver.h), for checkpoints; a family of bakes (one preset varied
@@ -41,7 +41,6 @@
 #define BAKE_RADIAL_PILOT 2000		/* photons per wavelength of the Rd(r) pilot */
 #define BAKE_RADIAL_ERROR 0.02		/* default radial_error */
 #define BAKE_RADIAL_PHOTONS 1000000	/* default radial_photons */
-#define BAKE_RADIAL_BATCHES 16		/* batches of each Rd(r) run (its standard errors) */
 #define BAKE_RADIAL_ROUNDS 4		/* Rd(r) runs added to the pilot at most */
 #define BAKE_RADIAL_MARGIN 1.1		/* photons over the estimate of those needed */
 
@@ -138,6 +137,11 @@ struct bake_result {
 	double *mean_radius_err_cm;	/* [n_wl] its standard error [cm] (tally_mean_radius_err) */
 	long radial_photons;		/* photons of the separate Rd(r) run (0 when the table's method gave it) */
 	double radial_seconds;		/* its wall time [s] */
+	double *radial_err_cm;		/* [n_wl] the separate Rd(r) run's mean radius standard
+					 * error (from its batches, bake/radial.h; 0 or NULL: from
+					 * the bins) */
+	int radial_controls;		/* control variates of that run (the fewest of any
+					 * wavelength) */
 	int radial_shared;		/* > 0: Rd(r) came from white Monte Carlo runs shared by this many
 					 * family members (radial_photons, radial_seconds are those runs') */
 };

@@ -37,8 +37,10 @@ void tally_alloc(struct tally *t, const struct tally_grid *g)
 	memset(t, 0, sizeof *t);
 	t->exit = xcalloc((size_t)g->n_theta * (size_t)g->n_phi, sizeof *t->exit);
 	t->radial = xcalloc((size_t)(g->n_r > 0 ? g->n_r : 1), sizeof *t->radial);
-	if (g->var && g->n_r > 0)
+	if (g->var && g->n_r > 0) {
 		t->radial_var = xcalloc((size_t)g->var->n * (size_t)g->n_r, sizeof *t->radial_var);
+		t->var_total = xcalloc((size_t)g->var->n, sizeof *t->var_total);
+	}
 }
 
 void tally_free(struct tally *t)
@@ -46,20 +48,24 @@ void tally_free(struct tally *t)
 	free(t->exit);
 	free(t->radial);
 	free(t->radial_var);
-	t->exit = t->radial = t->radial_var = NULL;
+	free(t->var_total);
+	t->exit = t->radial = t->radial_var = t->var_total = NULL;
 }
 
 void tally_zero(struct tally *t, const struct tally_grid *g)
 {
-	double *e = t->exit, *r = t->radial, *rv = t->radial_var;
+	double *e = t->exit, *r = t->radial, *rv = t->radial_var, *vt = t->var_total;
 	memset(t, 0, sizeof *t);
 	t->exit = e;
 	t->radial = r;
 	t->radial_var = rv;
+	t->var_total = vt;
 	memset(e, 0, sizeof *e * (size_t)g->n_theta * (size_t)g->n_phi);
 	memset(r, 0, sizeof *r * (size_t)(g->n_r > 0 ? g->n_r : 1));
 	if (rv)
 		memset(rv, 0, sizeof *rv * (size_t)g->var->n * (size_t)g->n_r);
+	if (vt)
+		memset(vt, 0, sizeof *vt * (size_t)g->var->n);
 }
 
 void tally_add(struct tally *dst, const struct tally *src, const struct tally_grid *g)
@@ -81,6 +87,9 @@ void tally_add(struct tally *dst, const struct tally *src, const struct tally_gr
 	if (dst->radial_var && src->radial_var)
 		for (long i = 0; i < (long)g->var->n * g->n_r; i++)
 			dst->radial_var[i] += src->radial_var[i];
+	if (dst->var_total && src->var_total)
+		for (int i = 0; i < g->var->n; i++)
+			dst->var_total[i] += src->var_total[i];
 }
 
 double tally_cos_omega(double t0, double t1, double dphi)

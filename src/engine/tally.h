@@ -43,6 +43,8 @@ struct tally {
 	double *radial;		/* [n_r] weight leaving the top by exit radius */
 	double *radial_var;	/* [var->n * n_r] the same per variant (grid.var), reweighted;
 				 * NULL without */
+	double *var_total;	/* [var->n] each variant's reweighted scattered weight leaving the
+				 * top at any radius (the bins' and beyond); NULL without */
 };
 
 /* Allocate zeroed arrays for grid (caller frees with tally_free). */

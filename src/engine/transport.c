@@ -57,9 +57,9 @@ void transport_launch(const struct slab *s, double theta_in, enum optics_fresnel
 	ln->uz = sqrt(fmax(0.0, 1.0 - st * st));
 }
 
-/* White Monte Carlo (tally.h): the escape at radial bin ir for every
- * absorption variant, its weight times exp(-sum dmua L) over the path
- * lengths path[] [cm] per layer. */
+/* White Monte Carlo (tally.h): the escape at radial bin ir (-1: beyond
+ * the bins) for every absorption variant, its weight times
+ * exp(-sum dmua L) over the path lengths path[] [cm] per layer. */
 static void score_variants(const struct tally_grid *g, struct tally *t, double w,
     const double *path, long ir)
 {
@@ -69,7 +69,10 @@ static void score_variants(const struct tally_grid *g, struct tally *t, double w
 		double tau = 0.0;
 		for (int l = 0; l < NS; l++)
 			tau += d[l] * path[l];
-		t->radial_var[(size_t)v * (size_t)g->n_r + (size_t)ir] += w * exp(-tau);
+		double wv = w * exp(-tau);
+		t->var_total[v] += wv;
+		if (ir >= 0)
+			t->radial_var[(size_t)v * (size_t)g->n_r + (size_t)ir] += wv;
 	}
 }
 
@@ -88,8 +91,8 @@ static inline void score_top(const struct tally_grid *g, struct tally *t, double
 		long ir = (long)(r / g->dr);
 		if (ir < g->n_r)
 			t->radial[ir] += w;
-		if (ir < g->n_r && t->radial_var)
-			score_variants(g, t, w, path, ir);
+		if (t->radial_var)
+			score_variants(g, t, w, path, ir < g->n_r ? ir : -1);
 	}
 	if (!bin)
 		return;

@@ -97,3 +97,33 @@ void wmc_radial_free(struct wmc_radial *w)
 	free(w->rd_r_err);
 	w->rd_r = w->rd_r_err = NULL;
 }
+
+void wmc_batches(const struct slab *ref, const double *dmua, int n_var, double theta_in,
+    const struct transport_opts *o, int n_r, double dr, long bp, int b0, int nb, uint64_t seed,
+    uint32_t stream, int threads, double *prof, double *tot)
+{
+	CHECK(n_var >= 1 && n_r >= 1 && bp >= 1 && nb >= 1 && b0 >= 0);
+	struct tally_variants var = { .n = n_var, .dmua = dmua };
+	struct tally_grid g = { .n_theta = 1, .n_phi = 1, .n_r = n_r, .dr = dr, .var = &var };
+	struct launch ln;
+	transport_launch(ref, theta_in, o->fresnel, &ln);
+	int nthreads = threads > 0 ? threads : omp_get_max_threads();
+#pragma omp parallel num_threads(nthreads)
+	{
+		struct tally t;
+		tally_alloc(&t, &g);
+#pragma omp for schedule(dynamic, 1)
+		for (int b = 0; b < nb; b++) {
+			tally_zero(&t, &g);
+			uint64_t first = (uint64_t)(b0 + b) * (uint64_t)bp;
+			transport_run(ref, &ln, o, &g, NULL, seed, stream, first, (uint64_t)bp, &t);
+			double *pb = prof + (size_t)b * (size_t)n_r;
+			double *tb = tot + (size_t)b * (size_t)n_var;
+			for (int i = 0; i < n_r; i++)
+				pb[i] = t.radial_var[i] / (double)bp;
+			for (int v = 0; v < n_var; v++)
+				tb[v] = t.var_total[v] / (double)bp;
+		}
+		tally_free(&t);
+	}
+}

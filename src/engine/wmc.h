@@ -37,4 +37,13 @@ void wmc_radial_run(const struct slab *ref, const double *dmua, int n_var, doubl
     const struct transport_opts *o, int n_r, double dr, long photons, int batches, uint64_t seed,
     uint32_t stream, int threads, struct wmc_radial *out);
 void wmc_radial_free(struct wmc_radial *w);
+/* The batches behind such a run, for estimators of their own: batches
+ * b0 .. b0 + nb - 1 of bp photons each (batch b is photons b bp .. of
+ * stream (seed, stream), so later calls continue the sequence).  Per batch
+ * b (from 0), per photon: variant 0's weight leaving through radial bin i
+ * into prof[b * n_r + i] (not per area) and every variant's reweighted
+ * scattered weight leaving the top at any radius into tot[b * n_var + v]. */
+void wmc_batches(const struct slab *ref, const double *dmua, int n_var, double theta_in,
+    const struct transport_opts *o, int n_r, double dr, long bp, int b0, int nb, uint64_t seed,
+    uint32_t stream, int threads, double *prof, double *tot);
 #endif

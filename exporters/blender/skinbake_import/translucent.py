@@ -1,24 +1,62 @@
 """The translucent image set (`skinbake export blender --mode translucent`, docs/translucency.md):
 Cycles' Subsurface Scattering node, fitted by the exporter to the bake's Rd(r), added to the
-material the importer built.  The set's brdf_lut.exr (and the general mode's fit) already hold
-the rest of the baked BRDF: the table minus the node's far field, which is Lambertian with
-albedo = the node's colour in Cycles (measured), so material = rest + node.  The node is lit by
-each lamp in the view layer that renders that lamp, so the exact mode's per-lamp layers count
-every lamp once."""
+material the importer built.  The manifest's "translucent" section holds one fit per Blender
+version calibrated (versions[]: Debian's 3.4 "Random Walk", 4.5 and 5.0 "Random Walk (Skin)");
+the importer takes its own Blender's (major.minor).  The set's brdf_lut.exr (and the general
+mode's fit) hold the rest of the baked BRDF: the table minus the largest of the nodes' far fields
+(measured: none depends on theta_i; 3.4's is Lambertian, 4.5's and 5.0's rise toward grazing
+view), so material = rest + node + a Diffuse BSDF whose colour is lambert_extra (that largest far
+field minus this version's) at the view angle (translucent.theta_o_deg).  The node is lit by each
+lamp in the view layer that renders that lamp, so the exact mode's per-lamp layers count every
+lamp once."""
+import math
+
 from .common import ImageSetError, say
 
 
-def check_version(t):
-    """The fit holds for the Cycles it was calibrated on: refuse another Blender (major.minor) rather
-    than build a wrong material (Blender 5.0.1 rendered the 3.4.1 fit 12 % dark on the flat box)."""
+def pick_version(t):
+    """The versions[] entry of this Blender (major.minor).  Another Blender is refused rather than
+    given a wrong material: the walk answers differently per version (5.0.1 rendered the 3.4.1 fit
+    12 % dark on the flat box, its "Random Walk" being 3.4's fixed-radius walk)."""
     import bpy
-    want = str(t.get("version", "?"))
     have = "%d.%d" % tuple(bpy.app.version[:2])
-    if want.split(".")[:2] != have.split("."):
-        raise ImageSetError(f"manifest.json: translucent.version = {want!r}: the subsurface node was fitted to the "
-                            f"calibration of Cycles {want}, and this is Blender {bpy.app.version_string}, whose random "
-                            "walk answers differently (5.0.1: 12 % darker); use the exact or general set, or "
-                            "calibrate this Blender (`make calibrate`)")
+    vs = t.get("versions")
+    if not isinstance(vs, list) or not vs or not all(isinstance(v, dict) for v in vs):
+        raise ImageSetError(f"manifest.json: translucent.versions = {vs!r} must be a list of fits, "
+                            "one per Blender version (export the set again with this skinbake)")
+    for v in vs:
+        if v.get("blender") == have:
+            return v
+    got = ", ".join(repr(v.get("blender")) for v in vs)
+    raise ImageSetError(f"manifest.json: translucent.versions has fits for Blender {got}, not for "
+                        f"this Blender {bpy.app.version_string} ({have}): its random walk was not "
+                        "calibrated, so the node cannot be fitted; use the exact or general set "
+                        "(export with `--mode exact`), or calibrate this Blender (`make "
+                        "calibrate-blender` with its bpy) and export again")
+
+
+def view_colour(nt, sock, views, rgb):
+    """SOCK's colour: RGB[k] at view angle VIEWS[k] [deg], linear in cos(theta_o) between them (a
+    Color Ramp on Incoming . Normal); a constant when all are equal."""
+    if all(e == rgb[0] for e in rgb):
+        sock.default_value = (*rgb[0], 1.0)
+        return
+    geo = nt.nodes.new("ShaderNodeNewGeometry")
+    dot = nt.nodes.new("ShaderNodeVectorMath")
+    dot.operation = "DOT_PRODUCT"
+    nt.links.new(geo.outputs["Incoming"], dot.inputs[0])
+    nt.links.new(geo.outputs["Normal"], dot.inputs[1])
+    ramp = nt.nodes.new("ShaderNodeValToRGB")
+    ramp.color_ramp.interpolation = "LINEAR"
+    stops = sorted((math.cos(math.radians(a)), e) for a, e in zip(views, rgb))
+    els = ramp.color_ramp.elements
+    while len(els) < len(stops):
+        els.new(0.5)
+    for el, (pos, e) in zip(els, stops):
+        el.position = pos
+        el.color = (*e, 1.0)
+    nt.links.new(dot.outputs["Value"], ramp.inputs["Fac"])
+    nt.links.new(ramp.outputs["Color"], sock)
 
 
 def add_subsurface(mat, m, unit_scale=1.0):
@@ -27,34 +65,64 @@ def add_subsurface(mat, m, unit_scale=1.0):
     t = m.get("translucent")
     if not t:
         return mat
-    for key, n in (("colour", 3), ("radius_m", 3)):
-        v = t.get(key)
-        if not isinstance(v, list) or len(v) != n or not all(isinstance(x, (int, float)) and x > 0 for x in v):
-            raise ImageSetError(f"manifest.json: translucent.{key} = {v!r} must be {n} positive numbers")
-    check_version(t)
+    v = pick_version(t)
+    where = f"manifest.json: translucent.versions[{v.get('blender')}]"
+    for key in ("colour", "radius_m"):
+        x = v.get(key)
+        if not isinstance(x, list) or len(x) != 3 or not all(isinstance(y, (int, float)) and y > 0
+                                                             for y in x):
+            raise ImageSetError(f"{where}.{key} = {x!r} must be 3 positive numbers")
+    views = t.get("theta_o_deg")
+    extra = v.get("lambert_extra")
+    if not isinstance(views, list) or len(views) < 2 or not all(isinstance(y, (int, float)) and
+                                                                0 <= y < 90 for y in views):
+        raise ImageSetError(f"manifest.json: translucent.theta_o_deg = {views!r} must be angles "
+                            "in [0, 90) degrees")
+    if not isinstance(extra, list) or len(extra) != len(views) or not all(
+            isinstance(e, list) and len(e) == 3 and all(isinstance(y, (int, float)) and 0 <= y <= 1
+                                                        for y in e) for e in extra):
+        raise ImageSetError(f"{where}.lambert_extra = {extra!r} must be one [R, G, B] in [0, 1] "
+                            "per translucent.theta_o_deg")
     nt = mat.node_tree
     out = next(n for n in nt.nodes if n.bl_idname == "ShaderNodeOutputMaterial" and n.is_active_output)
     link = out.inputs["Surface"].links[0]
     src = link.from_socket
     nt.links.remove(link)
     ss = nt.nodes.new("ShaderNodeSubsurfaceScattering")
-    ss.label = "skinbake: subsurface fitted to Rd(r) (%s %s)" % (t.get("renderer", "?"), t.get("version", "?"))
+    ss.label = "skinbake: subsurface fitted to Rd(r) (Cycles %s)" % v.get("version", "?")
     falloffs = [i.identifier for i in ss.bl_rna.properties["falloff"].enum_items]
-    ss.falloff = t.get("falloff", "RANDOM_WALK") if t.get("falloff") in falloffs else "RANDOM_WALK"
-    ss.inputs["Color"].default_value = (*t["colour"], 1.0)
-    ss.inputs["Scale"].default_value = float(t.get("scale", 1.0))
-    ss.inputs["Radius"].default_value = [r / unit_scale for r in t["radius_m"]]
+    if v.get("falloff") not in falloffs:
+        raise ImageSetError(f"{where}.falloff = {v.get('falloff')!r}: this Blender has "
+                            f"{', '.join(falloffs)}")
+    ss.falloff = v["falloff"]
+    ss.inputs["Color"].default_value = (*v["colour"], 1.0)
+    ss.inputs["Scale"].default_value = float(v.get("scale", 1.0))
+    ss.inputs["Radius"].default_value = [r / unit_scale for r in v["radius_m"]]
     if "IOR" in ss.inputs:                  # the calibration's index: the walk depends on it
-        ss.inputs["IOR"].default_value = float(t.get("ior", 1.4))
+        ss.inputs["IOR"].default_value = float(v.get("ior", 1.4))
     add = nt.nodes.new("ShaderNodeAddShader")
     add.label = "rest of the table + subsurface"
     ss.location = (out.location[0] - 200, out.location[1] - 300)
     add.location = (out.location[0] - 100, out.location[1])
     out.location = (out.location[0] + 150, out.location[1])
     nt.links.new(src, add.inputs[0])
-    nt.links.new(ss.outputs["BSSRDF"], add.inputs[1])
+    node = ss
+    if max(max(e) for e in extra) > 0:      # this version's far field below the one the table lost
+        dif = nt.nodes.new("ShaderNodeBsdfDiffuse")
+        dif.label = "skinbake: far field the other versions' nodes have more"
+        dif.location = (out.location[0] - 400, out.location[1] - 500)
+        view_colour(nt, dif.inputs["Color"], views, extra)
+        add2 = nt.nodes.new("ShaderNodeAddShader")
+        add2.location = (out.location[0] - 250, out.location[1] - 350)
+        nt.links.new(ss.outputs["BSSRDF"], add2.inputs[0])
+        nt.links.new(dif.outputs["BSDF"], add2.inputs[1])
+        node = add2
+    nt.links.new(node.outputs[0], add.inputs[1])
     nt.links.new(add.outputs["Shader"], out.inputs["Surface"])
     mat["skinbake_translucent"] = 1
-    say("translucent: Cycles subsurface colour " + " ".join(f"{x:.4g}" for x in t["colour"]) + ", radius " +
-        " ".join(f"{x * 1e3:.4g}" for x in t["radius_m"]) + " mm beside the rest of the table")
+    say(f"translucent: Cycles {v.get('version')} subsurface ({v['falloff']}) colour " +
+        " ".join(f"{x:.4g}" for x in v["colour"]) + ", radius " +
+        " ".join(f"{x * 1e3:.4g}" for x in v["radius_m"]) + " mm beside the rest of the table" +
+        (", diffuse up to " + " ".join(f"{max(e[c] for e in extra):.4g}" for c in range(3))
+         if max(max(e) for e in extra) > 0 else ""))
     return mat

@@ -3,18 +3,36 @@
 #include "config.h"
 #include "export/blender/blender_sss.h"
 
+#include <ctype.h>
 #include <math.h>
 #include <stdio.h>
 #include <stdlib.h>
+#include <string.h>
 
+#include "base/check.h"
 #include "base/util.h"
 
-/* The node's far field f [1/sr] from the calibration: G(0) / pi, since
- * the walk enters and leaves Lambertian (scripts/calibrate-translucency.py);
- * G(0) is about the colour, 10 % above it at colour 0.01. */
-static double far_f(const struct blender_sss *w, int c, double ti, double to)
+void blender_sss_series(const struct sss_table *t, char *buf, size_t n)
 {
-	return sss_far_pi_f(w->fit.table, c, w->fit.colour[c], ti, to) / M_PI;
+	int major = 0, minor = 0;
+	if (sscanf(t->version, "%d.%d", &major, &minor) != 2)
+		major = minor = 0;
+	snprintf(buf, n, "%d.%d", major, minor);
+}
+
+/* The far field pi f [-] of version v's node, channel c. */
+static double far_v(const struct blender_sss *w, int v, int c, double ti, double to)
+{
+	return sss_far_pi_f(w->fit[v].table, c, w->fit[v].colour[c], ti, to);
+}
+
+/* The far field the remainder takes off: the largest of the versions'. */
+static double far_max(const struct blender_sss *w, int c, double ti, double to)
+{
+	double m = 0.0;
+	for (int v = 0; v < w->n; v++)
+		m = fmax(m, far_v(w, v, c, ti, to));
+	return m;
 }
 
 static void sss_remainder(void *ctx, double ti, double to, double dphi, double rgb[3])
@@ -22,7 +40,7 @@ static void sss_remainder(void *ctx, double ti, double to, double dphi, double r
 	const struct blender_sss *w = ctx;
 	w->f_rgb(w->ctx, ti, to, dphi, rgb);
 	for (int c = 0; c < 3; c++)
-		rgb[c] = fmax(rgb[c] - far_f(w, c, ti, to), 0.0);
+		rgb[c] = fmax(rgb[c] - far_max(w, c, ti, to) / M_PI, 0.0);
 }
 
 /* The largest share of the table the remainder clips, over a grid to 85 deg. */
@@ -34,9 +52,11 @@ static double clipped_share(const struct blender_sss *w)
 			for (int k = 0; k <= 4; k++) {
 				double t[3], ti = i * 5.0 * M_PI / 180, to = j * 5.0 * M_PI / 180;
 				w->f_rgb(w->ctx, ti, to, k * M_PI / 4, t);
-				for (int c = 0; c < 3; c++)
-					if (t[c] > 0 && far_f(w, c, ti, to) > t[c])
-						worst = fmax(worst, (far_f(w, c, ti, to) - t[c]) / t[c]);
+				for (int c = 0; c < 3; c++) {
+					double far = far_max(w, c, ti, to) / M_PI;
+					if (t[c] > 0 && far > t[c])
+						worst = fmax(worst, (far - t[c]) / t[c]);
+				}
 			}
 	return worst;
 }
@@ -47,8 +67,13 @@ int blender_sss_wrap(struct brdf_source *src, struct blender_sss *w, char **caus
 		*cause = xstrdup("translucent mode needs a bake (its radial profile Rd(r))");
 		return -1;
 	}
-	if (sss_fit_bake(&sss_cycles_table, src->bake, 1.0, &w->fit, cause) != 0)
-		return -1;
+	*w = (struct blender_sss){ 0 };
+	for (int v = 0; blender_sss_tables[v] != NULL; v++) {
+		CHECK(v < BLENDER_SSS_MAX);
+		if (sss_fit_bake(blender_sss_tables[v], src->bake, 1.0, &w->fit[v], cause) != 0)
+			return -1;
+		w->n = v + 1;
+	}
 	w->f_rgb = src->f_rgb;
 	w->ctx = src->ctx;
 	w->clipped = clipped_share(w);
@@ -57,31 +82,100 @@ int blender_sss_wrap(struct brdf_source *src, struct blender_sss *w, char **caus
 	return 0;
 }
 
+/* The theta_o nodes [deg] of the far fields in the manifest (the tables' FAR_ANGLES). */
+static const double view_deg[] = { 0, 20, 40, 60, 75, 85 };
+#define N_VIEW 6
+
+/* A list over view_deg of [R, G, B]: version v's far field (v >= 0), or the
+ * largest less version v's (diff), or the largest (v < 0); at theta_i = 0,
+ * on which none of them depends. */
+static char *by_view(const struct blender_sss *w, int v, int diff)
+{
+	char *s = xstrdup("[");
+	for (int k = 0; k < N_VIEW; k++) {
+		double x[3], to = view_deg[k] * M_PI / 180;
+		for (int c = 0; c < 3; c++) {
+			double m = far_max(w, c, 0.0, to);
+			double f = v < 0 ? m : far_v(w, v, c, 0.0, to);
+			x[c] = diff ? m - f : f;
+		}
+		char *t = xasprintf("%s%s[%.8g, %.8g, %.8g]", s, k ? ", " : "", x[0], x[1], x[2]);
+		free(s);
+		s = t;
+	}
+	char *t = xasprintf("%s]", s);
+	free(s);
+	return t;
+}
+
 static void jvec(char *buf, size_t n, const double v[3], double k)
 {
 	snprintf(buf, n, "[%.8g, %.8g, %.8g]", v[0] * k, v[1] * k, v[2] * k);
 }
 
-char *blender_sss_json(const struct blender_sss *w)
+/* Blender's falloff identifier from the table's closure ("... falloff random_walk_skin"). */
+static void falloff(const struct sss_table *t, char *buf, size_t n)
 {
-	const struct sss_fit *f = &w->fit;
-	char col[96], rad[96], ib[96], ifit[96], mb[96], mf[96], rl[96], loc[96];
+	const char *p = strstr(t->closure, "falloff ");
+	p = p ? p + 8 : "random_walk";
+	size_t i = 0;
+	for (; p[i] && i + 1 < n; i++)
+		buf[i] = (char)toupper((unsigned char)p[i]);
+	buf[i] = '\0';
+}
+
+/* One version's entry of "versions". */
+static char *version_json(const struct blender_sss *w, int v)
+{
+	const struct sss_fit *f = &w->fit[v];
+	char ser[32], fo[48], col[96], rad[96], ifit[96], mf[96], rl[96], loc[96];
+	char *far = by_view(w, v, 0), *extra = by_view(w, v, 1);
+	blender_sss_series(f->table, ser, sizeof ser);
+	falloff(f->table, fo, sizeof fo);
 	jvec(col, sizeof col, f->colour, 1.0);
 	jvec(rad, sizeof rad, f->length_mm, 1e-3);
-	jvec(ib, sizeof ib, f->integral_bake, 1.0);
 	jvec(ifit, sizeof ifit, f->integral_fit, 1.0);
-	jvec(mb, sizeof mb, f->mean_bake_mm, 1e-3);
 	jvec(mf, sizeof mf, f->mean_fit_mm, 1e-3);
 	jvec(rl, sizeof rl, f->rms_log, 1.0);
 	jvec(loc, sizeof loc, f->local, 1.0);
-	return xasprintf("{\"renderer\": \"%s\", \"version\": \"%s\", \"closure\": \"%s\", "
-	    "\"node\": \"ShaderNodeSubsurfaceScattering\", \"falloff\": \"RANDOM_WALK\", \"ior\": %g, \"colour\": %s, "
-	    "\"radius_m\": %s, \"scale\": 1.0, \"r_max_m\": %.8g, \"power_bake\": %s, \"power_fit\": %s, \"power_local\": %s, "
-	    "\"mean_radius_bake_m\": %s, \"mean_radius_fit_m\": %s, \"rms_ln_r_predicted\": %s, "
-	    "\"remainder_clipped_max\": %.6g, \"split\": \"brdf_lut.exr holds pi * max(0, f_bake - f_node): the "
-	    "baked BRDF (diffuse + surface specular) minus the node's far field from the calibration (Lambertian, G(0) / pi "
-	    "with G(0) the node's measured albedo), so power_local of power_fit stays in it at the entry point; "
-	    "the importer adds the node beside it\"}",
-	    f->table->renderer, f->table->version, f->table->closure, f->table->ior, col, rad, f->r_max_mm * 1e-3, ib, ifit, loc, mb, mf,
-	    rl, w->clipped);
+	char *j = xasprintf("{\"blender\": \"%s\", \"version\": \"%s\", \"closure\": \"%s\", "
+	    "\"falloff\": \"%s\", \"ior\": %g, \"colour\": %s, \"radius_m\": %s, \"scale\": 1.0, "
+	    "\"power_fit\": %s, \"power_local\": %s, \"mean_radius_fit_m\": %s, "
+	    "\"rms_ln_r_predicted\": %s, \"far_pi_f\": %s, \"lambert_extra\": %s}", ser,
+	    f->table->version, f->table->closure, fo, f->table->ior, col, rad, ifit, loc, mf, rl,
+	    far, extra);
+	free(far);
+	free(extra);
+	return j;
+}
+
+char *blender_sss_json(const struct blender_sss *w)
+{
+	const struct sss_fit *f = &w->fit[0];
+	char ib[96], mb[96], *rem = by_view(w, -1, 0);
+	jvec(ib, sizeof ib, f->integral_bake, 1.0);
+	jvec(mb, sizeof mb, f->mean_bake_mm, 1e-3);
+	char *list = xstrdup("");
+	for (int v = 0; v < w->n; v++) {
+		char *e = version_json(w, v), *l = xasprintf("%s%s%s", list, v ? ", " : "", e);
+		free(e);
+		free(list);
+		list = l;
+	}
+	char *j = xasprintf("{\"renderer\": \"cycles\", "
+	    "\"node\": \"ShaderNodeSubsurfaceScattering\", "
+	    "\"r_max_m\": %.8g, \"power_bake\": %s, \"mean_radius_bake_m\": %s, "
+	    "\"theta_o_deg\": [0, 20, 40, 60, 75, 85], \"far_pi_f_removed\": %s, "
+	    "\"remainder_clipped_max\": %.6g, \"split\": \"brdf_lut.exr "
+	    "holds pi * max(0, f_bake - far_pi_f_removed / pi): the baked BRDF (diffuse + surface "
+	    "specular) minus the largest far field of the versions' nodes at each angle "
+	    "(measured; none depends on theta_i; listed per theta_o_deg), so each version's "
+	    "power_local stays in it at the entry point; the importer adds the node of its own "
+	    "Blender (versions[].blender = major.minor) beside it with a Diffuse BSDF whose colour "
+	    "is lambert_extra (far_pi_f_removed - that node's far_pi_f) at the view angle, and "
+	    "refuses a Blender that has no entry\", \"versions\": [%s]}", f->r_max_mm * 1e-3, ib,
+	    mb, rem, w->clipped, list);
+	free(list);
+	free(rem);
+	return j;
 }
