@@ -28,14 +28,14 @@ fam=$out/fam
 		--vary dermis.blood=0.008,0.03,0.08 --out "$fam" --quiet
 
 # maps NAME MELANIN FRECKLES: a complexion's maps.  Dermal blood 0.02 (the presets'), lips 0.07,
-# cheeks x1.8, nose tip x1.5, ears x1.6 (assumed flush; docs/maps.md has the measured colour
+# cheeks x2.2, nose tip x1.5, ears x1.6 (assumed flush; docs/maps.md has the measured colour
 # ranges the family spans); freckles (1 or 0) x4 melanin.
 maps() {
 	m=$out/maps-$1
 	$B maps new --family "$fam" --like scenes/masks/lips.png --set epidermis.melanin="$2" \
 		--set dermis.blood=0.02 --out "$m" --quiet
 	$B maps edit --maps "$m" --set dermis.blood=0.07 --mask scenes/masks/lips.png --out "$m" --quiet
-	$B maps edit --maps "$m" --scale dermis.blood=1.8 --mask scenes/masks/cheeks.png --out "$m" --quiet
+	$B maps edit --maps "$m" --scale dermis.blood=2.2 --mask scenes/masks/cheeks.png --out "$m" --quiet
 	$B maps edit --maps "$m" --scale dermis.blood=1.5 --mask scenes/masks/nose.png --out "$m" --quiet
 	$B maps edit --maps "$m" --scale dermis.blood=1.6 --mask scenes/masks/ears.png --out "$m" --quiet
 	if [ "$3" = 1 ]; then
@@ -93,7 +93,7 @@ $B texture --site face --size 1024 --tile-mm 20 --furrow-depth 18 --level-gain 0
 	--out "$out/cheek" --quiet
 render scenes/showcase-closeup.scene human-pores "$out/maps-fair" --textures "$out/cheek" --nodes 9 --gamma-nodes 3
 
-# ---- translucent head lit from behind: scripts/demo-translucent.sh (another helper's) goes here,
-# ---- one line calling it with "$out" ----
+# The translucent head lit from behind the ear (issue 27), exact and translucent mode.
+sh scripts/demo-translucent.sh "$out"
 
 echo "demo.sh: done in $(($(date +%s) - t0)) s"

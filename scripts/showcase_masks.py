@@ -2,7 +2,7 @@
 #   blender -b --factory-startup --python scripts/showcase_masks.py -- MODEL OUT_DIR SIZE
 # Imports the MakeHuman model (a .zae zip or its .dae), and paints three 8-bit grey masks in the
 # UV space of its body mesh (human-baseMesh), SIZE x SIZE texels, from 3-D regions of the face:
-# lips.png (an ellipsoid around the mouth), cheeks.png (two soft ellipsoids), nose.png (the tip and
+# lips.png (an ellipsoid around the mouth), cheeks.png (two flushes fading over their radius), nose.png (the tip and
 # the wings), ears.png (both ears), freckles.png (90 spots of 0.6-1.3 mm radius over the nose and
 # upper cheeks, from vertices picked by a fixed seed).  scripts/demo.sh reads the copies in
 # scenes/masks/ (made with SIZE 512).  Landmarks were measured on the model in Blender's frame (z up, face toward -y): nose tip
@@ -34,11 +34,14 @@ def lips(p):
         return 0.0
     return smooth(math.sqrt((x / 0.026) ** 2 + ((z - 1.4875) / 0.0135) ** 2))
 
+def soft(d):  # a flush: 1 at the centre, fading over the whole radius (no visible rim)
+    return 0.0 if d >= 1 else (0.5 + 0.5 * math.cos(math.pi * d)) ** 1.5
+
 def cheeks(p):
     x, y, z = p
-    if y > -0.08:
+    if y > -0.06:
         return 0.0
-    return smooth(math.sqrt(((abs(x) - 0.048) / 0.03) ** 2 + ((z - 1.507) / 0.024) ** 2))
+    return soft(math.sqrt(((abs(x) - 0.048) / 0.034) ** 2 + ((z - 1.505) / 0.03) ** 2))
 
 def nose(p):
     x, y, z = p

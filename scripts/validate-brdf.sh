@@ -97,11 +97,12 @@ done
 ###########################################################################
 # What solved the bakes, from their manifests: solver names and the largest
 # estimated RMS relative error of a table.
-solver_note=$(for p in $presets; do jq -r '[.solver.name, (.solver.rms_rel_err // 0), (.solver.fallback_to_mc // [] | length)] | @tsv' \
+solver_note=$(for p in $paperset $fitted $physio; do jq -r '[.solver.name, (.solver.rms_rel_err // 0), (.solver.fallback_to_mc // [] | length)] | @tsv' \
 	"$br/bake-$p/manifest.json"; done | awk -F'\t' '{ n[$1]++; if ($2 > m) m = $2; f += $3 }
 	END { for (k in n) { l = l (l == "" ? "" : ", ") n[k] " by " (k == "ad" ? "adding-doubling" : k == "mc" ? "Monte Carlo" : k) }
 		printf "%s; largest estimated RMS relative error of a table %.2g %%%s", l, 100 * m,
 			f ? sprintf(", %d wavelengths by Monte Carlo where adding-doubling refused", f) : "" }')
+[ -n "$roughs" ] && solver_note="$solver_note (the rough fits of section 3.4 apart: their estimates at 64 nodes are far above their error, section 3.5)"
 say "bakes: $solver_note"
 
 ###########################################################################
