@@ -1,45 +1,99 @@
 #!/bin/sh
-# The showcase on the default preset (paper): a real head under two lights in
-# POV-Ray 3.7.  Bakes what the scene needs (the incidence angles that
-# `export pov --plan` lists), grows the face's pores and furrows, exports
-# scenes/human-head.scene (the MakeHuman model of Debian's assimp-testmodels,
-# 640x480) and scenes/human-pores.scene (its cheek at 0.04 mm per pixel) and
-# renders both:  OUT/human-head.png and OUT/human-pores.png  (OUT: out/demo); then the head lit
-# from behind in the translucent mode (POV-Ray's subsurface fitted to the bake's Rd(r)):
-# OUT/human-head-backlit.png.
+# The showcase: the MakeHuman head of Debian's assimp-testmodels in POV-Ray 3.7, its skin from
+# parameter maps over a family of bakes (docs/maps.md): fair skin with redder lips, cheeks, nose
+# tip and ears and a few freckles, painted through the masks in scenes/masks/ (made by
+# scripts/showcase_masks.py); the eyes with their own colours (scripts/eye_texture.py, not the
+# skin's table); the face's pores and furrows (docs/relief.md).  Writes (OUT: out/demo):
+#   OUT/human-head.png     640x480, scenes/showcase-head.scene (one soft key light)
+#   OUT/complexions.png    the same head with three complexions (the same family, other maps)
+#   OUT/human-pores.png    the cheek at 0.05 mm per pixel, scenes/showcase-closeup.scene, with
+#                          the pores and furrows of a young cheek (docs/relief.md)
 # Run after scripts/setup.sh (it uses the binary built in this tree).
 set -eu
 cd "$(dirname "$0")/.."
 B=${SKINBAKE:-./skinbake}
 out=${1:-out/demo}
 model=/usr/share/assimp/models/Collada/human.zae
+py=.venv/bin/python
+[ -x "$py" ] || py=python3
 [ -f "$model" ] || { echo "demo.sh: $model is missing (scripts/setup.sh installs assimp-testmodels)" >&2; exit 1; }
 command -v povray >/dev/null || { echo "demo.sh: povray is missing (scripts/setup.sh installs it)" >&2; exit 1; }
 mkdir -p "$out"
 t0=$(date +%s)
-echo "== plan: what scenes/human-head.scene needs from a bake"
-plan=$($B export pov --scene scenes/human-head.scene --plan)
-echo "$plan"
-# The planned incidence angles: "--theta-nodes N" (curved skin) or "--theta-in A,B".
-angles=$(echo "$plan" | sed -n 's/^skin skin: skinbake bake --preset paper \(--theta-[a-z]* [^ ]*\) .*/\1/p')
-echo "== bake (preset paper, $angles, 5% RMS error)"
-# shellcheck disable=SC2086
-$B bake --preset paper $angles --target-error 0.05 --batch-photons 1000 --out "$out/paper" --quiet
-echo "== texture (face pores and furrows, 512 px over 10 mm)"
-$B texture --site face --size 512 --tile-mm 10 --out "$out/face" --quiet
-for s in human-head human-pores; do
-	echo "== export and render scenes/$s.scene"
-	$B export pov --scene "scenes/$s.scene" --bake "$out/paper" --textures "$out/face" --out "$out/$s" >/dev/null
-	(cd "$out/$s" && povray "$s.ini" >povray.log 2>&1) || {
-		echo "demo.sh: povray failed, see $out/$s/povray.log" >&2; exit 1; }
-	cp "$out/$s/$s.png" "$out/$s.png"
-	echo "wrote $out/$s.png"
+
+echo "== family: fair-oily skin, epidermal melanin (4 values) x dermal blood (3), adding-doubling"
+fam=$out/fam
+[ -f "$fam/family.json" ] ||
+	$B bake --preset fair-oily --vary epidermis.melanin=0.004,0.02,0.06,0.16 \
+		--vary dermis.blood=0.008,0.03,0.08 --out "$fam" --quiet
+
+# maps NAME MELANIN FRECKLES: a complexion's maps.  Dermal blood 0.02 (the presets'), lips 0.07,
+# cheeks x2.2, nose tip x1.5, ears x1.6 (assumed flush; docs/maps.md has the measured colour
+# ranges the family spans); freckles (1 or 0) x4 melanin.
+maps() {
+	m=$out/maps-$1
+	$B maps new --family "$fam" --like scenes/masks/lips.png --set epidermis.melanin="$2" \
+		--set dermis.blood=0.02 --out "$m" --quiet
+	$B maps edit --maps "$m" --set dermis.blood=0.07 --mask scenes/masks/lips.png --out "$m" --quiet
+	$B maps edit --maps "$m" --scale dermis.blood=2.2 --mask scenes/masks/cheeks.png --out "$m" --quiet
+	$B maps edit --maps "$m" --scale dermis.blood=1.5 --mask scenes/masks/nose.png --out "$m" --quiet
+	$B maps edit --maps "$m" --scale dermis.blood=1.6 --mask scenes/masks/ears.png --out "$m" --quiet
+	if [ "$3" = 1 ]; then
+		$B maps edit --maps "$m" --scale epidermis.melanin=4 --mask scenes/masks/freckles.png --out "$m" --quiet
+	fi
+}
+# render SCENE NAME MAPS [EXPORT OPTIONS]: export, recolour the eyes, render; OUT/NAME.png.
+render() {
+	sc=$1 n=$2 mp=$3
+	shift 3
+	$B export pov --scene "$sc" --family "$fam" --maps "$mp" --out "$out/$n" "$@" >"$out/$n.log" 2>&1 ||
+		{ cat "$out/$n.log" >&2; exit 1; }
+	b=$(basename "$sc" .scene)
+	if [ -f "$out/$n/${b}_eyes_texture.png" ]; then
+		"$py" scripts/eye_texture.py "$out/$n/${b}_eyes_texture.png" "$out/$n/eyes.png" &&
+			mv "$out/$n/eyes.png" "$out/$n/${b}_eyes_texture.png"
+	fi
+	(cd "$out/$n" && povray "$b.ini" "+O$n.png" >povray.log 2>&1) || {
+		echo "demo.sh: povray failed, see $out/$n/povray.log" >&2; exit 1; }
+	cp "$out/$n/$n.png" "$out/$n.png"
+	echo "wrote $out/$n.png"
+}
+
+echo "== maps: fair (with freckles), medium, brown"
+maps fair 0.011 1
+maps medium 0.035 0
+maps brown 0.10 0
+echo "== the head (scenes/showcase-head.scene)"
+# No bump map at this distance: the relief's cells (0.35 mm) are below the pixels (0.42 mm), its
+# far roughness (docs/relief.md) is not applied with maps yet, and the box-filtered bump map
+# would only add grain.
+render scenes/showcase-head.scene human-head "$out/maps-fair"
+echo "== three complexions, 320x240 each"
+for c in fair medium brown; do
+	render scenes/showcase-head.scene "c-$c" "$out/maps-$c" --size 320x240 --nodes 9 --gamma-nodes 3
 done
-echo "== translucent: scenes/human-head-backlit.scene, lit from behind (docs/translucency.md)"
-$B export pov --scene scenes/human-head-backlit.scene --bake "$out/paper" --out "$out/human-head-backlit" \
-	--mode translucent --size 320x240 >/dev/null
-(cd "$out/human-head-backlit" && povray human-head-backlit.ini >povray.log 2>&1) || {
-	echo "demo.sh: povray failed, see $out/human-head-backlit/povray.log" >&2; exit 1; }
-cp "$out/human-head-backlit/human-head-backlit.png" "$out/human-head-backlit.png"
-echo "wrote $out/human-head-backlit.png"
+{
+	echo "#version 3.7;"
+	echo "global_settings { assumed_gamma 1.0 }"
+	echo "camera { orthographic location <1.5,0.5,-1> look_at <1.5,0.5,0> right x*3 up y }"
+	i=0
+	for c in fair medium brown; do
+		echo "box { <0,0,0>, <1,1,0.01> texture { pigment { image_map { png \"c-$c.png\" once interpolate 2 } }"
+		echo "  finish { emission 1 diffuse 0 ambient 0 } } translate x*$i }"
+		i=$((i + 1))
+	done
+} >"$out/complexions.pov"
+(cd "$out" && povray +Icomplexions.pov +Ocomplexions.png +W960 +H240 -D +A0.1 >complexions.log 2>&1) ||
+	{ echo "demo.sh: povray failed, see $out/complexions.log" >&2; exit 1; }
+echo "wrote $out/complexions.png"
+echo "== close-up of the cheek (scenes/showcase-closeup.scene), a young cheek's relief"
+# Shallower than the face site's default (primary lines 18 um, measured 25 um: the low end of
+# Hashimoto's 20-100 um), and a tile wider than the view, so that it does not repeat in it.
+$B texture --site face --size 1024 --tile-mm 20 --furrow-depth 18 --level-gain 0.2 \
+	--out "$out/cheek" --quiet
+render scenes/showcase-closeup.scene human-pores "$out/maps-fair" --textures "$out/cheek" --nodes 9 --gamma-nodes 3
+
+# The translucent head lit from behind the ear (issue 27), exact and translucent mode.
+sh scripts/demo-translucent.sh "$out"
+
 echo "demo.sh: done in $(($(date +%s) - t0)) s"

@@ -379,8 +379,9 @@ def main():
     hdr = "eval\tsebum\tmelanin\tblood\tscatter\talpha\talpha_epi\tJ\tJ_sd\trms_rel_pct"
     print(hdr)
     if log:
-        log.write("# scripts/fit-curet.py: %d training points (CUReT theta_i %s), solver %s, bake target %g, bounds %s\n"
-                  % (len(points), "/".join("%g" % t for t in TRAIN_THETA_I), a.solver, a.target_error,
+        log.write("# scripts/fit-curet.py: %d training points (%s), solver %s, bake target %g, bounds %s\n"
+                  % (len(points), "--train all: every CUReT point but the 4 saturated ones" if a.train == "all"
+                     else "CUReT theta_i " + "/".join("%g" % t for t in TRAIN_THETA_I), a.solver, a.target_error,
                      ", ".join("%s %g-%g" % (k, v[0], v[1]) for k, v in BOUNDS.items())))
         log.write(hdr + "\n")
     k = [0]

@@ -2,9 +2,10 @@
 #   blender -b --factory-startup --python scripts/showcase_masks.py -- MODEL OUT_DIR SIZE
 # Imports the MakeHuman model (a .zae zip or its .dae), and paints three 8-bit grey masks in the
 # UV space of its body mesh (human-baseMesh), SIZE x SIZE texels, from 3-D regions of the face:
-# lips.png (an ellipsoid around the mouth), cheeks.png (two soft ellipsoids), freckles.png
-# (about 220 spots of 0.9-1.8 mm radius over the nose and upper cheeks, from vertices picked by a fixed
-# seed).  Landmarks were measured on the model in Blender's frame (z up, face toward -y): nose tip
+# lips.png (an ellipsoid around the mouth), cheeks.png (two flushes fading over their radius), nose.png (the tip and
+# the wings), ears.png (both ears), freckles.png (90 spots of 0.6-1.3 mm radius over the nose and
+# upper cheeks, from vertices picked by a fixed seed).  scripts/demo.sh reads the copies in
+# scenes/masks/ (made with SIZE 512).  Landmarks were measured on the model in Blender's frame (z up, face toward -y): nose tip
 # (0, -0.160, 1.516) m, upper lip at z 1.495, lower lip at z 1.480, mouth 5 cm wide.
 import bpy, math, os, random, struct, sys, zipfile, zlib, tempfile
 
@@ -33,19 +34,34 @@ def lips(p):
         return 0.0
     return smooth(math.sqrt((x / 0.026) ** 2 + ((z - 1.4875) / 0.0135) ** 2))
 
+def soft(d):  # a flush: 1 at the centre, fading over the whole radius (no visible rim)
+    return 0.0 if d >= 1 else (0.5 + 0.5 * math.cos(math.pi * d)) ** 1.5
+
 def cheeks(p):
     x, y, z = p
-    if y > -0.08:
+    if y > -0.06:
         return 0.0
-    return smooth(math.sqrt(((abs(x) - 0.048) / 0.03) ** 2 + ((z - 1.507) / 0.024) ** 2))
+    return soft(math.sqrt(((abs(x) - 0.048) / 0.034) ** 2 + ((z - 1.505) / 0.03) ** 2))
+
+def nose(p):
+    x, y, z = p
+    if y > -0.12:
+        return 0.0
+    return smooth(math.sqrt((x / 0.021) ** 2 + ((y + 0.152) / 0.03) ** 2 + ((z - 1.513) / 0.02) ** 2))
+
+def ears(p):  # head half-width 0.0835 m at the ears; measured on the model
+    x, y, z = p
+    if abs(x) < 0.066:
+        return 0.0
+    return smooth(math.sqrt(((abs(x) - 0.08) / 0.016) ** 2 + ((y + 0.005) / 0.032) ** 2 + ((z - 1.535) / 0.042) ** 2))
 
 rng = random.Random(15)
 cand = [p for p in P if abs(p[0]) < 0.065 and 1.50 < p[2] < 1.56 and p[1] < -0.105]
 spots = []
-for _ in range(220):
+for _ in range(90):
     c = rng.choice(cand)
     c = (c[0] + rng.uniform(-0.003, 0.003), c[1], c[2] + rng.uniform(-0.003, 0.003))
-    spots.append((c, rng.uniform(0.0009, 0.0018)))
+    spots.append((c, rng.uniform(0.0006, 0.0013)))
 
 def freckles(p):
     best = 0.0
@@ -55,12 +71,12 @@ def freckles(p):
             best = max(best, smooth(d))
     return best
 
-masks = {'lips': lips, 'cheeks': cheeks, 'freckles': freckles}
+masks = {'lips': lips, 'cheeks': cheeks, 'nose': nose, 'ears': ears, 'freckles': freckles}
 img = {k: bytearray(size * size) for k in masks}
 for t in me.loop_triangles:
     ps = [P[i] for i in t.vertices]
-    if max(p[2] for p in ps) < 1.42 or min(p[1] for p in ps) > -0.05:
-        continue  # far from the face
+    if max(p[2] for p in ps) < 1.42 or (min(p[1] for p in ps) > -0.05 and max(abs(p[0]) for p in ps) < 0.066):
+        continue  # far from the face and the ears
     us = [uv[l].uv for l in t.loops]
     xs = [u[0] * size - 0.5 for u in us]
     ys = [(1 - u[1]) * size - 0.5 for u in us]

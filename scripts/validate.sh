@@ -423,7 +423,8 @@ $( [ -n "${rough_held:-}" ] && cat <<EOR
    **$rough_fwd** (CUReT $f5_curet_total_back and $f5_curet_total_fwd), $rough_mar % against the Marschner fit.$( [ -n "${rough_ad_held:-}" ] && printf '%s' "
    Fitted by adding-doubling with a rough film top and a rough epidermis top (\`curet39-rough-ad\`, multiple
    scattering on the facets): $rough_ad_train % and **$rough_ad_held %**, fall $rough_ad_back, rise $rough_ad_fwd. Why 8 % is
-   out of reach for this model (grazing points no facet roughness can reach): section 3.4.")
+   out of reach for this model (grazing points no facet roughness can reach): section 3.4.$( [ -n "${rough_all:-}" ] && printf '%s' " Even
+   fitted to every point but the 4 saturated ones (a diagnostic), it stays at $rough_all %.")")
 EOR
 )
 EOF

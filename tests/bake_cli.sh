@@ -3,6 +3,7 @@
 # exrheader, eval answers in JSON; bad input exits 2 and writes nothing.
 # (tests/solver_cli.sh has the adding-doubling bakes.)
 . "$top_srcdir/tests/tap.sh"
+. "$top_srcdir/tests/lib/refused.sh"
 B="$SKINBAKE"
 out="$tmpd/bake"
 check "bake paper (small, Monte Carlo)" "$B" bake --preset paper --solver mc --out "$out" --theta-in 0,30.0,60 \
@@ -30,13 +31,10 @@ assert all(x>0 for x in d['diffuse'])"
 check "eval table output" sh -c "'$B' eval --bake '$out' --theta-in 10 --theta-out 10 --phi 0 | grep -q 'linear sRGB'"
 
 # Bad input: exit 2, a message naming the option/value/range, no output.
-bad() {
-	desc=$1; want=$2; shift 2
-	rm -rf "$tmpd/bad"
-	msg=$("$B" "$@" 2>&1 >/dev/null)
-	rc=$?
-	if [ "$rc" = 2 ] && echo "$msg" | grep -q -- "$want" && [ ! -e "$tmpd/bad" ]; then ok "$desc"
-	else fail "$desc (rc $rc, message: $msg)"; fi
+bad() {	# DESC PATTERN ARGS...: skinbake ARGS refused (tests/lib/refused.sh)
+	b_d=$1 b_p=$2
+	shift 2
+	refused "$b_d" "$b_p" "$tmpd/bad" "$B" "$@"
 }
 bad "unknown preset" "very-fair-oily" bake --preset nope --out "$tmpd/bad"
 bad "missing preset file" "nofile.ini" bake --preset-file "$tmpd/nofile.ini" --out "$tmpd/bad"

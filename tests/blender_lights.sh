@@ -5,6 +5,7 @@
 # render on a sphere, and on Blender 4+ the measured response it is built on; bad input (missing
 # object, mesh without UVs) exits 2.  About 1 minute.
 . "$top_srcdir/tests/tap.sh"
+. "$top_srcdir/tests/lib/refused.sh"
 
 imp="$top_srcdir/exporters/blender/import_skin.py"
 scn="$top_srcdir/tests/blender_scene.py"
@@ -123,16 +124,12 @@ if [ "${bmajor:-3}" -ge 4 ]; then
 fi
 
 # 4. Bad input: a clear message and exit status 2, nothing saved.
-bad() {	# DESC PATTERN ARGS...
-	d=$1 p=$2
+# bad DESC PATTERN ARGS...: Blender with ARGS refused by import_skin.py (tests/lib/refused.sh)
+bad() {
+	b_d=$1 b_p=$2
 	shift 2
-	B "$@" >"$tmpd/bad.log" 2>&1
-	rc=$?
-	if [ $rc -eq 2 ] && grep -q "import_skin.py: error: .*$p" "$tmpd/bad.log" && [ ! -e "$tmpd/never.blend" ]; then
-		ok "$d: exit 2, '$(grep 'import_skin.py: error' "$tmpd/bad.log")'"
-	else
-		fail "$d: rc $rc, log: $(tail -3 "$tmpd/bad.log")"
-	fi
+	refused "$b_d" "import_skin.py: error: .*$b_p" "$tmpd/never.blend" B "$@"
+	echo "# $refused_msg"
 }
 bad "missing object" "no object named 'Nose'" "$tmpd/lights.blend" --python "$imp" -- "$tmpd/set" \
 	--objects Head,Nose --save "$tmpd/never.blend"

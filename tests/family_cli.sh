@@ -7,6 +7,7 @@
 # Monte Carlo family (--solver mc, about 2 s) likewise; bad input exits 2
 # and writes nothing.
 . "$top_srcdir/tests/tap.sh"
+. "$top_srcdir/tests/lib/refused.sh"
 B="$SKINBAKE"
 small="--wavelengths 400:700:100 --theta-in 0 --resolution 1x1 --target-error 0.1 --batch-photons 500 --r-bins 50 --seed 3"
 fam="$tmpd/fam"
@@ -86,12 +87,10 @@ check "a family replaces an earlier family" "$B" bake --preset fair-oily $small 
 	--out "$fam" --quiet
 check "the replaced family has the new members only" sh -c "[ -d '$fam/m0001' ] && [ ! -d '$fam/m0002' ]"
 
-bad() {
-	desc=$1; want=$2; shift 2
-	msg=$("$B" "$@" 2>&1 >/dev/null)
-	rc=$?
-	if [ "$rc" = 2 ] && echo "$msg" | grep -q -- "$want" && [ ! -e "$tmpd/bad" ] && [ ! -e "$tmpd/bad.staging" ]
-	then ok "$desc"; else fail "$desc (rc $rc, message: $msg)"; fi
+bad() {	# DESC PATTERN ARGS...: skinbake ARGS refused (tests/lib/refused.sh)
+	b_d=$1 b_p=$2
+	shift 2
+	refused "$b_d" "$b_p" "$tmpd/bad $tmpd/bad.staging" "$B" "$@"
 }
 bad "unknown key" "'epidermis.colour' is not a numeric preset key (one of" bake --preset fair-oily \
 	--vary epidermis.colour=0:1:3 --out "$tmpd/bad"

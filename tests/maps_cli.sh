@@ -7,6 +7,7 @@
 # masked edits clamped to the family's range, and bad input (sizes, ranges,
 # files, format versions) refused with exit 2 and nothing written.
 . "$top_srcdir/tests/tap.sh"
+. "$top_srcdir/tests/lib/refused.sh"
 B="$SKINBAKE"
 M="$top_builddir/tests/maps_check"
 fam="$tmpd/fam"
@@ -96,13 +97,10 @@ assert abs(mel['max']-0.3)<1e-5 and abs(mel['min']-0.0387298)<1e-5, mel
 assert abs(bl['max']-0.03)<1e-5 and abs(bl['min']-0.02)<1e-5, bl"
 
 # Bad input: exit 2, a message naming the file/field/value/expected, nothing written.
-bad() {
-	desc=$1; want=$2; shift 2
-	rm -rf "$tmpd/bad" "$tmpd/bad.png"
-	msg=$("$B" "$@" 2>&1 >/dev/null)
-	rc=$?
-	if [ "$rc" = 2 ] && echo "$msg" | grep -q -- "$want" && [ ! -e "$tmpd/bad" ] && [ ! -e "$tmpd/bad.png" ] &&
-		[ ! -e "$tmpd/bad.staging" ]; then ok "$desc"; else fail "$desc (rc $rc, message: $msg)"; fi
+bad() {	# DESC PATTERN ARGS...: skinbake ARGS refused (tests/lib/refused.sh)
+	b_d=$1 b_p=$2
+	shift 2
+	refused "$b_d" "$b_p" "$tmpd/bad $tmpd/bad.png $tmpd/bad.staging" "$B" "$@"
 }
 bad "fit: mask of another size" "small.png is 32 x 32 texels, but --albedo .*a.png is 96 x 64" maps fit \
 	--family "$fam" --albedo "$tmpd/a.png" --mask "$tmpd/small.png" --out "$tmpd/bad"
@@ -121,6 +119,25 @@ if [ -n "$avail" ] && [ "$avail" -lt 100000000 ]; then
 		maps fit --family "$fam" --albedo "$tmpd/huge.png" --out "$tmpd/bad"
 else
 	skip "more than 100 GB of memory available: the 60000 x 60000 fit would fit"
+fi
+# The other subcommands too (src/maps/mapset.h: MAPS_*_MEM_*): new from the size of --like, edit
+# and render-albedo from the size maps.json states, before any map is read (72, 86, 144 GB).
+if [ -n "$avail" ] && [ "$avail" -lt 70000000 ]; then
+	gb="needs about [0-9.]* GB of memory (estimated), [0-9.]* GB are available"
+	bad "new: maps far larger than the memory, refused at once with the numbers" \
+		"maps new of 60000 x 60000 texels $gb; use a smaller --size" \
+		maps new --family "$fam" --like "$tmpd/huge.png" --out "$tmpd/bad"
+	cp -r "$tmpd/true" "$tmpd/huge"
+	sed -i 's/"width":[0-9]*/"width":60000/; s/"height":[0-9]*/"height":60000/' \
+		"$tmpd/huge/maps.json"
+	bad "edit: maps.json of 60000 x 60000 texels, refused before the maps are read" \
+		"maps edit of 60000 x 60000 texels (--maps .*huge) $gb; edit smaller maps" \
+		maps edit --maps "$tmpd/huge" --scale epidermis.melanin=1.3 --out "$tmpd/bad"
+	bad "render: maps.json of 60000 x 60000 texels, refused before the maps are read" \
+		"maps render-albedo of 60000 x 60000 texels (--maps .*huge) $gb; render smaller" \
+		maps render-albedo --family "$fam" --maps "$tmpd/huge" --out "$tmpd/bad.png"
+else
+	skip "more than 70 GB of memory available: 60000 x 60000 maps would fit"
 fi
 bad "fit: not a family" "not a family directory" maps fit --family "$tmpd/fit" --albedo "$tmpd/a.png" --out "$tmpd/bad"
 cp -r "$fam" "$tmpd/fam2"
@@ -146,4 +163,29 @@ bad "render: maps outside the family's range" "epidermis.melanin.png: texel (.*)
 	maps render-albedo --family "$tmpd/narrow" --maps "$tmpd/true" --out "$tmpd/bad.png"
 bad "render: output not .png or .exr" "does not end with .png or .exr" maps render-albedo --family "$fam" \
 	--maps "$tmpd/true" --out "$tmpd/bad.tif"
+# A full disk (issue 23: "maps fit says 'writing the PNG failed' without the cause"): the K-th
+# write fails with ENOSPC (strace): exit 1, the system's message, nothing left.
+if command -v strace > /dev/null 2>&1 && strace -f -qq -o /dev/null true 2> /dev/null; then
+	full() {	# K ARGS...: skinbake ARGS with its K-th write failing
+		k=$1
+		shift
+		strace -f -qq -o /dev/null -e inject=write:error=ENOSPC:when=$k "$B" "$@"
+	}
+	nospace='No space left on device'
+	for k in 1 3; do
+		rm -rf "$tmpd/full" "$tmpd/full.png"
+		full $k maps new --family "$fam" --size 8x8 --quiet --out "$tmpd/full" 2> "$tmpd/e"
+		rc=$?
+		check "maps new, disk full at write $k: exit 1 ($rc), '$(cat "$tmpd/e")', no file" \
+			sh -c "[ $rc = 1 ] && grep -q '$nospace' '$tmpd/e' && ! ls -A '$tmpd' |
+			grep -q full"
+	done
+	full 2 maps render-albedo --family "$fam" --maps "$tmpd/true" --out "$tmpd/full.png" \
+		--quiet 2> "$tmpd/e"
+	rc=$?
+	check "render-albedo, disk full: exit 1 ($rc), '$(cat "$tmpd/e")', no file" sh -c \
+		"[ $rc = 1 ] && grep -q '$nospace' '$tmpd/e' && [ ! -e '$tmpd/full.png' ]"
+else
+	skip "strace cannot inject faults here"
+fi
 tap_done

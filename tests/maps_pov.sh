@@ -9,6 +9,7 @@
 # half whose pixels are the high-blood member's, the left half the
 # low-blood member's (<= 0.2 % away from the edge); bad input exits 2.
 . "$top_srcdir/tests/tap.sh"
+. "$top_srcdir/tests/lib/refused.sh"
 B="$SKINBAKE"
 CMP="$top_builddir/tests/pov_compare"
 SC="$top_srcdir/scenes/sphere.scene"
@@ -79,12 +80,10 @@ else
 	fail "painted map: export or render: $(tail -3 "$tmpd/painted.log" "$tmpd/painted/pov.log" 2>/dev/null)"
 fi
 
-bad() {
-	desc=$1; want=$2; shift 2
-	msg=$("$B" export pov "$@" --out "$tmpd/bad" 2>&1 >/dev/null)
-	rc=$?
-	if [ "$rc" = 2 ] && echo "$msg" | grep -q -- "$want" && [ ! -e "$tmpd/bad" ]; then ok "$desc"
-	else fail "$desc (rc $rc, message: $msg)"; fi
+bad() {	# DESC PATTERN ARGS...: export pov ARGS refused (tests/lib/refused.sh)
+	b_d=$1 b_p=$2
+	shift 2
+	refused "$b_d" "$b_p" "$tmpd/bad" "$B" export pov "$@" --out "$tmpd/bad"
 }
 bad "--family without --maps" "go together" --scene "$SC" --family "$fam"
 bad "--family with --bake" "not with\|excl\|--bake" --scene "$SC" --family "$fam" --maps "$tmpd/u0" --bake "$fam/m0000"

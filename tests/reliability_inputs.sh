@@ -7,24 +7,20 @@
 # how many were tried.  Costs about 15 s (one Blender start runs the image-set
 # reader over all its tampered sets; one more runs import_skin.py itself).
 . "$top_srcdir/tests/tap.sh"
+. "$top_srcdir/tests/lib/refused.sh"
 B="$SKINBAKE"
 T=$top_srcdir
 cd "$tmpd" || exit 1
 nbad=0
 
 # bad DESC PATTERN OUT CMD...: CMD exits 2, stderr matches PATTERN (grep -E),
-# and OUT does not exist afterwards
+# and OUT does not exist afterwards (tests/lib/refused.sh)
+refused_ere=1
 bad() {
-	desc=$1 pat=$2 out=$3
+	b_d=$1 b_p=$2 b_o=$3
 	shift 3
 	nbad=$((nbad + 1))
-	"$@" > /dev/null 2> err.txt
-	rc=$?
-	if [ $rc -eq 2 ] && grep -Eq -- "$pat" err.txt && [ ! -e "$out" ]; then
-		ok "$desc"
-	else
-		fail "$desc (exit $rc, output $(test -e "$out" && echo left || echo none)): $(head -c 300 err.txt)"
-	fi
+	refused "$b_d" "$b_p" "$b_o" "$@"
 }
 
 # ---- the good inputs

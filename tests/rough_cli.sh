@@ -5,13 +5,13 @@
 # preset (the manifest books the facet loss) and an `--solver ad` bake with
 # multiple scattering on the facets (its physics: tests/test_ad_rough).
 . "$top_srcdir/tests/tap.sh"
+. "$top_srcdir/tests/lib/refused.sh"
 
-bad() { # name, ini text, expected words in the message
+# bad NAME INI-TEXT PATTERN: preset show of that preset file refused (tests/lib/refused.sh)
+bad() {
 	printf '%b' "$2" >"$tmpd/$1.ini"
-	"$SKINBAKE" preset show --preset-file "$tmpd/$1.ini" >"$tmpd/out" 2>"$tmpd/err"
-	st=$?
-	[ "$st" -eq 2 ] && [ ! -s "$tmpd/out" ] && grep -q "$3" "$tmpd/err" \
-		&& ok "$1: exit 2, '$3'" || fail "$1: exit $st, $(cat "$tmpd/err")"
+	refused_quiet=1
+	refused "$1: exit 2, '$3'" "$3" "" "$SKINBAKE" preset show --preset-file "$tmpd/$1.ini"
 }
 bad negative '[skin]\nbase = fair-dry\n[surface]\nroughness = -0.1\n' 'surface.roughness = -0.1: out of range \[0, 1\]'
 bad above1 '[skin]\nbase = fair-dry\n[surface]\nroughness = 1.01\n' 'surface.roughness = 1.01: out of range'

@@ -95,11 +95,13 @@ static void test_roundtrip_exact(void **state)
 		double want = 0.3 * b->fr[k] + 0.7 * b->fr[per + k];
 		assert_float_equal(b->fr_rgb[k], want, 1e-6 * (fabs(want) + 1e-6));
 	}
-	/* Interpolation reproduces the table at its nodes. */
+	/* Interpolation reproduces the table at its nodes; the error there is the
+	 * standard error plus a bin mean's offset from its centre value
+	 * (bakeinterp.h, issue 26). */
 	double f[2], e[2];
 	bake_eval_diffuse(b, b->theta_i[1], b->theta_o[2], b->phi[3], f, e);
 	assert_float_equal(f[0], b->fr[(size_t)1 * 24 + 2 * 4 + 3], 1e-7);
-	assert_float_equal(e[1], b->fr_err[per + (size_t)1 * 24 + 2 * 4 + 3], 1e-7);
+	assert_true(e[1] >= b->fr_err[per + (size_t)1 * 24 + 2 * 4 + 3] - 1e-7);
 	/* A missing file makes loading fail with a message. */
 	char *p = xasprintf("%s/brdf_rgb.exr", tmpdir);
 	unlink(p);

@@ -3,6 +3,7 @@
 # bad input (exit 2, no files), and (with python3) normals against finite
 # differences of the written 16-bit height map plus seamless wrap-around.
 . "$top_srcdir/tests/tap.sh"
+. "$top_srcdir/tests/lib/refused.sh"
 S=$SKINBAKE
 
 # --help names every parameter that --dump-config prints.
@@ -66,17 +67,10 @@ check "preset: options override the file" grep -qx "stretch = 2" "$tmpd/dump"
 check "dump-config round-trips" cmp -s "$tmpd/hand.ini" "$tmpd/hand2.ini"
 
 # Bad input: exit 2, a message naming the option, and nothing written.
-bad() {
-	desc=$1
-	word=$2
+bad() {	# DESC PATTERN ARGS...: texture ARGS refused (tests/lib/refused.sh)
+	b_d=$1 b_p=$2
 	shift 2
-	"$S" texture "$@" --out "$tmpd/bad" >"$tmpd/err" 2>&1
-	rc=$?
-	if [ $rc -eq 2 ] && grep -q -- "$word" "$tmpd/err" && [ ! -e "$tmpd/bad" ]; then
-		ok "bad input: $desc"
-	else
-		fail "bad input: $desc (rc $rc: $(cat "$tmpd/err"))"
-	fi
+	refused "bad input: $b_d" "$b_p" "$tmpd/bad" "$S" texture "$@" --out "$tmpd/bad"
 }
 bad "size too small" "--size = 3 is out of range" --size 3
 bad "negative pore depth" "--pore-depth" --pore-depth -5

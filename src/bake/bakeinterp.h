@@ -23,9 +23,15 @@
  * Bin means (Monte Carlo wavelengths, and bakes written before issue 26):
  * linear between the bin centres and the incidence nodes, and from the last
  * centre or node linear to 0 at 90 deg (the limit of the BRDF at grazing;
- * before issue 26 the last value was held).  This reconstructs bin means as
- * if they were point values; the averaging error, largest at grazing exit,
- * is not in the error, which is the standard error only. */
+ * before issue 26 the last value was held).  This reads bin means as if
+ * they were point values (no deconvolution); the error is the standard
+ * error (interpolated the same way) + what that reading costs: per axis the
+ * curvature |f''| from the neighbouring values (divided differences, with
+ * 0 at 90 deg) times h^2 / 24 (a bin mean's offset from its centre value,
+ * theta_o and delta_phi) + the linear step's (x - a)(b - x) / 2 (all three
+ * axes; a held end: its distance^2 / 2, and |f'| times it in theta_o), the
+ * sum times 2 for the higher orders (tests/test_grazing: it covers the
+ * actual error at 99.8 % of a dense grid, at 91 % without the factor). */
 #ifndef SKINBAKE_BAKEINTERP_H
 #define SKINBAKE_BAKEINTERP_H
 #include <stddef.h>

@@ -206,10 +206,14 @@ void radial_solve(const struct radial_spec *sp, struct radial_out *out)
 				dmua[j * NS + l] = cv_shift[j];
 	const long bp = RADIAL_BATCH;
 	const int nc = sp->n_r + 2, chunk = 1024;
-	long cap_b = sp->cap / bp > 32 ? sp->cap / bp : 32;
+	/* Whole batches, at least 2 (the photon cap rounded up); the pilot at
+	 * least 32 batches where the cap allows (for the regression). */
+	long cap_b = (sp->cap + bp - 1) / bp > 2 ? (sp->cap + bp - 1) / bp : 2;
 	long nb = (sp->pilot + bp - 1) / bp, have = 0;
 	if (nb < 32)
 		nb = 32;
+	if (nb > cap_b)
+		nb = cap_b;
 	struct moments mo = { 0 };
 	mo.sy = xcalloc((size_t)nc, sizeof(double));
 	mo.syy = xcalloc((size_t)nc, sizeof(double));

@@ -52,22 +52,27 @@ double budget_disk_available(const char *path)
 
 static const char *gb(char *b, size_t n, double bytes)
 {
-	snprintf(b, n, bytes >= 1e9 ? "%.1f GB" : "%.0f MB", bytes >= 1e9 ? bytes / 1e9 : bytes / 1e6);
+	if (bytes >= 1e9)
+		snprintf(b, n, "%.1f GB", bytes / 1e9);
+	else
+		snprintf(b, n, "%.0f MB", bytes / 1e6);
 	return b;
 }
 
-int budget_check(const char *what, double mem, double disk, const char *out, const char *lower, char **cause)
+int budget_check(const char *what, double mem, double disk, const char *out, const char *lower,
+    char **cause)
 {
 	char a[32], b[32];
-	double m = mem > 0 ? budget_memory_available() : -1, d = disk > 0 && out ? budget_disk_available(out) : -1;
+	double m = mem > 0 ? budget_memory_available() : -1;
+	double d = disk > 0 && out ? budget_disk_available(out) : -1;
 	if (m >= 0 && mem > m) {
-		*cause = xasprintf("%s needs about %s of memory (estimated), %s are available; %s", what,
-		    gb(a, sizeof a, mem), gb(b, sizeof b, m), lower);
+		*cause = xasprintf("%s needs about %s of memory (estimated), %s are available; %s",
+		    what, gb(a, sizeof a, mem), gb(b, sizeof b, m), lower);
 		return -1;
 	}
 	if (d >= 0 && disk > d) {
-		*cause = xasprintf("%s writes about %s (estimated), %s are free on the disk of %s; %s", what,
-		    gb(a, sizeof a, disk), gb(b, sizeof b, d), out, lower);
+		*cause = xasprintf("%s writes about %s (estimated), %s are free on the disk of %s; "
+		    "%s", what, gb(a, sizeof a, disk), gb(b, sizeof b, d), out, lower);
 		return -1;
 	}
 	return 0;

@@ -17,5 +17,6 @@ double budget_disk_available(const char *path);
 /* 0 when MEM bytes of memory and DISK bytes under OUT (either may be 0)
  * fit; -1 and *cause (caller frees): "WHAT needs about X GB of memory
  * (estimated), Y GB are available; LOWER" otherwise.  Unknown amounts pass. */
-int budget_check(const char *what, double mem, double disk, const char *out, const char *lower, char **cause);
+int budget_check(const char *what, double mem, double disk, const char *out, const char *lower,
+    char **cause);
 #endif

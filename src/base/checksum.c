@@ -33,7 +33,8 @@ int checksum_file(const char *path, char out[CHECKSUM_TEXT], char **cause)
 	ok = ok && !read_error && EVP_DigestFinal_ex(c, md, &len) == 1 && len == 32;
 	EVP_MD_CTX_free(c);
 	if (!ok) {
-		*cause = xasprintf("%s: %s", path, read_error ? "read error" : "cannot compute its SHA-256");
+		const char *why = read_error ? "read error" : "cannot compute its SHA-256";
+		*cause = xasprintf("%s: %s", path, why);
 		return -1;
 	}
 	strcpy(out, "sha256:");
@@ -63,6 +64,11 @@ char *checksum_member(const char *dir, const char *const *names, char **cause)
 	return n;
 }
 
+static int is_blank(char c)
+{
+	return c == ' ' || c == '\n' || c == '\t';
+}
+
 char *checksum_add_member(const char *manifest, const char *member)
 {
 	size_t end = strlen(manifest);
@@ -72,7 +78,7 @@ char *checksum_add_member(const char *manifest, const char *member)
 		return xstrdup(manifest);
 	size_t body = end - 1;	/* the closing brace */
 	size_t last = body;
-	while (last > 0 && (manifest[last - 1] == ' ' || manifest[last - 1] == '\n' || manifest[last - 1] == '\t'))
+	while (last > 0 && is_blank(manifest[last - 1]))
 		last--;
 	int empty = last > 0 && manifest[last - 1] == '{';
 	return xasprintf("%.*s%s\n  %s\n}\n", (int)last, manifest, empty ? "" : ",", member);
@@ -83,8 +89,9 @@ int checksum_verify(const char *dir, const char *name, const char *want, char **
 	char *p = xasprintf("%s/%s", dir, name), have[CHECKSUM_TEXT];
 	int rc = checksum_file(p, have, cause);
 	if (rc == 0 && strcmp(have, want) != 0) {
-		*cause = xasprintf("%s has changed since its manifest was written (%s there, %s expected): the file "
-		    "was edited or damaged; write the output again", p, have, want);
+		*cause = xasprintf("%s has changed since its manifest was written (%s there, %s "
+		    "expected): the file was edited or damaged; write the output again", p, have,
+		    want);
 		rc = -1;
 	}
 	free(p);
@@ -131,7 +138,8 @@ static int add_files(struct name_list *l, const char *dir, const char *sub, cons
 		char *f = xasprintf("%s/%s", p, e->d_name);
 		char *m = xasprintf("%s/manifest.json", f);
 		struct stat st;
-		int here = lstat(f, &st) == 0;	/* else gone since readdir: not part of the output */
+		/* else gone since readdir: not part of the output */
+		int here = lstat(f, &st) == 0;
 		if (here && S_ISREG(st.st_mode))
 			name_add(l, sub ? xasprintf("%s/%s", sub, e->d_name) : xstrdup(e->d_name));
 		else if (here && sub == NULL && S_ISDIR(st.st_mode) && access(m, F_OK) == 0)
@@ -175,8 +183,15 @@ char *checksum_manifest_text(const char *dir, const char *manifest, const char *
 /* Length of the valid UTF-8 sequence at s (1-4), or 0. */
 static int utf8_len(const unsigned char *s)
 {
-	int n = s[0] < 0x80 ? 1 : s[0] >= 0xC2 && s[0] <= 0xDF ? 2 : s[0] >= 0xE0 && s[0] <= 0xEF ? 3
-	    : s[0] >= 0xF0 && s[0] <= 0xF4 ? 4 : 0;
+	int n = 0;
+	if (s[0] < 0x80)
+		n = 1;
+	else if (s[0] >= 0xC2 && s[0] <= 0xDF)
+		n = 2;
+	else if (s[0] >= 0xE0 && s[0] <= 0xEF)
+		n = 3;
+	else if (s[0] >= 0xF0 && s[0] <= 0xF4)
+		n = 4;
 	for (int i = 1; i < n; i++)
 		if ((s[i] & 0xC0) != 0x80)
 			return 0;
@@ -233,20 +248,24 @@ int checksum_verify_dir(const char *dir, const char *manifest, char **cause)
 		free(mp);
 		if (j)
 			json_object_put(j);
-		return 0;	/* no manifest is the reader's own error; no checksums: an older output */
+		/* no manifest is the reader's own error; no checksums: an older output */
+		return 0;
 	}
 	if (!json_object_is_type(sums, json_type_object)) {
-		*cause = xasprintf("%s: checksums is not an object of \"FILE\": \"sha256:HEX\"", mp);
+		*cause = xasprintf("%s: checksums is not an object of \"FILE\": \"sha256:HEX\"",
+		    mp);
 		rc = -1;
 	}
 	json_object_object_foreach(sums, name, val) {
 		if (rc != 0)
 			break;
-		const char *want = json_object_is_type(val, json_type_string) ? json_object_get_string(val) : NULL;
-		if (want == NULL || strncmp(want, "sha256:", 7) != 0 || strlen(want) != 71 || name[0] == '/' ||
-		    strstr(name, "..") != NULL) {
-			*cause = xasprintf("%s: checksums.%s: not a file of the directory with \"sha256:\" and 64 hex digits",
-			    mp, name);
+		const char *want = NULL;
+		if (json_object_is_type(val, json_type_string))
+			want = json_object_get_string(val);
+		int bad = want == NULL || strncmp(want, "sha256:", 7) != 0 || strlen(want) != 71;
+		if (bad || name[0] == '/' || strstr(name, "..") != NULL) {
+			*cause = xasprintf("%s: checksums.%s: not a file of the directory with "
+			    "\"sha256:\" and 64 hex digits", mp, name);
 			rc = -1;
 		} else
 			rc = checksum_verify(dir, name, want, cause);

@@ -22,9 +22,11 @@ int cmd_export_mitsuba(int argc, char **argv)
 		  .help = "scene file (scenes/README.md): meshes, lights, camera, skins" },
 		{ "bake", OPT_PATH_IN, &o.bake, "DIR", .flags = OPT_DIR, .def_note = "each skin's own bake",
 		  .help = "bake directory for skins that name none" },
-		{ "mode", OPT_ENUM, &mode, .def = "both", .choices = "both|table|volumetric",
-		  .help = "the skin as the baked table, as the preset's layers in participating media under the "
-		  "mesh surface (closed meshes only), or both" },
+		{ "mode", OPT_ENUM, &mode, .def = "both",
+		  .choices = "both|table|volumetric|translucent",
+		  .help = "the skin as the baked table, as the preset's layers in participating "
+		  "media under the mesh surface (closed meshes only), both, or translucent (a "
+		  "medium fitted to the bake's Rd(r) inside the mesh, closed meshes only)" },
 		{ "out", OPT_PATH_OUT, &o.out, "DIR", .flags = OPT_REQUIRED, .help = "output directory (replaced as a whole)" },
 		OPT_END
 	};
@@ -32,12 +34,14 @@ int cmd_export_mitsuba(int argc, char **argv)
 		"Write a scene for Mitsuba 3: scene.json (lights, camera, skins), each mesh as PLY in\n"
 		"Mitsuba's frame and manifest.json. Render it with\n"
 		"  python -m skinbake_mitsuba render DIR --mode table|volumetric --out IMAGE.exr\n"
-		"(exporters/mitsuba, the project venv). A scene feature Mitsuba cannot show, or a skin mesh\n"
-		"with no interior for the volumetric layers, is refused (exit 2).", opts, NULL, 0, 0 };
+		"(exporters/mitsuba, the project venv; translucent: first python -m skinbake_mitsuba fit,\n"
+		"docs/mitsuba.md). A scene feature Mitsuba cannot show, or a skin mesh with no interior\n"
+		"for the volumetric layers or the translucent medium, is refused (exit 2).", opts, NULL, 0, 0 };
 	struct opt_ctx x;
 	if (opt_parse(&x, &cmd, argc, argv) != 0)
 		return x.exit;
-	o.mode = mode == 1 ? MTS_TABLE : mode == 2 ? MTS_VOLUMETRIC : MTS_BOTH;
+	o.mode = mode == 1 ? MTS_TABLE : mode == 2 ? MTS_VOLUMETRIC :
+		 mode == 3 ? MTS_TRANSLUCENT : MTS_BOTH;
 	char *cause = NULL;
 	struct scene *s = scene_load(scene_path, &cause);
 	int rc = CLI_EXIT_OK;

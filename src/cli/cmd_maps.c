@@ -8,6 +8,7 @@
 #include <stdlib.h>
 #include <string.h>
 
+#include "base/budget.h"
 #include "cli/cli.h"
 #include "cli/cmd_maps.h"
 #include "maps/image.h"
@@ -46,6 +47,15 @@ int cmd_maps_image_arg(const struct opt_ctx *x, const char *opt, const char *pat
 {
 	char *cause = NULL;
 	return image_size(path, w, h, &cause) != 0 ? opt_cause(x, opt, " ", cause) : 0;
+}
+
+int cmd_maps_budget(const struct opt_ctx *x, const char *what, double mem, double disk,
+    const char *out, const char *lower)
+{
+	char *cause = NULL;
+	if (budget_check(what, mem, disk, out, lower, &cause) != 0)
+		return opt_cause(x, NULL, "", cause);
+	return 0;
 }
 
 int cmd_maps_check_out_dir(const struct opt_ctx *x, const char *out, const char *in1, const char *in2)

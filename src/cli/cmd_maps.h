@@ -29,6 +29,10 @@ int cmd_maps_check_out_file(const struct opt_ctx *x, const char *opt, const char
 /* The edits as map operations: keys known, set values in the family's range. */
 int cmd_maps_resolve_ops(const struct opt_ctx *x, const struct kv_list *l, const struct mapset *m,
     struct maps_op *ops);
+/* The memory and disk WHAT needs, checked before work (base/budget.h; the
+ * message names LOWER, the option that lowers them); -1 with the message. */
+int cmd_maps_budget(const struct opt_ctx *x, const char *what, double mem, double disk,
+    const char *out, const char *lower);
 /* Write the maps; CLI_EXIT_OK, or CLI_EXIT_FAIL with the message printed. */
 int cmd_maps_write(const struct opt_ctx *x, const char *out, const struct mapset *m);
 

@@ -42,12 +42,27 @@ int cmd_maps_edit(int argc, char **argv)
 	int mw, mh;
 	if ((mask && cmd_maps_image_arg(&x, "mask", mask, &mw, &mh)) || cmd_maps_check_out_dir(&x, out, mask, NULL))
 		return CLI_EXIT_USAGE;
+	/* Before the maps are read, from the size maps.json states (reading it
+	 * says what is wrong with it).  Disk: the maps and the fit's de2000 at
+	 * 4 bytes (EXR) at most, its status 1. */
+	int w, h, n;
+	char what[160], *cause = NULL;
+	if (mapset_read_size(in, &w, &h, &n, &cause) == 0) {
+		double texels = (double)w * h, disk = (4.0 * n + 5.0) * texels;
+		double per = MAPS_MEM_PER_TEXEL_MAP * n + MAPS_EDIT_MEM_PER_TEXEL;
+		per += mask ? MAPS_MASK_MEM_PER_TEXEL : 0.0;
+		snprintf(what, sizeof what, "maps edit of %d x %d texels (--maps %s)", w, h, in);
+		if (cmd_maps_budget(&x, what, per * texels + MAPS_MEM_FIXED, disk, out,
+			"edit smaller maps (tiles one by one)"))
+			return CLI_EXIT_USAGE;
+	}
+	free(cause);
+	cause = NULL;
 	struct mapset *m = cmd_maps_load_maps(&x, in);
 	if (m == NULL)
 		return CLI_EXIT_USAGE;
 	struct maps_op ops[64];
 	struct image *mk = NULL;
-	char *cause = NULL;
 	int rc = CLI_EXIT_OK;
 	if (cmd_maps_resolve_ops(&x, &ops_l, m, ops) != 0)
 		rc = CLI_EXIT_USAGE;

@@ -5,7 +5,6 @@
 #include <stdio.h>
 #include <stdlib.h>
 
-#include "base/budget.h"
 #include "cli/cli.h"
 #include "cli/cmd_maps.h"
 #include "maps/fit.h"
@@ -51,12 +50,11 @@ int cmd_maps_fit(int argc, char **argv)
 	double disk = ((exr ? 4.0 : 2.0) * (f->n_axes + 1) + 1.0) * texels;
 	char what[96];
 	snprintf(what, sizeof what, "a fit of the %d x %d texel --albedo", w, h);
-	if (budget_check(what, MAPS_FIT_MEM_PER_TEXEL * texels + MAPS_FIT_MEM_FIXED, disk, out,
-		"use a smaller --albedo texture (fit its tiles one by one)", &cause) != 0) {
-		int r = opt_error(&x, "%s", cause);
-		free(cause);
+	double mem = MAPS_FIT_MEM_PER_TEXEL * texels + MAPS_FIT_MEM_FIXED;
+	if (cmd_maps_budget(&x, what, mem, disk, out,
+		"use a smaller --albedo texture (fit its tiles one by one)")) {
 		family_free(f);
-		return r;
+		return CLI_EXIT_USAGE;
 	}
 	struct image *a = image_read(alb, &cause), *mk = NULL;
 	if (a && mask)

@@ -60,6 +60,16 @@ int cmd_maps_new(int argc, char **argv)
 	struct family *f = cmd_maps_load_family(&x, fam);
 	if (f == NULL)
 		return CLI_EXIT_USAGE;
+	double texels = (double)wh[0] * wh[1];
+	char what[64];
+	snprintf(what, sizeof what, "maps new of %d x %d texels", wh[0], wh[1]);
+	double per = MAPS_MEM_PER_TEXEL_MAP * f->n_axes + MAPS_NEW_MEM_PER_TEXEL;
+	double disk = (exr ? 4.0 : 2.0) * f->n_axes * texels;
+	if (cmd_maps_budget(&x, what, per * texels + MAPS_MEM_FIXED, disk, out,
+		"use a smaller --size or --like image")) {
+		family_free(f);
+		return CLI_EXIT_USAGE;
+	}
 	struct mapset *m = mapset_new(f, wh[0], wh[1], NULL);
 	struct maps_op ops[64];
 	long clamped[FAMILY_MAX_AXES];

@@ -38,9 +38,28 @@ int cmd_maps_render(int argc, char **argv)
 		return CLI_EXIT_USAGE;
 	if (radius && !rexr)
 		return opt_error(&x, "--radius = '%s' must be an .exr file (radii in cm)", radius);
+	/* Before the maps are read, from the size maps.json states (reading it
+	 * says what is wrong with it).  Disk: the albedo (3 channels of 1, 2 or
+	 * 4 bytes), the radius 12 bytes. */
+	int w, h, n;
+	char what[160], *cause = NULL;
+	if (mapset_read_size(in, &w, &h, &n, &cause) == 0) {
+		double texels = (double)w * h, disk = exr ? 12.0 : 3.0 * bits / 8;
+		double per = MAPS_MEM_PER_TEXEL_MAP * n + MAPS_RENDER_MEM_PER_TEXEL;
+		if (radius) {
+			disk += 12.0;
+			per += MAPS_RENDER_MEM_PER_TEXEL;
+		}
+		snprintf(what, sizeof what, "maps render-albedo of %d x %d texels (--maps %s)",
+		    w, h, in);
+		if (cmd_maps_budget(&x, what, per * texels + MAPS_MEM_FIXED, disk * texels, out,
+			"render smaller maps (tiles one by one)"))
+			return CLI_EXIT_USAGE;
+	}
+	free(cause);
+	cause = NULL;
 	struct family *f = cmd_maps_load_family(&x, fam);
 	struct mapset *m = f ? cmd_maps_load_maps(&x, in) : NULL;
-	char *cause = NULL;
 	int rc = CLI_EXIT_OK;
 	if (f == NULL || m == NULL)
 		rc = CLI_EXIT_USAGE;

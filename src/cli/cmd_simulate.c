@@ -25,7 +25,7 @@ static const struct opt_key layer_keys[] = {
 	{ "g", OPT_DOUBLE, offsetof(struct layer, g), "0", .lo = -1, .hi = 1, .flags = OPT_LO_OPEN | OPT_HI_OPEN,
 	  .help = "Henyey-Greenstein anisotropy" },
 	{ "rough", OPT_DOUBLE, offsetof(struct layer, rough), "0", .lo = 0, .hi = 1,
-	  .help = "GGX alpha of the boundary on the layer's top (0 = smooth; mc only)" },
+	  .help = "GGX alpha of the boundary on the layer's top (0 = smooth; both solvers)" },
 	{ .name = NULL },
 };
 

@@ -101,7 +101,8 @@ struct ad_rough {
 	 * [AD_ROUGH_MS_NI][2: reflected, transmitted][AD_ROUGH_MS_NB][AD_ROUGH_MS_M + 1]
 	 * for light from above and below, and the columns' cosines above and below. */
 	double *ms_top, *ms_bot, *mu_a, *mu_b;
-	double *ms_scale_a, *ms_scale_b;	/* per column: the tables' power scaled to 1 - first order */
+	double *ms_scale_a, *ms_scale_b;	/* per column: scales the tables' power to
+						 * 1 - the first order */
 	double n_above, n_below;
 	double lost_max;		/* largest power of a column sent off the quadrature [-] */
 };
@@ -109,9 +110,9 @@ struct ad_rough {
 /* Work out the outgoing light of the interface between n_above and n_below
  * with GGX alpha in (0, 1] at quadrature q for the beams at se[0 .. E-1]
  * (s values), with n_u x n_u facets per incoming direction (n_u >= 2);
- * walks = 0 single scattering, > 0 multiple scattering with that many
- * walks per incoming direction for the higher orders.  Allocates; free
- * with ad_rough_free. */
+ * walks = 0 single scattering, > 0 multiple scattering (its tables take
+ * AD_ROUGH_MS_WALKS walks per incoming cosine).  Allocates; free with
+ * ad_rough_free. */
 void ad_rough_init(struct ad_rough *r, const struct ad_quad *q, double n_above, double n_below, double alpha,
     enum optics_fresnel model, const double *se, int E, int n_u, int walks);
 

@@ -210,7 +210,8 @@ static const struct texture_param params[] = {
 	{ "furrow-depth", "um", 1e-4, 0, 2000, SITES_REAL, R(furrow_depth),
 	  "median depth of a primary furrow" },
 	{ "furrow-depth-sd", "1", 1, 0, 1.5, SITES_REAL, R(furrow_depth_sd),
-	  "log-normal sigma of the depth of each furrow" },
+	  "log-normal sigma of the depth of each primary line (a third of it per "
+	  "edge) and of each finer furrow" },
 	{ "ridge-height", "um", 1e-4, 0, 1000, SITES_REAL, R(ridge_height),
 	  "dome height of the plateaus between primary furrows" },
 	{ "level-scale", "1", 1, 0.1, 0.8, SITES_REAL, R(level_scale),

@@ -339,10 +339,12 @@ static int read_extras(const char *dir, json_object *o, struct mapset *m, int pn
 	return 0;
 }
 
-struct mapset *mapset_read(const char *dir, char **cause)
+/* DIR/maps.json (path) read and its head checked into m: format, version,
+ * size, image format; checksums of the files when verify.  The JSON
+ * object, or NULL and *cause. */
+static json_object *read_index(const char *dir, const char *path, struct mapset *m, int verify,
+    char **cause)
 {
-	char *path = xasprintf("%s/maps.json", dir);
-	struct mapset *m = xcalloc(1, sizeof *m);
 	json_object *o = NULL, *fam;
 	double ver, w, h;
 	const char *s, *fmt;
@@ -354,7 +356,7 @@ struct mapset *mapset_read(const char *dir, char **cause)
 		*cause = xasprintf("%s: not a skinbake maps index (corrupt JSON)", path);
 		goto fail;
 	}
-	if (checksum_verify_dir(dir, "maps.json", cause) != 0)
+	if (verify && checksum_verify_dir(dir, "maps.json", cause) != 0)
 		goto fail;
 	if ((s = jstr(o, "format")) == NULL || strcmp(s, "skinbake-maps") != 0) {
 		*cause = xasprintf("%s: field format = '%s', expected 'skinbake-maps'", path, s ? s : "(missing)");
@@ -368,7 +370,8 @@ struct mapset *mapset_read(const char *dir, char **cause)
 		*cause = xasprintf("%s: fields width and height must be sizes in [1, 65536]", path);
 		goto fail;
 	}
-	m->w = (int)w, m->h = (int)h;
+	m->w = (int)w;
+	m->h = (int)h;
 	if ((fmt = jstr(o, "image_format")) == NULL || (strcmp(fmt, "png") != 0 && strcmp(fmt, "exr") != 0)) {
 		*cause = xasprintf("%s: field image_format = '%s', expected png or exr", path, fmt ? fmt : "(missing)");
 		goto fail;
@@ -378,17 +381,52 @@ struct mapset *mapset_read(const char *dir, char **cause)
 		m->family_dir = xstrdup(jstr(fam, "dir") ? jstr(fam, "dir") : "");
 		m->family_preset = xstrdup(jstr(fam, "preset") ? jstr(fam, "preset") : "");
 	}
-	if (read_params(dir, path, o, m, !m->exr, cause) || read_extras(dir, o, m, !m->exr, cause))
-		goto fail;
+	return o;
+fail:
+	if (o)
+		json_object_put(o);
+	return NULL;
+}
+
+struct mapset *mapset_read(const char *dir, char **cause)
+{
+	char *path = xasprintf("%s/maps.json", dir);
+	struct mapset *m = xcalloc(1, sizeof *m);
+	json_object *o = read_index(dir, path, m, 1, cause);
+	if (o == NULL || read_params(dir, path, o, m, !m->exr, cause)
+	    || read_extras(dir, o, m, !m->exr, cause)) {
+		if (o)
+			json_object_put(o);
+		free(path);
+		mapset_free(m);
+		return NULL;
+	}
 	json_object_put(o);
 	free(path);
 	return m;
-fail:
+}
+
+int mapset_read_size(const char *dir, int *w, int *h, int *n, char **cause)
+{
+	char *path = xasprintf("%s/maps.json", dir);
+	struct mapset *m = xcalloc(1, sizeof *m);
+	json_object *o = read_index(dir, path, m, 0, cause), *maps;
+	int rc = -1;
+	int ok = o && json_object_object_get_ex(o, "maps", &maps);
+	ok = ok && json_object_is_type(maps, json_type_array);
+	if (o && !ok)
+		*cause = xasprintf("%s: field maps is missing or not an array", path);
+	else if (o) {
+		*w = m->w;
+		*h = m->h;
+		*n = (int)json_object_array_length(maps);
+		rc = 0;
+	}
 	if (o)
 		json_object_put(o);
 	free(path);
 	mapset_free(m);
-	return NULL;
+	return rc;
 }
 
 int mapset_check_family(const struct mapset *m, const char *dir, const struct family *f, char **cause)

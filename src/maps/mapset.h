@@ -70,6 +70,25 @@ int mapset_check_out(const char *dir, char **cause);
  * expected when it is missing, corrupt, of another format version, or a
  * map's size differs from maps.json. */
 struct mapset *mapset_read(const char *dir, char **cause);
+/* The size and number of maps that maps.json of DIR states (its head
+ * checked as by mapset_read, no image read), for a budget check before
+ * reading; -1 and *cause. */
+int mapset_read_size(const char *dir, int *w, int *h, int *n, char **cause);
+
+/* Estimated needs of maps new, edit and render-albedo (their budget checks,
+ * as MAPS_FIT_MEM_* for fit): peak memory measured with a 2-map family at
+ * 1024^2 and 2048^2 texels: new 14 (PNG) / 16 (EXR) bytes per texel, edit
+ * with an 8-bit mask 18 / 22, render-albedo 26 (PNG) / 46 (EXR with
+ * --radius), each over about 16 MB.  Estimates: per map 8 bytes (its values
+ * and write buffer); new 4 more, edit 8 (its marks, the fit's extra maps)
+ * and 16 with a mask (up to 4 float channels), render-albedo 24 (the albedo
+ * and its write buffer) and 24 with --radius; over 32 MB. */
+#define MAPS_MEM_PER_TEXEL_MAP 8.0
+#define MAPS_NEW_MEM_PER_TEXEL 4.0
+#define MAPS_EDIT_MEM_PER_TEXEL 8.0
+#define MAPS_MASK_MEM_PER_TEXEL 16.0
+#define MAPS_RENDER_MEM_PER_TEXEL 24.0
+#define MAPS_MEM_FIXED 32e6
 /* Whether the maps fit family f: the same keys in the same order and
  * every value within the family's range; -1 and *cause naming the map
  * file, the texel, the value and the range otherwise. */

@@ -256,7 +256,8 @@ def build(export_dir, mode, width=None, spp=64, tmp=None, channel=None, estimato
     if man.get("format") != "skinbake-mitsuba":
         raise ValueError("%s is not a skinbake export mitsuba directory" % export_dir)
     # the translucent mode needs closed meshes, as the volumetric one
-    if man["mode"] not in ("both", "volumetric" if mode == "translucent" else mode):
+    allowed = ("both", "volumetric", "translucent") if mode == "translucent" else ("both", mode)
+    if man["mode"] not in allowed:
         raise ValueError("%s was exported for mode %s, not %s" % (export_dir, man["mode"], mode))
     cam = sc["camera"]
     centre = _f(cam["look_at"])

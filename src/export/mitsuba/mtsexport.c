@@ -20,7 +20,8 @@ const struct outdir_kind mts_outdir_kind = { "Mitsuba export directory", "manife
 
 static const char *mode_name(enum mts_mode m)
 {
-	return m == MTS_TABLE ? "table" : m == MTS_VOLUMETRIC ? "volumetric" : "both";
+	return m == MTS_TABLE ? "table" : m == MTS_VOLUMETRIC ? "volumetric" :
+	       m == MTS_TRANSLUCENT ? "translucent" : "both";
 }
 
 /* The bake directory of skin K: the scene's, else the option's, else NULL. */
@@ -55,15 +56,16 @@ static int check_object(const struct scene *s, const struct scene_object *ob, co
 		return -1;
 	}
 	if (o->mode != MTS_TABLE && ob->material == SCENE_MAT_SKIN && ob->shape == SCENE_PATCH) {
-		*cause = xasprintf("object '%s': a patch has no interior to hold the skin's layers (volumetric mode "
-		    "needs a sphere or a closed mesh)", ob->name);
+		*cause = xasprintf("object '%s': a patch has no interior to hold the skin's layers "
+		    "(volumetric and translucent modes need a sphere or a closed mesh)", ob->name);
 		return -1;
 	}
 	if (o->mode != MTS_TABLE && ob->material == SCENE_MAT_SKIN && ob->shape == SCENE_MESH) {
 		long open = meshply_open_edges(ob->mesh);
 		if (open > 0) {
 			*cause = xasprintf("object '%s': the mesh %s has %ld open edges, so it has no interior to hold "
-			    "the skin's layers (volumetric mode needs a closed mesh)", ob->name, ob->mesh->source, open);
+			    "the skin's layers (volumetric and translucent modes need a closed "
+			    "mesh)", ob->name, ob->mesh->source, open);
 			return -1;
 		}
 	}

@@ -8,13 +8,14 @@
  *                  (meshply.h)
  * The skin is the baked table (mode "table") or the preset's layers as
  * participating media in shells under the mesh surface (mode "volumetric":
- * every skin mesh must close a volume). */
+ * every skin mesh must close a volume), or a fitted medium inside it (mode
+ * "translucent", exporters/mitsuba/skinbake_mitsuba/transfit.py: closed too). */
 #ifndef SKINBAKE_MTSEXPORT_H
 #define SKINBAKE_MTSEXPORT_H
 #include "base/outdir.h"
 #include "scene/scene.h"
 
-enum mts_mode { MTS_TABLE, MTS_VOLUMETRIC, MTS_BOTH };
+enum mts_mode { MTS_TABLE, MTS_VOLUMETRIC, MTS_BOTH, MTS_TRANSLUCENT };
 
 struct mts_options {
 	enum mts_mode mode;

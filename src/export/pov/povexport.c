@@ -16,6 +16,7 @@
 #include "base/util.h"
 #include "export/source.h"
 #include "export/pov/bumpmap.h"
+#include "io/pngio.h"
 #include "export/pov/povfiles.h"
 #include "export/pov/pov_maps.h"
 #include "scene/placement.h"
@@ -306,6 +307,9 @@ struct inputs {
 	struct bumpmap hm[SCENE_MAX_SKINS];
 	struct pov_skin ps[SCENE_MAX_SKINS];
 	char *heights[SCENE_MAX_SKINS];
+	uint16_t *far_px[SCENE_MAX_SKINS];	/* roughness_far.png filtered to the pixel (povfar.h), or NULL */
+	int far_m[SCENE_MAX_SKINS];	/* its edge [px] */
+	char *fars[SCENE_MAX_SKINS];	/* its name in the output directory */
 	struct pov_maps *maps[SCENE_MAX_SKINS];
 	char *shapes;
 };
@@ -316,6 +320,8 @@ static void inputs_free(struct inputs *in)
 		brdf_source_free(in->src[k]);
 		bumpmap_free(&in->hm[k]);
 		free(in->heights[k]);
+		free(in->far_px[k]);
+		free(in->fars[k]);
 		pov_maps_free(in->maps[k]);
 	}
 	free(in->shapes);
@@ -390,6 +396,45 @@ static int load_brdf(const struct povexport_options *o, struct scene *s, int k, 
 	return 0;
 }
 
+/* The relief below a pixel (povfar.h): where a block of roughness_far.png
+ * (about one primary cell) is smaller than an image pixel on the nearest
+ * object, the bump map gives way to the table blended with its rough copy;
+ * not for maps, translucent skins, the mixture table or --bump-filter off
+ * (docs/relief.md). */
+static int load_far(const struct scene *s, const char *base, int k, const char *tdir, struct inputs *in,
+    struct povexport_result *r, char **cause)
+{
+	struct pov_skin *ps = &in->ps[k];
+	double amax;
+	int n;
+	uint16_t *far;
+	if (ps->maps || ps->sss.on)
+		return 0;
+	int e = povfar_read(tdir, &far, &n, cause);
+	if (e <= 0)
+		return e;
+	double block = ps->tile_units / n, px = pixel_footprint(s, k);
+	/* Blocks per tile at about one per pixel (at least 1: one alpha). */
+	int m = (int)fmax(1, fmin(n, floor(ps->tile_units / px)));
+	in->far_px[k] = povfar_filter(far, n, m, &amax);
+	in->far_m[k] = m;
+	free(far);
+	if (!(amax > 0) || block >= px) {
+		free(in->far_px[k]);
+		in->far_px[k] = NULL;
+		return 0;
+	}
+	in->fars[k] = xasprintf("%s_%s_roughness_far.png", base, s->skins[k].name);
+	ps->far = (struct pov_far){ 1, in->fars[k], amax, ps->tile_units, NULL };
+	ps->height_png = NULL;
+	free(in->heights[k]);
+	in->heights[k] = NULL;
+	msg(r, "skin '%s': relief cells (%.3g mm) below the image pixel (%.3g mm on the nearest object): the bump "
+	       "map gives way to the table blended with its rough copy by roughness_far.png (%d -> %d px, alpha_relief "
+	       "up to %.3g)", s->skins[k].name, block * s->unit_mm, px * s->unit_mm, n, m, amax);
+	return 0;
+}
+
 /* --mode translucent: POV-Ray's subsurface closure under the remainder of
  * the table (povsss.h).  The subsurface layer goes under one lit table per
  * skin, so the lights are key or mixture; the fit needs the bake's Rd(r). */
@@ -439,6 +484,11 @@ static int load_bumps(const struct povexport_options *o, const struct scene *s, 
 		tdir = sk->textures;
 	if (tdir == NULL || !sk->bumps)
 		return 0;
+	if (in->ps[k].sss.on && in->ps[k].maps) {
+		/* The maps' texture_map of layered members is the object's whole texture. */
+		msg(r, "skin '%s': translucent maps are written without the bump map", sk->name);
+		return 0;
+	}
 	for (int i = 0; i < s->n_objects && in->ps[k].sss.on; i++)
 		if (s->objects[i].shape == SCENE_MESH && s->objects[i].material == SCENE_MAT_SKIN && s->objects[i].skin == k) {
 			/* A mesh's bump map is a texture per triangle, which cannot be layered. */
@@ -467,10 +517,11 @@ static int load_bumps(const struct povexport_options *o, const struct scene *s, 
 		bumpmap_reduce(h, f);
 	}
 	in->ps[k].bump_size = bumpmap_size(h->h_range_um, h->size_px, h->tile_mm);
-	return 0;
+	/* --bump-filter off keeps the bump map as it is, also below a pixel. */
+	return o->bump_filter ? load_far(s, base, k, tdir, in, r, cause) : 0;
 }
 
-/* The height maps and the shape macros next to the written scene. */
+/* The height maps, far roughness maps and the shape macros next to the written scene. */
 static int write_extras(const struct scene *s, const char *out, const char *base, const struct inputs *in, char **cause)
 {
 	for (int k = 0; k < s->n_skins; k++)
@@ -478,6 +529,14 @@ static int write_extras(const struct scene *s, const char *out, const char *base
 			char *dst = xasprintf("%s/%s", out, in->heights[k]);
 			int e = in->hm[k].filter > 1 ? bumpmap_write_png(&in->hm[k], dst, cause)
 						     : povfiles_copy(in->hm[k].src, dst, cause);
+			free(dst);
+			if (e != 0)
+				return -1;
+		}
+	for (int k = 0; k < s->n_skins; k++)
+		if (in->fars[k]) {
+			char *dst = xasprintf("%s/%s", out, in->fars[k]);
+			int e = pngio_write(dst, in->far_m[k], in->far_m[k], 1, 16, in->far_px[k], 0, 0, NULL, cause);
 			free(dst);
 			if (e != 0)
 				return -1;

@@ -121,7 +121,7 @@ void povinc_write(FILE *fp, const struct scene *s, const struct pov_skin *skins,
 		if (st == SCENE_LIGHTS_KEY) {
 			nm = xasprintf("SKIN_%s_%s", sk->name, table);
 			int g = ps->maps ? pov_maps_write_key(fp, nm, ps->maps, &pl[0], &v, lo, hi, o->n_theta, o->n_gamma,
-			    ps->maps_uv) : littable_write_key(fp, nm, &ps->brdf, &pl[0], &v, lo, hi, o->n_theta, o->n_gamma);
+			    ps->maps_uv) : povfar_write_key(fp, nm, &ps->far, &ps->brdf, &pl[0], &v, lo, hi, o->n_theta, o->n_gamma);
 			r->n_gamma_used = g > r->n_gamma_used ? g : r->n_gamma_used;
 			free(nm);
 		} else if (st == SCENE_LIGHTS_MIXTURE) {
@@ -140,7 +140,7 @@ void povinc_write(FILE *fp, const struct scene *s, const struct pov_skin *skins,
 		if (st == SCENE_LIGHTS_PASSES)
 			for (int i = 0; i < s->n_lights; i++) {
 				nm = xasprintf("SKIN_%s_Pigment_%s", sk->name, s->lights[i].name);
-				int g = littable_write_key(fp, nm, &ps->brdf, &pl[i], &v, lo, hi, o->n_theta,
+				int g = povfar_write_key(fp, nm, &ps->far, &ps->brdf, &pl[i], &v, lo, hi, o->n_theta,
 				    o->n_gamma);
 				r->n_gamma_used = g > r->n_gamma_used ? g : r->n_gamma_used;
 				free(nm);

@@ -5,6 +5,7 @@
 #ifndef SKINBAKE_POVTYPES_H
 #define SKINBAKE_POVTYPES_H
 #include "export/pov/littable.h"
+#include "export/pov/povfar.h"
 #include "export/pov/povsss.h"
 #include "scene/scene.h"
 
@@ -20,6 +21,7 @@ struct pov_skin {
 	const struct pov_maps *maps;	/* a family blended by maps (export/pov/pov_maps.h), or NULL */
 	int maps_uv;		/* the maps follow the mesh UVs (else a planar projection) */
 	struct pov_sss sss;	/* translucent mode: the subsurface layer under the remainder (povsss.h) */
+	struct pov_far far;	/* the relief below a pixel as a blended table (povfar.h) */
 };
 
 struct pov_options {
