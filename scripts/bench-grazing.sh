@@ -20,7 +20,9 @@ echo
 echo "\`tests/test_grazing\`: a default adding-doubling bake (fair-oily, 550 nm, \`--resolution 18x18\`,"
 echo "the default incidence nodes 0 to 89.2 deg) through \`bake_eval_diffuse\`, against point values of"
 echo "a separate solve at 64 nodes per unit cosine and tolerance 1e-4, on theta_i, theta_o = 1, 2, ...,"
-echo "89, 89.9 deg and delta_phi = 0, 10, ..., 180 deg (153,900 points)."
+echo "89, 89.9 deg and delta_phi = 0, 10, ..., 180 deg (153,900 points); \"bin means\": the same bake"
+echo "written as bin means (what Monte Carlo tables hold), which eval reads linearly, its error"
+echo "including what that costs (src/bake/bakeinterp.h)."
 echo
 if [ -x "$TB/tests/test_grazing" ]; then
 	echo '```'

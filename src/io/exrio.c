@@ -16,7 +16,8 @@
  * pipeline in encoding_user_data. */
 static exr_result_t guarded_compress(exr_encode_pipeline_t *e)
 {
-	exr_result_t (*fn)(exr_encode_pipeline_t *) = (exr_result_t (*)(exr_encode_pipeline_t *))e->encoding_user_data;
+	typedef exr_result_t (*compress_fn)(exr_encode_pipeline_t *);
+	compress_fn fn = (compress_fn)e->encoding_user_data;
 	exr_result_t r = fn(e);
 	if (r == EXR_ERR_SUCCESS && e->compressed_bytes >= e->packed_bytes) {
 		memcpy(e->compressed_buffer, e->packed_buffer, e->packed_bytes);
@@ -54,7 +55,8 @@ int exrio_write(const char *path, int w, int h, int nch, const char *const *name
 	int part, rc = -1;
 	char *tmp = util_tmp_name(path);
 	if (exr_start_write(&f, tmp, EXR_WRITE_FILE_DIRECTLY, &init) != EXR_ERR_SUCCESS) {
-		*cause = xasprintf("%s: cannot write EXR%s%s", path, msg.text[0] ? ": " : "", msg.text);
+		*cause = xasprintf("%s: cannot write EXR%s%s", path, msg.text[0] ? ": " : "",
+		    msg.text);
 		write_msg = NULL;
 		free(tmp);
 		return -1;
@@ -65,7 +67,8 @@ int exrio_write(const char *path, int w, int h, int nch, const char *const *name
 	    exr_initialize_required_attr_simple(f, part, w, h, EXR_COMPRESSION_ZIP))
 		goto done;
 	for (int c = 0; c < nch; c++)
-		if (exr_add_channel(f, part, names[c], EXR_PIXEL_FLOAT, EXR_PERCEPTUALLY_LINEAR, 1, 1))
+		if (exr_add_channel(f, part, names[c], EXR_PIXEL_FLOAT, EXR_PERCEPTUALLY_LINEAR, 1,
+		    1))
 			goto done;
 	for (int a = 0; a < nattr; a++)
 		if (exr_attr_set_string(f, part, attrs[a].key, attrs[a].value))
@@ -78,7 +81,9 @@ int exrio_write(const char *path, int w, int h, int nch, const char *const *name
 		exr_chunk_info_t ci;
 		if (exr_write_scanline_chunk_info(f, part, y, &ci))
 			goto done;
-		if (!enc_init ? exr_encoding_initialize(f, part, &ci, &enc) : exr_encoding_update(f, part, &ci, &enc))
+		exr_result_t er = enc_init ? exr_encoding_update(f, part, &ci, &enc)
+		    : exr_encoding_initialize(f, part, &ci, &enc);
+		if (er)
 			goto done;
 		for (int k = 0; k < enc.channel_count; k++) {
 			exr_coding_channel_info_t *ch = &enc.channels[k];
@@ -110,7 +115,8 @@ done:
 	if (exr_finish(&f) != EXR_ERR_SUCCESS)
 		rc = -1;
 	if (rc != 0) {
-		*cause = xasprintf("%s: writing the EXR failed%s%s", path, msg.text[0] ? ": " : "", msg.text);
+		*cause = xasprintf("%s: writing the EXR failed%s%s", path, msg.text[0] ? ": " : "",
+		    msg.text);
 		unlink(tmp);
 	} else
 		rc = util_commit_tmp(tmp, path, cause);
@@ -168,8 +174,8 @@ int exrio_read_channel(const char *path, const char *name, int w, int h, float *
 	exr_attr_box2i_t dw;
 	int32_t spc;
 	exr_decode_pipeline_t dec = EXR_DECODE_PIPELINE_INITIALIZER;
-	if (exr_get_data_window(f, 0, &dw) || dw.max.x - dw.min.x + 1 != w || dw.max.y - dw.min.y + 1 != h ||
-	    exr_get_scanlines_per_chunk(f, 0, &spc)) {
+	if (exr_get_data_window(f, 0, &dw) || dw.max.x - dw.min.x + 1 != w
+	    || dw.max.y - dw.min.y + 1 != h || exr_get_scanlines_per_chunk(f, 0, &spc)) {
 		*cause = xasprintf("%s: size is not %d x %d", path, w, h);
 		goto out;
 	}
@@ -195,7 +201,8 @@ int exrio_read_channel(const char *path, const char *name, int w, int h, float *
 			ch->user_line_stride = w * (int)sizeof(float);
 			ch->user_bytes_per_element = sizeof(float);
 			ch->user_data_type = EXR_PIXEL_FLOAT;
-			ch->decode_to_ptr = (uint8_t *)(out + (size_t)(ci.start_y - dw.min.y) * (size_t)w);
+			size_t row = (size_t)(ci.start_y - dw.min.y);
+			ch->decode_to_ptr = (uint8_t *)(out + row * (size_t)w);
 		}
 		if (!found) {
 			*cause = xasprintf("%s: no channel '%s'", path, name);

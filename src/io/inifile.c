@@ -11,7 +11,8 @@
 
 #include "base/util.h"
 
-static char *msg(const char *origin, int line, const char *fmt, ...) __attribute__((format(printf, 3, 4)));
+static char *msg(const char *origin, int line, const char *fmt, ...)
+    __attribute__((format(printf, 3, 4)));
 static char *msg(const char *origin, int line, const char *fmt, ...)
 {
 	va_list ap;
@@ -39,7 +40,8 @@ static int header(struct inifile *f, const char *s, char *name, size_t size)
 		/* Said here: libinih would carry on under the previous section
 		 * and a later key would be reported instead (given twice). */
 		f->bad_header = f->line;
-		f->error = msg(f->origin, f->line, "the section header '%s' is not closed (']' missing)", s);
+		f->error = msg(f->origin, f->line,
+		    "the section header '%s' is not closed (']' missing)", s);
 		return -1;
 	}
 	snprintf(name, size, "%.*s", (int)(end - s - 1), s + 1);
@@ -49,8 +51,9 @@ static int header(struct inifile *f, const char *s, char *name, size_t size)
 	if (*t == '\0' || *t == ';' || *t == '#')
 		return 1;
 	f->bad_header = f->line;
-	f->error = msg(f->origin, f->line, "text after the section header [%s]: '%s' (a header line holds only "
-	    "[NAME] and an optional ; comment; put keys on lines of their own)", name, t);
+	f->error = msg(f->origin, f->line, "text after the section header [%s]: '%s' (a header "
+	    "line holds only [NAME] and an optional ; comment; put keys on lines of their own)",
+	    name, t);
 	return -1;
 }
 
@@ -98,10 +101,14 @@ static char *reader(char *str, int num, void *stream)
 int inifile_parse(struct inifile *f, const char *origin, const char *text, ini_handler handler,
     inifile_section_fn section, void *user)
 {
-	*f = (struct inifile){ .origin = origin, .pos = text, .cur = text, .max_line = INI_MAX_LINE - 1,
-		.section = section, .user = user };
+	*f = (struct inifile){ .origin = origin, .pos = text, .cur = text,
+		.max_line = INI_MAX_LINE - 1, .section = section, .user = user };
 	int rc = ini_parse_stream(reader, f, handler, user);
-	return f->too_long ? f->too_long : f->bad_header ? f->bad_header : f->refused ? f->refused : rc;
+	if (f->too_long)
+		return f->too_long;
+	if (f->bad_header)
+		return f->bad_header;
+	return f->refused ? f->refused : rc;
 }
 
 char *inifile_read(const char *path, char **cause)

@@ -25,8 +25,10 @@ struct inifile {
 	int filled;		/* size of libinih's buffer if that line filled it, else 0 */
 	int too_long;		/* number of the first over-long line, 0 if none */
 	int max_line;		/* longest line accepted [characters] */
-	int bad_header;		/* number of the first header line with text after ']', 0 if none */
-	char *error;		/* "ORIGIN:LINE: ..." for bad_header (caller frees), else NULL */
+	int bad_header;		/* number of the first header line with text after ']',
+				 * 0 if none */
+	char *error;		/* "ORIGIN:LINE: ..." for bad_header (caller frees),
+				 * else NULL */
 	int refused;		/* line of a header the section callback refused, 0 if none */
 	inifile_section_fn section;	/* may be NULL */
 	void *user;
@@ -41,7 +43,8 @@ struct inifile {
 int inifile_parse(struct inifile *f, const char *origin, const char *text, ini_handler handler,
     inifile_section_fn section, void *user);
 /* "ORIGIN:LINE: message" (caller frees): how every INI error is worded. */
-char *inifile_vmsg(const char *origin, int line, const char *fmt, va_list ap) __attribute__((format(printf, 3, 0)));
+char *inifile_vmsg(const char *origin, int line, const char *fmt, va_list ap)
+    __attribute__((format(printf, 3, 0)));
 
 /* The whole file (caller frees), or NULL with *cause "PATH: reason". */
 char *inifile_read(const char *path, char **cause);

@@ -59,8 +59,8 @@ static void plain_free(png_structp png, png_voidp p)
 
 static png_structp create_reader(struct png_msg *m)
 {
-	png_structp png = png_create_read_struct_2(PNG_LIBPNG_VER_STRING, m, on_error, on_warning, NULL,
-	    limited_malloc, plain_free);
+	png_structp png = png_create_read_struct_2(PNG_LIBPNG_VER_STRING, m, on_error, on_warning,
+	    NULL, limited_malloc, plain_free);
 	if (png == NULL)
 		return NULL;
 	png_set_chunk_malloc_max(png, 1 << 20);	/* decompressed text */
@@ -75,10 +75,11 @@ static png_structp create_reader(struct png_msg *m)
 int pngio_write(const char *path, int w, int h, int channels, int bits, const uint16_t *px,
     int srgb, int ntext, const struct png_text_kv *text, char **cause)
 {
-	static const int types[] = { 0, PNG_COLOR_TYPE_GRAY, PNG_COLOR_TYPE_GRAY_ALPHA, PNG_COLOR_TYPE_RGB,
-		PNG_COLOR_TYPE_RGB_ALPHA };
+	static const int types[] = { 0, PNG_COLOR_TYPE_GRAY, PNG_COLOR_TYPE_GRAY_ALPHA,
+		PNG_COLOR_TYPE_RGB, PNG_COLOR_TYPE_RGB_ALPHA };
 	if (channels < 1 || channels > 4 || (bits != 8 && bits != 16) || w < 1 || h < 1) {
-		*cause = xasprintf("%s: unsupported PNG layout (%d channels, %d bits)", path, channels, bits);
+		*cause = xasprintf("%s: unsupported PNG layout (%d channels, %d bits)", path,
+		    channels, bits);
 		return -1;
 	}
 	char *tmp = util_tmp_name(path);
@@ -90,7 +91,8 @@ int pngio_write(const char *path, int w, int h, int channels, int bits, const ui
 	}
 	size_t rowlen = (size_t)w * (size_t)channels * (size_t)(bits / 8);
 	unsigned char *volatile row = xmalloc(rowlen);
-	png_structp png = png_create_write_struct(PNG_LIBPNG_VER_STRING, NULL, on_error, on_warning);
+	png_structp png = png_create_write_struct(PNG_LIBPNG_VER_STRING, NULL, on_error,
+	    on_warning);
 	png_infop info = png ? png_create_info_struct(png) : NULL;
 	errno = 0;
 	if (!info || setjmp(png_jmpbuf(png))) {
@@ -100,7 +102,8 @@ int pngio_write(const char *path, int w, int h, int channels, int bits, const ui
 		unlink(tmp);
 		free(tmp);
 		free(row);
-		*cause = xasprintf("%s: writing the PNG failed%s%s", path, e ? ": " : "", e ? strerror(e) : "");
+		*cause = xasprintf("%s: writing the PNG failed%s%s", path, e ? ": " : "",
+		    e ? strerror(e) : "");
 		return -1;
 	}
 	png_init_io(png, fp);
@@ -108,8 +111,8 @@ int pngio_write(const char *path, int w, int h, int channels, int bits, const ui
 	 * little size and save most of the write time. */
 	png_set_compression_level(png, 2);
 	png_set_filter(png, 0, PNG_FILTER_UP);
-	png_set_IHDR(png, info, (png_uint_32)w, (png_uint_32)h, bits, types[channels], PNG_INTERLACE_NONE,
-	    PNG_COMPRESSION_TYPE_DEFAULT, PNG_FILTER_TYPE_DEFAULT);
+	png_set_IHDR(png, info, (png_uint_32)w, (png_uint_32)h, bits, types[channels],
+	    PNG_INTERLACE_NONE, PNG_COMPRESSION_TYPE_DEFAULT, PNG_FILTER_TYPE_DEFAULT);
 	if (srgb)
 		png_set_sRGB_gAMA_and_cHRM(png, info, PNG_sRGB_INTENT_PERCEPTUAL);
 	if (ntext > 0) {
@@ -128,7 +131,8 @@ int pngio_write(const char *path, int w, int h, int channels, int bits, const ui
 		const uint16_t *src = px + (size_t)y * n;
 		if (bits == 16)
 			for (size_t i = 0; i < n; i++) {
-				row[2 * i] = (unsigned char)(src[i] >> 8);	/* PNG is big-endian */
+				/* PNG is big-endian */
+				row[2 * i] = (unsigned char)(src[i] >> 8);
 				row[2 * i + 1] = (unsigned char)(src[i] & 0xff);
 			}
 		else
@@ -181,7 +185,8 @@ uint16_t *pngio_read(const char *path, int *w, int *h, int *channels, int *bits,
 	png_init_io(png, fp);
 	png_read_info(png, info);
 	png_uint_32 pw = png_get_image_width(png, info), ph = png_get_image_height(png, info);
-	if ((double)png_get_rowbytes(png, info) * (double)ph > PNG_MAX_INFLATE * file_bytes + 65536.0) {
+	double need = (double)png_get_rowbytes(png, info) * (double)ph;
+	if (need > PNG_MAX_INFLATE * file_bytes + 65536.0) {
 		snprintf(msg.text, sizeof msg.text, "%lu x %lu pixels cannot be held in %.0f bytes",
 		    (unsigned long)pw, (unsigned long)ph, file_bytes);
 		png_longjmp(png, 1);
@@ -216,9 +221,9 @@ uint16_t *pngio_read(const char *path, int *w, int *h, int *channels, int *bits,
 	free(rows);
 	unsigned char *raw = (unsigned char *)px;
 	size_t total = n * (size_t)*h;
-	if (b == 16)
+	if (b == 16)	/* PNG is big-endian */
 		for (size_t i = 0; i < total; i++)
-			px[i] = (uint16_t)((raw[2 * i] << 8) | raw[2 * i + 1]);	/* PNG is big-endian */
+			px[i] = (uint16_t)((raw[2 * i] << 8) | raw[2 * i + 1]);
 	else
 		for (size_t i = total; i-- > 0;)
 			px[i] = (uint16_t)(raw[i] * 257);

@@ -33,7 +33,8 @@ struct preset_ctx {
 };
 
 /* Record the first error as "origin:line: message". */
-void preset_ctx_err(struct preset_ctx *c, const char *fmt, ...) __attribute__((format(printf, 2, 3)));
+void preset_ctx_err(struct preset_ctx *c, const char *fmt, ...)
+    __attribute__((format(printf, 2, 3)));
 
 /* What preset.c needs of key i (0 <= i < preset_key_count()). */
 struct preset_key_info {
@@ -41,7 +42,8 @@ struct preset_key_info {
 	double lo, hi;		/* range of a numeric key */
 	int layer;		/* enum skin_layer_id, or -1 for a struct skin_params field */
 	size_t off;		/* offset of the double in the layer or the params */
-	int numeric;		/* a number (or thickness, index, anisotropy given as a number) */
+	int numeric;		/* a number (or thickness, index, anisotropy given as a
+				 * number) */
 };
 void preset_key_info(int i, struct preset_key_info *out);
 int preset_key_count(void);
@@ -57,7 +59,8 @@ enum preset_key_kind {
 	K_MODEL,	/* chromophores | tables */
 	K_WL,		/* wavelength list */
 	K_BASE,		/* start from a built-in preset */
-	K_ROUGH		/* a rough-surface number in [lo, hi], left out of the resolved text when 0 */
+	K_ROUGH		/* a rough-surface number in [lo, hi], left out of the
+			 * resolved text when 0 */
 };
 struct preset_key {
 	const char *section;

@@ -14,7 +14,7 @@ mode) two numbers: the single-scattering albedo a and the extinction mu_t.
     top with single scattering on the facets, as Mitsuba's roughdielectric) at
     mu_t = 1 / cm: R(r) at mu_t is mu_t^2 R_1(mu_t r), so one run per albedo
     gives every mu_t. tests/mitsuba_translucent.sh measures the fitted medium's
-    R(r) in Mitsuba itself (stack.py, measure.py) against the bake's.
+    R(r) in Mitsuba itself (transmeasure.py) against the bake's.
   * The medium's own BRDF (the light it returns from a laterally uniform beam)
     is baked by skinbake bake --solver ad from a preset file of that medium
     ([skin] model = tables): the BSDF (transbsdf.py) adds the bake's table minus
