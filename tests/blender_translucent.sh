@@ -26,7 +26,7 @@ if [ -z "$BLENDER" ] || ! command -v "$BLENDER" >/dev/null 2>&1 || ! command -v 
 fi
 B() { timeout 600 "$BLENDER" -b --factory-startup -noaudio --python-exit-code 1 "$@"; }
 # todo DESC REASON CMD...: a known limit, reported but not failing.
-todo() { d=$1; why=$2; shift 2; tap_n=$((tap_n+1)); if "$@"; then echo "ok $tap_n - $d # TODO $why"; \
+todo() { d=$1; why=$2; shift 2; tap_n=$((tap_n+1)); if "$@"; then echo "ok $tap_n - $d (known limit met this run: $why)"; \
 	else echo "not ok $tap_n - $d # TODO $why"; fi; }
 
 blver=$(B --python-expr 'import bpy; print("BLVER %d.%d" % tuple(bpy.app.version[:2]))' \

@@ -28,7 +28,7 @@ bake="$tmpd/paper"
 check "bake paper" test $? -eq 0
 
 # todo DESC REASON CMD...: a known limit, reported but not failing.
-todo() { d=$1; why=$2; shift 2; tap_n=$((tap_n+1)); if "$@"; then echo "ok $tap_n - $d # TODO $why"; \
+todo() { d=$1; why=$2; shift 2; tap_n=$((tap_n+1)); if "$@"; then echo "ok $tap_n - $d (known limit met this run: $why)"; \
 	else echo "not ok $tap_n - $d # TODO $why"; fi; }
 
 # 1. Flat skin under uniform light.
