@@ -301,6 +301,18 @@ void bake_eval_specular(const struct bake *b, double theta_i, double theta_o, do
 		f[w] = specular_ggx(&b->stack[w], b->roughness, theta_i, theta_o, fold_phi(dphi));
 }
 
+void bake_eval_specular_rgb(const struct bake *b, double theta_i, double theta_o, double dphi, double rgb[3])
+{
+	double sp[BAKE_MAX_WL];
+	CHECK(b->n_wl <= BAKE_MAX_WL);
+	bake_eval_specular(b, theta_i, theta_o, fold_phi(dphi), sp);
+	for (int c = 0; c < 3; c++) {
+		rgb[c] = 0.0;
+		for (int w = 0; w < b->n_wl; w++)
+			rgb[c] += b->rgb_from_wl[c * b->n_wl + w] * sp[w];
+	}
+}
+
 void bake_eval_rgb(const struct bake *b, double theta_i, double theta_o, double dphi, double rgb[3])
 {
 	double ph = fold_phi(dphi), ti = clamp_theta(theta_i), to = clamp_theta(theta_o);
