@@ -315,10 +315,20 @@ void bake_eval_specular_rgb(const struct bake *b, double theta_i, double theta_o
 
 void bake_eval_rgb(const struct bake *b, double theta_i, double theta_o, double dphi, double rgb[3])
 {
-	double ph = fold_phi(dphi), ti = clamp_theta(theta_i), to = clamp_theta(theta_o);
-	double sp[BAKE_MAX_WL], fd[BAKE_MAX_WL];
+	double sp[BAKE_MAX_WL];
 	CHECK(b->n_wl <= BAKE_MAX_WL);	/* bake_load guarantees it */
-	bake_eval_specular(b, theta_i, theta_o, ph, sp);
+	bake_eval_specular(b, theta_i, theta_o, fold_phi(dphi), sp);
+	bake_eval_diffuse_rgb(b, theta_i, theta_o, dphi, rgb);
+	for (int c = 0; c < 3; c++)
+		for (int w = 0; w < b->n_wl; w++)
+			rgb[c] += b->rgb_from_wl[c * b->n_wl + w] * sp[w];
+}
+
+void bake_eval_diffuse_rgb(const struct bake *b, double theta_i, double theta_o, double dphi, double rgb[3])
+{
+	double ph = fold_phi(dphi), ti = clamp_theta(theta_i), to = clamp_theta(theta_o);
+	double fd[BAKE_MAX_WL];
+	CHECK(b->n_wl <= BAKE_MAX_WL);	/* bake_load guarantees it */
 	int mixed = 0;
 	for (int c = 0; c < 3; c++)
 		mixed |= bake_interp_rgb(b, c, ti, to, ph, &rgb[c]) != 0;
@@ -330,9 +340,6 @@ void bake_eval_rgb(const struct bake *b, double theta_i, double theta_o, double 
 				rgb[c] += b->rgb_from_wl[c * b->n_wl + w] * fd[w];
 		}
 	}
-	for (int c = 0; c < 3; c++)
-		for (int w = 0; w < b->n_wl; w++)
-			rgb[c] += b->rgb_from_wl[c * b->n_wl + w] * sp[w];
 }
 
 int bake_preset_to_dir(struct bake_spec *s, const struct skin_params *p, const char *label, const char *out,

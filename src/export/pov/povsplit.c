@@ -42,11 +42,7 @@ double povsplit_slope2(const struct bumpmap *h)
 
 void povsplit_diffuse(void *ctx, double theta_i, double theta_o, double dphi, double rgb[3])
 {
-	double sp[3];
-	bake_eval_rgb(ctx, theta_i, theta_o, dphi, rgb);
-	bake_eval_specular_rgb(ctx, theta_i, theta_o, dphi, sp);
-	for (int c = 0; c < 3; c++)
-		rgb[c] -= sp[c];
+	bake_eval_diffuse_rgb(ctx, theta_i, theta_o, dphi, rgb);
 }
 
 double *povsplit_fill_curve(const struct bake *b, int n, const double *th, const double *diffuse)
