@@ -533,8 +533,8 @@ static int load_split(const struct povexport_options *o, const struct scene *s, 
 	struct pov_skin *ps = &in->ps[k];
 	const char *sn = s->skins[k].name;
 	const struct bake *b = split_bake(o, s, k, in);
-	if (ps->height_png == NULL || b == NULL)
-		return 0;
+	if (ps->height_png == NULL || b == NULL || !(in->hm[k].h_range_um > 0))
+		return 0;	/* a flat relief: nothing to blur, the whole table renders the same */
 	struct povsplit_kernel kr;
 	double ratio;
 	char *err = NULL;
