@@ -34,7 +34,8 @@ double povsplit_slope2(const struct bumpmap *h)
 	for (int y = 0; y < n; y++)
 		for (int x = 0; x < n; x++) {
 			double v = h->px[(size_t)y * n + x];
-			double dx = h->px[(size_t)y * n + (x + 1) % n] - v, dy = h->px[(size_t)((y + 1) % n) * n + x] - v;
+			double dx = h->px[(size_t)y * n + (x + 1) % n] - v;
+			double dy = h->px[(size_t)((y + 1) % n) * n + x] - v;
 			s += dx * dx + dy * dy;
 		}
 	return s * k * k / ((double)n * n);
@@ -81,8 +82,11 @@ int povsplit_kernel_make(const struct bake *b, double texel_um, struct povsplit_
 				p[c] += b->rd_r_rgb[c * b->n_r + i] * (i + 0.5);
 		for (int i = 0; i < b->n_r; i++) {
 			double r = (i + 0.5) * dr, q = 0;
-			for (int c = 0; c < 3; c++)
-				q += p[c] > 0 ? lum[c] * b->rd_r_rgb[c * b->n_r + i] * (i + 0.5) / p[c] : 0;
+			for (int c = 0; c < 3; c++) {
+				const double *rd = b->rd_r_rgb + c * b->n_r;
+				if (p[c] > 0)
+					q += lum[c] * rd[i] * (i + 0.5) / p[c];
+			}
 			if (!(q > 0))
 				continue;
 			total += q;
@@ -177,16 +181,18 @@ static double rms_slope(const double *h, int n)
 	return sqrt(s / ((double)n * n));
 }
 
-int povsplit_make(const struct bumpmap *h, const struct bake *b, struct bumpmap *out, struct povsplit_kernel *k,
-    double *slope_ratio, char **cause)
+int povsplit_make(const struct bumpmap *h, const struct bake *b, struct bumpmap *out,
+    struct povsplit_kernel *k, double *slope_ratio, char **cause)
 {
 	int n = h->size_px;
 	size_t nn = (size_t)n * n;
 	if (povsplit_kernel_make(b, h->tile_mm * 1e3 / n, k) != 0) {
-		*cause = xstrdup("the bake has neither a radial profile Rd(r) nor a mean exit radius");
+		*cause = xstrdup("the bake has neither a radial profile Rd(r) nor a mean exit "
+		    "radius");
 		return -1;
 	}
-	double *a = xmalloc(sizeof *a * nn), *o = xmalloc(sizeof *o * nn), lo = INFINITY, hi = -INFINITY;
+	double *a = xmalloc(sizeof *a * nn), *o = xmalloc(sizeof *o * nn);
+	double lo = INFINITY, hi = -INFINITY;
 	for (size_t i = 0; i < nn; i++)
 		a[i] = h->h_min_um + h->h_range_um * h->px[i] / 65535.0;
 	povsplit_blur(a, n, k, o);
@@ -196,8 +202,9 @@ int povsplit_make(const struct bumpmap *h, const struct bake *b, struct bumpmap 
 	}
 	double sa = rms_slope(a, n);
 	*slope_ratio = sa > 0 ? rms_slope(o, n) / sa : 0;
-	*out = (struct bumpmap){ .src = xstrdup(h->src), .size_px = n, .tile_mm = h->tile_mm, .h_min_um = lo,
-		.h_range_um = hi - lo, .px = xmalloc(sizeof(uint16_t) * nn), .filter = h->filter };
+	*out = (struct bumpmap){ .src = xstrdup(h->src), .size_px = n, .tile_mm = h->tile_mm,
+		.h_min_um = lo, .h_range_um = hi - lo, .px = xmalloc(sizeof(uint16_t) * nn),
+		.filter = h->filter };
 	for (size_t i = 0; i < nn; i++)
 		out->px[i] = hi > lo ? (uint16_t)lround((o[i] - lo) / (hi - lo) * 65535.0) : 0;
 	free(a);

@@ -73,6 +73,6 @@ void povsplit_blur(const double *h, int n, const struct povsplit_kernel *k, doub
 /* *out: h blurred by K (a new map of the same tile and size); *slope_ratio
  * the RMS slope of *out over that of h (the diffuse shading's contrast
  * left) [-].  -1 and *cause without a kernel. */
-int povsplit_make(const struct bumpmap *h, const struct bake *b, struct bumpmap *out, struct povsplit_kernel *k,
-    double *slope_ratio, char **cause);
+int povsplit_make(const struct bumpmap *h, const struct bake *b, struct bumpmap *out,
+    struct povsplit_kernel *k, double *slope_ratio, char **cause);
 #endif
