@@ -16,7 +16,8 @@
 # pixel: the subsurface radius, in pixel widths, below which this Blender renders the closure as a
 # Lambert diffuse (Cycles 4.3: a quarter pixel): a wide box, orthographic camera along the normal,
 # 24 px, Base Colour 0.3 under a sun along the normal, radii PIXEL_FRACTIONS pixels per channel; a
-# channel rendered as diffuse gives pi L / E = 0.3 exactly, the walk 0.25.  Prints SKINBAKE_PIXEL
+# channel rendered as diffuse gives pi L / E = 0.3 exactly and noiseless pixels, the walk
+# 0.25 (4.x) or about 0.3 (3.4) with sampling noise.  Prints SKINBAKE_PIXEL
 # with the largest fraction rendered as diffuse (0: none), the smallest rendered as the walk, and
 # calibration.SSS_DIFFUSE_BELOW's value for this Blender.  About 10 s.
 import math
@@ -82,6 +83,8 @@ def lit(colour, cos_view, sun_deg, tmp, radius=(3.6e-3,) * 3):
     px, ch = list(img.pixels), img.channels
     n = len(px) // ch
     mean = [sum(px[i * ch + c] for i in range(n)) / n for c in range(3)]
+    # The pixels' spread per channel relative to the mean: 0 for a Lambert diffuse (no noise).
+    lit.spread = [max(abs(px[i * ch + c] - mean[c]) for i in range(n)) / max(mean[c], 1e-30) for c in range(3)]
     bpy.data.images.remove(img)
     return [math.pi * x / math.cos(t) for x in mean]
 
@@ -106,9 +109,11 @@ with tempfile.TemporaryDirectory() as tmp:
         diffuse, walk = [0.0], []
         for i in range(0, len(PIXEL_FRACTIONS), 3):
             fr = PIXEL_FRACTIONS[i:i + 3]
-            for f, r in zip(fr, lit((0.3,) * 3, 1.0, 0.0, tmp, [f * pixel for f in fr])):
-                (diffuse if abs(r - 0.3) < 1e-4 else walk).append(f)
-                print("SKINBAKE_PIXEL_RADIUS", f, f"{r:.5f}", "diffuse" if abs(r - 0.3) < 1e-4 else "walk")
+            got = lit((0.3,) * 3, 1.0, 0.0, tmp, [f * pixel for f in fr])
+            for f, r, sp in zip(fr, got, lit.spread):
+                dif = abs(r - 0.3) < 1e-4 and sp < 1e-4
+                (diffuse if dif else walk).append(f)
+                print("SKINBAKE_PIXEL_RADIUS", f, f"{r:.5f}", f"spread {sp:.2e}", "diffuse" if dif else "walk")
         print("SKINBAKE_PIXEL", max(diffuse), min(walk) if walk else "none",
               calibration.sss_diffuse_below_pixels())
     elif what == "check":

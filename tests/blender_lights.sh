@@ -127,7 +127,11 @@ BF --python "$top_srcdir/scripts/blender-calibrate.py" -- pixel 16 >"$tmpd/pchec
 set -- $(val SKINBAKE_PIXEL "$tmpd/pcheck.log")
 if [ $# -eq 3 ] && { { [ "$3" = None ] && [ "$1" = 0.0 ]; } ||
 	{ [ "$3" != None ] && awk -v lo="$1" -v hi="$2" -v p="$3" 'BEGIN { exit !(hi != "none" && lo < p && p <= hi) }'; }; }; then
-	ok "Blender ${bver:-?}: subsurface radii rendered as diffuse below ${3} pixel (calibration.SSS_DIFFUSE_BELOW): diffuse up to $1, walk from $2"
+	if [ "$3" = None ]; then
+		ok "Blender ${bver:-?}: subsurface radii down to $2 pixel render as the random walk, none as diffuse (calibration.SSS_DIFFUSE_BELOW: no fall-back)"
+	else
+		ok "Blender ${bver:-?}: subsurface radii below $3 pixel render as diffuse (calibration.SSS_DIFFUSE_BELOW): diffuse up to $1, walk from $2"
+	fi
 else
 	fail "Blender ${bver:-?}: subsurface diffuse fall-back '$*' against calibration.SSS_DIFFUSE_BELOW $(grep -i error "$tmpd/pcheck.log" | head -2)"
 fi
