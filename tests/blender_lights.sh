@@ -85,7 +85,7 @@ check "the saved file renders (view layers and compositor sum)" test $? -eq 0 -a
 # the manifest's general_fit, 4.x and 5.x its general_fit_v4 (Lambert subsurface term, Base Colour
 # from the measured response of calibration.VIEW_RESPONSE): both fits within 5 % RMS.  The sphere's
 # pixel is 3.6 mm wide, so its green and blue radii (0.29, 0.16 mm) are below a quarter pixel, which
-# Cycles 4.3 renders as diffuse unless the importer raises them (skinbake_import/footprint.py;
+# Cycles 4.2 and 4.3 render as diffuse unless the importer raises them (skinbake_import/footprint.py;
 # 4.3.0: mean 0.058 without, 0.030 with; 4.5.15: 0.036).
 for key in general_fit general_fit_v4; do
 	r=$(python3 -c "import json; print(json.load(open('$tmpd/set/manifest.json'))['$key']['rms_error'])")
@@ -121,7 +121,7 @@ if [ "${bmajor:-3}" -ge 4 ]; then
 	fi
 fi
 
-# The radius below which this Blender renders the subsurface closure as diffuse (Cycles 4.3: a
+# The radius below which this Blender renders the subsurface closure as diffuse (Cycles 4.2, 4.3: a
 # quarter pixel; the others: none) is calibration.SSS_DIFFUSE_BELOW's for this version.
 BF --python "$top_srcdir/scripts/blender-calibrate.py" -- pixel 16 >"$tmpd/pcheck.log" 2>&1
 set -- $(val SKINBAKE_PIXEL "$tmpd/pcheck.log")

@@ -1,10 +1,10 @@
-"""The pixel footprint, and the subsurface radius that Cycles 4.3 keeps as a random walk.
+"""The pixel footprint, and the subsurface radius that Cycles 4.2 and 4.3 keep as a random walk.
 
-Cycles 4.3's bssrdf_setup (kernel/closure/bssrdf.h, shipped with Blender in
-scripts/addons_core/cycles/source) renders every channel whose subsurface radius is below a
+Cycles 4.2's and 4.3's bssrdf_setup (kernel/closure/bssrdf.h, shipped with Blender in
+scripts/addons_core/cycles/source) render every channel whose subsurface radius is below a
 quarter of the ray's footprint, sd->dP (for a camera ray: the pixel's width at the point), as a
 Lambert diffuse of the same colour ("Fall back to diffuse if the radius is smaller than a quarter
-pixel"); 3.4, 4.5 and 5.0 fall back only below 1e-8.  The general mode's Base Colours are
+pixel"); 3.4, 4.4, 4.5 and 5.0 fall back only below 1e-8.  The general mode's Base Colours are
 calibrated for the random walk (calibration.VIEW_RESPONSE: 0.77-1.77 times the Lambert response),
 so on such a Blender each channel's radius is raised to MARGIN pixel footprints where it is
 smaller: a blur below a third of a pixel, which the pixel filter (1.5 px) hides, for the response
