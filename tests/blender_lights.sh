@@ -136,6 +136,17 @@ else
 	fail "Blender ${bver:-?}: subsurface diffuse fall-back '$*' against calibration.SSS_DIFFUSE_BELOW $(grep -i error "$tmpd/pcheck.log" | head -2)"
 fi
 
+# The pixel width that the importer keeps those radii above (footprint.py): its drivers follow the
+# camera (perspective, orthographic, each sensor fit) and the resolution, in simple expressions
+# (no Python, so they run in untrusted files too).
+BF --python "$scn" -- footprint "$imp" >"$tmpd/fp.log" 2>&1
+set -- $(val SKINBAKE_FOOTPRINT "$tmpd/fp.log")
+if [ $# -eq 3 ] && [ "$3" = simple ] && awk -v n="$1" -v e="$2" 'BEGIN { exit !(n == 12 && e < 1e-6) }'; then
+	ok "pixel footprint drivers: $1 values within $2 of the camera's pixel width ($3 expressions)"
+else
+	fail "pixel footprint drivers: '$*' $(grep -i error "$tmpd/fp.log" | head -2)"
+fi
+
 # 4. Bad input: a clear message and exit status 2, nothing saved.
 # bad DESC PATTERN ARGS...: Blender with ARGS refused by import_skin.py (tests/lib/refused.sh)
 bad() {
