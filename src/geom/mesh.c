@@ -375,8 +375,10 @@ struct mesh *mesh_load(const char *path, const char *name, char **cause)
 	}
 	fclose(fp);
 	pthread_once(&ai_once, ai_load);
-	if (ai.error)
-		return *cause = xasprintf("%s: %s", path, ai.error), NULL;
+	if (ai.error) {
+		*cause = xasprintf("%s: %s", path, ai.error);
+		return NULL;
+	}
 	const struct aiScene *sc = ai.ImportFile(path, IMPORT_FLAGS);
 	if (sc == NULL || sc->mRootNode == NULL) {
 		*cause = format_error(path);
