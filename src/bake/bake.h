@@ -98,6 +98,9 @@ struct bake_spec {
 						 * unit cosine; 0 = automatic */
 	int ad_quad_max;			/* largest automatic ad_quad (its cost bound);
 						 * 0 = the solver's default */
+	int ad_orders;				/* Fourier orders at most; 0 = all the table
+						 * needs, 1 = the albedos only (order 0; the
+						 * table's bins then hold its azimuthal mean) */
 	int bin_means;				/* 1: bin means from every method (no point values;
 					 * for comparing methods bin by bin) */
 	double radial_error;			/* relative standard error of the

@@ -8,14 +8,66 @@
 #include <assimp/material.h>
 #include <assimp/postprocess.h>
 #include <assimp/scene.h>
+#include <dlfcn.h>
 #include <errno.h>
 #include <math.h>
+#include <pthread.h>
 #include <stdio.h>
 #include <stdlib.h>
 #include <string.h>
 #include <sys/stat.h>
 
 #include "base/util.h"
+
+/* libassimp is loaded when the first model is read, not with the program:
+ * with its C++ runtime and codecs it was 3 of the 9 ms every command spent
+ * starting up (dynamic loading and relocations), and only scenes with
+ * meshes use it.  ASSIMP_SONAME comes from configure. */
+static struct {
+	__typeof__(aiImportFile) *ImportFile;
+	__typeof__(aiReleaseImport) *ReleaseImport;
+	__typeof__(aiGetErrorString) *GetErrorString;
+	__typeof__(aiIsExtensionSupported) *IsExtensionSupported;
+	__typeof__(aiGetExtensionList) *GetExtensionList;
+	__typeof__(aiGetMaterialColor) *GetMaterialColor;
+	__typeof__(aiGetMaterialFloatArray) *GetMaterialFloatArray;
+	__typeof__(aiGetMaterialTexture) *GetMaterialTexture;
+	__typeof__(aiIdentityMatrix4) *IdentityMatrix4;
+	__typeof__(aiMultiplyMatrix4) *MultiplyMatrix4;
+	char *error;		/* why loading failed, else NULL */
+} ai;
+static pthread_once_t ai_once = PTHREAD_ONCE_INIT;
+
+static void ai_load(void)
+{
+	void *h = dlopen(ASSIMP_SONAME, RTLD_NOW | RTLD_LOCAL);
+	if (h == NULL) {
+		const char *e = dlerror();
+		ai.error = xasprintf("cannot load libassimp (%s): %s", ASSIMP_SONAME,
+		    e ? e : "dlopen failed");
+		return;
+	}
+	struct {
+		const char *name;
+		void **fn;
+	} sym[] = {
+		{ "aiImportFile", (void **)&ai.ImportFile },
+		{ "aiReleaseImport", (void **)&ai.ReleaseImport },
+		{ "aiGetErrorString", (void **)&ai.GetErrorString },
+		{ "aiIsExtensionSupported", (void **)&ai.IsExtensionSupported },
+		{ "aiGetExtensionList", (void **)&ai.GetExtensionList },
+		{ "aiGetMaterialColor", (void **)&ai.GetMaterialColor },
+		{ "aiGetMaterialFloatArray", (void **)&ai.GetMaterialFloatArray },
+		{ "aiGetMaterialTexture", (void **)&ai.GetMaterialTexture },
+		{ "aiIdentityMatrix4", (void **)&ai.IdentityMatrix4 },
+		{ "aiMultiplyMatrix4", (void **)&ai.MultiplyMatrix4 },
+	};
+	for (size_t i = 0; i < sizeof sym / sizeof sym[0]; i++)
+		if ((*sym[i].fn = dlsym(h, sym[i].name)) == NULL) {
+			ai.error = xasprintf("libassimp (%s) lacks %s", ASSIMP_SONAME, sym[i].name);
+			return;
+		}
+}
 
 /* Triangulate polygons, share identical vertices, make smooth normals where
  * the file has none and tangents from the UVs where it has none (libassimp
@@ -76,17 +128,17 @@ static void read_material(struct flat *f, const struct aiMaterial *mat)
 	struct aiColor4D c;
 	struct aiString p;
 	float shin;
-	if (aiGetMaterialColor(mat, AI_MATKEY_COLOR_DIFFUSE, &c) == AI_SUCCESS) {
+	if (ai.GetMaterialColor(mat, AI_MATKEY_COLOR_DIFFUSE, &c) == AI_SUCCESS) {
 		m->diffuse_rgb[0] = c.r;
 		m->diffuse_rgb[1] = c.g;
 		m->diffuse_rgb[2] = c.b;
 	}
-	if (aiGetMaterialColor(mat, AI_MATKEY_COLOR_SPECULAR, &c) == AI_SUCCESS)
+	if (ai.GetMaterialColor(mat, AI_MATKEY_COLOR_SPECULAR, &c) == AI_SUCCESS)
 		m->specular = (c.r + c.g + c.b) / 3;
 	unsigned int one = 1;
-	if (aiGetMaterialFloatArray(mat, AI_MATKEY_SHININESS, &shin, &one) == AI_SUCCESS)
+	if (ai.GetMaterialFloatArray(mat, AI_MATKEY_SHININESS, &shin, &one) == AI_SUCCESS)
 		m->shininess = shin;
-	if (aiGetMaterialTexture(mat, aiTextureType_DIFFUSE, 0, &p, NULL, NULL, NULL, NULL, NULL,
+	if (ai.GetMaterialTexture(mat, aiTextureType_DIFFUSE, 0, &p, NULL, NULL, NULL, NULL, NULL,
 	    NULL) != AI_SUCCESS)
 		return;
 	/* Embedded ("*N" or a name the file carries inside, as in .zae). */
@@ -255,7 +307,7 @@ static void walk(struct flat *f, const struct aiScene *sc, const struct aiNode *
     const struct aiMatrix4x4 *parent, int node_selected)
 {
 	struct aiMatrix4x4 t = *parent;
-	aiMultiplyMatrix4(&t, &node->mTransformation);
+	ai.MultiplyMatrix4(&t, &node->mTransformation);
 	int sel = node_selected || name_is(&node->mName, f->name);
 	for (unsigned i = 0; i < node->mNumMeshes; i++) {
 		const struct aiMesh *am = sc->mMeshes[node->mMeshes[i]];
@@ -281,13 +333,13 @@ static char *names(const struct aiScene *sc)
 static char *format_error(const char *path)
 {
 	const char *dot = strrchr(path, '.'), *slash = strrchr(path, '/');
-	if (dot != NULL && (slash == NULL || dot > slash) && !aiIsExtensionSupported(dot)) {
+	if (dot != NULL && (slash == NULL || dot > slash) && !ai.IsExtensionSupported(dot)) {
 		struct aiString ext = { 0 };	/* appended to: start empty */
-		aiGetExtensionList(&ext);
+		ai.GetExtensionList(&ext);
 		return xasprintf("%s: unknown model format '%s' (libassimp reads %s)", path, dot,
 		    ext.data);
 	}
-	return xasprintf("%s: not a model libassimp can read: %s", path, aiGetErrorString());
+	return xasprintf("%s: not a model libassimp can read: %s", path, ai.GetErrorString());
 }
 
 /* Vertices a renderer can take: finite, and far below float's 3.4e38
@@ -322,18 +374,23 @@ struct mesh *mesh_load(const char *path, const char *name, char **cause)
 		return NULL;
 	}
 	fclose(fp);
-	const struct aiScene *sc = aiImportFile(path, IMPORT_FLAGS);
+	pthread_once(&ai_once, ai_load);
+	if (ai.error) {
+		*cause = xasprintf("%s: %s", path, ai.error);
+		return NULL;
+	}
+	const struct aiScene *sc = ai.ImportFile(path, IMPORT_FLAGS);
 	if (sc == NULL || sc->mRootNode == NULL) {
 		*cause = format_error(path);
 		if (sc != NULL)
-			aiReleaseImport(sc);
+			ai.ReleaseImport(sc);
 		return NULL;
 	}
 	struct mesh *m = xcalloc(1, sizeof *m);
 	struct flat f = { .m = m, .sc = sc, .path = path, .name = name };
 	m->diffuse_rgb[0] = m->diffuse_rgb[1] = m->diffuse_rgb[2] = 0.8;
 	struct aiMatrix4x4 id;
-	aiIdentityMatrix4(&id);
+	ai.IdentityMatrix4(&id);
 	walk(&f, sc, sc->mRootNode, &id, 0);
 	if (m->n_triangles == 0) {
 		char *list = names(sc);
@@ -343,12 +400,12 @@ struct mesh *mesh_load(const char *path, const char *name, char **cause)
 		else
 			*cause = xasprintf("%s: no triangles in the file", path);
 		free(list);
-		aiReleaseImport(sc);
+		ai.ReleaseImport(sc);
 		mesh_free(m);
 		return NULL;
 	}
 	if (check_vertices(m, path, cause) != 0) {
-		aiReleaseImport(sc);
+		ai.ReleaseImport(sc);
 		mesh_free(m);
 		return NULL;
 	}
@@ -359,7 +416,7 @@ struct mesh *mesh_load(const char *path, const char *name, char **cause)
 		m->tangent = NULL;
 	}
 	m->source = name ? xasprintf("%s: %s", path, name) : xstrdup(path);
-	aiReleaseImport(sc);
+	ai.ReleaseImport(sc);
 	return m;
 }
 
