@@ -12,6 +12,7 @@
 
 #include "cli/opt.h"
 #include "base/util.h"
+#include "engine/ad.h"
 
 /* What went to stdout is output too: a write error there (a full disk,
  * /dev/full) is a failure with its cause, never exit status 0. */
@@ -54,6 +55,7 @@ static void usage(FILE *fp)
 
 static int cli_main(int argc, char **argv)
 {
+	ad_blas_init();
 	if (argc < 2) {
 		usage(stderr);
 		return CLI_EXIT_USAGE;

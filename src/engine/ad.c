@@ -18,6 +18,15 @@
 #include "engine/ad_rough.h"
 #include "base/util.h"
 
+/* OpenBLAS's (pthreads builds; not in cblas.h): joins its worker threads. */
+int blas_thread_shutdown_(void);
+
+void ad_blas_init(void)
+{
+	openblas_set_num_threads(1);
+	(void)blas_thread_shutdown_();
+}
+
 void ad_opts_default(struct ad_opts *o)
 {
 	memset(o, 0, sizeof *o);
