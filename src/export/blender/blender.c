@@ -498,9 +498,8 @@ struct blender_set *blender_prepare(const struct brdf_source *m, const struct bl
 	return s;
 }
 
-static const char *const blender_names[] = { "albedo.exr", "brdf_lut.exr", "roughness.png", "height.png",
-	"normal.png", "roughness_far.png", "family_lut.exr", "family_coord.exr", "albedo_map.exr", "sss_radius_map.exr",
-	"sss_colour_*.exr", "sss_radius_*.exr", "sss_extra_*.exr", NULL };
+static const char *const blender_names[] = { "albedo*.exr", "brdf_lut.exr", "roughness*.png",
+	"height.png", "normal.png", "family_lut.exr", "family_coord.exr", "sss_*.exr", NULL };
 const struct outdir_kind blender_outdir_kind = { "Blender image set", "manifest.json", "format",
 	"skinbake-blender-image-set", blender_names };
 
