@@ -104,7 +104,7 @@ static double dot(const double *a, const double *b)
 static void eval_one(const struct macro_rule *r, macro_fn f, void *ctx, int n, double ti, double to, double dphi,
     double *out)
 {
-	double v[64];
+	double v[MACRO_MAX_OUT];
 	double wi[3] = { sin(ti), 0.0, cos(ti) };
 	double wo[3] = { sin(to) * cos(dphi), sin(to) * sin(dphi), cos(to) };
 	double scale = macro_g2(r, wi[2], wo[2]) / (wi[2] * wo[2]);
@@ -142,7 +142,7 @@ void macro_eval(const struct macro_rule *r, macro_fn f, void *ctx, int n, double
 	 * rotation of the pair) moves its nodes: the mean of both orders is
 	 * reciprocal by construction (for a reciprocal f) at twice the cost. */
 	const double tmax = 89.95 * M_PI / 180.0;
-	double ti = fmin(fmax(theta_i, 0.0), tmax), to = fmin(fmax(theta_o, 0.0), tmax), b[64];
+	double ti = fmin(fmax(theta_i, 0.0), tmax), to = fmin(fmax(theta_o, 0.0), tmax), b[MACRO_MAX_OUT];
 	eval_one(r, f, ctx, n, ti, to, dphi, out);
 	eval_one(r, f, ctx, n, to, ti, dphi, b);
 	for (int j = 0; j < n; j++)

@@ -34,6 +34,7 @@
 #define MACRO_NQ_MAX 32			/* most nodes per axis (the tests' reference rules) */
 #define MACRO_N (MACRO_NQ_MAX * MACRO_NQ_MAX)
 #define MACRO_SLOPE_MAX 0.8		/* largest RMS slope taken [-] */
+#define MACRO_MAX_OUT 256		/* most values per evaluation */
 
 /* The quadrature over facet normals for RMS slope m_rms in [0, MACRO_SLOPE_MAX]. */
 struct macro_rule {
@@ -56,7 +57,7 @@ typedef void (*macro_fn)(void *ctx, double theta_i, double theta_o, double dphi,
  * facet normal that sees both directions (once, unchanged, when
  * r->m_rms == 0; the mean of the rule in the frames of wi and of wo, so f
  * stays reciprocal).  Directions within 0.05 deg of the horizon are taken at
- * 89.95 deg (the integral's 1 / cos has a finite limit there).  n <= 64. */
+ * 89.95 deg (the integral's 1 / cos has a finite limit there).  n <= MACRO_MAX_OUT. */
 void macro_eval(const struct macro_rule *r, macro_fn f, void *ctx, int n, double theta_i, double theta_o,
     double dphi, double *out);
 
