@@ -100,13 +100,15 @@ static double dot(const double *a, const double *b)
 	return a[0] * b[0] + a[1] * b[1] + a[2] * b[2];
 }
 
-/* One order of the directions: the rule in the frame where wi has azimuth 0. */
+/* The rule in the frame where wi (swap = 0) or wo (swap = 1) has azimuth
+ * 0; f always gets the incoming and outgoing angles in their own roles. */
 static void eval_one(const struct macro_rule *r, macro_fn f, void *ctx, int n, double ti, double to, double dphi,
-    double *out)
+    int swap, double *out)
 {
-	double v[MACRO_MAX_OUT];
-	double wi[3] = { sin(ti), 0.0, cos(ti) };
-	double wo[3] = { sin(to) * cos(dphi), sin(to) * sin(dphi), cos(to) };
+	double v[MACRO_MAX_OUT], ta = swap ? to : ti, tb = swap ? ti : to;
+	double u[3] = { sin(ta), 0.0, cos(ta) };
+	double w[3] = { sin(tb) * cos(dphi), sin(tb) * sin(dphi), cos(tb) };
+	const double *wi = swap ? w : u, *wo = swap ? u : w;
 	double scale = macro_g2(r, wi[2], wo[2]) / (wi[2] * wo[2]);
 	for (int j = 0; j < n; j++)
 		out[j] = 0.0;
@@ -139,12 +141,12 @@ void macro_eval(const struct macro_rule *r, macro_fn f, void *ctx, int n, double
 		return;
 	}
 	/* The rule is fixed over the slopes, so swapping the directions (a
-	 * rotation of the pair) moves its nodes: the mean of both orders is
-	 * reciprocal by construction (for a reciprocal f) at twice the cost. */
+	 * rotation of the pair) moves its nodes: the mean over the two frames is
+	 * reciprocal by construction for a reciprocal f, at twice the cost. */
 	const double tmax = 89.95 * M_PI / 180.0;
 	double ti = fmin(fmax(theta_i, 0.0), tmax), to = fmin(fmax(theta_o, 0.0), tmax), b[MACRO_MAX_OUT];
-	eval_one(r, f, ctx, n, ti, to, dphi, out);
-	eval_one(r, f, ctx, n, to, ti, dphi, b);
+	eval_one(r, f, ctx, n, ti, to, dphi, 0, out);
+	eval_one(r, f, ctx, n, ti, to, dphi, 1, b);
 	for (int j = 0; j < n; j++)
 		out[j] = 0.5 * (out[j] + b[j]);
 }

@@ -55,8 +55,8 @@ typedef void (*macro_fn)(void *ctx, double theta_i, double theta_o, double dphi,
 /* The macro-scale BRDF at (theta_i, theta_o, dphi): n values into out
  * (each the integral above of the matching value of f), f called once per
  * facet normal that sees both directions (once, unchanged, when
- * r->m_rms == 0; the mean of the rule in the frames of wi and of wo, so f
- * stays reciprocal).  Directions within 0.05 deg of the horizon are taken at
+ * r->m_rms == 0; the mean of the rule in the frames of wi and of wo, so the
+ * result is reciprocal where f is).  Directions within 0.05 deg of the horizon are taken at
  * 89.95 deg (the integral's 1 / cos has a finite limit there).  n <= MACRO_MAX_OUT. */
 void macro_eval(const struct macro_rule *r, macro_fn f, void *ctx, int n, double theta_i, double theta_o,
     double dphi, double *out);
