@@ -112,7 +112,8 @@ int main(int argc, char **argv)
 		} else if (strcmp(argv[i], "--macro") == 0) {
 			macro = strtod(argv[++i], &end);
 			if (*end != '\0' || !(macro >= 0.0 && macro <= MACRO_SLOPE_MAX)) {
-				fprintf(stderr, "brdf_model: --macro %s: not a number in [0, %g]\n", argv[i], MACRO_SLOPE_MAX);
+				fprintf(stderr, "brdf_model: --macro %s: not a number in [0, %g]\n", argv[i],
+				    MACRO_SLOPE_MAX);
 				return 2;
 			}
 		} else if (strcmp(argv[i], "--nodes") == 0) {
@@ -168,7 +169,7 @@ int main(int argc, char **argv)
 		}
 		n++;
 	}
-	if (rule.n > 0) {	/* the relief: fixed incidence angles, the points' own are not solved */
+	if (rule.n > 0) {	/* the relief: fixed incidence angles, not the points' own */
 		n_th = 0;
 		for (int d = 0; d <= 88; d += 2)
 			th[n_th++] = d * rad;
@@ -197,7 +198,8 @@ int main(int argc, char **argv)
 		struct facet_ctx fc = { &r, th, n_th, &st, alpha };
 		for (int i = 0; i < n && rule.n > 0; i++) {
 			double v[3], ph = pt[i][2] > 180.0 ? 360.0 - pt[i][2] : pt[i][2];
-			macro_eval(&rule, facet_at, &fc, 3, pt[i][0] * rad, pt[i][1] * rad, ph * rad, v);
+			macro_eval(&rule, facet_at, &fc, 3, pt[i][0] * rad, pt[i][1] * rad, ph * rad,
+			    v);
 			fd[i] += v[0] / n_wl;
 			ve[i] += v[1] * v[1];
 			fs[i] += v[2] / n_wl;

@@ -290,20 +290,23 @@ static double clamp_theta(double t)
 }
 
 /* The facet-scale BRDF: the table and the lobe as baked. */
-static void raw_diffuse(const struct bake *b, double theta_i, double theta_o, double dphi, double *f, double *err)
+static void raw_diffuse(const struct bake *b, double theta_i, double theta_o, double dphi, double *f,
+    double *err)
 {
 	double ph = fold_phi(dphi), ti = clamp_theta(theta_i), to = clamp_theta(theta_o);
 	for (int w = 0; w < b->n_wl; w++)
 		f[w] = bake_interp_eval(b, w, ti, to, ph, err ? &err[w] : NULL);
 }
 
-static void raw_specular(const struct bake *b, double theta_i, double theta_o, double dphi, double *f)
+static void raw_specular(const struct bake *b, double theta_i, double theta_o, double dphi,
+    double *f)
 {
 	for (int w = 0; w < b->n_wl; w++)
 		f[w] = specular_ggx(&b->stack[w], b->roughness, theta_i, theta_o, fold_phi(dphi));
 }
 
-static void raw_rgb(const struct bake *b, double theta_i, double theta_o, double dphi, double rgb[3])
+static void raw_rgb(const struct bake *b, double theta_i, double theta_o, double dphi,
+    double rgb[3])
 {
 	double ph = fold_phi(dphi), ti = clamp_theta(theta_i), to = clamp_theta(theta_o);
 	double sp[BAKE_MAX_WL], fd[BAKE_MAX_WL];
@@ -353,7 +356,8 @@ static void part_at(void *ctx, double ti, double to, double ph, double *out)
 	}
 }
 
-void bake_eval_diffuse(const struct bake *b, double theta_i, double theta_o, double dphi, double *f, double *err)
+void bake_eval_diffuse(const struct bake *b, double theta_i, double theta_o, double dphi, double *f,
+    double *err)
 {
 	if (b->macro == NULL) {
 		raw_diffuse(b, theta_i, theta_o, dphi, f, err);
@@ -363,8 +367,8 @@ void bake_eval_diffuse(const struct bake *b, double theta_i, double theta_o, dou
 	 * if fully correlated (an upper bound). */
 	double v[2 * BAKE_MAX_WL];
 	struct part_ctx c = { b, err ? PART_DIFFUSE_ERR : PART_DIFFUSE };
-	macro_eval(b->macro, part_at, &c, (err ? 2 : 1) * b->n_wl, clamp_theta(theta_i), clamp_theta(theta_o),
-	    fold_phi(dphi), v);
+	macro_eval(b->macro, part_at, &c, (err ? 2 : 1) * b->n_wl, clamp_theta(theta_i),
+	    clamp_theta(theta_o), fold_phi(dphi), v);
 	for (int w = 0; w < b->n_wl; w++) {
 		f[w] = v[w];
 		if (err)
@@ -372,14 +376,16 @@ void bake_eval_diffuse(const struct bake *b, double theta_i, double theta_o, dou
 	}
 }
 
-void bake_eval_specular(const struct bake *b, double theta_i, double theta_o, double dphi, double *f)
+void bake_eval_specular(const struct bake *b, double theta_i, double theta_o, double dphi,
+    double *f)
 {
 	if (b->macro == NULL) {
 		raw_specular(b, theta_i, theta_o, dphi, f);
 		return;
 	}
 	struct part_ctx c = { b, PART_SPECULAR };
-	macro_eval(b->macro, part_at, &c, b->n_wl, clamp_theta(theta_i), clamp_theta(theta_o), fold_phi(dphi), f);
+	macro_eval(b->macro, part_at, &c, b->n_wl, clamp_theta(theta_i), clamp_theta(theta_o),
+	    fold_phi(dphi), f);
 }
 
 void bake_eval_rgb(const struct bake *b, double theta_i, double theta_o, double dphi, double rgb[3])
@@ -389,7 +395,8 @@ void bake_eval_rgb(const struct bake *b, double theta_i, double theta_o, double 
 		return;
 	}
 	struct part_ctx c = { b, PART_RGB };
-	macro_eval(b->macro, part_at, &c, 3, clamp_theta(theta_i), clamp_theta(theta_o), fold_phi(dphi), rgb);
+	macro_eval(b->macro, part_at, &c, 3, clamp_theta(theta_i), clamp_theta(theta_o),
+	    fold_phi(dphi), rgb);
 }
 
 int bake_preset_to_dir(struct bake_spec *s, const struct skin_params *p, const char *label, const char *out,
@@ -413,7 +420,8 @@ int bake_preset_to_dir(struct bake_spec *s, const struct skin_params *p, const c
 		return 0;	/* every rank holds the whole result; rank 0 writes it */
 	double *m = xmalloc(sizeof(double) * 3 * (size_t)s->n_wl);
 	struct bake_meta meta = { .preset = label, .ior = preset_surface_ior(p), .roughness = preset_surface_roughness(p),
-		.macro_slope = p->macro_slope, .rgb_from_wl = m, .rgb_note = bake_rgb_weights(s, m), .command = command };
+		.macro_slope = p->macro_slope, .rgb_from_wl = m, .rgb_note = bake_rgb_weights(s, m),
+		.command = command };
 	int rc = bake_write_files(outdir_path(&od), s, r, &meta, cause) != 0 ? -2 : 0;
 	if (rc != 0)
 		outdir_fail(&od, cause);

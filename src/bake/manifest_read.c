@@ -111,8 +111,8 @@ static int read_specular(json_object *o, struct bake *b, const char *mpath, char
 	b->roughness = jnum(sp, "alpha", 0.3);
 	b->macro_slope = jnum(sp, "macro_slope", 0.0);
 	if (!(b->macro_slope >= 0.0 && b->macro_slope <= MACRO_SLOPE_MAX)) {
-		*cause = xasprintf("%s: specular.macro_slope %g is out of range [0, %g]", mpath, b->macro_slope,
-		    MACRO_SLOPE_MAX);
+		*cause = xasprintf("%s: specular.macro_slope %g is out of range [0, %g]", mpath,
+		    b->macro_slope, MACRO_SLOPE_MAX);
 		return -1;
 	}
 	if (b->macro_slope > 0.0) {

@@ -102,8 +102,8 @@ static double dot(const double *a, const double *b)
 
 /* The rule in the frame where wi (swap = 0) or wo (swap = 1) has azimuth
  * 0; f always gets the incoming and outgoing angles in their own roles. */
-static void eval_one(const struct macro_rule *r, macro_fn f, void *ctx, int n, double ti, double to, double dphi,
-    int swap, double *out)
+static void eval_one(const struct macro_rule *r, macro_fn f, void *ctx, int n, double ti, double to,
+    double dphi, int swap, double *out)
 {
 	double v[MACRO_MAX_OUT], ta = swap ? to : ti, tb = swap ? ti : to;
 	double u[3] = { sin(ta), 0.0, cos(ta) };
@@ -133,8 +133,8 @@ static void eval_one(const struct macro_rule *r, macro_fn f, void *ctx, int n, d
 	}
 }
 
-void macro_eval(const struct macro_rule *r, macro_fn f, void *ctx, int n, double theta_i, double theta_o,
-    double dphi, double *out)
+void macro_eval(const struct macro_rule *r, macro_fn f, void *ctx, int n, double theta_i,
+    double theta_o, double dphi, double *out)
 {
 	if (r->n == 0) {
 		f(ctx, theta_i, theta_o, dphi, out);
@@ -144,7 +144,8 @@ void macro_eval(const struct macro_rule *r, macro_fn f, void *ctx, int n, double
 	 * rotation of the pair) moves its nodes: the mean over the two frames is
 	 * reciprocal by construction for a reciprocal f, at twice the cost. */
 	const double tmax = 89.95 * M_PI / 180.0;
-	double ti = fmin(fmax(theta_i, 0.0), tmax), to = fmin(fmax(theta_o, 0.0), tmax), b[MACRO_MAX_OUT];
+	double ti = fmin(fmax(theta_i, 0.0), tmax), to = fmin(fmax(theta_o, 0.0), tmax);
+	double b[MACRO_MAX_OUT];
 	eval_one(r, f, ctx, n, ti, to, dphi, 0, out);
 	eval_one(r, f, ctx, n, ti, to, dphi, 1, b);
 	for (int j = 0; j < n; j++)

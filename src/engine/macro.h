@@ -58,8 +58,8 @@ typedef void (*macro_fn)(void *ctx, double theta_i, double theta_o, double dphi,
  * r->m_rms == 0; the mean of the rule in the frames of wi and of wo, so the
  * result is reciprocal where f is).  Directions within 0.05 deg of the horizon are taken at
  * 89.95 deg (the integral's 1 / cos has a finite limit there).  n <= MACRO_MAX_OUT. */
-void macro_eval(const struct macro_rule *r, macro_fn f, void *ctx, int n, double theta_i, double theta_o,
-    double dphi, double *out);
+void macro_eval(const struct macro_rule *r, macro_fn f, void *ctx, int n, double theta_i,
+    double theta_o, double dphi, double *out);
 
 /* The height-correlated Smith term at the macro scale for directions at
  * cosines cos_i, cos_o to the mean normal [-]. */
