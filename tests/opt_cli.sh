@@ -23,29 +23,17 @@ mkdir "$tmpd/emptydir"
 "$S" maps new --family "$tmpd/fam" --size 4x4 --out "$tmpd/maps" --quiet || fail "fixture maps"
 "$S" maps render-albedo --family "$tmpd/fam" --maps "$tmpd/maps" --out "$tmpd/alb.png" --quiet || fail "fixture albedo"
 
-# bad DESC NEEDLE ARGS...: exit 2, nothing on stdout, one line on stderr that
-# starts "skinbake " and holds NEEDLE, no $tmpd/new*, $tmpd/file unchanged.
+# bad DESC NEEDLE ARGS...: skinbake ARGS refused (tests/lib/refused.sh): exit 2, nothing on
+# stdout, one line on stderr that starts "skinbake CMD" and holds the fixed string NEEDLE, no
+# $tmpd/new*, $tmpd/file unchanged.  Fixed strings keep each of the some 250 calls to one process.
+. "$top_srcdir/tests/lib/refused.sh"
+refused_fixed=1 refused_quiet=1 refused_one_line=1 refused_kept=$tmpd/file
 bad() {
-	desc=$1 needle=$2
+	b_d=$1 b_n=$2
 	shift 2
 	nbad=$((nbad + 1))
-	"$S" "$@" >"$tmpd/o" 2>"$tmpd/e"
-	rc=$?
-	# Shell builtins only: this runs some 250 times.
-	msg= lines=0 why=
-	while IFS= read -r l; do lines=$((lines + 1)); msg=${msg:-$l}; done <"$tmpd/e"
-	[ $rc -eq 2 ] || why="exit $rc"
-	[ -s "$tmpd/o" ] && why="$why, wrote stdout"
-	[ $lines -eq 1 ] || why="$why, $lines lines on stderr"
-	case $msg in "skinbake $1 "* | "skinbake $1:"*) ;; *) why="$why, no 'skinbake $1' prefix" ;; esac
-	case $msg in *"$needle"*) ;; *) why="$why, no '$needle'" ;; esac
-	for f in "$tmpd"/new*; do
-		[ -e "$f" ] && why="$why, left $f" && rm -rf "$tmpd"/new*
-		break
-	done
-	read -r content <"$tmpd/file"
-	[ "$content" = x ] || why="$why, changed $tmpd/file"
-	if [ -z "$why" ]; then ok "$desc: $msg"; else fail "$desc:$why: $msg"; fi
+	refused_prefix="skinbake $1[ :]"
+	refused "$b_d" "$b_n" "$tmpd/new*" "$S" "$@"
 }
 
 # rules CMD... -- NUM VALID RANGE BADRANGE FLAG -- BASE...: the number and
