@@ -16,6 +16,10 @@ void povsplit_specular(void *ctx, double theta_i, double theta_o, double dphi, d
 {
 	const struct povsplit_spec *sp = ctx;
 	const struct bake *b = sp->b;
+	if (sp->alpha == b->roughness) {	/* the bake's own lobe (with its macro roughness) */
+		bake_eval_specular_rgb(b, theta_i, theta_o, dphi, rgb);
+		return;
+	}
 	double ph = fmod(fabs(dphi), 2 * M_PI);
 	ph = ph > M_PI ? 2 * M_PI - ph : ph;
 	for (int c = 0; c < 3; c++)

@@ -34,7 +34,9 @@ struct povsplit_kernel {
 
 /* The specular part of a bake with the GGX alpha of its surface widened by
  * the relief a bump map no longer shows (Toksvig's alpha^2 = alpha_skin^2 +
- * alpha_relief^2, docs/relief.md section 6). */
+ * alpha_relief^2, docs/relief.md section 6); at the bake's own alpha, the
+ * bake's lobe (bake_eval_specular, with its macro-scale roughness), else
+ * the facet lobe at alpha (the macro roughness left out). */
 struct povsplit_spec {
 	const struct bake *b;
 	double alpha;		/* GGX alpha used [-] */
