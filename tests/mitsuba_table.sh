@@ -40,10 +40,12 @@ for w in 470 550 656 rgb; do
 	fi
 done
 
-"$MTS_PY" - "$tmpd" "$SKINBAKE" "$N" >"$tmpd/cmp.txt" <<'PYEOF'
+"$MTS_PY" - "$tmpd" "$SKINBAKE" "$N" "$top_srcdir/tests/lib" >"$tmpd/cmp.txt" <<'PYEOF'
 import json, math, subprocess, sys
 import numpy as np
 d, skinbake, n = sys.argv[1], sys.argv[2], int(sys.argv[3])
+sys.path.insert(0, sys.argv[4])
+import ortho_sphere as osp          # the BRDF angles at a point of the sphere
 light = np.array([0.5, 0.3, 0.8])
 light /= np.linalg.norm(light)
 view = np.array([0.0, 0.0, 1.0])
@@ -51,15 +53,12 @@ view = np.array([0.0, 0.0, 1.0])
 def ev(x, y):
     """eval's f cos(theta_i) at the sphere point over (x, y): per wavelength and rgb."""
     nrm = np.array([x, y, math.sqrt(max(0.0, 1.0 - x * x - y * y))])
-    ci, co = nrm @ light, nrm @ view
-    lt, vt = light - ci * nrm, view - co * nrm
-    den = np.linalg.norm(lt) * np.linalg.norm(vt)
-    ph = math.degrees(math.acos(np.clip(lt @ vt / den, -1, 1))) if den > 1e-12 else 0.0
-    out = subprocess.run([skinbake, "eval", "--bake", d + "/bake", "--theta-in", repr(math.degrees(math.acos(min(1.0, ci)))),
-                          "--theta-out", repr(math.degrees(math.acos(min(1.0, co)))), "--phi", repr(ph), "--json"],
+    ti, to, ph = (float(a) for a in osp.angles(nrm, light, view))
+    out = subprocess.run([skinbake, "eval", "--bake", d + "/bake", "--theta-in", repr(ti),
+                          "--theta-out", repr(to), "--phi", repr(ph), "--json"],
                          capture_output=True, text=True, check=True).stdout
     j = json.loads(out)
-    return np.array(j["total"] + j["rgb_total"]) * ci, j["wavelengths_nm"]
+    return np.array(j["total"] + j["rgb_total"]) * (nrm @ light), j["wavelengths_nm"]
 
 imgs = {w: np.load("%s/s%s.npy" % (d, w)) for w in ("470", "550", "656", "rgb")}
 worst = {}

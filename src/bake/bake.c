@@ -134,7 +134,10 @@ static int take_given(const struct bake_spec *s, struct bake_result *r, int *w, 
 }
 
 /* Rd(r) for the wavelengths whose method gave none (bake.h, radial.h), one
- * after the other (random streams by wavelength). */
+ * after the other (random streams by wavelength).  Under MPI the ranks split
+ * them (the i-th left to rank i % n_ranks) and sum what each found: a value
+ * is nonzero on its own rank only, so the sum is exact and the profiles are
+ * the same over any number of ranks. */
 static int radial_mc(const struct bake_spec *s, const struct solver_problem *p, const struct solver_run *run,
     struct bake_result *r, char **cause)
 {
@@ -155,20 +158,42 @@ static int radial_mc(const struct bake_spec *s, const struct solver_problem *p, 
 	};
 	if (r->radial_err_cm == NULL)
 		r->radial_err_cm = xcalloc((size_t)s->n_wl, sizeof *r->radial_err_cm);
+	int R = run->n_ranks > 1 && run->allreduce ? run->n_ranks : 1;
+	/* Per wavelength: rd_r, rd_r_err, then the mean radius's error, photons,
+	 * seconds and controls. */
+	size_t per = 2 * (size_t)s->n_r + 4;
+	double *v = xcalloc(per * (size_t)n, sizeof *v);
 	for (int i = 0; i < n; i++) {
-		struct brdf_entry *e = &r->table.entry[w[i] * s->n_ti];
+		if (i % R != run->rank % R)
+			continue;
+		double *vi = v + per * (size_t)i;
+		const struct brdf_entry *e = &r->table.entry[w[i] * s->n_ti];
 		sp.slab = &p->slab[w[i]];
 		sp.stream = (uint32_t)w[i];
 		sp.rd0 = e->albedo.v;
 		sp.rd0_err = e->albedo.err;
-		struct radial_out o = { .rd_r = e->rd_r, .rd_r_err = e->rd_r_err };
+		struct radial_out o = { .rd_r = vi, .rd_r_err = vi + s->n_r };
 		radial_solve(&sp, &o);
-		r->radial_err_cm[w[i]] = o.mean_radius_err_cm;
-		r->radial_photons += o.photons;
-		r->radial_seconds += o.seconds;
-		if (r->radial_controls == 0 || o.controls < r->radial_controls)
-			r->radial_controls = o.controls;
+		double *t = vi + 2 * s->n_r;
+		t[0] = o.mean_radius_err_cm;
+		t[1] = (double)o.photons;
+		t[2] = o.seconds;
+		t[3] = o.controls;
 	}
+	if (R > 1)
+		run->allreduce(v, (long)(per * (size_t)n));
+	for (int i = 0; i < n; i++) {
+		const double *vi = v + per * (size_t)i, *t = vi + 2 * s->n_r;
+		struct brdf_entry *e = &r->table.entry[w[i] * s->n_ti];
+		memcpy(e->rd_r, vi, sizeof(double) * (size_t)s->n_r);
+		memcpy(e->rd_r_err, vi + s->n_r, sizeof(double) * (size_t)s->n_r);
+		r->radial_err_cm[w[i]] = t[0];
+		r->radial_photons += (long)t[1];
+		r->radial_seconds += t[2];
+		if (r->radial_controls == 0 || (int)t[3] < r->radial_controls)
+			r->radial_controls = (int)t[3];
+	}
+	free(v);
 	return 0;
 }
 
@@ -184,6 +209,8 @@ static int bake_ad(const struct bake_spec *s, const struct solver_problem *p, co
 	ad.ad.n_quad = s->ad_quad;
 	if (s->ad_quad_max > 0)
 		ad.ad.n_quad_max = s->ad_quad_max;
+	if (s->ad_orders > 0)
+		ad.ad.max_orders = s->ad_orders;
 	ad.strict = s->method == BAKE_SOLVER_AD;
 	r->ad_tol = ad_solver_tol(&ad, p);
 	if (solver_solve(&ad_solver, &ad, p, run, &r->table, cause) != 0)
@@ -304,6 +331,8 @@ uint64_t bake_spec_identity(const struct bake_spec *s)
 	HASH(h, s->ad_quad);
 	if (s->ad_quad_max > 0)	/* identities of bakes without it unchanged */
 		HASH(h, s->ad_quad_max);
+	if (s->ad_orders > 0)	/* the same */
+		HASH(h, s->ad_orders);
 	HASH(h, s->radial_error);
 	HASH(h, s->radial_photons);
 	HASH(h, s->seed);

@@ -93,4 +93,12 @@ void ad_brdf_points(const struct ad_result *r, int k, const double *theta_o, int
     double *f, double *err);
 
 void ad_result_free(struct ad_result *r);
+
+/* Once, early in main: BLAS single-threaded (the solver's matrices are small
+ * and its orders or wavelengths run in parallel instead) and OpenBLAS's
+ * worker threads ended.  A pthreads OpenBLAS starts one worker per core
+ * when it loads; each spins (sched_yield) for about 2^28 cycles waiting for
+ * work that never comes, 0.02-0.1 s of CPU per process (a quarter of
+ * `bake --preset paper`'s under load). */
+void ad_blas_init(void);
 #endif
