@@ -209,6 +209,8 @@ static int bake_ad(const struct bake_spec *s, const struct solver_problem *p, co
 	ad.ad.n_quad = s->ad_quad;
 	if (s->ad_quad_max > 0)
 		ad.ad.n_quad_max = s->ad_quad_max;
+	if (s->ad_orders > 0)
+		ad.ad.max_orders = s->ad_orders;
 	ad.strict = s->method == BAKE_SOLVER_AD;
 	r->ad_tol = ad_solver_tol(&ad, p);
 	if (solver_solve(&ad_solver, &ad, p, run, &r->table, cause) != 0)
@@ -329,6 +331,8 @@ uint64_t bake_spec_identity(const struct bake_spec *s)
 	HASH(h, s->ad_quad);
 	if (s->ad_quad_max > 0)	/* identities of bakes without it unchanged */
 		HASH(h, s->ad_quad_max);
+	if (s->ad_orders > 0)	/* the same */
+		HASH(h, s->ad_orders);
 	HASH(h, s->radial_error);
 	HASH(h, s->radial_photons);
 	HASH(h, s->seed);

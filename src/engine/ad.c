@@ -18,13 +18,17 @@
 #include "engine/ad_rough.h"
 #include "base/util.h"
 
+#ifdef HAVE_BLAS_THREAD_SHUTDOWN_
 /* OpenBLAS's (pthreads builds; not in cblas.h): joins its worker threads. */
 int blas_thread_shutdown_(void);
+#endif
 
 void ad_blas_init(void)
 {
 	openblas_set_num_threads(1);
+#ifdef HAVE_BLAS_THREAD_SHUTDOWN_
 	(void)blas_thread_shutdown_();
+#endif
 }
 
 void ad_opts_default(struct ad_opts *o)

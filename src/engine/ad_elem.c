@@ -4,9 +4,10 @@
 #include "engine/ad_elem.h"
 
 #include <cblas.h>
-#include <lapacke.h>
 #include <math.h>
 #include <string.h>
+
+#include "engine/ad_lapack.h"
 
 size_t ad_elem_size(int N, int E)
 {
@@ -103,7 +104,7 @@ int ad_elem_add(int N, int E, const struct ad_elem *A, const struct ad_elem *B, 
 		M[j] = -M[j];
 	for (int i = 0; i < N; i++)
 		M[i + (size_t)N * i] += 1.0;
-	if (LAPACKE_dgesv(LAPACK_COL_MAJOR, N, ncb, M, N, piv, S, N) != 0)
+	if (ad_dgesv_checked(N, ncb, M, N, piv, S, N) != 0)
 		return -1;
 	/* u = Su + Rt_B d (node part of Rt_B only). */
 	gemm(N, ncb, N, B->rt, S, 1.0, Su);

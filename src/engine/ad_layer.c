@@ -7,12 +7,12 @@
 #include "engine/ad_layer.h"
 
 #include <cblas.h>
-#include <lapacke.h>
 #include <math.h>
 #include <stdlib.h>
 #include <string.h>
 
 #include "base/util.h"
+#include "engine/ad_lapack.h"
 
 /* Transmittance below which a layer counts as opaque: its T is set to 0. */
 #define AD_T_NEGLIGIBLE 1e-14
@@ -72,8 +72,8 @@ static int diamond(const struct ad_layer_in *in, double dt, double *R, double *T
 			y2[i] = sp - sm;
 		}
 	}
-	if (LAPACKE_dgesv_work(LAPACK_COL_MAJOR, n, nc, A1, n, piv, Y1, n) != 0 ||
-	    LAPACKE_dgesv_work(LAPACK_COL_MAJOR, n, nc, A2, n, piv, Y2, n) != 0)
+	if (ad_dgesv(n, nc, A1, n, piv, Y1, n) != 0 ||
+	    ad_dgesv(n, nc, A2, n, piv, Y2, n) != 0)
 		return -1;
 	/* Y1 = X1 [I | s+ + s-] = [T + R + I | x + y]/..., see ad_layer.h. */
 	for (int j = 0; j < nc; j++)
@@ -91,15 +91,15 @@ static int diamond(const struct ad_layer_in *in, double dt, double *R, double *T
 }
 
 /* out = base + sign * T (I -+ R)^-1 [T | v]: Cholesky of A = I -+ R, an LU
- * factorization if that fails.  Y, A, piv are scratch.  (LAPACKE's _work
- * calls: the plain ones scan every input for NaNs, 2 % of a solve.) */
+ * factorization if that fails.  Y, A, piv are scratch.  (Unchecked LAPACK
+ * calls, engine/ad_lapack.h: a NaN scan of every input was 2 % of a solve.) */
 static int half_step(int n, int nc, const double *R, const double *T, double sign, double *Y, double *A,
     int *piv, double *out)
 {
 	for (int j = 0; j < n; j++)
 		for (int i = 0; i < n; i++)
 			A[i + (size_t)n * j] = (i == j) - sign * R[i + (size_t)n * j];
-	if (LAPACKE_dpotrf_work(LAPACK_COL_MAJOR, 'L', n, A, n) == 0) {
+	if (ad_dpotrf_lower(n, A, n) == 0) {
 		/* T (L L^T)^-1 Y = (L^-1 T)^T (L^-1 Y), T symmetric. */
 		cblas_dtrsm(CblasColMajor, CblasLeft, CblasLower, CblasNoTrans, CblasNonUnit, n, nc, 1.0, A, n, Y, n);
 		cblas_dgemm(CblasColMajor, CblasTrans, CblasNoTrans, n, nc, n, sign, Y, n, Y, n, 1.0, out, n);
@@ -108,7 +108,7 @@ static int half_step(int n, int nc, const double *R, const double *T, double sig
 	for (int j = 0; j < n; j++)
 		for (int i = 0; i < n; i++)
 			A[i + (size_t)n * j] = (i == j) - sign * R[i + (size_t)n * j];
-	if (LAPACKE_dgesv_work(LAPACK_COL_MAJOR, n, nc, A, n, piv, Y, n) != 0)
+	if (ad_dgesv(n, nc, A, n, piv, Y, n) != 0)
 		return -1;
 	cblas_dgemm(CblasColMajor, CblasNoTrans, CblasNoTrans, n, nc, n, sign, T, n, Y, n, 1.0, out, n);
 	return 0;

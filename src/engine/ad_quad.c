@@ -3,12 +3,12 @@
 #include "config.h"
 #include "engine/ad_quad.h"
 
-#include <lapacke.h>
 #include <math.h>
 #include <stdlib.h>
 #include <string.h>
 
 #include "base/util.h"
+#include "engine/ad_lapack.h"
 
 int ad_gauss_legendre(int n, double a, double b, double *x, double *w)
 {
@@ -21,7 +21,7 @@ int ad_gauss_legendre(int n, double a, double b, double *x, double *w)
 		x[k] = 0.0;
 	for (int k = 1; k < n; k++)
 		e[k - 1] = k / sqrt(4.0 * k * k - 1.0);
-	int info = LAPACKE_dstev(LAPACK_COL_MAJOR, 'V', n, x, e, z, n);
+	int info = ad_dstev(n, x, e, z, n);
 	if (info == 0) {
 		double h = 0.5 * (b - a), m = 0.5 * (b + a);
 		for (int k = 0; k < n; k++) {

@@ -5,12 +5,12 @@
 #include "engine/ad_stack.h"
 
 #include <cblas.h>
-#include <lapacke.h>
 #include <math.h>
 #include <stdlib.h>
 #include <string.h>
 
 #include "base/util.h"
+#include "engine/ad_lapack.h"
 
 static double cos_in(double s, double n)
 {
@@ -58,7 +58,7 @@ static int solve_i_minus(int N, int E, const double *P, double *V, double *A, in
 	for (int j = 0; j < N; j++)
 		for (int i = 0; i < N; i++)
 			A[i + (size_t)N * j] = (i == j) - P[i + (size_t)N * j];
-	return LAPACKE_dgesv(LAPACK_COL_MAJOR, N, N + E, A, N, piv, V, N) == 0 ? 0 : -1;
+	return ad_dgesv_checked(N, N + E, A, N, piv, V, N) == 0 ? 0 : -1;
 }
 
 /* Un = reflection of layer (Rl, Tl) above the stack Ub. */
@@ -238,7 +238,7 @@ static int step_down_elem(int N, int E, const struct ad_elem *x, const struct ad
 	for (int j = 0; j < N; j++)
 		for (int i = 0; i < N; i++)
 			A[i + (size_t)N * j] = (i == j) - Q[i + (size_t)N * j];
-	return LAPACKE_dgesv(LAPACK_COL_MAJOR, N, E, A, N, piv, Dn, N) == 0 ? 0 : -1;
+	return ad_dgesv_checked(N, E, A, N, piv, Dn, N) == 0 ? 0 : -1;
 }
 
 /* One step down: the field below element j from the field above it,
@@ -281,7 +281,7 @@ static int step_down(int N, int E, const struct ad_bnd *b, const struct ad_op *R
 	for (int j = 0; j < N; j++)
 		for (int i = 0; i < N; i++)
 			A[i + (size_t)N * j] = (i == j) - Q[i + (size_t)N * j];
-	return LAPACKE_dgesv(LAPACK_COL_MAJOR, N, E, A, N, piv, Dn, N) == 0 ? 0 : -1;
+	return ad_dgesv_checked(N, E, A, N, piv, Dn, N) == 0 ? 0 : -1;
 }
 
 /* A rough top's reflection of beam e, collimated and diffuse (order 0). */

@@ -100,11 +100,15 @@ int family_place_nodes(struct family_plan *pl, char **cause)
 		ps->batch_photons = 1000;
 	if (ps->target_error < 0.01)
 		ps->target_error = 0.01;
-	/* Adding-doubling at 8 nodes per unit cosine: albedos to about 1e-4. */
+	/* Adding-doubling at 8 nodes per unit cosine: albedos to about 1e-4.
+	 * The albedo is order 0's alone: the higher orders (all the BRDF's
+	 * azimuthal detail, 3-10x the work) are not solved; the albedos are
+	 * bit for bit those of a solve of every order. */
 	if (ps->method != BAKE_SOLVER_MC && ps->ad_quad == 0) {
 		ps->ad_quad = 8;
 		ps->ad_tol = 0.01;
 	}
+	ps->ad_orders = 1;
 	int rc = 0;
 	for (int a = 0; a < pl->n_axes && rc == 0; a++)
 		if (pl->axis[a].spacing == FAMILY_SPACING_DE)
