@@ -9,7 +9,7 @@
 # with a line that says so.  About 4 minutes per version.
 . "$top_srcdir/tests/tap.sh"
 
-subtests="blender_import.sh blender_lights.sh blender_translucent.sh"
+subtests="blender_import.sh blender_lights.sh blender_translucent.sh maps_blender_translucent.sh"
 [ "${SKINBAKE_EEVEE_MATRIX:-0}" = 1 ] && subtests="$subtests blender_eevee.sh"
 seen=0
 for py in $BPY_PYTHONS; do

@@ -33,6 +33,11 @@
 #       them, the relative difference of pi B from P (a lone point light's 1/d^2 falloff taken
 #       out per pixel); prints SKINBAKE_SILHOUETTE mismatched n_b n_p dx dy and
 #       SKINBAKE_SHADING n mean p90
+#   blender -b --factory-startup --python blender_scene.py -- footprint IMPORTER
+#       the importer's pixel-footprint nodes (footprint.py, used on Blender 4.2-4.3) on a plane
+#       seen by a perspective and an orthographic camera at several resolutions and sensor fits:
+#       the drivers' values against the pixel width computed here; prints SKINBAKE_FOOTPRINT
+#       n_checked largest_relative_difference simple|python (the drivers' expression kind)
 #   blender -b --factory-startup --python blender_scene.py -- mean A.exr
 #       prints SKINBAKE_MEAN r g b, the mean of the whole image
 #   blender -b --factory-startup --python blender_scene.py -- blocks A.exr B.exr K THR
@@ -449,6 +454,46 @@ def blocks(a, b, k, thr):
     print(f"SKINBAKE_BLOCKS {n} {mean:.6f} {max(max(e) for e in errs):.6f}")
 
 
+
+def footprint_check(importer):
+    """footprint.py's drivers against the pixel width, for the cameras and resolutions below."""
+    sys.path.insert(0, os.path.dirname(os.path.abspath(importer)))
+    sys.dont_write_bytecode = True
+    from skinbake_import import footprint, nodes
+    bpy.ops.wm.read_factory_settings(use_empty=True)
+    sc = bpy.context.scene
+    cd = bpy.data.cameras.new("Camera")
+    cam = bpy.data.objects.new("Camera", cd)
+    sc.collection.objects.link(cam)
+    sc.camera = cam
+    bpy.ops.mesh.primitive_plane_add(size=0.2)
+    mat = bpy.data.materials.new("fp")
+    bpy.context.active_object.data.materials.append(mat)        # drivers evaluate in the depsgraph
+    tr = nodes.Tree(mat)
+    footprint.footprint(tr, sc, (0, 0))
+    vals = {n.label: n for n in mat.node_tree.nodes if n.bl_idname == "ShaderNodeValue"}
+    per_m = vals["pixel width per unit distance (driver)"].outputs[0]
+    ortho = vals["orthographic pixel width (driver)"].outputs[0]
+    worst, n = 0.0, 0
+    for ty, fit, rx, ry, pc in (("PERSP", "AUTO", 640, 480, 100), ("PERSP", "AUTO", 480, 640, 50),
+                                ("PERSP", "HORIZONTAL", 300, 900, 100), ("PERSP", "VERTICAL", 640, 480, 25),
+                                ("ORTHO", "AUTO", 64, 64, 100), ("ORTHO", "VERTICAL", 200, 100, 100)):
+        cd.type, cd.sensor_fit, cd.lens, cd.sensor_width, cd.sensor_height = ty, fit, 35.0, 36.0, 24.0
+        cd.ortho_scale = 0.23
+        r = sc.render
+        r.resolution_x, r.resolution_y, r.resolution_percentage = rx, ry, pc
+        bpy.context.view_layer.update()
+        side = {"AUTO": max(rx, ry), "HORIZONTAL": rx, "VERTICAL": ry}[fit] * pc / 100.0
+        want = (0.0, 0.23 / side) if ty == "ORTHO" else \
+            ((24.0 if fit == "VERTICAL" else 36.0) / 35.0 / side, 0.0)
+        for got, w in zip((per_m.default_value, ortho.default_value), want):
+            worst = max(worst, abs(got - w) / max(w, 1e-12) if w else abs(got))
+            n += 1
+        print("SKINBAKE_FOOTPRINT_CASE", ty, fit, rx, ry, pc, per_m.default_value, ortho.default_value, want)
+    # Simple expressions run without Python, so they work in files whose scripts are not trusted.
+    simple = all(fc.driver.is_simple_expression for fc in mat.node_tree.animation_data.drivers)
+    print(f"SKINBAKE_FOOTPRINT {n} {worst:.2e} {'simple' if simple else 'python'}")
+
 args = sys.argv[sys.argv.index("--") + 1:]
 cmd = args[0]
 if cmd == "make-lights":
@@ -487,6 +532,8 @@ elif cmd == "make-scene-json":
     make_scene_json(args[1], args[2])
 elif cmd == "scene-compare":
     scene_compare(args[1], args[2], args[3])
+elif cmd == "footprint":
+    footprint_check(args[1])
 elif cmd == "mean":
     w, h, px = read(args[1])
     print("SKINBAKE_MEAN " + " ".join(f"{sum(p[c] for p in px) / len(px):.6f}" for c in range(3)))

@@ -16,13 +16,13 @@ MC="--preset paper --solver mc --theta-nodes 1 --resolution 3x3 --r-bins 10 --ma
 --batch-photons 1000 --quiet"
 "$B" bake $BK --out bk || fail "good bake"
 
-# refused DESC PATTERN CMD...: exit 2 and stderr matches PATTERN
-refused() {
-	desc=$1 pat=$2
+# bad DESC PATTERN CMD...: exit 2 and stderr matches PATTERN (grep -E; tests/lib/refused.sh)
+. "$top_srcdir/tests/lib/refused.sh"
+refused_ere=1
+bad() {
+	b_d=$1 b_p=$2
 	shift 2
-	"$@" > /dev/null 2> err.txt
-	rc=$?
-	if [ $rc -eq 2 ] && grep -Eq -- "$pat" err.txt; then ok "$desc"; else fail "$desc (exit $rc): $(head -c 300 err.txt)"; fi
+	refused "$b_d" "$b_p" "" "$@"
 }
 json() { python3 -c "import json,sys; m=json.load(open(sys.argv[1], encoding='utf-8')); print($2)" "$1"; }
 
@@ -31,9 +31,9 @@ check "bake --seed 9.2e18 (once refused) is taken exactly" sh -c \
 	"'$B' bake $MC --seed 9.2e18 --out s1 && [ \"\$(python3 -c \"import json; print(json.load(open('s1/manifest.json'))['settings']['seed'])\")\" = 9200000000000000000 ]"
 check "bake --seed 2^64-1 is taken exactly" sh -c \
 	"'$B' bake $MC --seed 18446744073709551615 --out s2 && [ \"\$(python3 -c \"import json; print(json.load(open('s2/manifest.json'))['settings']['seed'])\")\" = 18446744073709551615 ]"
-refused "bake --seed 2^64 is out of range" "--seed = 18446744073709551616 is out of range \[0, 2\^64-1\]" \
+bad "bake --seed 2^64 is out of range" "--seed = 18446744073709551616 is out of range \[0, 2\^64-1\]" \
 	"$B" bake $MC --seed 18446744073709551616 --out s3
-refused "bake --seed -1 is out of range" "--seed = -1 is out of range" "$B" bake $MC --seed -1 --out s3
+bad "bake --seed -1 is out of range" "--seed = -1 is out of range" "$B" bake $MC --seed -1 --out s3
 "$B" texture --size 16 --seed 9007199254740992 --out t0 --quiet && "$B" texture --size 16 --seed 9007199254740993 --out t1 --quiet
 check "texture --seed 2^53+1 is not rounded to 2^53: manifest exact, other maps" sh -c \
 	"[ \"\$(python3 -c \"import json; print(json.load(open('t1/manifest.json'))['seed'])\")\" = 9007199254740993 ] && ! cmp -s t0/height.png t1/height.png"
@@ -41,7 +41,7 @@ check "texture --seed 2^53+1 is not rounded to 2^53: manifest exact, other maps"
 # ---- memory said before work
 avail=$(awk '/^MemAvailable/ { print $2 }' /proc/meminfo)
 if [ -n "$avail" ] && [ "$avail" -lt 50000000 ]; then
-	refused "a bake far larger than the memory is refused at once, with the numbers" \
+	bad "a bake far larger than the memory is refused at once, with the numbers" \
 		"needs about [0-9.]+ GB of memory \(estimated\), [0-9.]+ GB are available; lower --resolution" \
 		timeout 20 "$B" bake --preset fair-oily --solver ad --spectral 400:780:4 --theta-nodes 90 --resolution 360x360 \
 		--out huge --quiet
@@ -89,7 +89,7 @@ check "bake --out a non-UTF-8 name: the manifest is strict JSON with the bytes a
 check "... and the bake reads back" sh -c "'$B' eval --bake \"\$1\" --theta-in 10 --theta-out 10 --phi 0 > /dev/null" sh "$weird"
 
 # ---- messages that name the real cause
-refused "export pov: a parallel light at its target point (the default 0:0:0)" \
+bad "export pov: a parallel light at its target point (the default 0:0:0)" \
 	"--light L1: position 0:0:0 and point_at coincide" "$B" export pov --bake bk \
 	--light type=parallel,position=0:0:0 --camera type=orthographic,location=0:0:-10 --out pv
 scene() {
@@ -99,13 +99,13 @@ scene() {
 }
 printf 'v 0 0 0\nv 1e39 0 0\nv 0 1 0\nf 1 2 3\n' > inf.obj
 scene "$tmpd/inf.obj" > inf.scene
-refused "a mesh vertex of 1e39 (inf as a float)" "inf.obj: vertex [0-9]+ has x = inf; mesh coordinates must be finite" \
+bad "a mesh vertex of 1e39 (inf as a float)" "inf.obj: vertex [0-9]+ has x = inf; mesh coordinates must be finite" \
 	"$B" export pov --bake bk --scene inf.scene --out pv
 mkdir adir.obj
 scene "$tmpd/adir.obj" > dir.scene
-refused "a directory given as the mesh file" "adir.obj is a directory, not a model file" \
+bad "a directory given as the mesh file" "adir.obj is a directory, not a model file" \
 	"$B" export pov --bake bk --scene dir.scene --out pv
 "$B" preset show refstack --ini | sed 's/^\[dermis\]$/[dermis/' > open.ini
-refused "a section header without ']'" "open.ini:[0-9]+: the section header '\[dermis' is not closed" \
+bad "a section header without ']'" "open.ini:[0-9]+: the section header '\[dermis' is not closed" \
 	"$B" bake --preset-file open.ini --out o --solver ad --theta-nodes 1 --resolution 3x3 --quiet
 tap_done

@@ -21,18 +21,14 @@ check "every data file has its checksum in the manifest" python3 -c "
 import json; m = json.load(open('bk/manifest.json'))
 assert sorted(m['checksums']) == ['albedo.exr', 'albedo.png', 'brdf.exr', 'brdf_rgb.exr'], m['checksums']"
 
-# refused DESC PATTERN DIR CMD...: exit 2, stderr matches PATTERN (grep -E), no output directory o*
-refused() {
-	desc=$1 pat=$2
+# bad DESC PATTERN CMD...: exit 2, stderr matches PATTERN (grep -E), no output directory o*
+# (tests/lib/refused.sh)
+. "$top_srcdir/tests/lib/refused.sh"
+refused_ere=1
+bad() {
+	b_d=$1 b_p=$2
 	shift 2
-	"$@" > out.txt 2> err.txt
-	rc=$?
-	if [ $rc -eq 2 ] && grep -Eq -- "$pat" err.txt && [ -z "$(ls -d o_* 2> /dev/null)" ]; then
-		ok "$desc"
-	else
-		fail "$desc (exit $rc): $(head -c 300 err.txt)"
-	fi
-	rm -rf o_*
+	refused "$b_d" "$b_p" "o_*" "$@"
 }
 
 # tamper DESC PATTERN PYTHON: edit t/manifest.json (m) with PYTHON; eval refuses it
@@ -42,7 +38,7 @@ tamper() {
 import json, math; p = 't/manifest.json'; m = json.load(open(p))
 $3
 open(p, 'w').write(json.dumps(m, indent=1))" || { fail "$1: the edit failed"; return; }
-	refused "manifest: $1" "t/(manifest.json|brdf.exr): $2" "$B" $EVAL --bake t
+	bad "manifest: $1" "t/(manifest.json|brdf.exr): $2" "$B" $EVAL --bake t
 }
 tamper "theta_i as text" "theta_i_deg\[0\] = \"0(.0)?\" is not a number" "m['theta_i_deg'] = [str(x) for x in m['theta_i_deg']]"
 tamper "theta_i descending" "theta_i_deg\[2\] = 30 is not above theta_i_deg\[1\] = 60 \(the axis must ascend\)" \
@@ -81,20 +77,20 @@ check "30 single-byte flips over brdf_rgb.exr ($size bytes): $caught refused by 
 
 # The other readers of a bake refuse the same damage.
 rm -rf t && cp -r bk t && printf 'x' >> t/brdf.exr
-refused "verify refuses a changed brdf.exr" "t/brdf.exr has changed" "$B" verify --bake t --cells 2 --photons 1000
-refused "export pov refuses a changed brdf.exr" "t/brdf.exr has changed" \
+bad "verify refuses a changed brdf.exr" "t/brdf.exr has changed" "$B" verify --bake t --cells 2 --photons 1000
+bad "export pov refuses a changed brdf.exr" "t/brdf.exr has changed" \
 	"$B" export pov --bake t --scene "$T/scenes/sphere.scene" --out o_pov
-refused "export blender refuses a changed brdf.exr" "t/brdf.exr has changed" \
+bad "export blender refuses a changed brdf.exr" "t/brdf.exr has changed" \
 	"$B" export blender --bake t --out o_bl --lut-cos 8 --lut-phi 3
 rm -rf t && cp -r bk t && python3 -c "
 import json; p = 't/manifest.json'; m = json.load(open(p)); m['theta_i_deg'] = [0, 60, 30]
 open(p, 'w').write(json.dumps(m))"
-refused "export blender refuses a descending axis" "theta_i_deg\[2\] = 30 is not above" \
+bad "export blender refuses a descending axis" "theta_i_deg\[2\] = 30 is not above" \
 	"$B" export blender --bake t --out o_bl --lut-cos 8 --lut-phi 3
 
 # Texture directories: height.png changed after the manifest.
 rm -rf t && cp -r tx t && printf 'x' >> t/height.png
-refused "export blender refuses a changed texture height.png" "t/height.png has changed" \
+bad "export blender refuses a changed texture height.png" "t/height.png has changed" \
 	"$B" export blender --bake bk --textures t --out o_bl --lut-cos 8 --lut-phi 3
 check "texture, export blender and export pov manifests carry checksums" sh -c "
 	'$B' export blender --bake bk --textures tx --out bl --lut-cos 8 --lut-phi 3 > /dev/null &&

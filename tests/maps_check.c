@@ -57,16 +57,6 @@ static struct family *fam(const char *dir)
 	return f;
 }
 
-static double coord(const struct family_axis *a, double v)
-{
-	return a->log_coord ? log(v) : v;
-}
-
-static double uncoord(const struct family_axis *a, double c)
-{
-	return a->log_coord ? exp(c) : c;
-}
-
 static int synth(int argc, char **argv)
 {
 	if (argc < 6)
@@ -77,13 +67,16 @@ static int synth(int argc, char **argv)
 	struct mapset *m = mapset_new(f, w, h, NULL);
 	for (int a = 0; a < f->n_axes; a++) {
 		const struct family_axis *ax = &f->axis[a];
-		double c0 = coord(ax, ax->node[0]), c1 = coord(ax, ax->node[ax->n - 1]), mid = 0.5 * (c0 + c1), half = 0.5 * (c1 - c0);
+		double c0 = family_axis_coord(ax, ax->node[0]);
+		double c1 = family_axis_coord(ax, ax->node[ax->n - 1]);
+		double mid = 0.5 * (c0 + c1);
+		double half = 0.5 * (c1 - c0);
 		for (int y = 0; y < h; y++)
 			for (int x = 0; x < w; x++) {
 				double u = (double)x / w, v = (double)y / h, p = 1.7 * a + 0.3;
 				double s = 0.55 * sin(2 * M_PI * ((0.8 + 0.3 * a) * u + (0.5 - 0.2 * a) * v) + p) +
 				    0.35 * cos(2 * M_PI * ((1.6 - 0.4 * a) * v - 0.7 * u) + 2 * p);
-				m->p[a].v[(size_t)y * w + x] = (float)uncoord(ax, mid + 0.92 * half * s);
+				m->p[a].v[(size_t)y * w + x] = (float)family_axis_value(ax, mid + 0.92 * half * s);
 			}
 	}
 	int mel = mapset_find(m, "epidermis.melanin");

@@ -13,22 +13,16 @@ cd "$tmpd" || exit 1
 BK="--preset paper --solver ad --theta-nodes 3 --resolution 9x6 --radial-error 0.2 --r-bins 20 --quiet"
 LUT="--lut-cos 8 --lut-phi 3"
 
-# sums DIR: one line per file under DIR with its checksum (what must not change)
-sums() { (cd "$1" && find . -type f | LC_ALL=C sort | xargs md5sum) 2>/dev/null; }
 
-# refused DESC PATTERN DIR CMD...: exit 2, stderr matches PATTERN, DIR unchanged
-refused() {
-	desc=$1 pat=$2 dir=$3
+# bad DESC PATTERN DIR CMD...: exit 2, stderr matches PATTERN (grep -E), DIR unchanged
+# (tests/lib/refused.sh)
+. "$top_srcdir/tests/lib/refused.sh"
+refused_ere=1
+bad() {
+	b_d=$1 b_p=$2 refused_kept=$3
 	shift 3
-	before=$(sums "$dir")
-	"$@" > /dev/null 2> err.txt
-	rc=$?
-	after=$(sums "$dir")
-	if [ $rc -eq 2 ] && grep -Eq -- "$pat" err.txt && [ "$before" = "$after" ]; then
-		ok "$desc"
-	else
-		fail "$desc (exit $rc, $dir $([ "$before" = "$after" ] && echo unchanged || echo CHANGED)): $(head -c 300 err.txt)"
-	fi
+	refused "$b_d" "$b_p" "" "$@"
+	refused_kept=
 }
 
 $B bake $BK --out bk || fail "good bake"
@@ -40,48 +34,48 @@ $B bake --preset paper --solver ad --theta-nodes 2 --resolution 3x3 --radial-err
 
 # ---- user files
 mkdir user && echo '{"mine": 1}' > user/manifest.json && echo letter > user/letter.txt
-refused "bake --out a directory with the user's own manifest.json" "user holds manifest.json, but not of a bake" user \
+bad "bake --out a directory with the user's own manifest.json" "user holds manifest.json, but not of a bake" user \
 	$B bake $BK --out user
 mkdir home && echo letter > home/letter.txt
-refused "texture --out a directory of the user's files" "home is a directory without manifest.json" home \
+bad "texture --out a directory of the user's files" "home is a directory without manifest.json" home \
 	$B texture --size 16 --out home --quiet
 cp -r bk bk_notes && echo mine > bk_notes/notes.txt
-refused "bake --out a complete bake plus a user's file" "holds 'notes.txt', which is not part of a bake directory" \
+bad "bake --out a complete bake plus a user's file" "holds 'notes.txt', which is not part of a bake directory" \
 	bk_notes $B bake $BK --out bk_notes
 cp -r bl bl_notes && echo mine > bl_notes/photo.png
-refused "export blender --out an image set plus a user's image" "holds 'photo.png'" bl_notes \
+bad "export blender --out an image set plus a user's image" "holds 'photo.png'" bl_notes \
 	$B export blender --bake bk --out bl_notes $LUT
 
 # ---- another kind's output
-refused "export blender --bake bk --out bk" "bk is also an input|not of a Blender image set" bk \
+bad "export blender --bake bk --out bk" "bk is also an input|not of a Blender image set" bk \
 	$B export blender --bake bk --out bk $LUT
-refused "texture --out BAKE" "bk holds manifest.json, but not of a texture directory" bk \
+bad "texture --out BAKE" "bk holds manifest.json, but not of a texture directory" bk \
 	$B texture --size 16 --out bk --quiet
-refused "export blender --textures tx --out tx" "tx is also an input|not of a Blender image set" tx \
+bad "export blender --textures tx --out tx" "tx is also an input|not of a Blender image set" tx \
 	$B export blender --bake bk --textures tx --out tx $LUT
-refused "export pov --out BAKE" "bk is also an input|not of a POV-Ray export" bk \
+bad "export pov --out BAKE" "bk is also an input|not of a POV-Ray export" bk \
 	$B export pov --bake bk --scene "$T/scenes/sphere.scene" --out bk
-refused "bake --out a family" "fam is a directory without manifest.json, not a bake directory" fam \
+bad "bake --out a family" "fam is a directory without manifest.json, not a bake directory" fam \
 	$B bake $BK --out fam
-refused "bake --vary --out a bake" "bk is a directory without family.json" bk \
+bad "bake --vary --out a bake" "bk is a directory without family.json" bk \
 	$B bake --preset paper --solver ad --theta-nodes 2 --resolution 3x3 --vary dermis.blood=0.01:0.03:2 --out bk --quiet
-refused "maps new --out an image set" "not a maps directory|without maps.json" bl \
+bad "maps new --out an image set" "not a maps directory|without maps.json" bl \
 	$B maps new --family fam --set dermis.blood=0.02 --size 8x8 --out bl --quiet
-refused "export pov --out an image set" "not of a POV-Ray export" bl \
+bad "export pov --out an image set" "not of a POV-Ray export" bl \
 	$B export pov --bake bk --scene "$T/scenes/sphere.scene" --out bl
 
 # ---- inputs
-refused "export blender --out inside its input" "bk/sub is inside the input bk" bk \
+bad "export blender --out inside its input" "bk/sub is inside the input bk" bk \
 	$B export blender --bake bk --out bk/sub $LUT
-refused "maps new --out inside the family" "fam/mp is inside the input fam" fam \
+bad "maps new --out inside the family" "fam/mp is inside the input fam" fam \
 	$B maps new --family fam --set dermis.blood=0.02 --size 8x8 --out fam/mp --quiet
 
 # ---- '/', a dangling link (refused before the bake, not after it)
 for cmd in "bake $BK" "texture --size 16 --quiet"; do
-	refused "${cmd%% *} --out /" "cannot replace this directory as a whole" bk $B $cmd --out /
+	bad "${cmd%% *} --out /" "cannot replace this directory as a whole" bk $B $cmd --out /
 done
 ln -s nowhere dangling
-refused "bake --out a dangling symbolic link" "dangling is a symbolic link to a directory that does not exist" bk \
+bad "bake --out a dangling symbolic link" "dangling is a symbolic link to a directory that does not exist" bk \
 	$B bake $BK --out dangling
 
 # ---- an output of the same kind is replaced
@@ -97,10 +91,10 @@ first=$!
 i=0
 while [ ! -e .slow.lock ] && [ $i -lt 100 ]; do sleep 0.1; i=$((i + 1)); done
 if [ -e .slow.lock ]; then
-	refused "a second bake on a directory being baked" "slow is being written by process $first \(.*bake.*\)" bk \
+	bad "a second bake on a directory being baked" "slow is being written by process $first \(.*bake.*\)" bk \
 		$B bake $BK --out slow
 	sleep 0.5
-	refused "bake --resume of a bake that is still running" "slow is being written by process $first" bk \
+	bad "bake --resume of a bake that is still running" "slow is being written by process $first" bk \
 		$B bake $BK --out slow --resume
 else
 	fail "the first bake did not take its lock: $(cat slow.err)"
@@ -109,7 +103,7 @@ kill $first 2> /dev/null
 wait $first 2> /dev/null
 rm -f slow.checkpoint	# the killed bake's, of another spec
 ln -s /dev/zero zero.checkpoint
-refused "bake --resume with /dev/zero as its checkpoint (once read without end)" \
+bad "bake --resume with /dev/zero as its checkpoint (once read without end)" \
 	"zero.checkpoint is not a regular file" bk timeout 60 $B bake $BK --out zero --resume
 check "after the first writer is gone its lock is free, its staging removed" \
 	sh -c "'$B' bake $BK --out slow && [ -z \"\$(ls -A | grep '^\.slow\.')\" ]"

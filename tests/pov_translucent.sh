@@ -27,10 +27,7 @@ bake="$tmpd/paper"
 "$B" bake --preset paper --out "$bake" --quiet >"$tmpd/bake.log" 2>&1
 check "bake paper" test $? -eq 0
 
-# todo DESC REASON CMD...: a known limit, reported but not failing.
-todo() { d=$1; why=$2; shift 2; tap_n=$((tap_n+1)); if "$@"; then echo "ok $tap_n - $d (known limit met this run: $why)"; \
-	else echo "not ok $tap_n - $d # TODO $why"; fi; }
-
+# Known limits are todo lines (tests/tap.sh).
 # 1. Flat skin under uniform light.
 SC="$top_srcdir/tests/data/pov/flat.scene"
 exp=$(python3 - "$B" "$bake" <<'PY'

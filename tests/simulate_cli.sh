@@ -179,35 +179,14 @@ else
 fi
 
 # ---- bad input: exit 2, nothing on stdout, a message with field, value, range
-# bad DESC "NEEDLE|NEEDLE|..." ARGS...
+# bad DESC "NEEDLE|NEEDLE|..." ARGS...: simulate ARGS refused (tests/lib/refused.sh): exit 2,
+# nothing on stdout, every fixed-string NEEDLE in the message.
+. "$top_srcdir/tests/lib/refused.sh"
+refused_fixed=1 refused_quiet=1
 bad() {
-	desc=$1 needles=$2
+	b_d=$1 b_n=$2
 	shift 2
-	"$SKINBAKE" simulate "$@" >"$tmpd/bad.out" 2>"$tmpd/bad.err"
-	rc=$?
-	msg=$(cat "$tmpd/bad.err")
-	if [ "$rc" -ne 2 ]; then
-		fail "$desc: exit status $rc, expected 2 ($msg)"
-		return
-	fi
-	if [ -s "$tmpd/bad.out" ]; then
-		fail "$desc: wrote to stdout"
-		return
-	fi
-	missing=
-	old_ifs=$IFS
-	IFS='|'
-	set -f	# needles like "[1, 10]" are not file patterns
-	for n in $needles; do
-		case $msg in *"$n"*) ;; *) missing="$missing '$n'" ;; esac
-	done
-	set +f
-	IFS=$old_ifs
-	if [ -n "$missing" ]; then
-		fail "$desc: message lacks$missing: $msg"
-	else
-		ok "$desc: exit 2, $msg"
-	fi
+	refused "$b_d" "$b_n" "" "$SKINBAKE" simulate "$@"
 }
 
 G="mua=1,mus=10"

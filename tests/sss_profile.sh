@@ -31,12 +31,9 @@ if [ -z "$POVRAY" ] || ! command -v "$POVRAY" >/dev/null 2>&1 || ! command -v py
 	exit 1
 fi
 
-# todo DESC REASON CMD...: a known limit, reported but not failing.  A run that meets it
-# reports a plain pass, not an unexpected one: these limits sit within the bake's noise of
-# the bound, so an XPASS would make the suite fail at random.
-todo() { d=$1; why=$2; shift 2; tap_n=$((tap_n+1)); if "$@"; then echo "ok $tap_n - $d (known limit met this run: $why)"; \
-	else echo "not ok $tap_n - $d # TODO $why"; fi; }
-
+# Known limits are todo lines (tests/tap.sh): a run that meets one reports a plain pass, not an
+# unexpected one: these limits sit within the bake's noise of the bound, so an XPASS would make
+# the suite fail at random.
 for p in paper fair-dry dark-dry; do
 	# --radial-error 0.01: the bake's rings about as precise as before the control-variate
 	# estimator (speed3: 2 % on the mean radius leaves single rings 1.5-2x noisier), so the

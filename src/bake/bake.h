@@ -70,7 +70,8 @@ const char *bake_method_choices(void);
 /* Rd(r) made outside bake_run for some wavelengths (a family's members
  * share one white Monte Carlo run per wavelength, family/family_radial.h). */
 struct bake_radial_given {
-	const double *rd_r[BAKE_MAX_WL];	/* [n_r] Rd(r) [1/cm^2] per wavelength; NULL: bake_run runs it */
+	const double *rd_r[BAKE_MAX_WL];	/* [n_r] Rd(r) [1/cm^2] per
+						 * wavelength; NULL: bake_run runs it */
 	const double *rd_r_err[BAKE_MAX_WL];	/* [n_r] its standard error [1/cm^2] */
 	long photons;				/* photons of the shared runs behind them */
 	double seconds;				/* their wall time [s] */
@@ -83,34 +84,46 @@ struct bake_spec {
 	struct slab slab[BAKE_MAX_WL];		/* layer stack per wavelength, prepared */
 	int n_ti;				/* incidence nodes, 1..BAKE_MAX_TI */
 	double theta_i[BAKE_MAX_TI];		/* [rad], ascending, in [0, pi/2) */
-	int n_to, n_phi;			/* table bins over theta_o [0, 90] and delta_phi [0, 180] deg */
+	int n_to, n_phi;			/* table bins over theta_o [0, 90]
+						 * and delta_phi [0, 180] deg */
 	int n_r;				/* radial bins of Rd(r) */
 	double dr;				/* radial bin width [cm] */
-	struct transport_opts opts;		/* boundary model and the kernel's roulette and step cap */
+	struct transport_opts opts;		/* boundary model and the
+						 * kernel's roulette and step cap */
 	int method;				/* enum bake_method */
-	double ad_tol;				/* adding-doubling tolerance (table RMS relative error);
-					 * 0 = 1e-3; the target error when that is smaller */
-	int ad_quad;				/* its quadrature nodes per unit cosine; 0 = automatic */
-	int ad_quad_max;			/* largest automatic ad_quad (its cost bound); 0 = the solver's default */
+	double ad_tol;				/* adding-doubling tolerance (table RMS
+						 * relative error); 0 = 1e-3; the target
+						 * error when that is smaller */
+	int ad_quad;				/* its quadrature nodes per
+						 * unit cosine; 0 = automatic */
+	int ad_quad_max;			/* largest automatic ad_quad (its cost bound);
+						 * 0 = the solver's default */
 	int ad_orders;				/* Fourier orders at most; 0 = all the table
-					 * needs, 1 = the albedos only (order 0; the
-					 * table's bins then hold its azimuthal mean) */
+						 * needs, 1 = the albedos only (order 0; the
+						 * table's bins then hold its azimuthal mean) */
 	int bin_means;				/* 1: bin means from every method (no point values;
 					 * for comparing methods bin by bin) */
-	double radial_error;			/* relative standard error of the mean exit radius that
-					 * the Rd(r) run of an adding-doubling table aims at;
-					 * 0 = BAKE_RADIAL_ERROR */
-	long radial_photons;			/* its photons per wavelength at most; 0 = BAKE_RADIAL_PHOTONS */
+	double radial_error;			/* relative standard error of the
+						 * mean exit radius that the Rd(r)
+						 * run of an adding-doubling table
+						 * aims at; 0 = BAKE_RADIAL_ERROR */
+	long radial_photons;			/* its photons per wavelength at most;
+						 * 0 = BAKE_RADIAL_PHOTONS */
 	const struct bake_radial_given *radial_given;	/* Rd(r) already made (NULL: none) */
 	/* Monte Carlo. */
 	uint64_t seed;
-	long batch_photons;			/* photons per batch; 0 = sized from the target (mc.h) */
-	int min_batches;			/* batches per job in the first round or pilot, >= 4 */
-	double target_error;			/* RMS relative error to reach; 0 = run max_photons */
+	long batch_photons;			/* photons per batch; 0 = sized
+						 * from the target (mc.h) */
+	int min_batches;			/* batches per job in the
+						 * first round or pilot, >= 4 */
+	double target_error;			/* RMS relative error to
+						 * reach; 0 = run max_photons */
 	long max_photons;			/* total photon budget of the bake */
-	int nee;				/* exit bins by next-event estimation (nee.h) instead of escapes */
+	int nee;				/* exit bins by next-event estimation
+						 * (nee.h) instead of escapes */
 	int threads;				/* 0 = all cores */
-	int rank, n_ranks;			/* MPI: this process takes units u with u % n_ranks == rank */
+	int rank, n_ranks;			/* MPI: this process takes units u
+						 * with u % n_ranks == rank */
 	/* MPI reduction hook: sum `n` doubles over ranks in place (NULL = single process). */
 	void (*allreduce)(double *v, long n);
 	void (*progress)(void *user, long done, long total);	/* may be NULL */
@@ -127,26 +140,34 @@ struct bake_spec {
 /* What a bake computed: the solver's table and what the bake directory
  * needs besides it, so that its writer calls nothing back. */
 struct bake_result {
-	struct brdf_table table;	/* entries [n_wl * n_ti], entry = wavelength * n_ti + angle */
+	struct brdf_table table;	/* entries [n_wl * n_ti], entry =
+					 * wavelength * n_ti + angle */
 	const char *solver;		/* the methods that made the table: "mc", "ad", or "ad+mc"
 					 * (static; each entry's method says which) */
-	double ad_tol;			/* tolerance adding-doubling worked to (0 when it did not run) [-] */
-	char *notes;			/* lines for the user (the fallbacks, with causes); NULL: none */
-	char **fallback_cause;		/* [n_wl] why adding-doubling refused the wavelength (Monte Carlo
-					 * made it); NULL entries where it did not, NULL array without any */
-	struct specular_stack *stack;	/* [n_wl] clear top stack per wavelength, for the analytic specular */
-	double *mean_radius_cm;		/* [n_wl] mean exit radius of the diffuse light at theta_i[0] [cm]
+	double ad_tol;			/* tolerance adding-doubling worked to (0
+					 * when it did not run) [-] */
+	char *notes;			/* lines for the user (the fallbacks,
+					 * with causes); NULL: none */
+	char **fallback_cause;		/* [n_wl] why adding-doubling refused the wavelength
+					 * (Monte Carlo made it); NULL entries where it did
+					 * not, NULL array without any */
+	struct specular_stack *stack;	/* [n_wl] clear top stack per wavelength,
+					 * for the analytic specular */
+	double *mean_radius_cm;		/* [n_wl] mean exit radius of the diffuse
+					 * light at theta_i[0] [cm]
 					 * (tally_mean_radius; 0 without radial bins) */
 	double *mean_radius_err_cm;	/* [n_wl] its standard error [cm] (tally_mean_radius_err) */
-	long radial_photons;		/* photons of the separate Rd(r) run (0 when the table's method gave it) */
+	long radial_photons;		/* photons of the separate Rd(r) run (0 when the
+					 * table's method gave it) */
 	double radial_seconds;		/* its wall time [s] */
 	double *radial_err_cm;		/* [n_wl] the separate Rd(r) run's mean radius standard
 					 * error (from its batches, bake/radial.h; 0 or NULL: from
 					 * the bins) */
 	int radial_controls;		/* control variates of that run (the fewest of any
 					 * wavelength) */
-	int radial_shared;		/* > 0: Rd(r) came from white Monte Carlo runs shared by this many
-					 * family members (radial_photons, radial_seconds are those runs') */
+	int radial_shared;		/* > 0: Rd(r) came from white Monte Carlo runs shared by
+					 * this many family members (radial_photons,
+					 * radial_seconds are those runs') */
 };
 
 /* Run the bake: 0, or -1 and *cause (caller frees) when the solver refuses
@@ -166,20 +187,22 @@ uint64_t bake_spec_identity(const struct bake_spec *s);
  * bake_rgb_weights puts the spectral -> linear sRGB weights of those
  * wavelengths into rgb_from_wl[3 * n_wl] (colour_rgb_weights) and returns
  * the sentence that says how they map, for the manifest. */
-int bake_spec_layers(struct bake_spec *s, const struct skin_params *p, const char *label, char **cause);
+int bake_spec_layers(struct bake_spec *s, const struct skin_params *p, const char *label,
+    char **cause);
 const char *bake_rgb_weights(const struct bake_spec *s, double *rgb_from_wl);
 /* s's wavelengths wl_nm[n_wl] (0: the preset's, set later) and incidence
  * angles: theta_deg[n_theta] [deg], or when n_theta is 0 the nodes
  * 90 k / nodes deg, k = 0 .. nodes - 1, or when nodes is 0 too the table's
  * exit nodes below 90 deg (bake_nodes_theta(s->n_to), the last dropped:
  * the BRDF is 0 there; needs n_to >= 3, else 10 nodes as above). */
-void bake_spec_axes(struct bake_spec *s, const double *wl_nm, int n_wl, const double *theta_deg, int n_theta,
-    int nodes);
+void bake_spec_axes(struct bake_spec *s, const double *wl_nm, int n_wl, const double *theta_deg,
+    int n_theta, int nodes);
 /* Load preset NAME, or the preset file PFILE when NAME is NULL, and fill
  * s's wavelengths (the preset's default ones when s->n_wl is 0) and layer
  * stacks; for Monte Carlo, check that the photon budget covers the first
  * round.  The preset (caller frees with preset_free), or NULL and *cause. */
-struct skin_params *bake_spec_preset(struct bake_spec *s, const char *name, const char *pfile, char **cause);
+struct skin_params *bake_spec_preset(struct bake_spec *s, const char *name, const char *pfile,
+    char **cause);
 /* Estimated needs per table cell (wavelength x theta_i x theta_o x
  * delta_phi): measured about 30 bytes of memory (tables, tallies, the
  * writer's planes) and 10 bytes of files (12 uncompressed); with margin. */

@@ -74,17 +74,21 @@ static json_object *table_info(const struct bake_spec *s, const struct bake_resu
 	add(t, "height", json_object_new_int(s->n_ti * s->n_to));
 	add(t, "row", jstr("theta_i_index * n_theta_o + theta_o_index, row 0 at the top"));
 	add(t, "column", jstr("delta_phi bin index"));
-	add(t, "value", jstr("diffuse (subsurface) BRDF [1/sr]: mean over the (theta_o, delta_phi) bin at the theta_i node; "
-	    "delta_phi = 0 back toward the light, 180 the mirror side"));
+	add(t, "value", jstr("diffuse (subsurface) BRDF [1/sr]: mean over the (theta_o, delta_phi) "
+	    "bin at the theta_i node; delta_phi = 0 back toward the light, 180 the mirror side"));
 	json_object *vals = json_object_new_array();
-	for (int w = 0; w < s->n_wl; w++) {	/* "points" at the nodes (adding-doubling) or "bins" (means) */
+	for (int w = 0; w < s->n_wl; w++) {	/* "points" at the nodes
+						 * (adding-doubling) or "bins" (means) */
 		const char *m = r->table.entry[w * s->n_ti].method;
-		json_object_array_add(vals, jstr(bake_spec_points(s) && m && strcmp(m, "ad") == 0 ? "points" : "bins"));
+		json_object_array_add(vals,
+		    jstr(bake_spec_points(s) && m && strcmp(m, "ad") == 0 ? "points" : "bins"));
 	}
 	add(t, "values", vals);
-	add(t, "values_note", jstr("per wavelength: 'bins' as 'value' says; 'points': the BRDF at the theta_i node, "
-	    "theta_o_nodes_deg[row], delta_phi_nodes_deg[column]; at theta_i 90 deg it is 0 (nothing enters at grazing)"));
-	add(t, "channels", jstr(strcmp(r->solver, "mc") == 0 ? "fr.<WL>nm and fr_err.<WL>nm (standard error)"
+	add(t, "values_note", jstr("per wavelength: 'bins' as 'value' says; 'points': the BRDF at "
+	    "the theta_i node, theta_o_nodes_deg[row], delta_phi_nodes_deg[column]; at theta_i 90 "
+	    "deg it is 0 (nothing enters at grazing)"));
+	add(t, "channels", jstr(strcmp(r->solver, "mc") == 0 ?
+	    "fr.<WL>nm and fr_err.<WL>nm (standard error)"
 	    : "fr.<WL>nm and fr_err.<WL>nm (its error estimate: see solver.error)"));
 	return t;
 }
@@ -93,7 +97,8 @@ static json_object *rgb_info(const struct bake_spec *s, const struct bake_meta *
 {
 	json_object *rgb = json_object_new_object();
 	add(rgb, "file", jstr("brdf_rgb.exr"));
-	add(rgb, "colour_space", jstr("linear sRGB (Rec. 709 primaries), D65 white, CIE 1931 2-degree observer"));
+	add(rgb, "colour_space",
+	    jstr("linear sRGB (Rec. 709 primaries), D65 white, CIE 1931 2-degree observer"));
 	json_object *mm = json_object_new_array();
 	for (int c = 0; c < 3; c++)
 		json_object_array_add(mm, jarr(m->rgb_from_wl + c * s->n_wl, s->n_wl));
@@ -103,12 +108,22 @@ static json_object *rgb_info(const struct bake_spec *s, const struct bake_meta *
 	return rgb;
 }
 
-static json_object *specular_info(const struct bake_spec *s, const struct bake_result *r, const struct bake_meta *m)
+static json_object *specular_info(const struct bake_spec *s, const struct bake_result *r,
+    const struct bake_meta *m)
 {
 	json_object *sp = json_object_new_object();
-	add(sp, "model", jstr("GGX microfacet (Walter et al. 2007), Smith masking, facet reflectance of the clear top stack"));
+	add(sp, "model", jstr(
+	    "GGX microfacet (Walter et al. 2007), Smith masking, facet reflectance of the clear "
+	    "top stack"));
 	add(sp, "alpha", json_num(m->roughness));
 	add(sp, "ior", json_num(m->ior));
+	if (m->macro_slope > 0.0) {
+		add(sp, "macro_slope", json_num(m->macro_slope));
+		add(sp, "macro", jstr("mm-scale relief (engine/macro.h): eval and the exporters "
+		    "integrate the table and this lobe together over Beckmann facets of this RMS "
+		    "slope with height-correlated Smith shadowing; the table and albedo here are the "
+		    "facets' own"));
+	}
 	add(sp, "fresnel", jstr(s->opts.fresnel == OPTICS_FRESNEL_SCHLICK ? "schlick" : "exact"));
 	json_object *stacks = json_object_new_array();
 	for (int w = 0; w < s->n_wl; w++)
@@ -118,9 +133,9 @@ static json_object *specular_info(const struct bake_spec *s, const struct bake_r
 	for (int w = 0; w < s->n_wl; w++)
 		rough |= s->slab[w].rough_top;
 	if (rough)
-		add(sp, "split", jstr("rough top: this lobe is the surface's own reflection (Rsp of both solvers, light "
-		    "that never entered a turbid layer); the table holds only light that entered, so eval and the "
-		    "exporters add the two once each"));
+		add(sp, "split", jstr("rough top: this lobe is the surface's own reflection (Rsp "
+		    "of both solvers, light that never entered a turbid layer); the table holds "
+		    "only light that entered, so eval and the exporters add the two once each"));
 	return sp;
 }
 
@@ -154,7 +169,8 @@ static json_object *layers_info(const struct bake_spec *s)
 }
 
 /* Radial profile and subsurface radius at the node nearest normal incidence. */
-static json_object *radial_info(const struct bake_spec *s, const struct bake_result *r, const struct bake_meta *m)
+static json_object *radial_info(const struct bake_spec *s, const struct bake_result *r,
+    const struct bake_meta *m)
 {
 	json_object *rad = json_object_new_object();
 	add(rad, "dr_cm", json_num(s->dr));
@@ -172,23 +188,27 @@ static json_object *radial_info(const struct bake_spec *s, const struct bake_res
 	add(rad, "mean_radius_cm", jarr(r->mean_radius_cm, s->n_wl));
 	add(rad, "mean_radius_err_cm", jarr(r->mean_radius_err_cm, s->n_wl));
 	if (r->radial_shared > 0)
-		add(rad, "method", jstr("white Monte Carlo at theta_i_deg, exit bins by escapes, apart from the table: one run per "
-		    "wavelength shared by the family's members (they differ only in absorption; each escape counts for a member "
-		    "with its weight times exp(-sum over layers of the member's extra mu_a times the path length there)), sized "
-		    "so that every member's mean radius reaches target_rel_err (a member it cannot reach within the photon cap "
-		    "runs its own); photons are the shared runs'"));
+		add(rad, "method", jstr("white Monte Carlo at theta_i_deg, exit bins by escapes, "
+		    "apart from the table: one run per wavelength shared by the family's members "
+		    "(they differ only in absorption; each escape counts for a member with its "
+		    "weight times exp(-sum over layers of the member's extra mu_a times the path "
+		    "length there)), sized so that every member's mean radius reaches "
+		    "target_rel_err (a member it cannot reach within the photon cap runs its own); "
+		    "photons are the shared runs'"));
 	else
-		add(rad, "method", jstr(r->radial_photons > 0 ? "Monte Carlo at theta_i_deg, exit bins by escapes, apart from "
-		    "the table (its method gives no Rd(r)), each escape also scored as exp(-2/cm "
-		    "x its path length in the turbid layers): profile and mean radius regressed on "
-		    "that and on the escape weight, whose means adding-doubling gives (control "
-		    "variates; src/bake/radial.h); a pilot of 2000 photons per wavelength, then "
-		    "more (up to 4 rounds) where the mean radius's relative error is above "
-		    "target_rel_err" :
+		add(rad, "method", jstr(r->radial_photons > 0 ?
+		    "Monte Carlo at theta_i_deg, exit bins by escapes, apart from the table (its "
+		    "method gives no Rd(r)), each escape also scored as exp(-2/cm x its path "
+		    "length in the turbid layers): profile and mean radius regressed on that and "
+		    "on the escape weight, whose means adding-doubling gives (control variates; "
+		    "src/bake/radial.h); a pilot of 2000 photons per wavelength, then more (up to "
+		    "4 rounds) where the mean radius's relative error is above target_rel_err" :
 		    "Monte Carlo, the table's jobs at theta_i_deg"));
-	add(rad, "photons", json_object_new_int64(r->radial_photons > 0 ? r->radial_photons : r->table.entry[0].photons));
+	add(rad, "photons", json_object_new_int64(r->radial_photons > 0 ? r->radial_photons
+	    : r->table.entry[0].photons));
 	if (r->radial_photons > 0)
-		add(rad, "target_rel_err", json_num(s->radial_error > 0.0 ? s->radial_error : BAKE_RADIAL_ERROR));
+		add(rad, "target_rel_err",
+		    json_num(s->radial_error > 0.0 ? s->radial_error : BAKE_RADIAL_ERROR));
 	add(rad, "seconds", json_num(r->radial_seconds));
 	/* Per RGB channel: the wavelengths' radii weighted by |rgb_from_wl|. */
 	double rr[3];
@@ -203,8 +223,9 @@ static json_object *radial_info(const struct bake_spec *s, const struct bake_res
 	}
 	add(rad, "mean_radius_rgb_cm", jarr(rr, 3));
 	add(rad, "definition", jstr(
-	    "mean lateral distance between entry and exit of the diffusely reflected light (first moment of Rd(r) r dr), "
-	    "from the profile's bins (light beyond the last bin is not counted)"));
+	    "mean lateral distance between entry and exit of the diffusely reflected light (first "
+	    "moment of Rd(r) r dr), from the profile's bins (light beyond the last bin is not "
+	    "counted)"));
 	return rad;
 }
 
@@ -215,18 +236,21 @@ static json_object *solver_info(const struct bake_spec *s, const struct bake_res
 	add(so, "name", jstr(r->solver));
 	add(so, "requested", jstr(bake_method_of(s->method)->name));
 	add(so, "rms_rel_err", json_num(r->table.rms_rel_err));
-	add(so, "error", jstr("fr_err, albedo_err and rms_rel_err of entries made by mc: standard errors (batch means); "
-	    "by ad: the adding-doubling error estimates (|X_N - X_N/2| from a solve at half the quadrature nodes, scaled up "
-	    "where convergence is slow, plus the Fourier series' tail: bounds, not standard errors; src/engine/ad.h); "
-	    "rms_rel_err: solid-angle-weighted RMS relative error of the table"));
+	add(so, "error", jstr("fr_err, albedo_err and rms_rel_err of entries made by mc: standard "
+	    "errors (batch means); by ad: the adding-doubling error estimates (|X_N - X_N/2| from "
+	    "a solve at half the quadrature nodes, scaled up where convergence is slow, plus the "
+	    "Fourier series' tail: bounds, not standard errors; src/engine/ad.h); rms_rel_err: "
+	    "solid-angle-weighted RMS relative error of the table"));
 	if (r->ad_tol > 0.0) {
 		struct ad_solver_settings d;
 		ad_solver_settings_default(&d);
 		json_object *ad = json_object_new_object();
-		add(ad, "method", jstr("adding-doubling, Fourier series in delta_phi (src/engine/ad.h)"));
+		add(ad, "method",
+		    jstr("adding-doubling, Fourier series in delta_phi (src/engine/ad.h)"));
 		add(ad, "tol", json_num(r->ad_tol));
 		add(ad, "n_quad", s->ad_quad > 0 ? json_object_new_int(s->ad_quad) : jstr("auto"));
-		add(ad, "n_quad_max", json_object_new_int(s->ad_quad_max > 0 ? s->ad_quad_max : d.ad.n_quad_max));
+		add(ad, "n_quad_max",
+		    json_object_new_int(s->ad_quad_max > 0 ? s->ad_quad_max : d.ad.n_quad_max));
 		add(ad, "dtau_frac", json_num(d.ad.dtau_frac));
 		add(ad, "dm_terms", json_num(d.ad.dm_terms));
 		add(ad, "max_orders", json_object_new_int(d.ad.max_orders));
@@ -249,7 +273,8 @@ static json_object *settings_info(const struct bake_spec *s, const struct bake_r
 	json_object *st = json_object_new_object();
 	add(st, "seed", json_object_new_uint64(s->seed));
 	const struct brdf_entry *e = &r->table.entry[0];
-	long bp = s->batch_photons > 0 || e->batches == 0 ? s->batch_photons : e->photons / e->batches;
+	long bp = s->batch_photons > 0 || e->batches == 0 ? s->batch_photons
+	    : e->photons / e->batches;
 	add(st, "batch_photons", json_object_new_int64(bp));
 	add(st, "min_batches", json_object_new_int(s->min_batches));
 	add(st, "target_error", json_num(s->target_error));
@@ -301,7 +326,8 @@ static json_object *entries_info(const struct bake_result *r)
 	return jobs;
 }
 
-char *bake_manifest_text(const struct bake_spec *s, const struct bake_result *r, const struct bake_meta *m)
+char *bake_manifest_text(const struct bake_spec *s, const struct bake_result *r,
+    const struct bake_meta *m)
 {
 	CHECK(r->table.n_wl == s->n_wl && r->table.n_ti == s->n_ti);
 	json_object *o = json_object_new_object();

@@ -12,9 +12,11 @@
 #include <unistd.h>
 
 #include "base/util.h"
+#include "engine/macro.h"
 #include "io/json.h"
 
-static int jnum_array(json_object *o, const char *key, double **out, int *n, char **cause, const char *path)
+static int jnum_array(json_object *o, const char *key, double **out, int *n, char **cause,
+    const char *path)
 {
 	json_object *a;
 	if (!json_object_object_get_ex(o, key, &a) || !json_object_is_type(a, json_type_array)) {
@@ -64,7 +66,8 @@ static int read_axes(json_object *o, struct bake *b, const char *mpath, char **c
 		return -1;
 	}
 	if (b->n_wl > BAKE_MAX_WL) {
-		*cause = xasprintf("%s: %d wavelengths, more than a bake holds (%d)", mpath, b->n_wl, BAKE_MAX_WL);
+		*cause = xasprintf("%s: %d wavelengths, more than a bake holds (%d)", mpath,
+		    b->n_wl, BAKE_MAX_WL);
 		return -1;
 	}
 	for (int i = 0; i < b->n_ti; i++)
@@ -79,7 +82,8 @@ static int read_axes(json_object *o, struct bake *b, const char *mpath, char **c
 static int read_rgb(json_object *o, struct bake *b, const char *mpath, char **cause)
 {
 	json_object *rgb, *v;
-	if (!json_object_object_get_ex(o, "rgb", &rgb) || !json_object_object_get_ex(rgb, "rgb_from_wl", &v) ||
+	if (!json_object_object_get_ex(o, "rgb", &rgb) ||
+	    !json_object_object_get_ex(rgb, "rgb_from_wl", &v) ||
 	    json_object_array_length(v) != 3) {
 		*cause = xasprintf("%s: missing rgb.rgb_from_wl", mpath);
 		return -1;
@@ -92,7 +96,8 @@ static int read_rgb(json_object *o, struct bake *b, const char *mpath, char **ca
 			return -1;
 		}
 		if (jrow(row, &b->rgb_from_wl[c * b->n_wl], b->n_wl) != 0) {
-			*cause = xasprintf("%s: rgb_from_wl row %d holds a value that is not a number", mpath, c);
+			*cause = xasprintf(
+			    "%s: rgb_from_wl row %d holds a value that is not a number", mpath, c);
 			return -1;
 		}
 	}
@@ -108,12 +113,24 @@ static int read_specular(json_object *o, struct bake *b, const char *mpath, char
 	}
 	b->ior = jnum(sp, "ior", 1.5);
 	b->roughness = jnum(sp, "alpha", 0.3);
+	b->macro_slope = jnum(sp, "macro_slope", 0.0);
+	if (!(b->macro_slope >= 0.0 && b->macro_slope <= MACRO_SLOPE_MAX)) {
+		*cause = xasprintf("%s: specular.macro_slope %g is out of range [0, %g]", mpath,
+		    b->macro_slope, MACRO_SLOPE_MAX);
+		return -1;
+	}
+	if (b->macro_slope > 0.0) {
+		b->macro = xmalloc(sizeof *b->macro);
+		macro_rule_init(b->macro, b->macro_slope, MACRO_NQ);
+	}
 	b->stack = xcalloc((size_t)b->n_wl, sizeof *b->stack);
 	enum optics_fresnel model = OPTICS_FRESNEL_EXACT;
-	if (json_object_object_get_ex(sp, "fresnel", &fr) && json_object_is_type(fr, json_type_string) &&
+	if (json_object_object_get_ex(sp, "fresnel", &fr) &&
+	    json_object_is_type(fr, json_type_string) &&
 	    strcmp(json_object_get_string(fr), "schlick") == 0)
 		model = OPTICS_FRESNEL_SCHLICK;
-	if (!json_object_object_get_ex(sp, "stack_n", &v) || (int)json_object_array_length(v) != b->n_wl) {
+	if (!json_object_object_get_ex(sp, "stack_n", &v) ||
+	    (int)json_object_array_length(v) != b->n_wl) {
 		*cause = xasprintf("%s: missing specular.stack_n", mpath);
 		return -1;
 	}
@@ -127,7 +144,9 @@ static int read_specular(json_object *o, struct bake *b, const char *mpath, char
 		b->stack[w].n = k;
 		b->stack[w].model = model;
 		if (jrow(row, b->stack[w].n_list, k) != 0) {
-			*cause = xasprintf("%s: specular.stack_n[%d] holds a value that is not a number", mpath, w);
+			*cause =
+			    xasprintf("%s: specular.stack_n[%d] holds a value that is not a number",
+			    mpath, w);
 			return -1;
 		}
 	}
@@ -141,18 +160,22 @@ static void read_radial_profile(json_object *rad, struct bake *b)
 	json_object *prof;
 	int n_r = (int)jnum(rad, "n_r", 0);
 	double dr = jnum(rad, "dr_cm", 0);
-	if (!json_object_object_get_ex(rad, "rd_r", &prof) || !json_object_is_type(prof, json_type_array) ||
-	    (int)json_object_array_length(prof) != b->n_wl || n_r < 1 || n_r > 100000 || !(dr > 0 && dr < 100))
+	if (!json_object_object_get_ex(rad, "rd_r", &prof) ||
+	    !json_object_is_type(prof, json_type_array) ||
+	    (int)json_object_array_length(prof) != b->n_wl || n_r < 1 || n_r > 100000 ||
+	    !(dr > 0 && dr < 100))
 		return;
 	double *rgb = xcalloc((size_t)(3 * n_r), sizeof(double));
 	for (int w = 0; w < b->n_wl; w++) {
 		json_object *row = json_object_array_get_idx(prof, (size_t)w);
-		if (!json_object_is_type(row, json_type_array) || (int)json_object_array_length(row) != n_r) {
+		if (!json_object_is_type(row, json_type_array) ||
+		    (int)json_object_array_length(row) != n_r) {
 			free(rgb);
 			return;
 		}
 		for (int i = 0; i < n_r; i++) {
-			double v = json_object_get_double(json_object_array_get_idx(row, (size_t)i));
+			double v =
+			    json_object_get_double(json_object_array_get_idx(row, (size_t)i));
 			for (int c = 0; c < 3; c++)
 				rgb[c * n_r + i] += b->rgb_from_wl[c * b->n_wl + w] * v;
 		}
@@ -193,7 +216,8 @@ static int read_points(json_object *o, struct bake *b, const char *mpath, char *
 {
 	json_object *t, *vals;
 	int nt = 0, np = 0, any = 0, bad = -1;
-	if (!json_object_object_get_ex(o, "table", &t) || !json_object_object_get_ex(t, "values", &vals))
+	if (!json_object_object_get_ex(o, "table", &t) ||
+	    !json_object_object_get_ex(t, "values", &vals))
 		return 0;
 	b->points = xcalloc((size_t)b->n_wl, sizeof(int));
 	for (int w = 0; w < b->n_wl && bad < 0; w++) {
@@ -203,14 +227,17 @@ static int read_points(json_object *o, struct bake *b, const char *mpath, char *
 		any |= b->points[w];
 	}
 	if (bad >= 0 || (int)json_object_array_length(vals) != b->n_wl) {
-		*cause = xasprintf("%s: table.values must list 'points' or 'bins' for each of the %d wavelengths", mpath, b->n_wl);
+		*cause = xasprintf(
+		    "%s: table.values must list 'points' or 'bins' for each of the %d wavelengths",
+		    mpath, b->n_wl);
 		return -1;
 	}
 	if (any && (jnum_array(o, "theta_o_nodes_deg", &b->theta_o_nodes, &nt, cause, mpath) ||
 	    jnum_array(o, "delta_phi_nodes_deg", &b->phi_nodes, &np, cause, mpath)))
 		return -1;
 	if (any && (nt != b->n_to || np != b->n_phi)) {
-		*cause = xasprintf("%s: %d x %d nodes for a %d x %d table", mpath, nt, np, b->n_to, b->n_phi);
+		*cause = xasprintf("%s: %d x %d nodes for a %d x %d table", mpath, nt, np, b->n_to,
+		    b->n_phi);
 		return -1;
 	}
 	for (int i = 0; i < nt + np; i++)
@@ -224,23 +251,28 @@ int bake_manifest_read(const char *dir, struct bake *b, char **cause)
 	json_object *o = NULL, *v;
 	int rc = -1;
 	if (access(mpath, R_OK) != 0) {
-		*cause = xasprintf("%s: not a bake directory (%s: %s)", dir, mpath, strerror(errno));
+		*cause = xasprintf("%s: not a bake directory (%s: %s)", dir, mpath,
+		    strerror(errno));
 		goto out;
 	}
 	o = json_load(mpath);
-	if (o == NULL || !json_object_object_get_ex(o, "format", &v) || !json_object_is_type(v, json_type_string) ||
+	if (o == NULL || !json_object_object_get_ex(o, "format", &v) ||
+	    !json_object_is_type(v, json_type_string) ||
 	    strcmp(json_object_get_string(v), "skinbake-bake") != 0) {
-		*cause = xasprintf("%s: not a skinbake bake manifest (corrupt JSON or wrong format)", mpath);
+		*cause = xasprintf(
+		    "%s: not a skinbake bake manifest (corrupt JSON or wrong format)", mpath);
 		goto out;
 	}
-	if (jnum(o, "format_version", 0) != BAKE_FORMAT_VERSION) {	/* a double: (int)1e999 is undefined */
-		*cause = xasprintf("%s: format_version %g is not %d", mpath, jnum(o, "format_version", 0), BAKE_FORMAT_VERSION);
+	/* a double: (int)1e999 is undefined */
+	if (jnum(o, "format_version", 0) != BAKE_FORMAT_VERSION) {
+		*cause = xasprintf("%s: format_version %g is not %d", mpath,
+		    jnum(o, "format_version", 0), BAKE_FORMAT_VERSION);
 		goto out;
 	}
 	if (json_object_object_get_ex(o, "preset", &v) && json_object_is_type(v, json_type_string))
 		b->preset = xstrdup(json_object_get_string(v));
-	if (read_axes(o, b, mpath, cause) || read_rgb(o, b, mpath, cause) || read_specular(o, b, mpath, cause) ||
-	    read_points(o, b, mpath, cause))
+	if (read_axes(o, b, mpath, cause) || read_rgb(o, b, mpath, cause) ||
+	    read_specular(o, b, mpath, cause) || read_points(o, b, mpath, cause))
 		goto out;
 	read_radial(o, b, mpath);
 	rc = 0;
@@ -257,17 +289,20 @@ static int read_stack(json_object *lw, struct slab *s, int w, const char *mpath,
 {
 	json_object *ls;
 	slab_init(s, jnum(lw, "n_above", 1.0), jnum(lw, "n_below", 1.0));
-	if (!json_object_object_get_ex(lw, "layers", &ls) || !json_object_is_type(ls, json_type_array)) {
+	if (!json_object_object_get_ex(lw, "layers", &ls) ||
+	    !json_object_is_type(ls, json_type_array)) {
 		*cause = xasprintf("%s: layers[%d] has no layer list", mpath, w);
 		return -1;
 	}
 	for (size_t i = 0; i < json_object_array_length(ls); i++) {
 		json_object *lo = json_object_array_get_idx(ls, i), *d;
-		struct layer l = { INFINITY, jnum(lo, "n", 1.0), jnum(lo, "mua_per_cm", 0.0), jnum(lo, "mus_per_cm", 0.0),
+		struct layer l = { INFINITY, jnum(lo, "n", 1.0), jnum(lo, "mua_per_cm", 0.0),
+		    jnum(lo, "mus_per_cm", 0.0),
 			jnum(lo, "g", 0.0), jnum(lo, "rough_top", 0.0) };
 		if (jnum(lo, "rough_multiple", 0.0) == 1.0)
 			s->rough_ms = 1;
-		if (json_object_object_get_ex(lo, "d_cm", &d) && !json_object_is_type(d, json_type_string))
+		if (json_object_object_get_ex(lo, "d_cm", &d) &&
+		    !json_object_is_type(d, json_type_string))
 			l.d = json_object_get_double(d);
 		char *why = NULL;
 		if (slab_add(s, &l, &why) != 0) {
@@ -298,10 +333,12 @@ static void read_entries(json_object *o, struct bake_provenance *p)
 		return;
 	for (int j = 0; j < p->n_wl * p->n_ti && j < (int)json_object_array_length(jobs); j++) {
 		json_object *jo = json_object_array_get_idx(jobs, (size_t)j);
-		int mc = !json_object_object_get_ex(jo, "solver", &v) || strcmp(json_object_get_string(v), "mc") == 0;
+		int mc = !json_object_object_get_ex(jo, "solver", &v) ||
+		    strcmp(json_object_get_string(v), "mc") == 0;
 		long photons = (long)jnum(jo, "photons", 0.0);
 		p->entry_mc[j] = mc;
-		p->entry_batches[j] = !mc ? 0 : json_object_object_get_ex(jo, "batches", &v) ? json_object_get_int64(v)
+		p->entry_batches[j] = !mc ? 0 : json_object_object_get_ex(jo, "batches", &v)
+		    ? json_object_get_int64(v)
 				    : bp > 0 ? photons / bp : 0;
 	}
 }
@@ -318,15 +355,19 @@ int bake_provenance_read(const char *dir, struct bake_provenance *p, char **caus
 	p->n_wl = b->n_wl;
 	p->n_ti = b->n_ti;
 	snprintf(p->solver, sizeof p->solver, "mc");
-	if (json_object_object_get_ex(o, "solver", &so) && json_object_object_get_ex(so, "name", &v))
+	if (json_object_object_get_ex(o, "solver", &so) &&
+	    json_object_object_get_ex(so, "name", &v))
 		snprintf(p->solver, sizeof p->solver, "%s", json_object_get_string(v));
 	p->fresnel = OPTICS_FRESNEL_EXACT;
-	if (json_object_object_get_ex(o, "specular", &sp) && json_object_object_get_ex(sp, "fresnel", &v) &&
+	if (json_object_object_get_ex(o, "specular", &sp) &&
+	    json_object_object_get_ex(sp, "fresnel", &v) &&
 	    strcmp(json_object_get_string(v), "schlick") == 0)
 		p->fresnel = OPTICS_FRESNEL_SCHLICK;
 	if (json_object_object_get_ex(o, "settings", &v))
-		p->seed = json_object_object_get_ex(v, "seed", &so) ? json_object_get_uint64(so) : 1;	/* exact */
-	if (!json_object_object_get_ex(o, "layers", &layers) || (int)json_object_array_length(layers) != p->n_wl) {
+		p->seed = json_object_object_get_ex(v, "seed", &so) ? json_object_get_uint64(so)
+		    : 1;	/* exact */
+	if (!json_object_object_get_ex(o, "layers", &layers) ||
+	    (int)json_object_array_length(layers) != p->n_wl) {
 		*cause = xasprintf("%s: layers do not match the wavelengths", mpath);
 		goto out;
 	}
@@ -334,7 +375,8 @@ int bake_provenance_read(const char *dir, struct bake_provenance *p, char **caus
 	p->entry_mc = xcalloc((size_t)(p->n_wl * p->n_ti), sizeof *p->entry_mc);
 	p->entry_batches = xcalloc((size_t)(p->n_wl * p->n_ti), sizeof *p->entry_batches);
 	for (int w = 0; w < p->n_wl; w++)
-		if (read_stack(json_object_array_get_idx(layers, (size_t)w), &p->slab[w], w, mpath, cause) != 0)
+		if (read_stack(json_object_array_get_idx(layers, (size_t)w), &p->slab[w], w, mpath,
+		    cause) != 0)
 			goto out;
 	read_entries(o, p);
 	rc = 0;

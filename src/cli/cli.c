@@ -20,7 +20,8 @@ static int close_stdout(int rc)
 {
 	errno = 0;
 	if (fflush(stdout) != 0 || ferror(stdout)) {
-		fprintf(stderr, "skinbake: writing the standard output failed: %s\n", errno ? strerror(errno) : "I/O error");
+		fprintf(stderr, "skinbake: writing the standard output failed: %s\n",
+		    errno ? strerror(errno) : "I/O error");
 		return rc == CLI_EXIT_OK ? CLI_EXIT_FAIL : rc;
 	}
 	return rc;
@@ -31,7 +32,8 @@ static int close_stdout(int rc)
 #endif
 
 static const struct opt_sub commands[] = {
-	{ "simulate", "Monte Carlo transport in a layered slab: totals, BRDF, Rd(r)", cmd_simulate },
+	{ "simulate", "Monte Carlo transport in a layered slab: totals, BRDF, Rd(r)",
+	  cmd_simulate },
 	{ "presets", "list the shipped skin presets", cmd_presets },
 	{ "preset", "preset show NAME: print a preset's layers per wavelength", cmd_preset },
 	{ "bake", "bake a skin preset's BRDF into OpenEXR lookup tables", cmd_bake },
@@ -49,7 +51,8 @@ static void usage(FILE *fp)
 	fprintf(fp, "usage: skinbake COMMAND [options]\n\ncommands:\n");
 	for (size_t i = 0; commands[i].name; i++)
 		fprintf(fp, "  %-10s %s\n", commands[i].name, commands[i].summary);
-	fprintf(fp, "\n  skinbake COMMAND --help   shows every option with its default, unit and range.\n"
+	fprintf(fp,
+	    "\n  skinbake COMMAND --help   shows every option with its default, unit and range.\n"
 	    "  skinbake --version        prints the version.\n");
 }
 
@@ -60,7 +63,8 @@ static int cli_main(int argc, char **argv)
 		usage(stderr);
 		return CLI_EXIT_USAGE;
 	}
-	if (strcmp(argv[1], "--help") == 0 || strcmp(argv[1], "-h") == 0 || strcmp(argv[1], "help") == 0) {
+	if (strcmp(argv[1], "--help") == 0 || strcmp(argv[1], "-h") == 0 ||
+	    strcmp(argv[1], "help") == 0) {
 		if (argc > 2 && strcmp(argv[1], "help") == 0) {
 			char *hv[] = { argv[2], (char *)"--help", NULL };
 			for (size_t i = 0; commands[i].name; i++)
@@ -163,7 +167,8 @@ void cli_progress_update(void *user, long done, long total)
 	for (int i = 0; i < 30; i++)
 		b[i] = i < bar ? '#' : '.';
 	b[30] = '\0';
-	fprintf(stderr, "\r%s [%s] %5.1f%%  %.1fs elapsed, %.1fs left ", p->label, b, pm / 10.0, el, eta);
+	fprintf(stderr, "\r%s [%s] %5.1f%%  %.1fs elapsed, %.1fs left ",
+	    p->label, b, pm / 10.0, el, eta);
 	fflush(stderr);
 }
 

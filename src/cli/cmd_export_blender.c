@@ -37,7 +37,7 @@ static int run(const char *bake_dir, const char *tex_dir, const char *out, const
 		rc = cli_usage_error(CMD, "%s", cause);
 	else {
 		if (translucent) {
-			char *j = blender_sss_json(&w);
+			char *j = blender_sss_json(&w, NULL);
 			blender_set_add_section(s, "translucent", j);
 			free(j);
 		}
@@ -52,7 +52,7 @@ static int run(const char *bake_dir, const char *tex_dir, const char *out, const
 
 /* --family and --maps: the family's image set with per-texel maps. */
 static int run_family(const char *fam_dir, const char *maps_dir, const char *tex_dir, const char *out, int sub,
-    const struct blender_options *o)
+    const struct blender_options *o, int translucent)
 {
 	char *cause = NULL;
 	struct brdf_family *f = brdf_family_open(fam_dir, &cause);
@@ -60,7 +60,7 @@ static int run_family(const char *fam_dir, const char *maps_dir, const char *tex
 	int rc = CLI_EXIT_OK, e;
 	if (f == NULL || m == NULL)
 		rc = cli_usage_error(CMD, "%s %s: %s", f ? "--maps" : "--family", f ? maps_dir : fam_dir, cause);
-	else if ((e = blender_family_export(f, m, o, sub, tex_dir, out, &cause)) != 0)
+	else if ((e = blender_family_export(f, m, o, sub, tex_dir, translucent, out, &cause)) != 0)
 		rc = e == -1 ? cli_usage_error(CMD, "%s", cause) : cli_fail(CMD, "%s", cause);
 	free(cause);
 	mapset_free(m);
@@ -103,8 +103,9 @@ int cmd_export_blender(int argc, char **argv)
 		  .help = "delta_phi nodes over [0, 180] degrees," },
 		{ "map-size", OPT_INT, &o.map_size, "PX", "16", .lo = BLENDER_MAP_MIN, .hi = BLENDER_MAP_MAX, .unit = "px",
 		  .help = "side of albedo.exr, roughness.png and the flat detail maps," },
-		{ "mode", OPT_ENUM, &translucent, .choices = "exact|translucent", .def = "exact", .excl = "family",
-		  .help = "translucent: Cycles' subsurface fitted to Rd(r) beside the rest of the table (docs/translucency.md)" },
+		{ "mode", OPT_ENUM, &translucent, .choices = "exact|translucent", .def = "exact",
+		  .help = "translucent: Cycles' subsurface fitted to Rd(r) beside the rest of the table (docs/translucency.md; "
+		  "with --family: per texel, docs/maps.md)" },
 		OPT_END
 	};
 	const struct opt_cmd cmd = { "export blender", "--bake DIR --out DIR [options]",
@@ -129,6 +130,6 @@ int cmd_export_blender(int argc, char **argv)
 	if (opt_out_check(&x, out, &blender_outdir_kind, in, 4) != 0)
 		return CLI_EXIT_USAGE;
 	if (fam_dir)
-		return run_family(fam_dir, maps_dir, tex_dir, out, sub, &o);
+		return run_family(fam_dir, maps_dir, tex_dir, out, sub, &o, translucent);
 	return run(bake_dir, tex_dir, out, &o, translucent);
 }

@@ -59,7 +59,8 @@ enum opt_type {
 	OPT_DOUBLE,	/* decimal number in the range; dest double */
 	OPT_LONG,	/* whole number (1e6 allowed) in the range; dest long */
 	OPT_INT,	/* as OPT_LONG; dest int */
-	OPT_U64,	/* whole number in [0, 2^64-1], exact (seeds); dest uint64_t; .lo, .hi unused */
+	/* whole number in [0, 2^64-1], exact (seeds); dest uint64_t; .lo, .hi unused */
+	OPT_U64,
 	OPT_STRING,	/* any non-empty text; dest const char * (points into argv) */
 	OPT_ENUM,	/* one of .choices "a|b|c"; dest int, the index of the choice */
 	OPT_LIST,	/* comma list of numbers, each in the range; dest struct opt_list */
@@ -97,7 +98,8 @@ struct opt;
 /* One key of a compound KEY=VALUE,... value (see opt_keys). */
 struct opt_key {
 	const char *name;
-	enum opt_type type;	/* OPT_DOUBLE, OPT_LONG, OPT_INT, OPT_ENUM, OPT_STRING or OPT_VEC3 */
+	/* OPT_DOUBLE, OPT_LONG, OPT_INT, OPT_ENUM, OPT_STRING or OPT_VEC3 */
+	enum opt_type type;
 	size_t offset;	/* of the destination in the struct given to opt_keys */
 	const char *def;	/* applied when the key is absent; NULL: left as it was */
 	const char *unit;
@@ -113,15 +115,18 @@ struct opt {
 	enum opt_type type;
 	void *dest;	/* where the value goes (by type, above) */
 	const char *meta;	/* placeholder in --help ("DEG", "DIR"); NULL: from the type */
-	const char *def;	/* default as typed by a user, parsed like a given value; NULL: none */
+	/* default as typed by a user, parsed like a given value; NULL: none */
+	const char *def;
 	const char *def_note;	/* shown as "(default ...)" when .def is NULL ("the preset's") */
 	const char *unit;	/* "deg", "cm", "1/cm", "nm"; NULL for pure numbers */
 	double lo, hi;	/* range of numbers and list values, closed unless OPT_*_OPEN */
 	unsigned flags;
 	int max;	/* OPT_LIST: most values; OPT_REPEAT: most occurrences (0: no limit) */
 	const char *choices;	/* OPT_ENUM: "exact|schlick" */
-	const char *excl;	/* options this one excludes, "a" or "a|b" (list it on both sides) */
-	const struct opt_key *keys;	/* OPT_CUSTOM: documents KEY=VALUE keys, ends with { NULL } */
+	/* options this one excludes, "a" or "a|b" (list it on both sides) */
+	const char *excl;
+	/* OPT_CUSTOM: documents KEY=VALUE keys, ends with { NULL } */
+	const struct opt_key *keys;
 	/* OPT_CUSTOM: parse VALUE into o->dest; on failure report with opt_error and return -1. */
 	int (*fn)(struct opt_ctx *x, const struct opt *o, const char *value);
 	const char *help;	/* one phrase; range, unit and default are appended */
@@ -179,15 +184,15 @@ int opt_path_out(const struct opt_ctx *x, const char *label, const char *path);
  * pass optional inputs as they are, the list ends at index N)?  0, or -1
  * after reporting (exit 2). */
 struct outdir_kind;
-int opt_out_check(const struct opt_ctx *x, const char *path, const struct outdir_kind *kind, const char *const *inputs,
-    int n);
+int opt_out_check(const struct opt_ctx *x, const char *path, const struct outdir_kind *kind,
+    const char *const *inputs, int n);
 /* The range as messages and --help show it, e.g. "[0, 90) deg", "(0, inf) cm". */
 void opt_range_text(char *b, size_t n, double lo, double hi, unsigned flags, const char *unit);
 /* Parse "KEY=VALUE,KEY=VALUE" into the struct at BASE by KEYS (ends with
  * { NULL }): unknown, repeated, missing required keys and bad values are
  * reported with LABEL; absent keys get their .def. */
-int opt_keys(const struct opt_ctx *x, const char *label, const char *spec, const struct opt_key *keys,
-    void *base);
+int opt_keys(const struct opt_ctx *x, const char *label, const char *spec,
+    const struct opt_key *keys, void *base);
 
 /* Commands with actions (export pov|blender, preset show|cat|keys). */
 struct opt_sub {

@@ -119,18 +119,34 @@ static void describe_keys(FILE *fp, const struct opt_key *keys)
 	}
 }
 
+/* The placeholder of o's value in --help: its .meta, else from its type
+ * (NULL for a flag). */
+static const char *meta_of(const struct opt *o)
+{
+	if (o->meta)
+		return o->meta;
+	if (o->type == OPT_ENUM)
+		return o->choices;
+	if (o->type == OPT_FLAG)
+		return NULL;
+	if (o->type == OPT_PATH_IN || o->type == OPT_PATH_OUT)
+		return "PATH";
+	return "X";
+}
+
 static void describe(FILE *fp, const struct opt *o)
 {
 	char head[64], t[1024] = "", r[96], req[160] = "", rep[48] = "", d[160];
-	const char *meta = o->meta ? o->meta : o->type == OPT_ENUM ? o->choices
-	    : o->type == OPT_FLAG ? NULL : o->type == OPT_PATH_IN || o->type == OPT_PATH_OUT ? "PATH" : "X";
+	const char *meta = meta_of(o);
 	snprintf(head, sizeof head, "  --%s%s%s", o->name, meta ? " " : "", meta ? meta : "");
 	cat(t, sizeof t, o->help);
-	if (o->type == OPT_DOUBLE || o->type == OPT_LONG || o->type == OPT_INT || o->type == OPT_LIST ||
-	    o->type == OPT_U64) {
-		opt_range_text(r, sizeof r, o->type == OPT_U64 ? 0 : o->lo, o->type == OPT_U64 ? 18446744073709551616.0 : o->hi,
+	if (o->type == OPT_DOUBLE || o->type == OPT_LONG || o->type == OPT_INT ||
+	    o->type == OPT_LIST || o->type == OPT_U64) {
+		opt_range_text(r, sizeof r, o->type == OPT_U64 ? 0 : o->lo,
+		    o->type == OPT_U64 ? 18446744073709551616.0 : o->hi,
 		    o->type == OPT_U64 ? 0 : o->flags, o->unit);
-		cat(t, sizeof t, o->type != OPT_LIST ? " in " : o->flags & OPT_STEPS ? ", comma-separated, "
+		cat(t, sizeof t,
+		    o->type != OPT_LIST ? " in " : o->flags & OPT_STEPS ? ", comma-separated, "
 		    "START:STOP:STEP for a range, each in " : ", comma-separated, each in ");
 		cat_nb(t, sizeof t, r);
 		if (o->type == OPT_LIST && o->max > 0) {
@@ -143,7 +159,8 @@ static void describe(FILE *fp, const struct opt *o)
 		cat(t, sizeof t, "]");
 	}
 	if (o->excl) {
-		cat(req, sizeof req, (o->flags & OPT_REQUIRED) ? "required: this or --" : "not with --");
+		cat(req, sizeof req,
+		    (o->flags & OPT_REQUIRED) ? "required: this or --" : "not with --");
 		for (const char *p = o->excl; *p; p++)
 			cat(req, sizeof req, *p == '|' ? " or --" : (char[2]){ *p, 0 });
 	} else if (o->flags & OPT_REQUIRED)
@@ -213,9 +230,11 @@ int opt_dispatch(const char *cmd, const struct opt_sub *subs, int argc, char **a
 {
 	char names[128] = "";
 	for (int i = 0; subs[i].name; i++)
-		snprintf(names + strlen(names), sizeof names - strlen(names), "%s%s", i ? ", " : "", subs[i].name);
+		snprintf(names + strlen(names), sizeof names - strlen(names), "%s%s",
+		    i ? ", " : "", subs[i].name);
 	if (argc < 2)
-		return cli_usage_error(cmd, "missing action: %s (see skinbake %s --help)", names, cmd);
+		return cli_usage_error(cmd, "missing action: %s (see skinbake %s --help)",
+		    names, cmd);
 	const char *a = argv[1];
 	if (strcmp(a, "--help") == 0 || strcmp(a, "-h") == 0 || strcmp(a, "help") == 0) {
 		printf("usage: skinbake %s ACTION [options]\n\nactions:\n", cmd);

@@ -288,8 +288,10 @@ static int mc_step(void *state, const struct solver_run *run)
 	long *ub = xmalloc(sizeof(long) * (size_t)nu);
 	long k = 0;
 	for (int j = 0; j < m->nj; j++)
-		for (long b = m->acc[j].batches, end = step_end(m, j); b < end; b++)
-			uj[k] = j, ub[k++] = b;
+		for (long b = m->acc[j].batches, end = step_end(m, j); b < end; b++) {
+			uj[k] = j;
+			ub[k++] = b;
+		}
 	CHECK(k == nu);
 	double *vals = xcalloc((size_t)nu * (size_t)(m->nq + 1), sizeof(double));
 	run_units(m, run, nu, uj, ub, vals);

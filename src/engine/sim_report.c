@@ -39,8 +39,10 @@ static void add_totals(json_object *o, const struct sim_result *r)
 	add(o, "Tt_err", json_num(r->tt.err));
 	add(o, "Tt_unscattered", json_num(r->tt_unscat.v));
 	double a[SLAB_MAX_LAYERS], ae[SLAB_MAX_LAYERS];
-	for (int i = 0; i < r->n_layers; i++)
-		a[i] = r->a[i + 1].v, ae[i] = r->a[i + 1].err;
+	for (int i = 0; i < r->n_layers; i++) {
+		a[i] = r->a[i + 1].v;
+		ae[i] = r->a[i + 1].err;
+	}
 	add(o, "A", jarray(a, r->n_layers));
 	add(o, "A_err", jarray(ae, r->n_layers));
 	add(o, "lost", json_num(r->lost.v));

@@ -64,5 +64,6 @@ double sss_bake_ring(const struct bake *b, int c, double r1_mm, double r2_mm);
 
 /* The closure's far-field pi f in channel c at colour COLOUR [-], angles in
  * radians (not times any scale). */
-double sss_far_pi_f(const struct sss_table *t, int c, double colour, double theta_i, double theta_o);
+double sss_far_pi_f(const struct sss_table *t, int c, double colour, double theta_i,
+    double theta_o);
 #endif

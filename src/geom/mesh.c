@@ -73,8 +73,8 @@ static void ai_load(void)
  * the file has none and tangents from the UVs where it has none (libassimp
  * keeps the file's own), and put points and lines into meshes of their own
  * (skipped below). */
-#define IMPORT_FLAGS                                                                                       \
-	(aiProcess_Triangulate | aiProcess_JoinIdenticalVertices | aiProcess_GenSmoothNormals                   \
+#define IMPORT_FLAGS \
+	(aiProcess_Triangulate | aiProcess_JoinIdenticalVertices | aiProcess_GenSmoothNormals \
 	    | aiProcess_CalcTangentSpace | aiProcess_SortByPType)
 
 struct flat {
@@ -128,14 +128,18 @@ static void read_material(struct flat *f, const struct aiMaterial *mat)
 	struct aiColor4D c;
 	struct aiString p;
 	float shin;
-	if (ai.GetMaterialColor(mat, AI_MATKEY_COLOR_DIFFUSE, &c) == AI_SUCCESS)
-		m->diffuse_rgb[0] = c.r, m->diffuse_rgb[1] = c.g, m->diffuse_rgb[2] = c.b;
+	if (ai.GetMaterialColor(mat, AI_MATKEY_COLOR_DIFFUSE, &c) == AI_SUCCESS) {
+		m->diffuse_rgb[0] = c.r;
+		m->diffuse_rgb[1] = c.g;
+		m->diffuse_rgb[2] = c.b;
+	}
 	if (ai.GetMaterialColor(mat, AI_MATKEY_COLOR_SPECULAR, &c) == AI_SUCCESS)
 		m->specular = (c.r + c.g + c.b) / 3;
 	unsigned int one = 1;
 	if (ai.GetMaterialFloatArray(mat, AI_MATKEY_SHININESS, &shin, &one) == AI_SUCCESS)
 		m->shininess = shin;
-	if (ai.GetMaterialTexture(mat, aiTextureType_DIFFUSE, 0, &p, NULL, NULL, NULL, NULL, NULL, NULL) != AI_SUCCESS)
+	if (ai.GetMaterialTexture(mat, aiTextureType_DIFFUSE, 0, &p, NULL, NULL, NULL, NULL, NULL,
+	    NULL) != AI_SUCCESS)
 		return;
 	/* Embedded ("*N" or a name the file carries inside, as in .zae). */
 	for (unsigned i = 0; i < f->sc->mNumTextures; i++) {
@@ -152,8 +156,10 @@ static void read_material(struct flat *f, const struct aiMaterial *mat)
 	if (p.data[0] == '*')
 		return;
 	const char *slash = strrchr(f->path, '/'), *dot = strrchr(p.data, '.');
-	m->texture_file = p.data[0] == '/' || slash == NULL ? xstrdup(p.data)
-						   : xasprintf("%.*s/%s", (int)(slash - f->path), f->path, p.data);
+	if (p.data[0] == '/' || slash == NULL)
+		m->texture_file = xstrdup(p.data);
+	else
+		m->texture_file = xasprintf("%.*s/%s", (int)(slash - f->path), f->path, p.data);
 	snprintf(m->texture_type, sizeof m->texture_type, "%.7s", dot ? dot + 1 : "");
 }
 
@@ -231,20 +237,30 @@ static void append(struct flat *f, const struct aiMesh *am, const struct aiMatri
 	int t0 = m->n_triangles;
 	/* Cofactors of the upper 3x3: the inverse transpose up to a positive
 	 * factor when det > 0; a mirroring node (det < 0) flips them back. */
-	double a[3][3] = { { t->a1, t->a2, t->a3 }, { t->b1, t->b2, t->b3 }, { t->c1, t->c2, t->c3 } }, c[3][3];
+	double a[3][3] = {
+		{ t->a1, t->a2, t->a3 },
+		{ t->b1, t->b2, t->b3 },
+		{ t->c1, t->c2, t->c3 },
+	};
+	double c[3][3];
 	for (int i = 0; i < 3; i++)
 		for (int j = 0; j < 3; j++)
 			c[i][j] = a[(i + 1) % 3][(j + 1) % 3] * a[(i + 2) % 3][(j + 2) % 3]
 			    - a[(i + 1) % 3][(j + 2) % 3] * a[(i + 2) % 3][(j + 1) % 3];
-	double det = a[0][0] * c[0][0] + a[0][1] * c[0][1] + a[0][2] * c[0][2], sgn = det < 0 ? -1 : 1;
+	double det = a[0][0] * c[0][0] + a[0][1] * c[0][1] + a[0][2] * c[0][2];
+	double sgn = det < 0 ? -1 : 1;
 	for (int k = 0; k < nv; k++) {
 		int v = m->n_vertices + k;
 		apply(t, &am->mVertices[k], 1, m->position[v]);
-		const struct aiVector3D *n = am->mNormals ? &am->mNormals[k] : &(struct aiVector3D){ 0, 0, 0 };
+		const struct aiVector3D *n = am->mNormals ? &am->mNormals[k]
+		    : &(struct aiVector3D){ 0, 0, 0 };
 		for (int i = 0; i < 3; i++)
 			m->normal[v][i] = sgn * (c[i][0] * n->x + c[i][1] * n->y + c[i][2] * n->z);
-		if (normalize(m->normal[v]) == 0 || !isfinite(m->normal[v][0]))
-			m->normal[v][0] = 0, m->normal[v][1] = 0, m->normal[v][2] = 1;
+		if (normalize(m->normal[v]) == 0 || !isfinite(m->normal[v][0])) {
+			m->normal[v][0] = 0;
+			m->normal[v][1] = 0;
+			m->normal[v][2] = 1;
+		}
 		if (am->mTextureCoords[0] == NULL) {
 			m->uv[v][0] = m->uv[v][1] = 0;
 			any_tangent(m->normal[v], m->tangent[v]);
@@ -259,7 +275,8 @@ static void append(struct flat *f, const struct aiMesh *am, const struct aiMatri
 			apply(t, &am->mBitangents[k], 0, bt);
 		}
 		/* Gram-Schmidt against the normal; degenerate UVs get any tangent. */
-		double d = tg[0] * m->normal[v][0] + tg[1] * m->normal[v][1] + tg[2] * m->normal[v][2];
+		const double *nrm = m->normal[v];
+		double d = tg[0] * nrm[0] + tg[1] * nrm[1] + tg[2] * nrm[2];
 		for (int i = 0; i < 3; i++)
 			tg[i] -= d * m->normal[v][i];
 		if (!(normalize(tg) > 1e-12) || !isfinite(tg[0]))
@@ -286,8 +303,8 @@ static int name_is(const struct aiString *s, const char *name)
 	return name != NULL && !strcmp(s->data, name);
 }
 
-static void walk(struct flat *f, const struct aiScene *sc, const struct aiNode *node, const struct aiMatrix4x4 *parent,
-    int node_selected)
+static void walk(struct flat *f, const struct aiScene *sc, const struct aiNode *node,
+    const struct aiMatrix4x4 *parent, int node_selected)
 {
 	struct aiMatrix4x4 t = *parent;
 	ai.MultiplyMatrix4(&t, &node->mTransformation);
@@ -319,7 +336,8 @@ static char *format_error(const char *path)
 	if (dot != NULL && (slash == NULL || dot > slash) && !ai.IsExtensionSupported(dot)) {
 		struct aiString ext = { 0 };	/* appended to: start empty */
 		ai.GetExtensionList(&ext);
-		return xasprintf("%s: unknown model format '%s' (libassimp reads %s)", path, dot, ext.data);
+		return xasprintf("%s: unknown model format '%s' (libassimp reads %s)", path, dot,
+		    ext.data);
 	}
 	return xasprintf("%s: not a model libassimp can read: %s", path, ai.GetErrorString());
 }
@@ -333,9 +351,11 @@ static int check_vertices(const struct mesh *m, const char *path, char **cause)
 {
 	for (int v = 0; v < m->n_vertices; v++)
 		for (int i = 0; i < 3; i++)
-			if (!isfinite(m->position[v][i]) || fabs(m->position[v][i]) > MESH_MAX_COORD) {
-				*cause = xasprintf("%s: vertex %d has %c = %g; mesh coordinates must be finite and within "
-				    "[-%g, %g]", path, v, "xyz"[i], m->position[v][i], MESH_MAX_COORD, MESH_MAX_COORD);
+			if (!isfinite(m->position[v][i]) ||
+			    fabs(m->position[v][i]) > MESH_MAX_COORD) {
+				*cause = xasprintf("%s: vertex %d has %c = %g; mesh coordinates "
+				    "must be finite and within [-%g, %g]", path, v, "xyz"[i],
+				    m->position[v][i], MESH_MAX_COORD, MESH_MAX_COORD);
 				return -1;
 			}
 	return 0;
@@ -344,15 +364,21 @@ static int check_vertices(const struct mesh *m, const char *path, char **cause)
 struct mesh *mesh_load(const char *path, const char *name, char **cause)
 {
 	struct stat st;
-	if (stat(path, &st) == 0 && S_ISDIR(st.st_mode))
-		return *cause = xasprintf("%s is a directory, not a model file", path), NULL;
+	if (stat(path, &st) == 0 && S_ISDIR(st.st_mode)) {
+		*cause = xasprintf("%s is a directory, not a model file", path);
+		return NULL;
+	}
 	FILE *fp = fopen(path, "rb");
-	if (fp == NULL)
-		return *cause = xasprintf("%s: %s", path, strerror(errno)), NULL;
+	if (fp == NULL) {
+		*cause = xasprintf("%s: %s", path, strerror(errno));
+		return NULL;
+	}
 	fclose(fp);
 	pthread_once(&ai_once, ai_load);
-	if (ai.error)
-		return *cause = xasprintf("%s: %s", path, ai.error), NULL;
+	if (ai.error) {
+		*cause = xasprintf("%s: %s", path, ai.error);
+		return NULL;
+	}
 	const struct aiScene *sc = ai.ImportFile(path, IMPORT_FLAGS);
 	if (sc == NULL || sc->mRootNode == NULL) {
 		*cause = format_error(path);
@@ -369,8 +395,8 @@ struct mesh *mesh_load(const char *path, const char *name, char **cause)
 	if (m->n_triangles == 0) {
 		char *list = names(sc);
 		if (name != NULL)
-			*cause = xasprintf("%s: no mesh '%s' with triangles (the file has %s)", path, name,
-			    *list ? list : "no meshes");
+			*cause = xasprintf("%s: no mesh '%s' with triangles (the file has %s)",
+			    path, name, *list ? list : "no meshes");
 		else
 			*cause = xasprintf("%s: no triangles in the file", path);
 		free(list);
@@ -411,8 +437,10 @@ void mesh_free(struct mesh *m)
 
 void mesh_bounds(const struct mesh *m, double lo[3], double hi[3])
 {
-	for (int i = 0; i < 3; i++)
-		lo[i] = INFINITY, hi[i] = -INFINITY;
+	for (int i = 0; i < 3; i++) {
+		lo[i] = INFINITY;
+		hi[i] = -INFINITY;
+	}
 	for (int v = 0; v < m->n_vertices; v++)
 		for (int i = 0; i < 3; i++) {
 			lo[i] = fmin(lo[i], m->position[v][i]);
@@ -424,10 +452,12 @@ double mesh_area(const struct mesh *m)
 {
 	double a = 0;
 	for (int k = 0; k < m->n_triangles; k++) {
-		const double *p0 = m->position[m->triangle[k][0]], *p1 = m->position[m->triangle[k][1]],
-			     *p2 = m->position[m->triangle[k][2]];
-		double e1[3] = { p1[0] - p0[0], p1[1] - p0[1], p1[2] - p0[2] }, e2[3] = { p2[0] - p0[0], p2[1] - p0[1],
-			p2[2] - p0[2] }, c[3];
+		const double *p0 = m->position[m->triangle[k][0]];
+		const double *p1 = m->position[m->triangle[k][1]];
+		const double *p2 = m->position[m->triangle[k][2]];
+		double e1[3] = { p1[0] - p0[0], p1[1] - p0[1], p1[2] - p0[2] };
+		double e2[3] = { p2[0] - p0[0], p2[1] - p0[1], p2[2] - p0[2] };
+		double c[3];
 		cross(e1, e2, c);
 		a += 0.5 * sqrt(c[0] * c[0] + c[1] * c[1] + c[2] * c[2]);
 	}
@@ -440,8 +470,11 @@ double mesh_uv_area(const struct mesh *m)
 	if (m->uv == NULL)
 		return 0;
 	for (int k = 0; k < m->n_triangles; k++) {
-		const double *a0 = m->uv[m->triangle[k][0]], *a1 = m->uv[m->triangle[k][1]], *a2 = m->uv[m->triangle[k][2]];
-		a += 0.5 * fabs((a1[0] - a0[0]) * (a2[1] - a0[1]) - (a2[0] - a0[0]) * (a1[1] - a0[1]));
+		const double *a0 = m->uv[m->triangle[k][0]];
+		const double *a1 = m->uv[m->triangle[k][1]];
+		const double *a2 = m->uv[m->triangle[k][2]];
+		double cr = (a1[0] - a0[0]) * (a2[1] - a0[1]) - (a2[0] - a0[0]) * (a1[1] - a0[1]);
+		a += 0.5 * fabs(cr);
 	}
 	return a;
 }
@@ -450,9 +483,11 @@ double mesh_uv_area(const struct mesh *m)
  * (pa + pb) / 2 - (wab na + wba nb) / 8 with wab = (pb - pa) . na. */
 static void edge_vertex(struct mesh *m, int a, int b, int v)
 {
-	const double *pa = m->position[a], *pb = m->position[b], *na = m->normal[a], *nb = m->normal[b];
+	const double *pa = m->position[a], *pb = m->position[b];
+	const double *na = m->normal[a], *nb = m->normal[b];
 	double d[3] = { pb[0] - pa[0], pb[1] - pa[1], pb[2] - pa[2] };
-	double wab = d[0] * na[0] + d[1] * na[1] + d[2] * na[2], wba = -(d[0] * nb[0] + d[1] * nb[1] + d[2] * nb[2]);
+	double wab = d[0] * na[0] + d[1] * na[1] + d[2] * na[2];
+	double wba = -(d[0] * nb[0] + d[1] * nb[1] + d[2] * nb[2]);
 	for (int i = 0; i < 3; i++) {
 		m->position[v][i] = 0.5 * (pa[i] + pb[i]) - (wab * na[i] + wba * nb[i]) / 8;
 		m->normal[v][i] = na[i] + nb[i];
@@ -516,12 +551,17 @@ void mesh_subdivide(struct mesh *m)
 		for (int j = 0; j < 3; j++) {
 			int a = m->triangle[t][j], b = m->triangle[t][(j + 1) % 3];
 			struct edge_key k = { a < b ? a : b, a < b ? b : a, -1 };
-			mid[j] = ((struct edge_key *)bsearch(&k, e, (size_t)ne, sizeof *e, edge_cmp))->v;
+			mid[j] =
+			    ((struct edge_key *)bsearch(&k, e, (size_t)ne, sizeof *e, edge_cmp))->v;
 			c[j] = a;
 		}
 		/* Corners keep the winding: (c0, m01, m20), (m01, c1, m12), ... */
-		int q[4][3] = { { c[0], mid[0], mid[2] }, { mid[0], c[1], mid[1] }, { mid[2], mid[1], c[2] },
-			{ mid[0], mid[1], mid[2] } };
+		int q[4][3] = {
+			{ c[0], mid[0], mid[2] },
+			{ mid[0], c[1], mid[1] },
+			{ mid[2], mid[1], c[2] },
+			{ mid[0], mid[1], mid[2] },
+		};
 		memcpy(tri[4 * t], q, sizeof q);
 	}
 	free(m->triangle);

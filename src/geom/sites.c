@@ -88,7 +88,8 @@ static const struct site sites[] = {
 	{ "cheek", "cheek with enlarged, visible pores (Flament 2015 style)", {
 		.tile = MM(8),
 		.pore_density = PER_MM2(0.8),	/* visible pores only; assumption */
-		.pore_radius = UM(110), .pore_radius_sd = 0.3,	/* ~ Flament 2015 250 um threshold */
+		/* ~ Flament 2015 250 um threshold */
+		.pore_radius = UM(110), .pore_radius_sd = 0.3,
 		.pore_depth = UM(60), .pore_depth_sd = 0.3,	/* assumption */
 		.pore_aspect = 1.4, .pore_junction = 1.0, .pore_regularity = 0.5,
 		.levels = 2,
@@ -138,7 +139,8 @@ static const struct site sites[] = {
 		.pore_aspect = 1.2, .pore_junction = 1.0, .pore_regularity = 0.5,
 		.levels = 3,
 		.furrow_cell = MM(0.6), .furrow_width = UM(60),	/* assumption */
-		.furrow_depth = UM(60), .furrow_depth_sd = 0.35,	/* Hashimoto 1974: 20-100 um */
+		/* Hashimoto 1974: 20-100 um */
+		.furrow_depth = UM(60), .furrow_depth_sd = 0.35,
 		.ridge_height = UM(12),
 		.level_scale = 0.4, .level_gain = 0.3,	/* secondary 5-40 um */
 		.stretch = 1.8, .orientation = DEG(0), .furrow_regularity = 0.6,
@@ -185,7 +187,8 @@ static const struct site sites[] = {
 static const struct texture_param params[] = {
 	{ "size", "px", 1, 16, 16384, SITES_LONG, F(size), "edge length of the square maps" },
 	{ "seed", "1", 1, 0, 18446744073709551615.0, SITES_SEED, F(seed), "random seed (exact)" },
-	{ "tile-mm", "mm", 0.1, 0.5, 500, SITES_REAL, R(tile), "edge length of the tile on the skin" },
+	{ "tile-mm", "mm", 0.1, 0.5, 500, SITES_REAL, R(tile),
+	  "edge length of the tile on the skin" },
 	{ "pore-density", "1/mm^2", 100, 0, 100, SITES_REAL, R(pore_density), "pores per area" },
 	{ "pore-radius", "um", 1e-4, 1, 5000, SITES_REAL, R(pore_radius),
 	  "median pore radius at the surface" },
@@ -254,8 +257,10 @@ const struct texture_param *sites_param_find(const char *key)
 	for (size_t i = 0; i < sizeof params / sizeof params[0]; i++) {
 		const char *a = params[i].key, *b = key;
 		/* '-' and '_' are the same character here. */
-		while (*a && *b && (*a == *b || (*a == '-' && *b == '_')))
-			a++, b++;
+		while (*a && *b && (*a == *b || (*a == '-' && *b == '_'))) {
+			a++;
+			b++;
+		}
 		if (*a == '\0' && *b == '\0')
 			return &params[i];
 	}
@@ -307,25 +312,27 @@ int sites_set(struct texture_config *cfg, const struct texture_param *p, const c
 {
 	double x;
 	const char *unit = strcmp(p->unit, "1") == 0 ? "" : p->unit;
-	if (p->type == SITES_SEED && value[0] >= '0' && value[0] <= '9' && strspn(value, "0123456789") == strlen(value)) {
+	if (p->type == SITES_SEED && value[0] >= '0' && value[0] <= '9' &&
+	    strspn(value, "0123456789") == strlen(value)) {
 		/* Digits: exact, not through a double (2^53 + 1 stays itself). */
 		errno = 0;
 		unsigned long long u = strtoull(value, NULL, 10);
 		if (errno == ERANGE) {
-			*cause = xasprintf("%s = %s is out of range [0, 18446744073709551615]", label, value);
+			*cause = xasprintf("%s = %s is out of range [0, 18446744073709551615]",
+			    label, value);
 			return -1;
 		}
 		*(uint64_t *)(void *)((char *)cfg + p->offset) = u;
 		return 0;
 	}
 	if (util_parse_decimal(value, &x) != 0) {
-		*cause = xasprintf("%s = '%s' is not a decimal number in [%.15g, %.15g]%s%s", label, value, p->lo, p->hi,
-		    *unit ? " " : "", unit);
+		*cause = xasprintf("%s = '%s' is not a decimal number in [%.15g, %.15g]%s%s", label,
+		    value, p->lo, p->hi, *unit ? " " : "", unit);
 		return -1;
 	}
 	if (x < p->lo || x > p->hi) {
-		*cause = xasprintf("%s = %s is out of range [%.15g, %.15g]%s%s", label, value, p->lo,
-		    p->hi, *unit ? " " : "", unit);
+		*cause = xasprintf("%s = %s is out of range [%.15g, %.15g]%s%s", label, value,
+		    p->lo, p->hi, *unit ? " " : "", unit);
 		return -1;
 	}
 	if (p->type != SITES_REAL && x != floor(x)) {
@@ -345,7 +352,8 @@ int sites_set(struct texture_config *cfg, const struct texture_param *p, const c
 		break;
 	case SITES_SEED:
 		if (x >= 18446744073709551616.0) {
-			*cause = xasprintf("%s = %s is out of range [0, 18446744073709551615]", label, value);
+			*cause = xasprintf("%s = %s is out of range [0, 18446744073709551615]",
+			    label, value);
 			return -1;
 		}
 		*(uint64_t *)(void *)field = (uint64_t)x;
@@ -377,7 +385,8 @@ struct ini_state {
 	const char *path;
 	int pass;	/* 0: look for site, 1: apply the other keys */
 	char *error;	/* first message */
-	int line[64];	/* pass 0: line of each parameter (index in sites_params, the last: site) seen, 0 if none */
+	int line[64];	/* pass 0: line of each parameter (index in sites_params, the
+			 * last: site) seen, 0 if none */
 	struct inifile *in;
 };
 
@@ -390,7 +399,8 @@ static int repeated(struct ini_state *st, const char *name, char **cause)
 	if (st->pass != 0 || i < 0 || i > 63)
 		return 0;
 	if (st->line[i]) {
-		*cause = xasprintf("%s is given twice in [texture] (first on line %d)", name, st->line[i]);
+		*cause = xasprintf("%s is given twice in [texture] (first on line %d)", name,
+		    st->line[i]);
 		return 1;
 	}
 	st->line[i] = st->in->line;
@@ -419,7 +429,8 @@ static int on_ini(void *user, const char *section, const char *name, const char 
 		return 1;
 	const struct texture_param *p = sites_param_find(name);
 	if (p == NULL) {
-		cause = xasprintf("unknown key '%s' in [texture] (see skinbake texture --help)", name);
+		cause = xasprintf("unknown key '%s' in [texture] (see skinbake texture --help)",
+		    name);
 		goto bad;
 	}
 	if (sites_set(st->cfg, p, name, value, &cause) != 0)
@@ -437,7 +448,8 @@ bad:
  * file may carry the texture of its skin), whose keys are ignored here. */
 static int on_section(void *user, const char *section)
 {
-	static const char *const preset_sections[] = { "skin", "sebum", "epidermis", "dermis", "subcutis", "surface" };
+	static const char *const preset_sections[] = { "skin", "sebum", "epidermis", "dermis",
+	    "subcutis", "surface" };
 	struct ini_state *st = user;
 	if (strcmp(section, "texture") == 0 || strncmp(section, "override.", 9) == 0)
 		return 1;
@@ -445,8 +457,9 @@ static int on_section(void *user, const char *section)
 		if (strcmp(section, preset_sections[i]) == 0)
 			return 1;
 	if (st->error == NULL)
-		st->error = xasprintf("unknown section [%s] (a texture file has [texture], and may have a skin preset's "
-		    "sections: skin, sebum, epidermis, dermis, subcutis, surface, override.WL)", section);
+		st->error = xasprintf("unknown section [%s] (a texture file has [texture], and may "
+		    "have a skin preset's sections: skin, sebum, epidermis, dermis, subcutis, "
+		    "surface, override.WL)", section);
 	return 0;
 }
 
@@ -461,16 +474,15 @@ int sites_read_ini(const char *path, struct texture_config *cfg, char **cause)
 		st.in = &in;
 		int rc = inifile_parse(&in, path, text, on_ini, on_section, &st);
 		if (in.error || (in.refused && st.error)) {
-			*cause = in.error ? in.error : xasprintf("%s:%d: %s", path, in.refused, st.error);
-			if (in.error)
-				free(st.error);
-			else
-				free(st.error), free(in.error);
+			*cause = in.error ? in.error
+			    : xasprintf("%s:%d: %s", path, in.refused, st.error);
+			free(st.error);	/* in.error, when set, is *cause */
 			free(text);
 			return -1;
 		}
 		if (in.too_long) {
-			*cause = xasprintf("%s:%d: line %d is longer than %d characters", path, in.too_long, in.too_long, in.max_line);
+			*cause = xasprintf("%s:%d: line %d is longer than %d characters", path,
+			    in.too_long, in.too_long, in.max_line);
 			free(st.error);
 			free(text);
 			return -1;
@@ -505,8 +517,10 @@ char *sites_ini_text(const struct texture_config *cfg)
 		for (char *c = key; *c; c++)
 			if (*c == '-')
 				*c = '_';
+		const void *field = (const char *)cfg + p[i].offset;
 		char *t = p[i].type == SITES_SEED
-		    ? xasprintf("%s%s = %llu\n", s, key, (unsigned long long)*(const uint64_t *)(const void *)((const char *)cfg + p[i].offset))
+		    ? xasprintf("%s%s = %llu\n", s, key,
+		    (unsigned long long)*(const uint64_t *)field)
 		    : xasprintf("%s%s = %.17g\n", s, key, sites_get(cfg, &p[i]));
 		free(s);
 		s = t;

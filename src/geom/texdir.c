@@ -29,7 +29,8 @@ static const char *NORMAL_CONVENTION_LONG =
 
 /* ---- writer ---- */
 
-void texdir_maps_render(struct texdir_maps *m, const struct relief *r, const struct texture_config *cfg)
+void texdir_maps_render(struct texdir_maps *m, const struct relief *r,
+    const struct texture_config *cfg)
 {
 	size_t n = (size_t)cfg->size, npx = n * n;
 	m->n = (int)n;
@@ -64,15 +65,17 @@ char *texdir_resolution_notes(const struct texture_config *cfg, const struct rel
 	for (int k = 0; k < cfg->relief.levels; k++) {
 		struct relief_level_info li = relief_level(r, k);
 		if (li.width < 2 * pitch && li.depth > 0) {
-			char *t = xasprintf("%s%sfurrow level %d is %.3g um wide, less than 2 pixels (%.3g um); raise "
-			    "--size or lower --levels", s ? s : "", s ? "\n" : "", k + 1, li.width * 1e4, 2 * pitch * 1e4);
+			char *t = xasprintf(
+			    "%s%sfurrow level %d is %.3g um wide, less than 2 pixels (%.3g um); "
+			    "raise --size or lower --levels", s ? s : "", s ? "\n" : "", k + 1,
+			    li.width * 1e4, 2 * pitch * 1e4);
 			free(s);
 			s = t;
 		}
 	}
 	if (cfg->relief.pore_density > 0 && cfg->relief.pore_radius < 1.5 * pitch) {
-		char *t = xasprintf("%s%spore radius %.3g um is under 1.5 pixels (%.3g um)", s ? s : "", s ? "\n" : "",
-		    cfg->relief.pore_radius * 1e4, 1.5 * pitch * 1e4);
+		char *t = xasprintf("%s%spore radius %.3g um is under 1.5 pixels (%.3g um)",
+		    s ? s : "", s ? "\n" : "", cfg->relief.pore_radius * 1e4, 1.5 * pitch * 1e4);
 		free(s);
 		s = t;
 	}
@@ -144,11 +147,12 @@ static int write_height_png(const struct outputs *o, const char *name, const cha
 		{ "skinbake:seed", o->seed },
 		{ "skinbake:size_px", o->size },
 		{ "skinbake:component", component },
-		{ "skinbake:encoding", "height = min + value / 65535 * (max - min); y up = toward row 0" },
+		{ "skinbake:encoding",
+		  "height = min + value / 65535 * (max - min); y up = toward row 0" },
 	};
 	char *path = path_in(o, name);
-	int rc = pngio_write(path, (int)n, (int)n, 1, 16, q, 0, (int)(sizeof text / sizeof text[0]), text,
-	    cause);
+	int rc = pngio_write(path, (int)n, (int)n, 1, 16, q, 0, (int)(sizeof text / sizeof text[0]),
+	    text, cause);
 	free(path);
 	free(q);
 	return rc;
@@ -174,8 +178,8 @@ static int write_normals(const struct outputs *o, const float *nx, const float *
 		{ "skinbake:encoding", NORMAL_CONVENTION_LONG },
 	};
 	char *path = path_in(o, "normal.png");
-	int rc = pngio_write(path, (int)n, (int)n, 3, 16, q, 0, (int)(sizeof text / sizeof text[0]), text,
-	    cause);
+	int rc = pngio_write(path, (int)n, (int)n, 3, 16, q, 0, (int)(sizeof text / sizeof text[0]),
+	    text, cause);
 	free(path);
 	free(q);
 	if (rc != 0)
@@ -188,11 +192,12 @@ static int write_normals(const struct outputs *o, const float *nx, const float *
 		{ "skinbake:site", o->cfg->site },
 		{ "skinbake:seed", o->seed },
 		{ "skinbake:normal_convention", NORMAL_CONVENTION },
-		{ "skinbake:encoding", "R, G, B = unit normal x, y, z in [-1, 1]; x right, y up, z out" },
+		{ "skinbake:encoding",
+		  "R, G, B = unit normal x, y, z in [-1, 1]; x right, y up, z out" },
 	};
 	path = path_in(o, "normal.exr");
-	rc = exrio_write(path, (int)n, (int)n, 3, names, planes, (int)(sizeof attrs / sizeof attrs[0]),
-	    attrs, cause);
+	rc = exrio_write(path, (int)n, (int)n, 3, names, planes,
+	    (int)(sizeof attrs / sizeof attrs[0]), attrs, cause);
 	free(path);
 	return rc;
 }
@@ -210,7 +215,8 @@ static int write_height_exr(const struct outputs *o, float *h, char **cause)
 		{ "skinbake:tile_mm", o->tile },
 		{ "skinbake:site", o->cfg->site },
 		{ "skinbake:seed", o->seed },
-		{ "skinbake:units", "um, relative to the undisturbed skin surface (0); y up = toward row 0" },
+		{ "skinbake:units",
+		  "um, relative to the undisturbed skin surface (0); y up = toward row 0" },
 	};
 	char *path = path_in(o, "height.exr");
 	int rc = exrio_write(path, o->cfg->size, o->cfg->size, 1, names, planes,
@@ -226,7 +232,8 @@ static int write_preview(const struct outputs *o, const float *nx, const float *
     char **cause)
 {
 	size_t np = (size_t)o->cfg->size * (size_t)o->cfg->size;
-	const double tint[3] = { 0.80, 0.56, 0.45 };	/* linear albedo, light skin; illustrative */
+	const double tint[3] = { 0.80, 0.56, 0.45 };	/* linear albedo, light
+							 * skin; illustrative */
 	double lx = -0.5, ly = 0.5, lz = sqrt(0.5);
 	uint16_t *q = xmalloc(sizeof *q * 3 * np);
 	for (size_t i = 0; i < np; i++) {
@@ -239,7 +246,8 @@ static int write_preview(const struct outputs *o, const float *nx, const float *
 		{ "skinbake:tile_mm", o->tile },
 		{ "skinbake:site", o->cfg->site },
 		{ "skinbake:seed", o->seed },
-		{ "skinbake:preview", "Lambert shading of normal.png, light from the upper left at 45 deg" },
+		{ "skinbake:preview",
+		  "Lambert shading of normal.png, light from the upper left at 45 deg" },
 	};
 	char *path = path_in(o, "preview.png");
 	int rc = pngio_write(path, o->cfg->size, o->cfg->size, 3, 8, q, 1,
@@ -282,8 +290,10 @@ static int write_manifest(const struct outputs *o, const struct relief *r, struc
 	json_object_object_add(m, "pov_bump_size",
 	    json_num((sh.hi - sh.lo) * 10 * (double)cfg->size / tile_mm));
 	json_object_object_add(m, "normal_convention", json_object_new_string(NORMAL_CONVENTION));
-	json_object_object_add(m, "normal_encoding", json_object_new_string(NORMAL_CONVENTION_LONG));
-	json_object_object_add(m, "row0", json_object_new_string("top of the image = +y end of the tile"));
+	json_object_object_add(m, "normal_encoding",
+	    json_object_new_string(NORMAL_CONVENTION_LONG));
+	json_object_object_add(m, "row0",
+	    json_object_new_string("top of the image = +y end of the tile"));
 	json_object_object_add(m, "tileable", json_object_new_boolean(1));
 
 	int n;
@@ -297,7 +307,8 @@ static int write_manifest(const struct outputs *o, const struct relief *r, struc
 				*c = '_';
 		double v = sites_get(cfg, &p[i]);
 		json_object_object_add(par, key, p[i].type == SITES_REAL ? json_num(v)
-		    : p[i].type == SITES_SEED ? json_object_new_uint64(cfg->seed) : json_object_new_int64((int64_t)v));
+		    : p[i].type == SITES_SEED ? json_object_new_uint64(cfg->seed)
+		    : json_object_new_int64((int64_t)v));
 		json_object_object_add(units, key, json_object_new_string(p[i].unit));
 	}
 	json_object_object_add(m, "parameters", par);
@@ -353,10 +364,13 @@ static int write_manifest(const struct outputs *o, const struct relief *r, struc
 	return rc;
 }
 
-static const char *const texdir_names[] = { "height.png", "normal.png", "normal.exr", "height.exr", "preview.png",
-	"pores_height.png", "furrows_height.png", "roughness_far.png", NULL };
-const struct outdir_kind texdir_outdir_kind = { "texture directory", "manifest.json", "kind", "skinbake texture",
-	texdir_names };
+static const char *const texdir_names[] = {
+	"height.png", "normal.png", "normal.exr", "height.exr", "preview.png",
+	"pores_height.png", "furrows_height.png", "roughness_far.png", NULL
+};
+const struct outdir_kind texdir_outdir_kind = {
+	"texture directory", "manifest.json", "kind", "skinbake texture", texdir_names
+};
 
 /* Every file into the existing directory DIR, manifest.json last. */
 static int write_files(const char *dir, const struct texture_config *cfg, const struct relief *r,
@@ -364,7 +378,8 @@ static int write_files(const char *dir, const struct texture_config *cfg, const 
 {
 	CHECK(m->n == (int)cfg->size);
 	size_t npx = (size_t)m->n * (size_t)m->n;
-	struct stats sh = minmax(m->height, npx), sp = minmax(m->pores, npx), sf = minmax(m->furrows, npx);
+	struct stats sh = minmax(m->height, npx), sp = minmax(m->pores, npx),
+	    sf = minmax(m->furrows, npx);
 	struct outputs o = { .cfg = cfg, .dir = dir, .stats = st };
 	snprintf(o.software, sizeof o.software, "skinbake %s", PACKAGE_VERSION);
 	snprintf(o.tile, sizeof o.tile, "%.10g", cfg->relief.tile * 10);
@@ -386,13 +401,30 @@ static int write_files(const char *dir, const struct texture_config *cfg, const 
 	for (int t = 0; t < 7; t++) {
 		int e = 0;
 		switch (t) {
-		case 0: e = write_normals(&o, m->nx, m->ny, m->nz, &why[t]); break;
-		case 1: e = write_height_exr(&o, m->height, &why[t]); break;
-		case 2: e = write_height_png(&o, "height.png", "combined", m->height, sh, &why[t]); break;
-		case 3: e = write_preview(&o, m->nx, m->ny, m->nz, &why[t]); break;
-		case 4: e = write_height_png(&o, "pores_height.png", "pores", m->pores, sp, &why[t]); break;
-		case 5: e = write_height_png(&o, "furrows_height.png", "furrows", m->furrows, sf, &why[t]); break;
-		default: e = relief_far_write(far_path, o.far_m, o.far_alpha, o.far_block_um, cfg->site, o.software, &why[t]); break;
+		case 0:
+			e = write_normals(&o, m->nx, m->ny, m->nz, &why[t]);
+			break;
+		case 1:
+			e = write_height_exr(&o, m->height, &why[t]);
+			break;
+		case 2:
+			e = write_height_png(&o, "height.png", "combined", m->height, sh, &why[t]);
+			break;
+		case 3:
+			e = write_preview(&o, m->nx, m->ny, m->nz, &why[t]);
+			break;
+		case 4:
+			e = write_height_png(&o, "pores_height.png", "pores", m->pores, sp,
+			    &why[t]);
+			break;
+		case 5:
+			e = write_height_png(&o, "furrows_height.png", "furrows", m->furrows, sf,
+			    &why[t]);
+			break;
+		default:
+			e = relief_far_write(far_path, o.far_m, o.far_alpha, o.far_block_um,
+			    cfg->site, o.software, &why[t]);
+			break;
 		}
 		failed |= e != 0;
 	}
@@ -411,7 +443,8 @@ static int write_files(const char *dir, const struct texture_config *cfg, const 
 /* The steps in the order the command reports them; the output (and its
  * lock) is taken first, nothing is written before the relief has been
  * placed. */
-int texdir_make(const char *dir, const struct texture_config *cfg, struct texdir_made *made, char **cause)
+int texdir_make(const char *dir, const struct texture_config *cfg, struct texdir_made *made,
+    char **cause)
 {
 	memset(made, 0, sizeof *made);
 	/* Measured: peak memory about 40 bytes per pixel (the six float maps
@@ -445,7 +478,8 @@ int texdir_make(const char *dir, const struct texture_config *cfg, struct texdir
 	made->have_stats = cfg->with_stats
 	    && relief_stats_for(&cfg->relief, m.n, m.height, m.furrows, m.pores, &made->stats) == 0;
 	double t2 = util_now();
-	int rc = write_files(outdir_path(&od), cfg, r, &m, made->have_stats ? &made->stats : NULL, cause);
+	int rc = write_files(outdir_path(&od), cfg, r, &m, made->have_stats ? &made->stats : NULL,
+	    cause);
 	if (rc != 0)
 		outdir_fail(&od, cause);
 	else
@@ -486,13 +520,16 @@ static int read_height(const char *hp, struct texdir *t, char **cause)
 	if (t->height == NULL)
 		return -1;
 	if (hc != 1 || hb != 16) {
-		*cause = xasprintf("%s: %d channel(s) at %d bits; expected 16-bit gray", hp, hc, hb);
+		*cause = xasprintf("%s: %d channel(s) at %d bits; expected 16-bit gray", hp, hc,
+		    hb);
 		return -1;
 	}
-	/* Maps made elsewhere may be small or not square; the largest is that of `texture --size`. */
+	/* Maps made elsewhere may be small or not square; the largest is that of
+	 * `texture --size`. */
 	const struct texture_param *sp = sites_param_find("size");
 	if (t->w < 2 || t->h < 2 || t->w > sp->hi || t->h > sp->hi) {
-		*cause = xasprintf("%s: %dx%d pixels; expected each side in [2, %g]", hp, t->w, t->h, sp->hi);
+		*cause = xasprintf("%s: %dx%d pixels; expected each side in [2, %g]", hp, t->w,
+		    t->h, sp->hi);
 		return -1;
 	}
 	return 0;
@@ -507,7 +544,8 @@ static int read_numbers(const char *hp, struct texdir *t, char **cause)
 	t->tile_mm_text = pngio_read_text(hp, "skinbake:tile_mm");
 	if (t->tile_mm_text == NULL || util_parse_double(t->tile_mm_text, &t->tile_mm) != 0 ||
 	    !(t->tile_mm >= tp->lo && t->tile_mm <= tp->hi)) {
-		*cause = xasprintf("%s: tEXt skinbake:tile_mm is %s; expected a length in [%g, %g] mm", hp,
+		*cause = xasprintf(
+		    "%s: tEXt skinbake:tile_mm is %s; expected a length in [%g, %g] mm", hp,
 		    t->tile_mm_text ? t->tile_mm_text : "missing", tp->lo, tp->hi);
 		return -1;
 	}
@@ -519,13 +557,15 @@ static int read_numbers(const char *hp, struct texdir *t, char **cause)
 	    : !finite_number(t->h_max_text, &t->h_max_um) ? "skinbake:height_max_um" : NULL;
 	if (bad) {
 		const char *v = strstr(bad, "min") ? t->h_min_text : t->h_max_text;
-		*cause = xasprintf("%s: tEXt %s is %s; expected a finite height [um] (with the other of "
-		    "skinbake:height_min_um, skinbake:height_max_um)", hp, bad, v ? v : "missing");
+		*cause = xasprintf("%s: tEXt %s is %s; expected a finite height [um] (with the "
+		    "other of skinbake:height_min_um, skinbake:height_max_um)", hp, bad,
+		    v ? v : "missing");
 		return -1;
 	}
 	if (!(t->h_min_um <= t->h_max_um)) {
-		*cause = xasprintf("%s: tEXt skinbake:height_min_um = %s is above skinbake:height_max_um = %s; expected "
-		    "min <= max", hp, t->h_min_text, t->h_max_text);
+		*cause = xasprintf("%s: tEXt skinbake:height_min_um = %s is above "
+		    "skinbake:height_max_um = %s; expected min <= max", hp, t->h_min_text,
+		    t->h_max_text);
 		return -1;
 	}
 	t->have_range = 1;
@@ -534,8 +574,8 @@ static int read_numbers(const char *hp, struct texdir *t, char **cause)
 
 /* One number of manifest.json: present, a number, and (when text is not
  * NULL) equal to that tEXt value of height.png to rel (relative). */
-static int manifest_number(const char *mp, json_object *m, const char *key, double want, const char *text,
-    double rel, char **cause)
+static int manifest_number(const char *mp, json_object *m, const char *key, double want,
+    const char *text, double rel, char **cause)
 {
 	json_object *v;
 	if (!json_object_object_get_ex(m, key, &v) || !(json_object_is_type(v, json_type_double) ||
@@ -546,8 +586,8 @@ static int manifest_number(const char *mp, json_object *m, const char *key, doub
 	}
 	double x = json_object_get_double(v);
 	if (!(fabs(x - want) <= rel * fmax(fabs(want), 1e-3))) {
-		*cause = xasprintf("%s: key %s = %s disagrees with height.png (%s); expected %s", mp, key,
-		    json_object_to_json_string(v), text, text);
+		*cause = xasprintf("%s: key %s = %s disagrees with height.png (%s); expected %s",
+		    mp, key, json_object_to_json_string(v), text, text);
 		return -1;
 	}
 	return 0;
@@ -570,16 +610,19 @@ static int check_manifest(const char *dir, const struct texdir *t, char **cause)
 	snprintf(px, sizeof px, "%d px", t->w);
 	if (m == NULL || !json_object_is_type(m, json_type_object))
 		*cause = xasprintf("%s: not a JSON object (%s)", mp, json_util_get_last_err());
-	else if (!json_object_object_get_ex(m, "kind", &v) || !json_object_is_type(v, json_type_string) ||
+	else if (!json_object_object_get_ex(m, "kind", &v) ||
+	    !json_object_is_type(v, json_type_string) ||
 	    strcmp(json_object_get_string(v), "skinbake texture") != 0)
 		*cause = xasprintf("%s: key kind is %s; expected \"skinbake texture\"", mp,
 		    v ? json_object_to_json_string(v) : "missing");
-	else if (!json_object_object_get_ex(m, "size_px", &v) || !json_object_is_type(v, json_type_int) ||
+	else if (!json_object_object_get_ex(m, "size_px", &v) ||
+	    !json_object_is_type(v, json_type_int) ||
 	    json_object_get_int64(v) != t->w || t->w != t->h)
 		*cause = xasprintf("%s: key size_px is %s but height.png is %dx%d; expected %d", mp,
 		    v ? json_object_to_json_string(v) : "missing", t->w, t->h, t->w);
 	else if (manifest_number(mp, m, "tile_mm", t->tile_mm, t->tile_mm_text, 1e-9, cause) == 0 &&
-	    (!t->have_range || (manifest_number(mp, m, "height_min_um", t->h_min_um, t->h_min_text, 1e-5, cause) == 0 &&
+	    (!t->have_range || (
+	    manifest_number(mp, m, "height_min_um", t->h_min_um, t->h_min_text, 1e-5, cause) == 0 &&
 	    manifest_number(mp, m, "height_max_um", t->h_max_um, t->h_max_text, 1e-5, cause) == 0)))
 		rc = 0;
 	json_object_put(m);
@@ -598,7 +641,8 @@ static int read_normal(const char *np, const char *hp, struct texdir *t, char **
 		return -1;
 	}
 	if (nw != t->w || nh != t->h) {
-		*cause = xasprintf("%s is %dx%d but %s is %dx%d; they must match", np, nw, nh, hp, t->w, t->h);
+		*cause = xasprintf("%s is %dx%d but %s is %dx%d; they must match", np, nw, nh, hp,
+		    t->w, t->h);
 		return -1;
 	}
 	return 0;

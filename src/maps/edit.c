@@ -56,7 +56,8 @@ int maps_ops_resolve(const struct mapset *m, const struct maps_edit_arg *args, i
 			char names[256] = "";
 			for (int b = 0; b < m->n; b++)
 				snprintf(names + strlen(names), sizeof names - strlen(names), "%s%s", b ? ", " : "", m->p[b].key);
-			return *cause = xasprintf("%s: not one of the maps (%s)", args[k].key, names), -1;
+			*cause = xasprintf("%s: not one of the maps (%s)", args[k].key, names);
+			return -1;
 		}
 		if (args[k].kind == MAPS_SET && !(args[k].value >= m->p[a].fam_lo && args[k].value <= m->p[a].fam_hi))
 			return *cause = xasprintf("--set %s = %g is outside the family's range [%g, %g]", args[k].key,

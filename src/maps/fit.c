@@ -174,8 +174,10 @@ static int lut_nearest(const struct lut *t, const double lab[3])
 		if (s > s0 + 40) {
 			for (int j = 0; j < t->n_coarse; j++) {
 				double d = d2(t->lab + 3 * (size_t)t->item[j], lab);
-				if (d < bd || (d == bd && t->item[j] < best))
-					bd = d, best = t->item[j];
+				if (d < bd || (d == bd && t->item[j] < best)) {
+					bd = d;
+					best = t->item[j];
+				}
 			}
 			return best;
 		}
@@ -195,8 +197,10 @@ static int lut_nearest(const struct lut *t, const double lab[3])
 					int b = (z * t->dim[1] + y) * t->dim[0] + x;
 					for (int j = t->start[b]; j < t->start[b + 1]; j++) {
 						double d = d2(t->lab + 3 * (size_t)t->item[j], lab);
-						if (d < bd || (d == bd && t->item[j] < best))
-							bd = d, best = t->item[j];
+						if (d < bd || (d == bd && t->item[j] < best)) {
+							bd = d;
+							best = t->item[j];
+						}
 					}
 				}
 		/* A point in shell s + 1 or beyond is at least s cells away. */
@@ -305,10 +309,12 @@ static int solve(int k, double m[3][3], double *b)
 			return 0;
 		for (int j = 0; j < k; j++) {
 			double x = m[c][j];
-			m[c][j] = m[p][j], m[p][j] = x;
+			m[c][j] = m[p][j];
+			m[p][j] = x;
 		}
 		double x = b[c];
-		b[c] = b[p], b[p] = x;
+		b[c] = b[p];
+		b[p] = x;
 		for (int r = c + 1; r < k; r++) {
 			double q = m[r][c] / m[c][c];
 			for (int j = c; j < k; j++)

@@ -36,7 +36,10 @@ enum image_kind image_kind(const char *path, char **cause)
 struct image *image_new(int w, int h, int nch, int bits)
 {
 	struct image *im = xcalloc(1, sizeof *im);
-	im->w = w, im->h = h, im->nch = nch, im->bits = bits;
+	im->w = w;
+	im->h = h;
+	im->nch = nch;
+	im->bits = bits;
 	im->v = xcalloc((size_t)w * (size_t)h * (size_t)nch, sizeof(float));
 	return im;
 }
@@ -168,8 +171,10 @@ int image_write_exr(const char *path, const struct image *im, const char *const 
 			planes[c][i] = im->v[i * im->nch + c];
 	}
 	struct exr_attr_kv *a = xcalloc((size_t)(nattr > 0 ? nattr : 1), sizeof *a);
-	for (int k = 0; k < nattr; k++)
-		a[k].key = attr_kv[2 * k], a[k].value = attr_kv[2 * k + 1];
+	for (int k = 0; k < nattr; k++) {
+		a[k].key = attr_kv[2 * k];
+		a[k].value = attr_kv[2 * k + 1];
+	}
 	int rc = exrio_write(path, im->w, im->h, im->nch, names, (const float *const *)planes, nattr, a, cause);
 	for (int c = 0; c < im->nch; c++)
 		free(planes[c]);
@@ -183,10 +188,14 @@ int image_check_out(const char *path, int *exr, char **cause)
 	size_t n = strlen(path);
 	struct stat st;
 	*exr = n > 4 && strcmp(path + n - 4, ".exr") == 0;
-	if (!(*exr || (n > 4 && strcmp(path + n - 4, ".png") == 0)))
-		return *cause = xasprintf("'%s' does not end with .png or .exr", path), -1;
-	if (stat(path, &st) == 0 && S_ISDIR(st.st_mode))
-		return *cause = xasprintf("'%s' is a directory, expected a file name", path), -1;
+	if (!(*exr || (n > 4 && strcmp(path + n - 4, ".png") == 0))) {
+		*cause = xasprintf("'%s' does not end with .png or .exr", path);
+		return -1;
+	}
+	if (stat(path, &st) == 0 && S_ISDIR(st.st_mode)) {
+		*cause = xasprintf("'%s' is a directory, expected a file name", path);
+		return -1;
+	}
 	char *dir = xstrdup(path), *sl = strrchr(dir, '/');
 	if (sl)
 		*(sl == dir ? sl + 1 : sl) = '\0';

@@ -20,15 +20,19 @@
 struct mapset *mapset_new(const struct family *f, int w, int h, const double *x)
 {
 	struct mapset *m = xcalloc(1, sizeof *m);
-	m->w = w, m->h = h, m->n = f->n_axes;
+	m->w = w;
+	m->h = h;
+	m->n = f->n_axes;
 	size_t n = (size_t)w * h;
 	for (int a = 0; a < f->n_axes; a++) {
 		const struct family_axis *ax = &f->axis[a];
 		struct maps_param *p = &m->p[a];
 		snprintf(p->key, sizeof p->key, "%s", ax->key);
 		snprintf(p->unit, sizeof p->unit, "%s", ax->unit);
-		p->key_lo = ax->key_lo, p->key_hi = ax->key_hi;
-		p->fam_lo = ax->node[0], p->fam_hi = ax->node[ax->n - 1];
+		p->key_lo = ax->key_lo;
+		p->key_hi = ax->key_hi;
+		p->fam_lo = ax->node[0];
+		p->fam_hi = ax->node[ax->n - 1];
 		double v = x ? x[a] : ax->log_coord ? sqrt(p->fam_lo * p->fam_hi) : 0.5 * (p->fam_lo + p->fam_hi);
 		p->v = xmalloc(sizeof(float) * n);
 		for (size_t i = 0; i < n; i++)

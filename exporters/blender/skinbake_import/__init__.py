@@ -26,10 +26,10 @@ the exact mode needs a view layer per lamp.  Node inputs are looked up by their 
 SkinbakeError; on the command line they print "import_skin.py: error: ..." and exit with status 2.
 
 One module per concept: schema (the manifest's keys and ranges), imagefiles (EXR/PNG structure),
-imageset (reading and checking a set, loading its images), nodes, detail, calibration, general
-and exact (the materials), objects, layers (lights and view layers), compositor, scene (demo
-scene and render), scenejson (camera and lights from skinbake's scene.json), importer, cli, ui
-(the add-on's operator).
+imageset (reading and checking a set, loading its images), nodes, detail, calibration, footprint
+(the pixel's width, for Cycles 4.2-4.3's subsurface fall-back), general and exact (the materials),
+objects, layers (lights and view layers), compositor, scene (demo scene and render), scenejson
+(camera and lights from skinbake's scene.json), importer, cli, ui (the add-on's operator).
 """
 bl_info = {
     "name": "skinbake image set",

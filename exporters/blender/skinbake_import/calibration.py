@@ -38,6 +38,35 @@ MEASURED = {
 }
 
 
+# Below what radius, in pixel footprints (footprint.py), Cycles renders a subsurface channel as a
+# Lambert diffuse of its colour instead of the random walk: None where only below 1e-8 m.
+# Measured with a closed box of the subsurface closure under a sun, radii 0.1-1 pixels
+# (orthographic and perspective, cos_view 1 and 0.45): 4.3.0 renders exactly the Base Colour (the
+# Lambert response) at 0.249 px and the walk at 0.25 px and above, 4.2.23 alike; 4.4.0 and 4.5.15
+# the walk at 0.01-0.26 px.
+# The shipped kernel sources agree: 4.2's and 4.3's bssrdf_setup have
+# max(0.25 sd->dP, BSSRDF_MIN_RADIUS), 3.4's, 4.4's, 4.5's and 5.0's BSSRDF_MIN_RADIUS (1e-8) alone.
+SSS_DIFFUSE_BELOW = {
+    (3, 4): {"pixels": None, "measured_with": "Blender 3.4.1 (Debian 12): kernel source"},
+    (4, 2): {"pixels": 0.25, "measured_with": "Blender 4.2.23 LTS (bpy), Cycles CPU, 24 px, 16 spp; kernel source"},
+    (4, 3): {"pixels": 0.25, "measured_with": "Blender 4.3.0 (bpy), Cycles CPU, 24 px, 16 spp; kernel source "
+                                              "(Debian 13's 4.3.2: the sphere of tests/blender_lights.sh)"},
+    (4, 4): {"pixels": None, "measured_with": "Blender 4.4.0 (bpy), Cycles CPU, 24 px, 16 spp; kernel source"},
+    (4, 5): {"pixels": None, "measured_with": "Blender 4.5.15 LTS (bpy), Cycles CPU, 24 px, 16 spp; kernel source"},
+    (5, 0): {"pixels": None, "measured_with": "Blender 5.0.1 (bpy): kernel source"},
+}
+
+
+def sss_diffuse_below_pixels(version=None):
+    """SSS_DIFFUSE_BELOW's footprints for VERSION (default: this Blender): its own measurement, else
+    the newest of the same major version not newer than it; where there is none (4.0, 4.1: no
+    wheels to measure), a quarter pixel, since raising a radius to it costs at most a sub-pixel blur.
+    None: no such fall-back."""
+    v = tuple((version or bpy.app.version)[:2])
+    older = [k for k in SSS_DIFFUSE_BELOW if k[0] == v[0] and k <= v]
+    return SSS_DIFFUSE_BELOW[max(older)]["pixels"] if older else 0.25
+
+
 def _interp(xs, ys, x):
     if x <= xs[0]:
         return ys[0]

@@ -55,43 +55,58 @@ def _lut_sample(tr, img, nc, nphi, cl, cv, dphi, x0, y0, row_off=0.0, nrows=None
 
 
 
-def _family_lut_sample(tr, m, nc, nphi, cl, cv, dphi):
-    """pi f_r of the texel's parameters: the stacked atlases of the family's sub-grid
-    (family_lut.exr), each read as _lut_sample reads brdf_lut.exr, blended multilinearly at
-    the texel's sub-grid position (family_coord.exr, per axis in R, G, B)."""
+def family_corners(tr, m, x0=-900, y0=-1200):
+    """The texel's place in the family's sub-grid (family_coord.exr, per axis in R, G, B): the
+    slice index of each of its 2^k neighbouring sub-grid points (a socket or a number, ordered
+    by corner bits, the first varying axis lowest), and a function that blends one value per
+    corner (sockets of colours, in that order) multilinearly at the texel's position."""
     fam = m["family"]
     counts = fam["sub_counts"]
-    img = load_family_image(m, "family_lut")
-    if hasattr(img, "use_half_precision"):
-        img.use_half_precision = False
-    uv = tr.node("ShaderNodeTexCoord", (-900, -1200)).outputs["UV"]
-    coord = tr.tex(load_family_image(m, "family_coord"), uv, (-700, -1200), "EXTEND", "family_coord.exr",
+    uv = tr.node("ShaderNodeTexCoord", (x0, y0)).outputs["UV"]
+    coord = tr.tex(load_family_image(m, "family_coord"), uv, (x0 + 200, y0), "EXTEND", "family_coord.exr",
                    interpolation="Closest")
-    sep = tr.node("ShaderNodeSeparateColor", (-450, -1200))
+    sep = tr.node("ShaderNodeSeparateColor", (x0 + 450, y0))
     tr.link(coord.outputs["Color"], sep.inputs["Color"])
     axes = [a for a in range(3) if counts[a] > 1]
     stride = [1, counts[0], counts[0] * counts[1]]
     base, frac = 0.0, {}
     for k, a in enumerate(axes):
         p = sep.outputs[a]
-        i0 = tr.math("MINIMUM", tr.math("FLOOR", p, loc=(-250, -1100 - 150 * k)), counts[a] - 2,
-                     loc=(-100, -1100 - 150 * k))
-        frac[a] = tr.math("SUBTRACT", p, i0, loc=(50, -1100 - 150 * k))
-        base = tr.math("MULTIPLY_ADD", i0, stride[a], base, loc=(200, -1100 - 150 * k))
-    nrows = nc * fam["slices"]
-    cols = []
+        i0 = tr.math("MINIMUM", tr.math("FLOOR", p, loc=(x0 + 650, y0 + 100 - 150 * k)), counts[a] - 2,
+                     loc=(x0 + 800, y0 + 100 - 150 * k))
+        frac[a] = tr.math("SUBTRACT", p, i0, loc=(x0 + 950, y0 + 100 - 150 * k))
+        base = tr.math("MULTIPLY_ADD", i0, stride[a], base, loc=(x0 + 1100, y0 + 100 - 150 * k))
+    slices = []
     for corner in range(1 << len(axes)):
         s = base
         if corner:
             s = tr.math("ADD", base, sum(stride[a] for k, a in enumerate(axes) if corner >> k & 1),
-                        loc=(350, -1100 - 150 * corner))
+                        loc=(x0 + 1250, y0 + 100 - 150 * corner))
+        slices.append(s)
+
+    def blend(cols, bx=3000, by=-1500):
+        # Axis by axis: the list is ordered by corner bits, lowest bit (the first axis) first.
+        for k, a in enumerate(axes):
+            cols = [tr.mix(cols[2 * j], cols[2 * j + 1], frac[a], (bx + 200 * k, by - 300 * j))
+                    for j in range(len(cols) // 2)]
+        return cols[0]
+    return slices, blend
+
+
+def _family_lut_sample(tr, m, nc, nphi, cl, cv, dphi):
+    """pi f_r of the texel's parameters: the stacked atlases of the family's sub-grid
+    (family_lut.exr), each read as _lut_sample reads brdf_lut.exr, blended multilinearly at
+    the texel's sub-grid position (family_corners)."""
+    img = load_family_image(m, "family_lut")
+    if hasattr(img, "use_half_precision"):
+        img.use_half_precision = False
+    slices, blend = family_corners(tr, m)
+    nrows = nc * m["family"]["slices"]
+    cols = []
+    for corner, s in enumerate(slices):
         row_off = tr.math("MULTIPLY", s, nc, loc=(500, -1100 - 150 * corner))
         cols.append(_lut_sample(tr, img, nc, nphi, cl, cv, dphi, -450, -2000 - 1400 * corner, row_off, nrows))
-    # Blend axis by axis: the list is ordered by corner bits, lowest bit (the first axis) first.
-    for k, a in enumerate(axes):
-        cols = [tr.mix(cols[2 * j], cols[2 * j + 1], frac[a], (2100 + 200 * k, -1500 - 300 * j))
-                for j in range(len(cols) // 2)]
-    return cols[0]
+    return blend(cols, 2100, -1500)
 
 
 def build_exact(m, name="skinbake exact", no_detail=False, no_specular=False, unit_scale=1.0,

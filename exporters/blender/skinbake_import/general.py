@@ -11,8 +11,19 @@ import bpy
 from . import calibration
 from .common import say
 from .detail import detail_normal, far_area_mean, far_roughness
+from .footprint import walk_radius
 from .imageset import _check_fit, load_family_image, load_image
 from .nodes import Tree, sock, stamp
+
+
+def _set_radius(tr, bsdf, rad, loc):
+    """The Principled BSDF's Subsurface Radius: RAD (RGB or a socket), kept above the radius this
+    Blender renders as diffuse (footprint.walk_radius)."""
+    rad = walk_radius(tr, rad, loc)
+    if isinstance(rad, bpy.types.NodeSocket):
+        tr.link(rad, bsdf.inputs["Subsurface Radius"])
+    else:
+        bsdf.inputs["Subsurface Radius"].default_value = rad
 
 
 def _general_principled(tr, m, nrm, unit_scale, no_specular, calibrate, area_mean):
@@ -37,9 +48,9 @@ def _general_principled(tr, m, nrm, unit_scale, no_specular, calibrate, area_mea
     sock(bsdf.inputs, "Subsurface Weight", "Subsurface").default_value = 1.0
     if sock(bsdf.inputs, "Subsurface Scale"):
         sock(bsdf.inputs, "Subsurface Scale").default_value = 1.0
-    bsdf.inputs["Subsurface Radius"].default_value = [x / unit_scale for x in m["sss_radius_m"]]
-    if fam:
-        tr.link(family_radius(tr, m, uv.outputs["UV"], unit_scale, (-600, 200)), bsdf.inputs["Subsurface Radius"])
+    rad = family_radius(tr, m, uv.outputs["UV"], unit_scale, (-600, 200)) if fam else \
+        [x / unit_scale for x in m["sss_radius_m"]]
+    _set_radius(tr, bsdf, rad, (-900, -100))
     n = float(m["ior"])
     bsdf.inputs["IOR"].default_value = n
     # Where the export-time fit found the bake's surface reflection negligible, leave it out too.
@@ -136,9 +147,9 @@ def _general_fit(tr, m, f, nrm, area, geo, unit_scale, no_specular, calibrate, a
     if v4:                                   # the inputs VIEW_RESPONSE was measured with
         sock(sss.inputs, "Subsurface Scale").default_value = 1.0
         sss.inputs["IOR"].default_value = calibration.VIEW_IOR
-    sss.inputs["Subsurface Radius"].default_value = [x / unit_scale for x in m["sss_radius_m"]]
-    if fam_uv is not None:
-        tr.link(family_radius(tr, m, fam_uv, unit_scale, (-800, 1950)), sss.inputs["Subsurface Radius"])
+    rad = family_radius(tr, m, fam_uv, unit_scale, (-800, 1950)) if fam_uv is not None else \
+        [x / unit_scale for x in m["sss_radius_m"]]
+    _set_radius(tr, sss, rad, (-1400, 2200))
     # Its retro-reflection term is in the fit; roughness 0 would give NaN pixels in EEVEE.
     sss.inputs["Roughness"].default_value = float(f.get("subsurface_roughness", 0.0))
     sock(sss.inputs, "Specular", "Specular IOR Level").default_value = 0.0

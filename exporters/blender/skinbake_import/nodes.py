@@ -14,10 +14,12 @@ def sock(sockets, *names):
 
 
 class Tree:
-    def __init__(self, mat):
+    def __init__(self, mat, keep=False):
+        """A builder on MAT's node tree, emptied first unless KEEP."""
         mat.use_nodes = True
         self.nt = mat.node_tree
-        self.nt.nodes.clear()
+        if not keep:
+            self.nt.nodes.clear()
 
     def node(self, kind, loc, label=None, **props):
         n = self.nt.nodes.new(kind)

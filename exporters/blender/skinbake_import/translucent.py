@@ -10,6 +10,7 @@ field minus this version's) at the view angle (translucent.theta_o_deg).  The no
 lamp in the view layer that renders that lamp, so the exact mode's per-lamp layers count every
 lamp once."""
 import math
+import os
 
 from .common import ImageSetError, say
 
@@ -57,6 +58,90 @@ def view_colour(nt, sock, views, rgb):
         el.color = (*e, 1.0)
     nt.links.new(dot.outputs["Value"], ramp.inputs["Fac"])
     nt.links.new(ramp.outputs["Color"], sock)
+
+
+def _maps_image(m, maps, key, where, size):
+    """One per-texel file of a family set's translucent maps (float EXR, checked as the family's
+    own files are), at SIZE (width, height)."""
+    from .imagefiles import check_exr
+    from .imageset import load_image
+    e = maps.get(key)
+    if not isinstance(e, dict) or not isinstance(e.get("file"), str) or \
+            os.path.basename(e["file"]) != e["file"] or (e.get("width"), e.get("height")) != size:
+        raise ImageSetError(f"{where}.maps.{key} = {e!r} must name a file of the set of "
+                            f"{size[0]}x{size[1]} px")
+    p = os.path.join(m["_dir"], e["file"])
+    if not os.path.isfile(p) or os.path.getsize(p) == 0:
+        raise ImageSetError(f"{p}: missing or empty (listed in manifest.json as {where}.maps.{key})")
+    check_exr(p, *size)
+    img = load_image({"files": {key: dict(e, path=e["file"])}, "_dir": m["_dir"]}, key)
+    if hasattr(img, "use_half_precision"):
+        img.use_half_precision = False
+    return img
+
+
+def _family_extra(tr, m, img, views, x0, y0):
+    """lambert_extra of the texel: sss_extra_M.N.exr holds it per sub-grid point (row = slice)
+    and view node (column k at VIEWS[k]); linear in cos(theta_o) between the columns, blended
+    over the texel's neighbouring sub-grid points as family_lut is (exact.family_corners)."""
+    from .exact import family_corners
+    n = len(views)
+    geo = tr.node("ShaderNodeNewGeometry", (x0, y0))
+    cosv = tr.vmath("DOT_PRODUCT", geo.outputs["Incoming"], geo.outputs["Normal"], (x0 + 150, y0))
+    ramp = tr.node("ShaderNodeValToRGB", (x0 + 300, y0), "view node index (from cos theta_o)")
+    ramp.color_ramp.interpolation = "LINEAR"
+    stops = sorted((math.cos(math.radians(a)), k / (n - 1)) for k, a in enumerate(views))
+    els = ramp.color_ramp.elements
+    while len(els) < len(stops):
+        els.new(0.5)
+    for el, (pos, f) in zip(els, stops):
+        el.position = pos
+        el.color = (f, f, f, f)
+    tr.link(cosv, ramp.inputs["Fac"])
+    p = tr.math("MULTIPLY", ramp.outputs["Alpha"], n - 1, loc=(x0 + 600, y0))
+    k0 = tr.math("MINIMUM", tr.math("FLOOR", p, loc=(x0 + 750, y0)), n - 2, loc=(x0 + 900, y0))
+    fk = tr.math("SUBTRACT", p, k0, loc=(x0 + 1050, y0))
+    u0 = tr.math("DIVIDE", tr.math("ADD", k0, 0.5, loc=(x0 + 1050, y0 - 150)), n, loc=(x0 + 1200, y0 - 150))
+    slices, blend = family_corners(tr, m, x0, y0 - 600)
+    ns = m["family"]["slices"]
+    cols = []
+    for corner, sl in enumerate(slices):
+        v = tr.math("DIVIDE", tr.math("ADD", sl, 0.5, loc=(x0 + 1400, y0 - 300 * corner)), ns,
+                    loc=(x0 + 1550, y0 - 300 * corner))
+        pair = []
+        for dk in (0, 1):
+            u = tr.math("ADD", u0, dk / n, loc=(x0 + 1700, y0 - 300 * corner - 100 * dk))
+            te = tr.tex(img, tr.xyz(u, v, 0.0, (x0 + 1850, y0 - 300 * corner - 100 * dk)),
+                        (x0 + 2000, y0 - 300 * corner - 100 * dk), "EXTEND", "sss_extra", interpolation="Closest")
+            pair.append(te.outputs["Color"])
+        cols.append(tr.mix(pair[0], pair[1], fk, (x0 + 2250, y0 - 300 * corner)))
+    return blend(cols, x0 + 2500, y0)
+
+
+def _family_maps(mat, m, v, where, ss, unit_scale):
+    """A family set (`export blender --family --maps --mode translucent`): the node's colour and
+    radius per texel (the members' fits interpolated), and lambert_extra per texel; returns the
+    socket of the latter."""
+    from .nodes import Tree
+    maps = v.get("maps")
+    if not isinstance(maps, dict):
+        raise ImageSetError(f"{where}.maps = {maps!r}: a family set needs the node's per-texel maps "
+                            "(export the set again with this skinbake)")
+    fc = m["family"]["files"]["family_coord"]
+    size = (fc["width"], fc["height"])
+    views = m["translucent"]["theta_o_deg"]
+    tr = Tree(mat, keep=True)
+    x0, y0 = ss.location[0] - 900, ss.location[1] - 400
+    uv = tr.node("ShaderNodeTexCoord", (x0 - 300, y0)).outputs["UV"]
+    col = tr.tex(_maps_image(m, maps, "colour", where, size), uv, (x0, y0), "EXTEND",
+                 maps["colour"]["file"] + " (per texel)")
+    tr.link(col.outputs["Color"], ss.inputs["Color"])
+    rad = tr.tex(_maps_image(m, maps, "radius_m", where, size), uv, (x0, y0 - 300), "EXTEND",
+                 maps["radius_m"]["file"] + " (per texel, m)")
+    tr.link(tr.vmath("SCALE", rad.outputs["Color"], loc=(x0 + 300, y0 - 300), scale=1.0 / unit_scale),
+            ss.inputs["Radius"])
+    extra = _maps_image(m, maps, "extra", where, (len(views), m["family"]["slices"]))
+    return _family_extra(tr, m, extra, views, x0 - 2800, y0 - 900)
 
 
 def add_subsurface(mat, m, unit_scale=1.0):
@@ -107,11 +192,15 @@ def add_subsurface(mat, m, unit_scale=1.0):
     out.location = (out.location[0] + 150, out.location[1])
     nt.links.new(src, add.inputs[0])
     node = ss
-    if max(max(e) for e in extra) > 0:      # this version's far field below the one the table lost
-        dif = nt.nodes.new("ShaderNodeBsdfDiffuse")
+    fam_extra = _family_maps(mat, m, v, where, ss, unit_scale) if "family" in m else None
+    if fam_extra is not None or max(max(e) for e in extra) > 0:   # this version's far field below
+        dif = nt.nodes.new("ShaderNodeBsdfDiffuse")                # the one the table lost
         dif.label = "skinbake: far field the other versions' nodes have more"
         dif.location = (out.location[0] - 400, out.location[1] - 500)
-        view_colour(nt, dif.inputs["Color"], views, extra)
+        if fam_extra is not None:
+            nt.links.new(fam_extra, dif.inputs["Color"])
+        else:
+            view_colour(nt, dif.inputs["Color"], views, extra)
         add2 = nt.nodes.new("ShaderNodeAddShader")
         add2.location = (out.location[0] - 250, out.location[1] - 350)
         nt.links.new(ss.outputs["BSSRDF"], add2.inputs[0])
@@ -120,6 +209,11 @@ def add_subsurface(mat, m, unit_scale=1.0):
     nt.links.new(node.outputs[0], add.inputs[1])
     nt.links.new(add.outputs["Shader"], out.inputs["Surface"])
     mat["skinbake_translucent"] = 1
+    if "family" in m:
+        say(f"translucent: Cycles {v.get('version')} subsurface ({v['falloff']}) per texel from "
+            f"{v['maps']['colour']['file']} and {v['maps']['radius_m']['file']} beside the rest of the "
+            f"family's tables, diffuse from {v['maps']['extra']['file']}")
+        return mat
     say(f"translucent: Cycles {v.get('version')} subsurface ({v['falloff']}) colour " +
         " ".join(f"{x:.4g}" for x in v["colour"]) + ", radius " +
         " ".join(f"{x * 1e3:.4g}" for x in v["radius_m"]) + " mm beside the rest of the table" +

@@ -498,11 +498,6 @@ struct blender_set *blender_prepare(const struct brdf_source *m, const struct bl
 	return s;
 }
 
-static const char *const blender_names[] = { "albedo.exr", "brdf_lut.exr", "roughness.png", "height.png",
-	"normal.png", "roughness_far.png", "family_lut.exr", "family_coord.exr", "albedo_map.exr", "sss_radius_map.exr", NULL };
-const struct outdir_kind blender_outdir_kind = { "Blender image set", "manifest.json", "format",
-	"skinbake-blender-image-set", blender_names };
-
 int blender_write(const struct blender_set *s, const char *dir, char **cause)
 {
 	struct outdir od;

@@ -10,6 +10,8 @@
 #include <string.h>
 
 #include "base/util.h"
+#include "export/blender/blender_sss.h"
+#include "export/sss_family.h"
 #include "io/exrio.h"
 
 /* The sub-grid: per axis K points uniform in the axis coordinate over the
@@ -59,16 +61,92 @@ static void subgrid_point(const struct brdf_family *f, const struct subgrid *g, 
 	}
 }
 
-/* The stacked atlases: slice s in file rows [H - (s + 1) nc, H - s nc). */
+/* Translucent mode (blender_sss.h): the fits of the members the maps reach,
+ * per calibrated Blender; a point between members gets them interpolated
+ * (export/sss_family.h), as POV-Ray's maps export does. */
+struct family_sss {
+	struct blender_sss *member;	/* [n_members]: n > 0 where fitted */
+	int n;				/* versions fitted */
+};
+
+/* Fit every version to each member the maps reach (about 8 s of CPU per
+ * member and version: the members in parallel).  -1 and *cause. */
+static int family_sss_fit(const struct brdf_family *f, const struct mapset *m,
+    struct family_sss *fs, char **cause)
+{
+	size_t n = (size_t)m->w * m->h;
+	int lo[FAMILY_MAX_AXES], hi[FAMILY_MAX_AXES];
+	for (int a = 0; a < f->n_axes; a++)
+		sss_family_reach(f, a, m->p[a].v, n, &lo[a], &hi[a]);
+	fs->member = xcalloc((size_t)f->n_members, sizeof *fs->member);
+	fs->n = 0;
+	char **err = xcalloc((size_t)f->n_members, sizeof *err);
+#pragma omp parallel for schedule(dynamic)
+	for (int k = 0; k < f->n_members; k++) {
+		int idx[FAMILY_MAX_AXES], in = 1;
+		brdf_family_member_index(f, k, idx);
+		for (int a = 0; a < f->n_axes; a++)
+			in &= idx[a] >= lo[a] && idx[a] <= hi[a];
+		const struct bake *b = brdf_family_member_bake(f, k);
+		if (in && blender_sss_fit(b, &fs->member[k], &err[k]) != 0)
+			fs->member[k].n = 0;
+	}
+	int rc = 0;
+	for (int k = 0; k < f->n_members; k++) {
+		if (err[k] != NULL && rc == 0)
+			*cause = xasprintf("translucent: family member %d: %s", k, err[k]);
+		rc = err[k] != NULL ? -1 : rc;
+		fs->n = fs->member[k].n > fs->n ? fs->member[k].n : fs->n;
+		free(err[k]);
+	}
+	free(err);
+	return rc;
+}
+
+/* Every version's fit at parameters x into *w (not wrapped); scratch holds
+ * n_members pointers. */
+static void family_sss_at(const struct brdf_family *f, const struct family_sss *fs, const double *x,
+    const struct sss_fit **scratch, struct blender_sss *w)
+{
+	*w = (struct blender_sss){ 0 };
+	for (int v = 0; v < fs->n; v++) {
+		for (int k = 0; k < f->n_members; k++)
+			scratch[k] = fs->member[k].n > v ? &fs->member[k].fit[v] : NULL;
+		sss_fit_family_at(f, scratch, x, &w->fit[v]);
+	}
+	w->n = fs->n;
+}
+
+/* The stacked atlases: slice s in file rows [H - (s + 1) nc, H - s nc).
+ * Translucent (fs not NULL): each the remainder of its point's table, and
+ * extra[v] (3 planes of BLENDER_SSS_N_VIEW x slices, slice s in file row
+ * slices - 1 - s) version v's lambert_extra there per view node. */
 static float *family_lut(const struct brdf_family *f, const struct subgrid *g, int nc,
-    int nphi)
+    int nphi, const struct family_sss *fs, float **extra)
 {
 	size_t w = (size_t)nc * nphi, h = (size_t)nc * g->slices, plane = w * h, sp = w * nc;
+	size_t eplane = (size_t)BLENDER_SSS_N_VIEW * g->slices;
 	float *lut = xmalloc(sizeof(float) * 3 * plane);
+	const struct sss_fit **scratch = fs ? xcalloc((size_t)f->n_members, sizeof *scratch) : NULL;
+	for (int v = 0; fs && v < fs->n; v++)
+		extra[v] = xmalloc(sizeof(float) * 3 * eplane);
 	for (int s = 0; s < g->slices; s++) {
 		double x[FAMILY_MAX_AXES];
 		subgrid_point(f, g, s, x);
 		struct brdf_source *src = brdf_family_at(f, x);
+		struct blender_sss ws;
+		if (fs) {
+			family_sss_at(f, fs, x, scratch, &ws);
+			blender_sss_wrap_fitted(src, &ws);
+			size_t row = (size_t)(g->slices - 1 - s) * BLENDER_SSS_N_VIEW;
+			for (int v = 0; v < fs->n; v++)
+				for (int k = 0; k < BLENDER_SSS_N_VIEW; k++) {
+					double e[3], to = blender_sss_view_deg[k] * M_PI / 180;
+					blender_sss_extra(&ws, v, to, e);
+					for (int c = 0; c < 3; c++)
+						extra[v][(size_t)c * eplane + row + k] = (float)e[c];
+				}
+		}
 		float *one = blender_lut(src, nc, nphi);
 		size_t row0 = h - (size_t)(s + 1) * nc;
 		for (int c = 0; c < 3; c++)
@@ -76,7 +154,32 @@ static float *family_lut(const struct brdf_family *f, const struct subgrid *g, i
 		free(one);
 		brdf_source_free(src);
 	}
+	free(scratch);
 	return lut;
+}
+
+/* Per texel, version v's node colour [-] and radius [m] (3 planes each). */
+static void texel_sss(const struct brdf_family *f, const struct mapset *m,
+    const struct family_sss *fs, int v, float *col, float *rad)
+{
+	long n = (long)m->w * m->h;
+#pragma omp parallel
+	{
+		const struct sss_fit **scratch = xcalloc((size_t)f->n_members, sizeof *scratch);
+#pragma omp for schedule(static)
+		for (long i = 0; i < n; i++) {
+			double x[FAMILY_MAX_AXES];
+			struct blender_sss w;
+			for (int a = 0; a < f->n_axes; a++)
+				x[a] = m->p[a].v[i];
+			family_sss_at(f, fs, x, scratch, &w);
+			for (int c = 0; c < 3; c++) {
+				col[(size_t)c * n + i] = (float)w.fit[v].colour[c];
+				rad[(size_t)c * n + i] = (float)(1e-3 * w.fit[v].length_mm[c]);
+			}
+		}
+		free(scratch);
+	}
 }
 
 static int write_rgb(const char *dir, const char *name, int w, int h, const float *v, const char *what, char **cause)
@@ -177,8 +280,26 @@ static void texel_maps(const struct brdf_family *f, const struct mapset *m, cons
 	free(bm);
 }
 
-int blender_family_export(struct brdf_family *f, const struct mapset *m, const struct blender_options *o, int sub,
-    const char *detail_dir, const char *out_dir, char **cause)
+/* Version v's per-texel files in the manifest's translucent section ("maps"). */
+static char *sss_maps_json(const char *ser, const struct mapset *m, int slices)
+{
+	return xasprintf("{\"colour\": {\"file\": \"sss_colour_%s.exr\", \"width\": %d, "
+	    "\"height\": %d, \"content\": \"the node's Color per texel [-] (R, G, B)\"}, "
+	    "\"radius_m\": {\"file\": \"sss_radius_%s.exr\", \"width\": %d, \"height\": %d, "
+	    "\"content\": \"the node's Radius per texel [m] (R, G, B)\"}, \"extra\": {\"file\": "
+	    "\"sss_extra_%s.exr\", \"width\": %d, \"height\": %d, \"content\": \"lambert_extra "
+	    "per family sub-grid point: column k at theta_o_deg[k], row s (from the bottom) at "
+	    "slice s; blended at family_coord as family_lut is\"}, \"interpolation\": \"colour, "
+	    "radius: the members' fits (each to its own Rd(r)) per axis linear in the axis "
+	    "coordinate between neighbouring members, the colour linearly, the radius as its log; "
+	    "family_lut.exr holds each sub-grid point's remainder (its table less the largest far "
+	    "field of the versions' nodes at that point's fits)\"}", ser, m->w, m->h, ser, m->w,
+	    m->h, ser, BLENDER_SSS_N_VIEW, slices);
+}
+
+int blender_family_export(struct brdf_family *f, const struct mapset *m,
+    const struct blender_options *o, int sub, const char *detail_dir, int translucent,
+    const char *out_dir, char **cause)
 {
 	if (sub < BLENDER_FAMILY_SUB_MIN || sub > BLENDER_FAMILY_SUB_MAX) {
 		*cause = xasprintf("%d sub-grid points per axis is out of range [%d, %d]", sub, BLENDER_FAMILY_SUB_MIN,
@@ -190,37 +311,88 @@ int blender_family_export(struct brdf_family *f, const struct mapset *m, const s
 		return -1;
 	struct subgrid g;
 	subgrid_make(f, m, sub, &g);
+	struct family_sss fs = { NULL, 0 };
+	if (translucent && family_sss_fit(f, m, &fs, cause) != 0) {
+		free(fs.member);
+		return -1;
+	}
 	double mid[FAMILY_MAX_AXES];
 	for (int a = 0; a < g.k; a++)
 		mid[a] = family_axis_value(&f->axis[a], 0.5 * (g.c0[a] + g.c1[a]));
 	struct brdf_source *ref = brdf_family_at(f, mid);
 	struct blender_set *set = NULL;
+	struct blender_sss wref;
+	if (translucent) {
+		const struct sss_fit **scratch = xcalloc((size_t)f->n_members, sizeof *scratch);
+		family_sss_at(f, &fs, mid, scratch, &wref);
+		free(scratch);
+		blender_sss_wrap_fitted(ref, &wref);
+	}
 	if ((detail_dir && brdf_source_add_textures(ref, detail_dir, cause) != 0) ||
 	    (set = blender_prepare(ref, o, cause)) == NULL) {
 		brdf_source_free(ref);
+		free(fs.member);
 		return -1;
 	}
 	char *sec = section(f, m, &g, o->lut_cos, o->lut_phi);
 	blender_set_add_section(set, "family", sec);
 	free(sec);
 	size_t n = (size_t)m->w * m->h;
-	float *lut = family_lut(f, &g, o->lut_cos, o->lut_phi), *alb = xmalloc(sizeof(float) * 3 * n);
+	float *extra[BLENDER_SSS_MAX] = { NULL };
+	float *lut = family_lut(f, &g, o->lut_cos, o->lut_phi, translucent ? &fs : NULL, extra);
+	float *alb = xmalloc(sizeof(float) * 3 * n);
 	float *rad = xmalloc(sizeof(float) * 3 * n), *pos = xmalloc(sizeof(float) * 3 * n);
 	texel_maps(f, m, &g, alb, rad, pos);
+	char *maps[BLENDER_SSS_MAX] = { NULL }, ser[BLENDER_SSS_MAX][32];
+	for (int v = 0; v < fs.n; v++) {
+		blender_sss_series(wref.fit[v].table, ser[v], sizeof ser[v]);
+		maps[v] = sss_maps_json(ser[v], m, g.slices);
+	}
+	if (translucent) {
+		char *j = blender_sss_json(&wref, (const char *const *)maps);
+		blender_set_add_section(set, "translucent", j);
+		free(j);
+	}
 	/* The family's files first: blender_write_files puts the manifest last. */
 	struct outdir od;
 	int rc = outdir_begin(&od, out_dir, &blender_outdir_kind, cause) != 0 ? -1 : 0;
 	const char *dir = rc == 0 ? outdir_path(&od) : NULL;
+	const char *lut_what = translucent ? "pi * f_r atlases of the family's sub-grid, stacked, less "
+	    "the subsurface node's far field (manifest translucent)" :
+	    "pi * f_r atlases of the family's sub-grid, stacked (manifest family)";
 	rc = rc != 0 ? -1 : write_rgb(dir, "family_lut.exr", o->lut_cos * o->lut_phi, o->lut_cos * g.slices, lut,
-	    "pi * f_r atlases of the family's sub-grid, stacked (manifest family)", cause) ||
+	    lut_what, cause) ||
 	    write_rgb(dir, "family_coord.exr", m->w, m->h, pos, "sub-grid position per axis", cause) ||
 	    write_rgb(dir, "albedo_map.exr", m->w, m->h, alb, "bihemispherical diffuse albedo, linear Rec.709", cause) ||
-	    write_rgb(dir, "sss_radius_map.exr", m->w, m->h, rad, "mean exit radius per R, G, B [m]", cause) ||
-	    blender_write_files(set, dir, cause) ? -2 : 0;
+	    write_rgb(dir, "sss_radius_map.exr", m->w, m->h, rad, "mean exit radius per R, G, B [m]", cause) ? -2 : 0;
+	for (int v = 0; rc == 0 && v < fs.n; v++) {
+		float *col = xmalloc(sizeof(float) * 3 * n), *len = xmalloc(sizeof(float) * 3 * n);
+		texel_sss(f, m, &fs, v, col, len);
+		char *nc = xasprintf("sss_colour_%s.exr", ser[v]);
+		char *nr = xasprintf("sss_radius_%s.exr", ser[v]);
+		char *ne = xasprintf("sss_extra_%s.exr", ser[v]);
+		rc = write_rgb(dir, nc, m->w, m->h, col,
+		    "Cycles subsurface node Color per texel (manifest translucent)", cause) ||
+		    write_rgb(dir, nr, m->w, m->h, len,
+		    "Cycles subsurface node Radius per texel [m]", cause) ||
+		    write_rgb(dir, ne, BLENDER_SSS_N_VIEW, g.slices, extra[v],
+		    "lambert_extra per sub-grid point and view node (manifest translucent)", cause) ? -2 : 0;
+		free(nc);
+		free(nr);
+		free(ne);
+		free(col);
+		free(len);
+	}
+	rc = rc != 0 ? rc : blender_write_files(set, dir, cause) ? -2 : 0;
 	if (rc == -2)
 		outdir_fail(&od, cause);
 	else if (rc == 0 && outdir_commit(&od, cause) != 0)
 		rc = -2;
+	for (int v = 0; v < BLENDER_SSS_MAX; v++) {
+		free(extra[v]);
+		free(maps[v]);
+	}
+	free(fs.member);
 	free(lut);
 	free(alb);
 	free(rad);

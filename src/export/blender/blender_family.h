@@ -29,10 +29,16 @@
 #define BLENDER_FAMILY_SUB_MAX 8
 
 /* Export family f (tables loaded here) with maps m into DIR, sub points
- * per varying axis; detail_dir (NULL: flat) is a texture directory.  -1
- * and *cause on bad input (before anything is written), -2 on an I/O
+ * per varying axis; detail_dir (NULL: flat) is a texture directory.
+ * Translucent (blender_sss.h): Cycles' subsurface node of every calibrated
+ * Blender fitted to each member the maps reach, per texel the fits
+ * interpolated between them (export/sss_family.h) into
+ * sss_colour_M.N.exr and sss_radius_M.N.exr, each sub-grid table the
+ * remainder at its point's fits, and sss_extra_M.N.exr that version's
+ * lambert_extra per sub-grid point (manifest translucent.versions[].maps).
+ * -1 and *cause on bad input (before anything is written), -2 on an I/O
  * failure. */
 int blender_family_export(struct brdf_family *f, const struct mapset *m,
-    const struct blender_options *o, int sub, const char *detail_dir, const char *dir,
-    char **cause);
+    const struct blender_options *o, int sub, const char *detail_dir, int translucent,
+    const char *dir, char **cause);
 #endif

@@ -61,39 +61,56 @@ static double clipped_share(const struct blender_sss *w)
 	return worst;
 }
 
+int blender_sss_fit(const struct bake *b, struct blender_sss *w, char **cause)
+{
+	*w = (struct blender_sss){ 0 };
+	for (int v = 0; blender_sss_tables[v] != NULL; v++) {
+		CHECK(v < BLENDER_SSS_MAX);
+		if (sss_fit_bake(blender_sss_tables[v], b, 1.0, &w->fit[v], cause) != 0)
+			return -1;
+		w->n = v + 1;
+	}
+	return 0;
+}
+
+void blender_sss_wrap_fitted(struct brdf_source *src, struct blender_sss *w)
+{
+	w->f_rgb = src->f_rgb;
+	w->ctx = src->ctx;
+	w->clipped = clipped_share(w);
+	src->f_rgb = sss_remainder;
+	src->ctx = w;
+}
+
 int blender_sss_wrap(struct brdf_source *src, struct blender_sss *w, char **cause)
 {
 	if (src->bake == NULL) {
 		*cause = xstrdup("translucent mode needs a bake (its radial profile Rd(r))");
 		return -1;
 	}
-	*w = (struct blender_sss){ 0 };
-	for (int v = 0; blender_sss_tables[v] != NULL; v++) {
-		CHECK(v < BLENDER_SSS_MAX);
-		if (sss_fit_bake(blender_sss_tables[v], src->bake, 1.0, &w->fit[v], cause) != 0)
-			return -1;
-		w->n = v + 1;
-	}
-	w->f_rgb = src->f_rgb;
-	w->ctx = src->ctx;
-	w->clipped = clipped_share(w);
-	src->f_rgb = sss_remainder;
-	src->ctx = w;
+	if (blender_sss_fit(src->bake, w, cause) != 0)
+		return -1;
+	blender_sss_wrap_fitted(src, w);
 	return 0;
 }
 
-/* The theta_o nodes [deg] of the far fields in the manifest (the tables' FAR_ANGLES). */
-static const double view_deg[] = { 0, 20, 40, 60, 75, 85 };
-#define N_VIEW 6
+void blender_sss_extra(const struct blender_sss *w, int v, double theta_o, double rgb[3])
+{
+	for (int c = 0; c < 3; c++)
+		rgb[c] = far_max(w, c, 0.0, theta_o) - far_v(w, v, c, 0.0, theta_o);
+}
 
-/* A list over view_deg of [R, G, B]: version v's far field (v >= 0), or the
+/* The theta_o nodes [deg] of the far fields in the manifest (the tables' FAR_ANGLES). */
+const double blender_sss_view_deg[BLENDER_SSS_N_VIEW] = { 0, 20, 40, 60, 75, 85 };
+
+/* A list over blender_sss_view_deg of [R, G, B]: version v's far field (v >= 0), or the
  * largest less version v's (diff), or the largest (v < 0); at theta_i = 0,
  * on which none of them depends. */
 static char *by_view(const struct blender_sss *w, int v, int diff)
 {
 	char *s = xstrdup("[");
-	for (int k = 0; k < N_VIEW; k++) {
-		double x[3], to = view_deg[k] * M_PI / 180;
+	for (int k = 0; k < BLENDER_SSS_N_VIEW; k++) {
+		double x[3], to = blender_sss_view_deg[k] * M_PI / 180;
 		for (int c = 0; c < 3; c++) {
 			double m = far_max(w, c, 0.0, to);
 			double f = v < 0 ? m : far_v(w, v, c, 0.0, to);
@@ -125,7 +142,7 @@ static void falloff(const struct sss_table *t, char *buf, size_t n)
 }
 
 /* One version's entry of "versions". */
-static char *version_json(const struct blender_sss *w, int v)
+static char *version_json(const struct blender_sss *w, int v, const char *maps)
 {
 	const struct sss_fit *f = &w->fit[v];
 	char ser[32], fo[48], col[96], rad[96], ifit[96], mf[96], rl[96], loc[96];
@@ -141,15 +158,15 @@ static char *version_json(const struct blender_sss *w, int v)
 	char *j = xasprintf("{\"blender\": \"%s\", \"version\": \"%s\", \"closure\": \"%s\", "
 	    "\"falloff\": \"%s\", \"ior\": %g, \"colour\": %s, \"radius_m\": %s, \"scale\": 1.0, "
 	    "\"power_fit\": %s, \"power_local\": %s, \"mean_radius_fit_m\": %s, "
-	    "\"rms_ln_r_predicted\": %s, \"far_pi_f\": %s, \"lambert_extra\": %s}", ser,
+	    "\"rms_ln_r_predicted\": %s, \"far_pi_f\": %s, \"lambert_extra\": %s%s%s}", ser,
 	    f->table->version, f->table->closure, fo, f->table->ior, col, rad, ifit, loc, mf, rl,
-	    far, extra);
+	    far, extra, maps ? ", \"maps\": " : "", maps ? maps : "");
 	free(far);
 	free(extra);
 	return j;
 }
 
-char *blender_sss_json(const struct blender_sss *w)
+char *blender_sss_json(const struct blender_sss *w, const char *const *maps)
 {
 	const struct sss_fit *f = &w->fit[0];
 	char ib[96], mb[96], *rem = by_view(w, -1, 0);
@@ -157,7 +174,8 @@ char *blender_sss_json(const struct blender_sss *w)
 	jvec(mb, sizeof mb, f->mean_bake_mm, 1e-3);
 	char *list = xstrdup("");
 	for (int v = 0; v < w->n; v++) {
-		char *e = version_json(w, v), *l = xasprintf("%s%s%s", list, v ? ", " : "", e);
+		char *e = version_json(w, v, maps ? maps[v] : NULL);
+		char *l = xasprintf("%s%s%s", list, v ? ", " : "", e);
 		free(e);
 		free(list);
 		list = l;

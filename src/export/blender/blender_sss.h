@@ -40,7 +40,22 @@ void blender_sss_series(const struct sss_table *t, char *buf, size_t n);
  * -1 and *cause when the source has no bake with a radial profile or Cycles
  * no calibration. */
 int blender_sss_wrap(struct brdf_source *src, struct blender_sss *w, char **cause);
+/* Its two steps: fit every calibrated version to bake B (w->n, w->fit[]),
+ * and, with W's fits however they were made (e.g. interpolated between
+ * family members, export/sss_family.h), make SRC's f_rgb the remainder. */
+int blender_sss_fit(const struct bake *b, struct blender_sss *w, char **cause);
+void blender_sss_wrap_fitted(struct brdf_source *src, struct blender_sss *w);
 
-/* The manifest section "translucent" (JSON text, caller frees). */
-char *blender_sss_json(const struct blender_sss *w);
+/* Version v's lambert_extra at view angle theta_o [rad]: the largest far
+ * field of the versions less its own, per R, G, B (pi f [-]). */
+void blender_sss_extra(const struct blender_sss *w, int v, double theta_o, double rgb[3]);
+
+/* The theta_o nodes [deg] of the far fields and lambert_extra in the manifest. */
+#define BLENDER_SSS_N_VIEW 6
+extern const double blender_sss_view_deg[BLENDER_SSS_N_VIEW];
+
+/* The manifest section "translucent" (JSON text, caller frees); maps[v]
+ * (maps NULL, or an entry NULL: none) is JSON text added to version v's
+ * entry as "maps" (the per-texel files of a family set). */
+char *blender_sss_json(const struct blender_sss *w, const char *const *maps);
 #endif

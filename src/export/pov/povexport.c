@@ -25,7 +25,8 @@
 #include "geom/mesh.h"
 #include "export/pov/strategy.h"
 
-static void msg(struct povexport_result *r, const char *fmt, ...) __attribute__((format(printf, 2, 3)));
+static void msg(struct povexport_result *r, const char *fmt, ...)
+    __attribute__((format(printf, 2, 3)));
 static void msg(struct povexport_result *r, const char *fmt, ...)
 {
 	va_list ap;
@@ -53,7 +54,8 @@ static const char *bind_find(const char *const *b, int n, const char *skin)
 	for (int i = 0; i < n; i++) {
 		const char *eq = strchr(b[i], '=');
 		int named = eq != NULL && eq != b[i] && strcspn(b[i], "/") > (size_t)(eq - b[i]);
-		if (named && strlen(skin) == (size_t)(eq - b[i]) && !strncmp(b[i], skin, strlen(skin)))
+		if (named && strlen(skin) == (size_t)(eq - b[i]) &&
+		    !strncmp(b[i], skin, strlen(skin)))
 			return eq + 1;
 		if (!named && any == NULL)
 			any = b[i];
@@ -83,7 +85,8 @@ static char *find_shapes(const char *data_dir, const char *scene_path)
 	cand[n++] = xasprintf("%s/skinbake_shapes.inc", PKGDATADIR);
 	if (scene_path) {
 		const char *sl = strrchr(scene_path, '/');
-		cand[n++] = sl ? xasprintf("%.*s/../exporters/pov/skinbake_shapes.inc", (int)(sl - scene_path), scene_path)
+		cand[n++] = sl ? xasprintf("%.*s/../exporters/pov/skinbake_shapes.inc",
+		    (int)(sl - scene_path), scene_path)
 			       : xstrdup("../exporters/pov/skinbake_shapes.inc");
 	}
 	char *found = NULL;
@@ -122,18 +125,22 @@ static void print_plan(FILE *fp, const struct scene *s)
 {
 	int curved = 0, n_ang = 0;
 	double ang[SCENE_MAX_OBJECTS * SCENE_MAX_LIGHTS];
-	fprintf(fp, "scene %s: lights strategy %s\n", s->path, scene_strategy_name(strategy_resolve(s, NULL, NULL)));
+	fprintf(fp, "scene %s: lights strategy %s\n", s->path,
+	    scene_strategy_name(strategy_resolve(s, NULL, NULL)));
 	for (int i = 0; i < s->n_objects; i++) {
 		const struct scene_object *o = &s->objects[i];
 		if (o->material == SCENE_MAT_PLAIN)
 			continue;
-		if (o->shape == SCENE_SPHERE || o->shape == SCENE_HAND || o->shape == SCENE_HEAD || o->shape == SCENE_MESH) {
+		if (o->shape == SCENE_SPHERE || o->shape == SCENE_HAND || o->shape == SCENE_HEAD ||
+		    o->shape == SCENE_MESH) {
 			curved = 1;
 			continue;
 		}
 		for (int l = 0; l < s->n_lights; l++) {
-			double n[3], d[3], p[3] = { o->center[0] + o->translate[0], o->center[1] + o->translate[1],
-				o->center[2] + o->translate[2] };
+			double n[3], d[3];
+			double p[3];
+			for (int j = 0; j < 3; j++)
+				p[j] = o->center[j] + o->translate[j];
 			if (o->shape == SCENE_PLANE)
 				memcpy(n, o->normal, sizeof n);
 			else
@@ -141,17 +148,21 @@ static void print_plan(FILE *fp, const struct scene *s)
 			placement_light_dir(&s->lights[l], p, d);
 			double ct = n[0] * d[0] + n[1] * d[1] + n[2] * d[2];
 			double a = acos(fmax(-1, fmin(1, ct))) * 180 / M_PI;
-			fprintf(fp, "object %s, light %s: theta_in %.2f deg%s\n", o->name, s->lights[l].name, a,
-			    a >= 90 ? " (unlit)" : "");
+			fprintf(fp, "object %s, light %s: theta_in %.2f deg%s\n", o->name,
+			    s->lights[l].name, a, a >= 90 ? " (unlit)" : "");
 			if (a < 90)
 				ang[n_ang++] = a;
 		}
 	}
 	if (curved)
-		fprintf(fp, "curved skin objects: theta_in over [0, 90] deg (the table nodes are uniform in angle)\n");
-	fprintf(fp, "wavelengths: the visible range (the tables are linear sRGB from the spectral bake)\n");
+		fprintf(fp,
+		    "curved skin objects: theta_in over [0, 90] deg (the table nodes are uniform "
+		    "in angle)\n");
+	fprintf(fp,
+	    "wavelengths: the visible range (the tables are linear sRGB from the spectral bake)\n");
 	for (int k = 0; k < s->n_skins; k++) {
-		fprintf(fp, "skin %s: skinbake bake --preset %s ", s->skins[k].name, s->skins[k].preset);
+		fprintf(fp, "skin %s: skinbake bake --preset %s ", s->skins[k].name,
+		    s->skins[k].preset);
 		if (curved || n_ang == 0)
 			fprintf(fp, "--theta-nodes 10");
 		else
@@ -160,7 +171,8 @@ static void print_plan(FILE *fp, const struct scene *s)
 		fprintf(fp, " --out %s\n", s->skins[k].bake ? s->skins[k].bake : "DIR");
 	}
 	if (!curved && n_ang > 0)
-		fprintf(fp, "(bump maps tilt the normal: add neighbouring angles if the skin has relief)\n");
+		fprintf(fp, "(bump maps tilt the normal: add neighbouring angles if the skin "
+		    "has relief)\n");
 }
 
 /* Size of one image pixel [units] on the nearest object of skin k. */
@@ -179,9 +191,12 @@ static double pixel_footprint(const struct scene *s, int k)
 			/* The nearest vertex in view. */
 			for (int v = 0; v < o->mesh->n_vertices; v++)
 				if (strategy_in_view(s, o->mesh->position[v], 0)) {
-					double q[3] = { o->mesh->position[v][0] - c->location[0],
-						o->mesh->position[v][1] - c->location[1], o->mesh->position[v][2] - c->location[2] };
-					dmin = fmin(dmin, sqrt(q[0] * q[0] + q[1] * q[1] + q[2] * q[2]));
+					const double *pv = o->mesh->position[v];
+					double q[3];
+					for (int j = 0; j < 3; j++)
+						q[j] = pv[j] - c->location[j];
+					double dist = sqrt(q[0] * q[0] + q[1] * q[1] + q[2] * q[2]);
+					dmin = fmin(dmin, dist);
 				}
 			continue;
 		}
@@ -218,7 +233,8 @@ static char *base_from_scene(const char *path)
 		n -= 6;
 	char *r = xasprintf("%.*s", (int)n, b);
 	for (char *c = r; *c; c++)
-		if (!((*c >= 'a' && *c <= 'z') || (*c >= 'A' && *c <= 'Z') || (*c >= '0' && *c <= '9') || *c == '_'
+		if (!((*c >= 'a' && *c <= 'z') || (*c >= 'A' && *c <= 'Z') ||
+		    (*c >= '0' && *c <= '9') || *c == '_'
 		    || *c == '-'))
 			*c = '_';
 	return r;
@@ -230,8 +246,10 @@ static int check_parts(const struct scene *s, char **cause)
 	const double *c = s->camera.location, *a = s->camera.look_at;
 	for (int i = 0; i < s->n_lights; i++) {
 		const double *p = s->lights[i].position, *q = s->lights[i].point_at;
-		if (s->lights[i].type == SCENE_LIGHT_PARALLEL && hypot(hypot(p[0] - q[0], p[1] - q[1]), p[2] - q[2]) < 1e-9)
-			return *cause = xasprintf("--light %s: position %g:%g:%g and point_at coincide (default 0:0:0)",
+		if (s->lights[i].type == SCENE_LIGHT_PARALLEL &&
+		    hypot(hypot(p[0] - q[0], p[1] - q[1]), p[2] - q[2]) < 1e-9)
+			return *cause = xasprintf(
+			    "--light %s: position %g:%g:%g and point_at coincide (default 0:0:0)",
 			    s->lights[i].name, p[0], p[1], p[2]), -1;
 	}
 	if (hypot(hypot(c[0] - a[0], c[1] - a[1]), c[2] - a[2]) < 1e-9) {
@@ -255,7 +273,8 @@ static struct scene *make_scene(const struct povexport_options *o, char **cause)
 			return NULL;
 	} else {
 		if (o->cmdline->n_lights == 0 || !o->have_camera) {
-			*cause = xstrdup("give --scene FILE, or --light SPEC and --camera SPEC (see --help)");
+			*cause = xstrdup(
+			    "give --scene FILE, or --light SPEC and --camera SPEC (see --help)");
 			return NULL;
 		}
 		s = scene_from_parts(o->cmdline, o->unit_mm);
@@ -267,21 +286,26 @@ static struct scene *make_scene(const struct povexport_options *o, char **cause)
 		s->height = o->height;
 	}
 	if (o->scene_path != NULL && o->unit_mm > 0) {
-		*cause = xstrdup("--unit-mm is for --light/--camera: a scene file sets unit_mm in [scene]");
+		*cause = xstrdup(
+		    "--unit-mm is for --light/--camera: a scene file sets unit_mm in [scene]");
 		goto bad;
 	}
 	if (o->lights != NULL) {
 		int i;
-		for (i = 0; i < 5 && strcmp(o->lights, scene_strategy_name((enum scene_strategy)i)); i++)
+		for (i = 0; i < 5 &&
+		    strcmp(o->lights, scene_strategy_name((enum scene_strategy)i)); i++)
 			;
 		if (i == 5) {
-			*cause = xasprintf("--lights = '%s' is not one of auto, key, mixture, passes, separable", o->lights);
+			*cause = xasprintf(
+			    "--lights = '%s' is not one of auto, key, mixture, passes, separable",
+			    o->lights);
 			goto bad;
 		}
 		s->lights_strategy = (enum scene_strategy)i;
 	}
 	if (s->lights_strategy == SCENE_LIGHTS_MIXTURE && s->n_lights != 2) {
-		*cause = xasprintf("lights = mixture needs exactly 2 lights, %s has %d", s->path, s->n_lights);
+		*cause = xasprintf("lights = mixture needs exactly 2 lights, %s has %d", s->path,
+		    s->n_lights);
 		goto bad;
 	}
 	for (int t = 0; t < 2; t++) {
@@ -290,7 +314,8 @@ static struct scene *make_scene(const struct povexport_options *o, char **cause)
 			char buf[64];
 			const char *sk = bind_skin(b[i], buf, sizeof buf);
 			if (*sk && scene_find_skin(s, sk) < 0) {
-				*cause = xasprintf("--%s %s=...: the scene has no skin '%s'", t == 0 ? "bake" : "textures", sk, sk);
+				*cause = xasprintf("--%s %s=...: the scene has no skin '%s'",
+				    t == 0 ? "bake" : "textures", sk, sk);
 				goto bad;
 			}
 		}
@@ -307,7 +332,8 @@ struct inputs {
 	struct bumpmap hm[SCENE_MAX_SKINS];
 	struct pov_skin ps[SCENE_MAX_SKINS];
 	char *heights[SCENE_MAX_SKINS];
-	uint16_t *far_px[SCENE_MAX_SKINS];	/* roughness_far.png filtered to the pixel (povfar.h), or NULL */
+	uint16_t *far_px[SCENE_MAX_SKINS];	/* roughness_far.png filtered to the
+						 * pixel (povfar.h), or NULL */
 	int far_m[SCENE_MAX_SKINS];	/* its edge [px] */
 	char *fars[SCENE_MAX_SKINS];	/* its name in the output directory */
 	struct pov_maps *maps[SCENE_MAX_SKINS];
@@ -330,15 +356,18 @@ static void inputs_free(struct inputs *in)
 /* --family --maps: skin k blends the family's members by the maps (key
  * light only); the member at the maps' median stands in where one BRDF is
  * needed (strategy, Lambert and Phong stand-ins). */
-static int load_maps(const struct povexport_options *o, struct scene *s, const char *base, int k, struct inputs *in,
-    char **cause)
+static int load_maps(const struct povexport_options *o, struct scene *s, const char *base, int k,
+    struct inputs *in, char **cause)
 {
 	struct scene_skin *sk = &s->skins[k];
 	struct pov_skin *ps = &in->ps[k];
-	if (s->n_lights != 1 || (s->lights_strategy != SCENE_LIGHTS_AUTO && s->lights_strategy != SCENE_LIGHTS_KEY))
-		return *cause = xasprintf("--maps: the scene has %d lights and lights = %s; maps take one light (key)",
+	if (s->n_lights != 1 ||
+	    (s->lights_strategy != SCENE_LIGHTS_AUTO && s->lights_strategy != SCENE_LIGHTS_KEY))
+		return *cause = xasprintf(
+		    "--maps: the scene has %d lights and lights = %s; maps take one light (key)",
 			   s->n_lights, scene_strategy_name(s->lights_strategy)), -1;
-	struct pov_maps *pm = in->maps[k] = pov_maps_open(o->family, o->maps, base, sk->name, cause);
+	struct pov_maps *pm = in->maps[k] = pov_maps_open(o->family, o->maps, base, sk->name,
+	    cause);
 	if (pm == NULL)
 		return -1;
 	const struct brdf_source *b = pm->src[pm->ref];
@@ -352,8 +381,8 @@ static int load_maps(const struct povexport_options *o, struct scene *s, const c
 		sk->preset = xstrdup(pm->fam->preset);
 	}
 	for (int i = 0; i < s->n_objects; i++)
-		ps->maps_uv |= s->objects[i].shape == SCENE_MESH && s->objects[i].material == SCENE_MAT_SKIN &&
-		    s->objects[i].skin == k;
+		ps->maps_uv |= s->objects[i].shape == SCENE_MESH &&
+		    s->objects[i].material == SCENE_MAT_SKIN && s->objects[i].skin == k;
 	return 0;
 }
 
@@ -374,7 +403,8 @@ static int load_brdf(const struct povexport_options *o, struct scene *s, int k, 
 	if (dir == NULL)
 		dir = sk->bake;
 	if (dir == NULL)
-		return *cause = xasprintf("skin '%s': no bake (give --bake DIR or bake = DIR in [skin %s])", sk->name,
+		return *cause = xasprintf(
+		    "skin '%s': no bake (give --bake DIR or bake = DIR in [skin %s])", sk->name,
 			   sk->name),
 		       -1;
 	struct brdf_source *b = in->src[k] = brdf_source_open(dir, &err);
@@ -384,7 +414,8 @@ static int load_brdf(const struct povexport_options *o, struct scene *s, int k, 
 		return -1;
 	}
 	if (o->scene_path && b->preset && strcmp(b->preset, sk->preset))
-		msg(r, "note: skin '%s' asks for preset '%s', the bake %s has '%s'", sk->name, sk->preset, dir, b->preset);
+		msg(r, "note: skin '%s' asks for preset '%s', the bake %s has '%s'", sk->name,
+		    sk->preset, dir, b->preset);
 	if (o->scene_path == NULL && b->preset) {
 		free(sk->preset);
 		sk->preset = xstrdup(b->preset);
@@ -401,8 +432,8 @@ static int load_brdf(const struct povexport_options *o, struct scene *s, int k, 
  * object, the bump map gives way to the table blended with its rough copy;
  * not for maps, translucent skins, the mixture table or --bump-filter off
  * (docs/relief.md). */
-static int load_far(const struct scene *s, const char *base, int k, const char *tdir, struct inputs *in,
-    struct povexport_result *r, char **cause)
+static int load_far(const struct scene *s, const char *base, int k, const char *tdir,
+    struct inputs *in, struct povexport_result *r, char **cause)
 {
 	struct pov_skin *ps = &in->ps[k];
 	double amax;
@@ -429,9 +460,10 @@ static int load_far(const struct scene *s, const char *base, int k, const char *
 	ps->height_png = NULL;
 	free(in->heights[k]);
 	in->heights[k] = NULL;
-	msg(r, "skin '%s': relief cells (%.3g mm) below the image pixel (%.3g mm on the nearest object): the bump "
-	       "map gives way to the table blended with its rough copy by roughness_far.png (%d -> %d px, alpha_relief "
-	       "up to %.3g)", s->skins[k].name, block * s->unit_mm, px * s->unit_mm, n, m, amax);
+	msg(r, "skin '%s': relief cells (%.3g mm) below the image pixel (%.3g mm on the nearest "
+	    "object): the bump map gives way to the table blended with its rough copy by "
+	    "roughness_far.png (%d -> %d px, alpha_relief up to "
+	    "%.3g)", s->skins[k].name, block * s->unit_mm, px * s->unit_mm, n, m, amax);
 	return 0;
 }
 
@@ -450,8 +482,9 @@ static int load_sss(const struct povexport_options *o, struct scene *s, int k, s
 		return *cause = xstrdup("--mode translucent needs a bake and its radial profile, "
 					"not --analytic"), -1;
 	if (st != SCENE_LIGHTS_KEY && st != SCENE_LIGHTS_MIXTURE)
-		return *cause = xasprintf("--mode translucent: lights = %s, but the subsurface layer goes under one lit table "
-					  "per skin: lights key or mixture (one or two lights)", scene_strategy_name(st)),
+		return *cause = xasprintf("--mode translucent: lights = %s, but the subsurface "
+		    "layer goes under one lit table per skin: lights key or mixture (one or two "
+		    "lights)", scene_strategy_name(st)),
 		       -1;
 	char *err = NULL;
 	if (o->family && pov_maps_sss_setup(in->maps[k], &ps->ior, &err) == 0) {
@@ -465,17 +498,20 @@ static int load_sss(const struct povexport_options *o, struct scene *s, int k, s
 		return -1;
 	}
 	const struct sss_fit *f = &ps->sss.fit;
-	msg(r, "skin '%s': translucent: POV-Ray subsurface colour %.4g %.4g %.4g, translucency %.4g %.4g %.4g mm; "
-	       "power %.4g %.4g %.4g, mean radius %.3g %.3g %.3g mm as the bake's; RMS ln R(r) %.2f %.2f %.2f (predicted); "
-	       "the remainder clips at most %.1f %% of the table",
-	    sn, f->colour[0], f->colour[1], f->colour[2], f->length_mm[0], f->length_mm[1], f->length_mm[2],
-	    f->integral_fit[0], f->integral_fit[1], f->integral_fit[2], f->mean_fit_mm[0], f->mean_fit_mm[1],
-	    f->mean_fit_mm[2], f->rms_log[0], f->rms_log[1], f->rms_log[2], 100 * ps->sss.clipped);
+	msg(r, "skin '%s': translucent: POV-Ray subsurface colour %.4g %.4g %.4g, translucency "
+	    "%.4g %.4g %.4g mm; power %.4g %.4g %.4g, mean radius %.3g %.3g %.3g mm as the bake's; "
+	    "RMS ln R(r) %.2f %.2f %.2f (predicted); the remainder clips at most %.1f %% of the "
+	    "table",
+	    sn, f->colour[0], f->colour[1], f->colour[2],
+	    f->length_mm[0], f->length_mm[1], f->length_mm[2],
+	    f->integral_fit[0], f->integral_fit[1], f->integral_fit[2],
+	    f->mean_fit_mm[0], f->mean_fit_mm[1], f->mean_fit_mm[2],
+	    f->rms_log[0], f->rms_log[1], f->rms_log[2], 100 * ps->sss.clipped);
 	return 0;
 }
 
-static int load_bumps(const struct povexport_options *o, const struct scene *s, const char *base, int k,
-    struct inputs *in, struct povexport_result *r, char **cause)
+static int load_bumps(const struct povexport_options *o, const struct scene *s, const char *base,
+    int k, struct inputs *in, struct povexport_result *r, char **cause)
 {
 	const struct scene_skin *sk = &s->skins[k];
 	struct bumpmap *h = &in->hm[k];
@@ -490,16 +526,20 @@ static int load_bumps(const struct povexport_options *o, const struct scene *s, 
 		return 0;
 	}
 	for (int i = 0; i < s->n_objects && in->ps[k].sss.on; i++)
-		if (s->objects[i].shape == SCENE_MESH && s->objects[i].material == SCENE_MAT_SKIN && s->objects[i].skin == k) {
+		if (s->objects[i].shape == SCENE_MESH && s->objects[i].material == SCENE_MAT_SKIN &&
+		    s->objects[i].skin == k) {
 			/* A mesh's bump map is a texture per triangle, which cannot be layered. */
-			msg(r, "skin '%s': translucent meshes are written without the bump map", sk->name);
+			msg(r, "skin '%s': translucent meshes are written without the bump map",
+			    sk->name);
 			return 0;
 		}
 	for (int i = 0; i < s->n_objects; i++) {
 		const struct scene_object *ob = &s->objects[i];
-		if (ob->shape == SCENE_MESH && ob->material == SCENE_MAT_SKIN && ob->skin == k && ob->mesh->uv == NULL)
-			return *cause = xasprintf("[object %s]: the mesh (%s) has no UV coordinates, so the bump map of skin "
-						  "'%s' cannot follow it: give the model UVs, or set bumps = off in [skin %s]",
+		if (ob->shape == SCENE_MESH && ob->material == SCENE_MAT_SKIN && ob->skin == k &&
+		    ob->mesh->uv == NULL)
+			return *cause = xasprintf("[object %s]: the mesh (%s) has no UV "
+			    "coordinates, so the bump map of skin '%s' cannot follow it: give the "
+			    "model UVs, or set bumps = off in [skin %s]",
 				   ob->name, ob->mesh->source, sk->name, sk->name),
 			       -1;
 	}
@@ -508,12 +548,14 @@ static int load_bumps(const struct povexport_options *o, const struct scene *s, 
 	in->heights[k] = xasprintf("%s_%s_height.png", base, sk->name);
 	in->ps[k].height_png = in->heights[k];
 	in->ps[k].tile_units = h->tile_mm / s->unit_mm;
-	int f = o->bump_filter ? bumpmap_filter_factor(h->size_px, in->ps[k].tile_units / h->size_px, pixel_footprint(s, k))
+	int f = o->bump_filter ? bumpmap_filter_factor(h->size_px,
+	    in->ps[k].tile_units / h->size_px, pixel_footprint(s, k))
 			       : 1;
 	if (f > 1) {
-		msg(r, "skin '%s': height map box-filtered %d -> %d px (texel %.3g mm, image pixel %.3g mm on the nearest "
-		       "object; --bump-filter off keeps it)",
-		    sk->name, h->size_px, h->size_px / f, h->tile_mm / h->size_px, pixel_footprint(s, k) * s->unit_mm);
+		msg(r, "skin '%s': height map box-filtered %d -> %d px (texel %.3g mm, image pixel "
+		    "%.3g mm on the nearest object; --bump-filter off keeps it)",
+		    sk->name, h->size_px, h->size_px / f, h->tile_mm / h->size_px,
+		    pixel_footprint(s, k) * s->unit_mm);
 		bumpmap_reduce(h, f);
 	}
 	in->ps[k].bump_size = bumpmap_size(h->h_range_um, h->size_px, h->tile_mm);
@@ -522,7 +564,8 @@ static int load_bumps(const struct povexport_options *o, const struct scene *s, 
 }
 
 /* The height maps, far roughness maps and the shape macros next to the written scene. */
-static int write_extras(const struct scene *s, const char *out, const char *base, const struct inputs *in, char **cause)
+static int write_extras(const struct scene *s, const char *out, const char *base,
+    const struct inputs *in, char **cause)
 {
 	for (int k = 0; k < s->n_skins; k++)
 		if (in->heights[k]) {
@@ -536,18 +579,21 @@ static int write_extras(const struct scene *s, const char *out, const char *base
 	for (int k = 0; k < s->n_skins; k++)
 		if (in->fars[k]) {
 			char *dst = xasprintf("%s/%s", out, in->fars[k]);
-			int e = pngio_write(dst, in->far_m[k], in->far_m[k], 1, 16, in->far_px[k], 0, 0, NULL, cause);
+			int e = pngio_write(dst, in->far_m[k], in->far_m[k], 1, 16, in->far_px[k],
+			    0, 0, NULL, cause);
 			free(dst);
 			if (e != 0)
 				return -1;
 		}
 	for (int i = 0; i < s->n_objects; i++) {
 		const struct scene_object *ob = &s->objects[i];
-		char *name = ob->material == SCENE_MAT_MODEL ? povscene_model_texture(ob, base) : NULL;
+		char *name = ob->material == SCENE_MAT_MODEL ? povscene_model_texture(ob, base)
+		    : NULL;
 		if (name == NULL)
 			continue;
 		char *dst = xasprintf("%s/%s", out, name);
-		int e = ob->mesh->texture ? povfiles_write_bytes(dst, ob->mesh->texture, ob->mesh->texture_size, cause)
+		int e = ob->mesh->texture
+		    ? povfiles_write_bytes(dst, ob->mesh->texture, ob->mesh->texture_size, cause)
 					  : povfiles_copy(ob->mesh->texture_file, dst, cause);
 		free(dst);
 		free(name);
@@ -567,8 +613,8 @@ static int write_extras(const struct scene *s, const char *out, const char *base
 	return 0;
 }
 
-static void report(const struct povexport_options *o, const struct scene *s, const struct pov_report *rep,
-    double seconds, struct povexport_result *r)
+static void report(const struct povexport_options *o, const struct scene *s,
+    const struct pov_report *rep, double seconds, struct povexport_result *r)
 {
 	char tab[64] = "", gam[64] = "", mix[64] = "";
 	if (rep->strategy == SCENE_LIGHTS_KEY || rep->strategy == SCENE_LIGHTS_PASSES)
@@ -577,40 +623,53 @@ static void report(const struct povexport_options *o, const struct scene *s, con
 		snprintf(gam, sizeof gam, " x %d light-view angles", rep->n_gamma_used);
 	if (rep->strategy == SCENE_LIGHTS_MIXTURE)
 		snprintf(mix, sizeof mix, ", %d^3 mixture table", o->n_mix);
-	msg(r, "%s: lights %s%s%s%s (%.2f s)", o->out, scene_strategy_name(rep->strategy), tab, gam, mix, seconds);
+	msg(r, "%s: lights %s%s%s%s (%.2f s)", o->out, scene_strategy_name(rep->strategy), tab, gam,
+	    mix, seconds);
 	if (rep->strategy == SCENE_LIGHTS_KEY && s->n_lights > 1)
-		msg(r, "warning: lights = key with %d lights: the table is exact only for light '%s'", s->n_lights,
-		    s->lights[0].name);
+		msg(r,
+		    "warning: lights = key with %d lights: the table is exact only for light '%s'",
+		    s->n_lights, s->lights[0].name);
 	if (rep->mix_error >= 0)
-		msg(r, "lights auto: the one-pass mixture table would be %.2f %% off for these lights and camera "
-		       "(estimated; the limit is %.1f %%), so %s",
+		msg(r, "lights auto: the one-pass mixture table would be %.2f %% off for these "
+		    "lights and camera (estimated; the limit is %.1f %%), so %s",
 		    100 * rep->mix_error, 100 * STRATEGY_MIX_MAX,
-		    rep->strategy == SCENE_LIGHTS_MIXTURE ? "mixture" : "passes (exact: one table per light)");
+		    rep->strategy == SCENE_LIGHTS_MIXTURE ? "mixture"
+		    : "passes (exact: one table per light)");
 	else if (rep->strategy == SCENE_LIGHTS_MIXTURE && rep->mix_gamma_spread > 0.05 * M_PI / 180)
-		msg(r, "note: the mixture table takes each light-view angle at the objects' centre; it varies by %.1f deg "
-		       "over them (use --lights passes to be exact)",
+		msg(r, "note: the mixture table takes each light-view angle at the objects' "
+		    "centre; it varies by %.1f deg over them (use --lights passes to be exact)",
 		    rep->mix_gamma_spread * 180 / M_PI);
-	if (rep->strategy == SCENE_LIGHTS_SEPARABLE || (rep->strategy == SCENE_LIGHTS_PASSES && !rep->layered))
-		msg(r, "separable fit%s: mean error %.1f %%, rms error %.1f %% of pi*f*cos(theta_i) for angles up to 80 deg",
-		    rep->strategy == SCENE_LIGHTS_PASSES ? " (used without animation)" : "", 100 * rep->sep_mean,
-		    100 * rep->sep_rms);
+	if (rep->strategy == SCENE_LIGHTS_SEPARABLE ||
+	    (rep->strategy == SCENE_LIGHTS_PASSES && !rep->layered))
+		msg(r,
+		    "separable fit%s: mean error %.1f %%, rms error %.1f %% of pi*f*cos(theta_i) "
+		    "for angles up to 80 deg",
+		    rep->strategy == SCENE_LIGHTS_PASSES ? " (used without animation)" : "",
+		    100 * rep->sep_mean, 100 * rep->sep_rms);
 	for (int i = 0; i < rep->n_files && r->n_files < 16; i++)
 		r->files[r->n_files++] = xasprintf("%s/%s", o->out, rep->files[i]);
 }
 
-static int write_all(const struct povexport_options *o, const struct scene *s, const char *base, struct inputs *in,
-    struct povexport_result *r, char **cause)
+static int write_all(const struct povexport_options *o, const struct scene *s, const char *base,
+    struct inputs *in, struct povexport_result *r, char **cause)
 {
 	struct pov_report rep = { 0 };
 	struct outdir od;
 	if (outdir_begin(&od, o->out, &povfiles_outdir_kind, cause) != 0)
 		return -1;
 	const char *stage = outdir_path(&od);
-	struct pov_options po = { .base = base, .n_theta = o->n_theta, .n_gamma = o->n_gamma, .n_mix = o->n_mix,
-		.write_scene = o->scene_path != NULL, .shapes_inc = in->shapes ? "skinbake_shapes.inc" : NULL,
-		.sss_samples = o->translucent ? o->sss_samples : 0 };
+	struct pov_options po = {
+		.base = base,
+		.n_theta = o->n_theta,
+		.n_gamma = o->n_gamma,
+		.n_mix = o->n_mix,
+		.write_scene = o->scene_path != NULL,
+		.shapes_inc = in->shapes ? "skinbake_shapes.inc" : NULL,
+		.sss_samples = o->translucent ? o->sss_samples : 0,
+	};
 	double t0 = util_now();
-	if (povfiles_write(s, in->ps, &po, stage, &rep, cause) != 0 || write_extras(s, stage, base, in, cause) != 0 ||
+	if (povfiles_write(s, in->ps, &po, stage, &rep, cause) != 0 ||
+	    write_extras(s, stage, base, in, cause) != 0 ||
 	    povfiles_write_index(stage, cause) != 0) {
 		povfiles_report_free(&rep);
 		outdir_fail(&od, cause);
@@ -628,10 +687,12 @@ static int write_all(const struct povexport_options *o, const struct scene *s, c
 /* --out may be replaced by an export, and is none of the inputs. */
 static int check_out(const struct povexport_options *o, char **cause)
 {
-	const char *in[2 * POVEXPORT_MAX_BIND + 5] = { NULL }, *more[] = { o->scene_path, o->family, o->maps, o->data_dir };
+	const char *in[2 * POVEXPORT_MAX_BIND + 5] = { NULL },
+	    *more[] = { o->scene_path, o->family, o->maps, o->data_dir };
 	int n = 0;
 	for (int i = 0; i < o->n_bakes + o->n_texs + 4; i++) {
-		const char *b = i < o->n_bakes ? o->bakes[i] : i < o->n_bakes + o->n_texs ? o->texs[i - o->n_bakes]
+		const char *b = i < o->n_bakes ? o->bakes[i] : i < o->n_bakes + o->n_texs
+		    ? o->texs[i - o->n_bakes]
 		    : more[i - o->n_bakes - o->n_texs], *eq = b ? strchr(b, '=') : NULL;
 		if (b)
 			in[n++] = i < o->n_bakes + o->n_texs && eq ? eq + 1 : b;
@@ -658,18 +719,23 @@ int povexport_run(const struct povexport_options *o, struct povexport_result *r,
 	}
 	if (check_out(o, cause) != 0)
 		goto done;
-	base = o->name ? xstrdup(o->name) : o->scene_path ? base_from_scene(o->scene_path) : xstrdup("skin");
-	if (!*base || strspn(base, "abcdefghijklmnopqrstuvwxyzABCDEFGHIJKLMNOPQRSTUVWXYZ0123456789_.-") != strlen(base)) {
+	base = o->name ? xstrdup(o->name) : o->scene_path ? base_from_scene(o->scene_path)
+	    : xstrdup("skin");
+	if (!*base || strspn(base,
+	    "abcdefghijklmnopqrstuvwxyzABCDEFGHIJKLMNOPQRSTUVWXYZ0123456789_.-") != strlen(base)) {
 		*cause = xasprintf("--name = '%s' must be letters, digits, '_', '.' or '-'", base);
 		goto done;
 	}
 	for (int k = 0; k < s->n_skins; k++)
-		if (load_brdf(o, s, k, &in, r, cause) != 0 || (o->family && load_maps(o, s, base, k, &in, cause) != 0) ||
-		    load_sss(o, s, k, &in, r, cause) != 0 || load_bumps(o, s, base, k, &in, r, cause) != 0)
+		if (load_brdf(o, s, k, &in, r, cause) != 0 ||
+		    (o->family && load_maps(o, s, base, k, &in, cause) != 0) ||
+		    load_sss(o, s, k, &in, r, cause) != 0 ||
+		    load_bumps(o, s, base, k, &in, r, cause) != 0)
 			goto done;
 	int need_shapes = 0;
 	for (int i = 0; i < s->n_objects; i++)
-		need_shapes |= s->objects[i].shape == SCENE_HAND || s->objects[i].shape == SCENE_HEAD;
+		need_shapes |= s->objects[i].shape == SCENE_HAND ||
+		    s->objects[i].shape == SCENE_HEAD;
 	if (need_shapes && (in.shapes = find_shapes(o->data_dir, o->scene_path)) == NULL) {
 		*cause = xstrdup("skinbake_shapes.inc not found (give --data-dir DIR)");
 		goto done;

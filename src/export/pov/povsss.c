@@ -35,7 +35,8 @@ static double clipped_share(const struct pov_sss *s)
 	return worst;
 }
 
-int povsss_setup(struct pov_sss *sss, struct pov_brdf *brdf, double *ior, const struct bake *b, char **cause)
+int povsss_setup(struct pov_sss *sss, struct pov_brdf *brdf, double *ior, const struct bake *b,
+    char **cause)
 {
 	if (sss_fit_bake(&sss_pov_table, b, POVSSS_WEIGHT, &sss->fit, cause) != 0)
 		return -1;
