@@ -26,10 +26,12 @@
  * A bake with a mm-scale relief (manifest specular.macro_slope > 0, preset
  * key [surface] macro_slope) keeps the facets' own table and lobe in its
  * files; bake_eval_diffuse, bake_eval_specular and bake_eval_rgb return them
- * integrated over the tilted facets (engine/macro.h), so eval and every
- * exporter (export/source.h reads through these) see the relief.  The
- * albedo curve stays the facets' (the relief's single-scattering loss,
- * 0.5-7 % for m 0.1-0.4, is not in it). */
+ * integrated over the tilted facets (engine/macro.h), so eval and the C
+ * exporters' tables (POV-Ray, Blender's LUT: export/source.h reads through
+ * these) see the relief.  The albedo curve, the analytic GGX parameters the
+ * renderers' general modes use, and the Mitsuba table plugin (which reads
+ * brdf.exr itself and says so on stderr) stay the facets' (the relief's
+ * single-scattering loss, 0.5-7 % for m 0.1-0.4, is not in the albedo). */
 #ifndef SKINBAKE_BAKEFILE_H
 #define SKINBAKE_BAKEFILE_H
 #include "bake/bakedir.h"
