@@ -337,9 +337,9 @@ struct inputs {
 						 * pixel (povfar.h), or NULL */
 	int far_m[SCENE_MAX_SKINS];	/* its edge [px] */
 	char *fars[SCENE_MAX_SKINS];	/* its name in the output directory */
-	struct bumpmap blur[SCENE_MAX_SKINS];	/* the height map blurred by Rd(r) (povsplit.h) */
+	struct bumpmap blur[SCENE_MAX_SKINS];	/* the height map blurred by Rd(r) */
 	char *blurs[SCENE_MAX_SKINS];	/* its name in the output directory, or NULL */
-	double *fill_curve[SCENE_MAX_SKINS];	/* the whole albedo for the fill (povsplit_fill_curve), or NULL */
+	double *fill_curve[SCENE_MAX_SKINS];	/* the fill's whole albedo, or NULL */
 	struct pov_maps *maps[SCENE_MAX_SKINS];
 	char *shapes;
 };
@@ -428,9 +428,11 @@ static int load_brdf(const struct povexport_options *o, struct scene *s, int k, 
 		sk->preset = xstrdup(b->preset);
 	}
 	ps->brdf = (struct pov_brdf){ b->f_rgb, b->ctx, b->n_ti, b->n_to, b->theta_i, b->theta_o };
-	ps->diffuse = (struct pov_brdf){ povsplit_diffuse, b->bake, b->n_ti, b->n_to, b->theta_i, b->theta_o };
+	ps->diffuse = (struct pov_brdf){ povsplit_diffuse, b->bake, b->n_ti, b->n_to, b->theta_i,
+		b->theta_o };
 	ps->spec = (struct povsplit_spec){ b->bake, b->bake ? b->bake->roughness : 0 };
-	ps->specular = (struct pov_brdf){ povsplit_specular, &ps->spec, b->n_ti, b->n_to, b->theta_i, b->theta_o };
+	ps->specular = (struct pov_brdf){ povsplit_specular, &ps->spec, b->n_ti, b->n_to,
+		b->theta_i, b->theta_o };
 	ps->n_albedo = b->n_albedo;
 	ps->theta_albedo = b->theta_albedo;
 	ps->albedo_curve = b->albedo_rgb;
@@ -526,7 +528,8 @@ static int load_sss(const struct povexport_options *o, struct scene *s, int k, s
 /* Whether the lights resolve to key (one table per skin). */
 static int key_only(const struct scene *s)
 {
-	return s->lights_strategy == SCENE_LIGHTS_KEY || (s->lights_strategy == SCENE_LIGHTS_AUTO && s->n_lights == 1);
+	return s->lights_strategy == SCENE_LIGHTS_KEY ||
+	    (s->lights_strategy == SCENE_LIGHTS_AUTO && s->n_lights == 1);
 }
 
 /* The scene's fill on skin k: one light (key), not translucent. */
@@ -536,21 +539,25 @@ static void set_fill(const struct scene *s, int k, struct inputs *in, struct pov
 	if (!(s->fill[0] > 0 || s->fill[1] > 0 || s->fill[2] > 0))
 		return;
 	if (!key_only(s) || ps->sss.on || (!ps->maps && ps->n_albedo < 1)) {
-		msg(r, "skin '%s': fill left out (it needs lights key, a bake, and not --mode translucent)",
+		msg(r, "skin '%s': fill left out (it needs lights key, a bake, and not --mode "
+		    "translucent)",
 		    s->skins[k].name);
 		return;
 	}
 	ps->fill = 1;
-	if (!ps->maps && in->src[k] && in->src[k]->bake)
-		ps->albedo_curve = in->fill_curve[k] = povsplit_fill_curve(in->src[k]->bake, ps->n_albedo,
-		    ps->theta_albedo, ps->albedo_curve);
+	const struct bake *b = !ps->maps && in->src[k] ? in->src[k]->bake : NULL;
+	if (b != NULL)
+		in->fill_curve[k] = povsplit_fill_curve(b, ps->n_albedo, ps->theta_albedo,
+		    ps->albedo_curve);
+	if (in->fill_curve[k])
+		ps->albedo_curve = in->fill_curve[k];
 }
 
 /* The bake whose Rd(r) blurs skin k's relief for the split (the maps'
  * median member), or NULL when the split does not apply: it needs one
  * light (key), a bake, no reflection and not translucent (povsplit.h). */
-static const struct bake *split_bake(const struct povexport_options *o, const struct scene *s, int k,
-    const struct inputs *in)
+static const struct bake *split_bake(const struct povexport_options *o, const struct scene *s,
+    int k, const struct inputs *in)
 {
 	const struct pov_skin *ps = &in->ps[k];
 	const struct bake *b = ps->maps ? brdf_family_member_bake(ps->maps->fam, ps->maps->ref)
@@ -563,14 +570,14 @@ static const struct bake *split_bake(const struct povexport_options *o, const st
 /* The split (povsplit.h): the diffuse part gets the height map blurred by
  * the bake's Rd(r); alpha_sub is the relief the box filter took away, added
  * to the specular's alpha (povsplit_spec). */
-static int load_split(const struct povexport_options *o, const struct scene *s, const char *base, int k,
-    struct inputs *in, double alpha_sub, struct povexport_result *r, char **cause)
+static int load_split(const struct povexport_options *o, const struct scene *s, const char *base,
+    int k, struct inputs *in, double alpha_sub, struct povexport_result *r, char **cause)
 {
 	struct pov_skin *ps = &in->ps[k];
 	const char *sn = s->skins[k].name;
 	const struct bake *b = split_bake(o, s, k, in);
 	if (ps->height_png == NULL || b == NULL || !(in->hm[k].h_range_um > 0))
-		return 0;	/* a flat relief: nothing to blur, the whole table renders the same */
+		return 0;	/* a flat relief: nothing to blur */
 	struct povsplit_kernel kr;
 	double ratio;
 	char *err = NULL;
@@ -585,13 +592,17 @@ static int load_split(const struct povexport_options *o, const struct scene *s, 
 	ps->spec_alpha = fmax(b->roughness, fmin(toksvig, POVSPLIT_ALPHA_WHOLE));
 	ps->spec.alpha = ps->spec_alpha;
 	if (alpha_sub > 0)
-		msg(r, "skin '%s': the relief below the bump map's texels (RMS slope %.3g) widens the specular's GGX alpha "
-		       "%.3g -> %.3g (Toksvig's %.3g, capped at the measured whole-face lobe %.2f)", sn, alpha_sub,
+		msg(r, "skin '%s': the relief below the bump map's texels (RMS slope %.3g) widens "
+		    "the specular's GGX alpha %.3g -> %.3g (Toksvig's %.3g, capped at the "
+		    "measured whole-face lobe %.2f)", sn, alpha_sub,
 		    b->roughness, ps->spec_alpha, toksvig, POVSPLIT_ALPHA_WHOLE);
-	ps->diffuse_bump_size = bumpmap_size(in->blur[k].h_range_um, in->blur[k].size_px, in->blur[k].tile_mm);
-	msg(r, "skin '%s': the diffuse part sees the height map blurred by Rd(r)%s (mean radius %.3g mm, %.0f %% of it "
-	       "within half a texel), its RMS slope %.0f %% of the relief's; the surface specular sees the relief",
-	    sn, ps->maps ? " of the maps' median member" : "", kr.mean_um * 1e-3, 100 * kr.w0, 100 * ratio);
+	const struct bumpmap *bl = &in->blur[k];
+	ps->diffuse_bump_size = bumpmap_size(bl->h_range_um, bl->size_px, bl->tile_mm);
+	msg(r, "skin '%s': the diffuse part sees the height map blurred by Rd(r)%s (mean radius "
+	    "%.3g mm, %.0f %% of it within half a texel), its RMS slope %.0f %% of the relief's; "
+	    "the surface specular sees the relief", sn,
+	    ps->maps ? " of the maps' median member" : "", kr.mean_um * 1e-3, 100 * kr.w0,
+	    100 * ratio);
 	(void)cause;
 	return 0;
 }
