@@ -71,7 +71,10 @@ check "the split is said and its blurred height map written" \
 	pov_render "$tmpd/back" back 16 16
 check "export and render, lit from behind with a fill of 0.2" test $? -eq 0
 
-out=$(python3 - "$tmpd" "$bake" <<'PY'
+# numpy (requirements-test.txt): python3's, else the project's venv.
+py=python3
+python3 -c 'import numpy' 2>/dev/null || py="$top_srcdir/.venv/bin/python"
+out=$("$py" - "$tmpd" "$bake" <<'PY'
 import json, os, sys
 import numpy as np
 sys.path.insert(0, os.path.join(os.environ["top_srcdir"], "tests", "lib"))
