@@ -36,6 +36,12 @@ takes multiple scattering on the facets too (src/engine/ad_rough.h) and, with
 points, fall and rise (adding-doubling at all 205 points); --train all fits
 every point but the 4 saturated ones (a diagnostic of the model's best).
 
+--macro (issue 21, round 4) adds the RMS slope m of a mm-scale relief
+([surface] macro_slope, src/engine/macro.h): the whole BRDF (table and
+lobe) integrated over Beckmann-tilted facets with height-correlated Smith
+shadowing; tests/brdf_model and the bakes' evaluation apply it, so it is one
+more simplex parameter with either solver.
+
 With --rough (issue 21) the roughness is also the GGX alpha of the top
 boundary in the subsurface transport ([surface] roughness): light enters and
 leaves the skin through the microfacets, so every roughness needs its own
@@ -78,8 +84,8 @@ BASE_DERM_MUSP500 = 45.6
 # the Salomatina 2006 means (our bound); GGX alpha as the preset keys.
 # The epidermis top under the film (--rough-epi): the same range as alpha.
 BOUNDS = {"melanin": (0.0005, 0.43), "blood": (0.002, 0.07), "scatter": (0.5, 2.0), "alpha": (0.02, 1.0),
-          "alpha_epi": (0.02, 1.0)}
-# The free parameters, in the simplex's order (main() appends alpha, alpha_epi).
+          "alpha_epi": (0.02, 1.0), "macro": (0.005, 0.8)}
+# The free parameters, in the simplex's order (main() appends alpha, alpha_epi, macro).
 NAMES = ["melanin", "blood", "scatter"]
 
 
@@ -126,12 +132,14 @@ class Model:
                    ("top_roughness = %.4g\n" % a_epi if a_epi > 0 and q["sebum"] else ""),
                    q["blood"], BASE_DERM_MUSP500 * q["scatter"], alpha, alpha,
                    ("roughness = %.4g\n" % alpha if self.a.rough else "")
-                   + ("multiple_scattering = 1\n" if self.a.multiple else "")))
+                   + ("multiple_scattering = 1\n" if self.a.multiple else "")
+                   + ("macro_slope = %.4g\n" % q["macro"] if q.get("macro", 0) > 0 else "")))
 
     def bake(self, q):
         """Bake the Monte Carlo part (cached: roughness does not enter it)."""
         key = (q["sebum"], round(q["melanin"], 7), round(q["blood"], 7), round(q["scatter"], 6),
-               round(q["alpha"], 6) if self.a.rough else 0, round(q.get("alpha_epi", 0.0), 6))
+               round(q["alpha"], 6) if self.a.rough else 0, round(q.get("alpha_epi", 0.0), 6),
+               round(q.get("macro", 0.0), 6))
         if key in self.cache:
             return self.cache[key]
         d = os.path.join(self.a.out, "bake%04d" % len(self.cache))
@@ -337,6 +345,8 @@ def main():
     ap.add_argument("--rough-epi", action="store_true",
                     help="with --rough and the film: the epidermis top under the film is rough too, with its own "
                     "alpha ([epidermis] top_roughness; the film's top is [surface] roughness)")
+    ap.add_argument("--macro", action="store_true",
+                    help="fit the RMS slope of a mm-scale relief too ([surface] macro_slope, engine/macro.h)")
     ap.add_argument("--tol", type=float, default=0.01,
                     help="--solver ad: the solver's tolerance (table RMS relative error estimate)")
     ap.add_argument("--nodes", type=int, default=32,
@@ -344,7 +354,8 @@ def main():
                     "within 1.1 %% of 64 at the training points with two rough interfaces)")
     ap.add_argument("--sebum", default="both", choices=("on", "off", "both"), help="films to fit")
     ap.add_argument("--start", default=None,
-                    help="starting point melanin,blood,scatter,alpha[,alpha_epi] (default 0.025,0.02,1,0.35)")
+                    help="starting point melanin,blood,scatter,alpha[,alpha_epi[,macro]] (default 0.025,0.02,1,0.35; "
+                    "macro 0.1)")
     ap.add_argument("--train", default="low", choices=("low", "all"),
                     help="low: the 20 points at 11.25/33.75 deg (the fit); all: every point but the 4 "
                     "saturated ones (a diagnostic of the model's best, not a fit to report as held out)")
@@ -376,7 +387,7 @@ def main():
         points = [r for r in read_curet(a.curet) if r[1] in TRAIN_THETA_I]
     model = Model(a, points)
     log = open(a.log, "w") if a.log else None
-    hdr = "eval\tsebum\tmelanin\tblood\tscatter\talpha\talpha_epi\tJ\tJ_sd\trms_rel_pct"
+    hdr = "eval\tsebum\tmelanin\tblood\tscatter\talpha\talpha_epi\tJ\tJ_sd\trms_rel_pct" + ("\tmacro" if a.macro else "")
     print(hdr)
     if log:
         log.write("# scripts/fit-curet.py: %d training points (%s), solver %s, bake target %g, bounds %s\n"
@@ -395,7 +406,7 @@ def main():
         k[0] += 1
         line = "%d\t%d\t%.5f\t%.5f\t%.4f\t%.3f\t%.3f\t%.6f\t%.6f\t%.2f" % (
             k[0], sebum, q["melanin"], q["blood"], q["scatter"], q["alpha"], q.get("alpha_epi", 0.0), j, sd,
-            100 * math.sqrt(max(j, 0)))
+            100 * math.sqrt(max(j, 0))) + ("\t%.4f" % q["macro"] if a.macro else "")
         print(line, flush=True)
         if log:
             log.write(line + "\n")
@@ -416,6 +427,10 @@ def main():
         NAMES.append("alpha_epi")
         x0.append(math.log(st[4] if len(st) > 4 else st[3]))
         steps.append(math.log(1.5))
+    if a.macro:
+        NAMES.append("macro")
+        x0.append(math.log(st[5] if len(st) > 5 else 0.1))
+        steps.append(math.log(2.0))
     best = None
     for sebum in {"on": (1,), "off": (0,), "both": (1, 0)}[a.sebum]:
         x, (j, sd), n = nelder_mead(lambda xx: f(xx, sebum), x0, steps, 3.0, a.max_evals)
@@ -429,11 +444,11 @@ def main():
         if best is None or j < best[0]:
             best = (j, sd, q)
     j, sd, q = best
-    summary = ("# best: sebum %s, melanin %.4g, blood %.4g, scatter %.3g, alpha %.3g, alpha_epi %.3g: "
+    summary = ("# best: sebum %s, melanin %.4g, blood %.4g, scatter %.3g, alpha %.3g, alpha_epi %.3g, macro %.3g: "
                "RMS relative %.2f %% "
                "(J %.6f +- %.6f) on %d training points; solver %s: %d bakes or solves (%.0f s of bake time), %.0f s in all"
                % ("on" if q["sebum"] else "off", q["melanin"], q["blood"], q["scatter"], q["alpha"],
-                  q.get("alpha_epi", 0.0), 100 * math.sqrt(max(j, 0)), j, sd, len(points), a.solver,
+                  q.get("alpha_epi", 0.0), q.get("macro", 0.0), 100 * math.sqrt(max(j, 0)), j, sd, len(points), a.solver,
                   model.n_bakes, model.seconds,
                   time.time() - t_start))
     print(summary)

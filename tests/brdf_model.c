@@ -16,7 +16,13 @@
  * 470, 550, 656 nm (the camera's B, G, R stand-ins of docs/presets.md);
  * default tolerance 1e-3 (the solver's table RMS error estimate); --nodes N
  * solves once at N nodes per unit cosine instead, without error estimates
- * (the fit's fast path: scripts/fit-curet.py --nodes). */
+ * (the fit's fast path: scripts/fit-curet.py --nodes).
+ *
+ * With a mm-scale relief ([surface] macro_slope > 0, or --macro M) both
+ * parts are integrated over the tilted facets (engine/macro.h, as
+ * bake_eval_* do for a bake): the solver then runs at fixed incidence
+ * angles (every 2 deg to 88, then 89 and 89.5) and the diffuse part is
+ * interpolated linearly between them; the lobe is evaluated where needed. */
 #include "config.h"
 
 #include <math.h>
@@ -25,6 +31,7 @@
 #include <string.h>
 
 #include "engine/ad.h"
+#include "engine/macro.h"
 #include "engine/specular.h"
 #include "skin/preset.h"
 #include "skin/tissue.h"
@@ -35,8 +42,32 @@
 static int usage(void)
 {
 	fprintf(stderr, "usage: brdf_model (--preset NAME | --preset-file F) [--wavelengths LIST] [--alpha A] "
-	    "[--tol T] [--nodes N] < points (theta_i theta_o delta_phi in deg)\n");
+	    "[--tol T] [--nodes N] [--macro M] < points (theta_i theta_o delta_phi in deg)\n");
 	return 2;
+}
+
+/* The facet-scale BRDF at one wavelength for the macro integral: diffuse
+ * (linear in theta_i between the solved angles), its error, the lobe. */
+struct facet_ctx {
+	const struct ad_result *r;
+	const double *th;	/* [n_th] solved incidence angles [rad], ascending */
+	int n_th;
+	const struct specular_stack *st;
+	double alpha;
+};
+
+static void facet_at(void *ctx, double ti, double to, double ph, double *out)
+{
+	const struct facet_ctx *c = ctx;
+	int k = 0;
+	while (k + 2 < c->n_th && c->th[k + 1] < ti)
+		k++;
+	double t = (ti - c->th[k]) / (c->th[k + 1] - c->th[k]), e0, e1;
+	t = fmin(fmax(t, 0.0), 1.0);
+	double f0 = ad_brdf(c->r, k, to, ph, &e0), f1 = ad_brdf(c->r, k + 1, to, ph, &e1);
+	out[0] = (1.0 - t) * f0 + t * f1;
+	out[1] = (1.0 - t) * e0 + t * e1;
+	out[2] = specular_ggx(c->st, c->alpha, ti, to, ph);
 }
 
 /* Index of theta in the list of distinct incidence angles, added if new. */
@@ -54,7 +85,7 @@ static int angle_index(double *th, int *n, double t)
 int main(int argc, char **argv)
 {
 	const char *name = NULL, *file = NULL, *wls = "470,550,656";
-	double alpha = -1.0, tol = 1e-3;
+	double alpha = -1.0, tol = 1e-3, macro = -1.0;
 	int nodes = 0;
 	for (int i = 1; i < argc; i++) {
 		if (i + 1 >= argc)
@@ -76,6 +107,13 @@ int main(int argc, char **argv)
 			tol = strtod(argv[++i], &end);
 			if (*end != '\0' || !(tol > 0.0 && tol <= 0.1)) {
 				fprintf(stderr, "brdf_model: --tol %s: not a number in (0, 0.1]\n", argv[i]);
+				return 2;
+			}
+		} else if (strcmp(argv[i], "--macro") == 0) {
+			macro = strtod(argv[++i], &end);
+			if (*end != '\0' || !(macro >= 0.0 && macro <= MACRO_SLOPE_MAX)) {
+				fprintf(stderr, "brdf_model: --macro %s: not a number in [0, %g]\n", argv[i],
+				    MACRO_SLOPE_MAX);
 				return 2;
 			}
 		} else if (strcmp(argv[i], "--nodes") == 0) {
@@ -101,6 +139,10 @@ int main(int argc, char **argv)
 	}
 	if (alpha < 0.0)
 		alpha = preset_surface_roughness(p);
+	if (macro < 0.0)
+		macro = p->macro_slope;
+	static struct macro_rule rule;
+	macro_rule_init(&rule, macro, MACRO_NQ);
 
 	/* The points, and their distinct incidence angles. */
 	double (*pt)[3] = xcalloc(MAX_POINTS, sizeof *pt);
@@ -127,6 +169,13 @@ int main(int argc, char **argv)
 		}
 		n++;
 	}
+	if (rule.n > 0) {	/* the relief: fixed incidence angles, not the points' own */
+		n_th = 0;
+		for (int d = 0; d <= 88; d += 2)
+			th[n_th++] = d * rad;
+		th[n_th++] = 89.0 * rad;
+		th[n_th++] = 89.5 * rad;
+	}
 	double *fd = xcalloc((size_t)n * 3, sizeof *fd), *fs = fd + n, *ve = fs + n;
 	struct ad_opts o;
 	ad_opts_default(&o);
@@ -146,7 +195,16 @@ int main(int argc, char **argv)
 			break;
 		}
 		specular_stack_of_slab(&s, OPTICS_FRESNEL_EXACT, &st);
-		for (int i = 0; i < n; i++) {
+		struct facet_ctx fc = { &r, th, n_th, &st, alpha };
+		for (int i = 0; i < n && rule.n > 0; i++) {
+			double v[3], ph = pt[i][2] > 180.0 ? 360.0 - pt[i][2] : pt[i][2];
+			macro_eval(&rule, facet_at, &fc, 3, pt[i][0] * rad, pt[i][1] * rad, ph * rad,
+			    v);
+			fd[i] += v[0] / n_wl;
+			ve[i] += v[1] * v[1];
+			fs[i] += v[2] / n_wl;
+		}
+		for (int i = 0; i < n && rule.n == 0; i++) {
 			double e, ph = pt[i][2] > 180.0 ? 360.0 - pt[i][2] : pt[i][2];
 			fd[i] += ad_brdf(&r, beam[i], pt[i][1] * rad, ph * rad, &e) / n_wl;
 			fs[i] += specular_ggx(&st, alpha, pt[i][0] * rad, pt[i][1] * rad, ph * rad) / n_wl;

@@ -23,6 +23,7 @@ void bake_free(struct bake *b)
 	free(b->albedo_rgb);
 	free(b->rgb_from_wl);
 	free(b->stack);
+	free(b->macro);
 	free(b->sss_radius_cm);
 	free(b->points);
 	free(b->theta_o_nodes);

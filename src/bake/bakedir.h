@@ -23,6 +23,10 @@ struct bake {
 	double *rgb_from_wl;	/* [3][n_wl] linear sRGB = rgb_from_wl . spectral values */
 	double ior;		/* refractive index of the top surface (sebum if present) [-] */
 	double roughness;	/* microfacet roughness alpha (GGX) of the top surface [-] */
+	double macro_slope;	/* RMS slope of the mm-scale relief over the whole BRDF [-];
+				 * 0 = none */
+	struct macro_rule *macro;	/* its quadrature (engine/macro.h), NULL when
+					 * macro_slope == 0 */
 	struct specular_stack *stack;	/* [n_wl] clear top stack for the specular Fresnel */
 	double *sss_radius_cm;	/* [n_wl] mean exit radius of the diffuse light at normal incidence [cm] */
 	double sss_radius_rgb_cm[3];
@@ -44,6 +48,7 @@ struct bake_meta {
 	const char *preset;		/* preset name or file */
 	double ior;			/* top-surface index for the analytic specular [-] */
 	double roughness;		/* GGX alpha of the top surface [-] */
+	double macro_slope;		/* RMS slope of the mm-scale relief [-] (0: none) */
 	const double *rgb_from_wl;	/* [3][n_wl] spectral -> linear sRGB weights */
 	const char *rgb_note;		/* how wavelengths map to RGB, for the manifest */
 	const char *command;		/* command line, for the manifest */

@@ -21,6 +21,7 @@
 #include "base/checksum.h"
 #include "base/srgb.h"
 #include "base/util.h"
+#include "engine/macro.h"
 #include "io/exrio.h"
 #include "io/pngio.h"
 #include "skin/preset.h"
@@ -288,39 +289,151 @@ static double clamp_theta(double t)
 	return fmin(0.5 * M_PI, fmax(0.0, t));
 }
 
-void bake_eval_diffuse(const struct bake *b, double theta_i, double theta_o, double dphi, double *f, double *err)
+/* The facet-scale BRDF: the table and the lobe as baked. */
+static void raw_diffuse(const struct bake *b, double theta_i, double theta_o, double dphi, double *f,
+    double *err)
 {
 	double ph = fold_phi(dphi), ti = clamp_theta(theta_i), to = clamp_theta(theta_o);
 	for (int w = 0; w < b->n_wl; w++)
 		f[w] = bake_interp_eval(b, w, ti, to, ph, err ? &err[w] : NULL);
 }
 
-void bake_eval_specular(const struct bake *b, double theta_i, double theta_o, double dphi, double *f)
+static void raw_specular(const struct bake *b, double theta_i, double theta_o, double dphi,
+    double *f)
 {
 	for (int w = 0; w < b->n_wl; w++)
 		f[w] = specular_ggx(&b->stack[w], b->roughness, theta_i, theta_o, fold_phi(dphi));
 }
 
-void bake_eval_rgb(const struct bake *b, double theta_i, double theta_o, double dphi, double rgb[3])
+/* The diffuse table's part of raw_rgb. */
+static void raw_diffuse_rgb(const struct bake *b, double theta_i, double theta_o, double dphi,
+    double rgb[3])
 {
 	double ph = fold_phi(dphi), ti = clamp_theta(theta_i), to = clamp_theta(theta_o);
-	double sp[BAKE_MAX_WL], fd[BAKE_MAX_WL];
+	double fd[BAKE_MAX_WL];
 	CHECK(b->n_wl <= BAKE_MAX_WL);	/* bake_load guarantees it */
-	bake_eval_specular(b, theta_i, theta_o, ph, sp);
 	int mixed = 0;
 	for (int c = 0; c < 3; c++)
 		mixed |= bake_interp_rgb(b, c, ti, to, ph, &rgb[c]) != 0;
 	if (mixed) {	/* point values and bin means: wavelength by wavelength */
-		bake_eval_diffuse(b, ti, to, ph, fd, NULL);
+		raw_diffuse(b, ti, to, ph, fd, NULL);
 		for (int c = 0; c < 3; c++) {
 			rgb[c] = 0.0;
 			for (int w = 0; w < b->n_wl; w++)
 				rgb[c] += b->rgb_from_wl[c * b->n_wl + w] * fd[w];
 		}
 	}
+}
+
+static void raw_rgb(const struct bake *b, double theta_i, double theta_o, double dphi,
+    double rgb[3])
+{
+	double sp[BAKE_MAX_WL];
+	CHECK(b->n_wl <= BAKE_MAX_WL);	/* bake_load guarantees it */
+	raw_specular(b, theta_i, theta_o, fold_phi(dphi), sp);
+	raw_diffuse_rgb(b, theta_i, theta_o, dphi, rgb);
 	for (int c = 0; c < 3; c++)
 		for (int w = 0; w < b->n_wl; w++)
 			rgb[c] += b->rgb_from_wl[c * b->n_wl + w] * sp[w];
+}
+
+/* The macro-scale roughness (engine/macro.h): the facet BRDF above
+ * integrated over the mm-scale facets, part by part (the sum of the parts'
+ * integrals is the total's: the integral is linear). */
+enum part { PART_DIFFUSE, PART_DIFFUSE_ERR, PART_SPECULAR, PART_RGB, PART_DIFFUSE_RGB };
+struct part_ctx {
+	const struct bake *b;
+	enum part part;
+};
+
+static void part_at(void *ctx, double ti, double to, double ph, double *out)
+{
+	const struct part_ctx *c = ctx;
+	switch (c->part) {
+	case PART_DIFFUSE:
+		raw_diffuse(c->b, ti, to, ph, out, NULL);
+		break;
+	case PART_DIFFUSE_ERR:	/* values, then errors */
+		raw_diffuse(c->b, ti, to, ph, out, out + c->b->n_wl);
+		break;
+	case PART_SPECULAR:
+		raw_specular(c->b, ti, to, ph, out);
+		break;
+	case PART_RGB:
+		raw_rgb(c->b, ti, to, ph, out);
+		break;
+	case PART_DIFFUSE_RGB:
+		raw_diffuse_rgb(c->b, ti, to, ph, out);
+		break;
+	}
+}
+
+void bake_eval_diffuse(const struct bake *b, double theta_i, double theta_o, double dphi, double *f,
+    double *err)
+{
+	if (b->macro == NULL) {
+		raw_diffuse(b, theta_i, theta_o, dphi, f, err);
+		return;
+	}
+	/* The error: the facets' errors summed with the integral's weights, as
+	 * if fully correlated (an upper bound). */
+	double v[2 * BAKE_MAX_WL];
+	struct part_ctx c = { b, err ? PART_DIFFUSE_ERR : PART_DIFFUSE };
+	macro_eval(b->macro, part_at, &c, (err ? 2 : 1) * b->n_wl, clamp_theta(theta_i),
+	    clamp_theta(theta_o), fold_phi(dphi), v);
+	for (int w = 0; w < b->n_wl; w++) {
+		f[w] = v[w];
+		if (err)
+			err[w] = v[b->n_wl + w];
+	}
+}
+
+void bake_eval_specular(const struct bake *b, double theta_i, double theta_o, double dphi,
+    double *f)
+{
+	if (b->macro == NULL) {
+		raw_specular(b, theta_i, theta_o, dphi, f);
+		return;
+	}
+	struct part_ctx c = { b, PART_SPECULAR };
+	macro_eval(b->macro, part_at, &c, b->n_wl, clamp_theta(theta_i), clamp_theta(theta_o),
+	    fold_phi(dphi), f);
+}
+
+void bake_eval_rgb(const struct bake *b, double theta_i, double theta_o, double dphi, double rgb[3])
+{
+	if (b->macro == NULL) {
+		raw_rgb(b, theta_i, theta_o, dphi, rgb);
+		return;
+	}
+	struct part_ctx c = { b, PART_RGB };
+	macro_eval(b->macro, part_at, &c, 3, clamp_theta(theta_i), clamp_theta(theta_o),
+	    fold_phi(dphi), rgb);
+}
+
+void bake_eval_specular_rgb(const struct bake *b, double theta_i, double theta_o, double dphi,
+    double rgb[3])
+{
+	double sp[BAKE_MAX_WL];
+	CHECK(b->n_wl <= BAKE_MAX_WL);
+	bake_eval_specular(b, theta_i, theta_o, dphi, sp);
+	for (int c = 0; c < 3; c++) {
+		rgb[c] = 0.0;
+		for (int w = 0; w < b->n_wl; w++)
+			rgb[c] += b->rgb_from_wl[c * b->n_wl + w] * sp[w];
+	}
+}
+
+void bake_eval_diffuse_rgb(const struct bake *b, double theta_i, double theta_o, double dphi,
+    double rgb[3])
+{
+	if (b->macro == NULL) {
+		raw_diffuse_rgb(b, theta_i, theta_o, dphi, rgb);
+		return;
+	}
+	struct part_ctx c = { b, PART_DIFFUSE_RGB };
+	macro_eval(b->macro, part_at, &c, 3, clamp_theta(theta_i), clamp_theta(theta_o),
+	    fold_phi(dphi), rgb);
 }
 
 int bake_preset_to_dir(struct bake_spec *s, const struct skin_params *p, const char *label, const char *out,
@@ -344,7 +457,8 @@ int bake_preset_to_dir(struct bake_spec *s, const struct skin_params *p, const c
 		return 0;	/* every rank holds the whole result; rank 0 writes it */
 	double *m = xmalloc(sizeof(double) * 3 * (size_t)s->n_wl);
 	struct bake_meta meta = { .preset = label, .ior = preset_surface_ior(p), .roughness = preset_surface_roughness(p),
-		.rgb_from_wl = m, .rgb_note = bake_rgb_weights(s, m), .command = command };
+		.macro_slope = p->macro_slope, .rgb_from_wl = m, .rgb_note = bake_rgb_weights(s, m),
+		.command = command };
 	int rc = bake_write_files(outdir_path(&od), s, r, &meta, cause) != 0 ? -2 : 0;
 	if (rc != 0)
 		outdir_fail(&od, cause);

@@ -117,6 +117,13 @@ static json_object *specular_info(const struct bake_spec *s, const struct bake_r
 	    "top stack"));
 	add(sp, "alpha", json_num(m->roughness));
 	add(sp, "ior", json_num(m->ior));
+	if (m->macro_slope > 0.0) {
+		add(sp, "macro_slope", json_num(m->macro_slope));
+		add(sp, "macro", jstr("mm-scale relief (engine/macro.h): eval and the exporters "
+		    "integrate the table and this lobe together over Beckmann facets of this RMS "
+		    "slope with height-correlated Smith shadowing; the table and albedo here are "
+		    "the facets' own"));
+	}
 	add(sp, "fresnel", jstr(s->opts.fresnel == OPTICS_FRESNEL_SCHLICK ? "schlick" : "exact"));
 	json_object *stacks = json_object_new_array();
 	for (int w = 0; w < s->n_wl; w++)

@@ -12,6 +12,7 @@
 #include <unistd.h>
 
 #include "base/util.h"
+#include "engine/macro.h"
 #include "io/json.h"
 
 static int jnum_array(json_object *o, const char *key, double **out, int *n, char **cause,
@@ -112,6 +113,16 @@ static int read_specular(json_object *o, struct bake *b, const char *mpath, char
 	}
 	b->ior = jnum(sp, "ior", 1.5);
 	b->roughness = jnum(sp, "alpha", 0.3);
+	b->macro_slope = jnum(sp, "macro_slope", 0.0);
+	if (!(b->macro_slope >= 0.0 && b->macro_slope <= MACRO_SLOPE_MAX)) {
+		*cause = xasprintf("%s: specular.macro_slope %g is out of range [0, %g]", mpath,
+		    b->macro_slope, MACRO_SLOPE_MAX);
+		return -1;
+	}
+	if (b->macro_slope > 0.0) {
+		b->macro = xmalloc(sizeof *b->macro);
+		macro_rule_init(b->macro, b->macro_slope, MACRO_NQ);
+	}
 	b->stack = xcalloc((size_t)b->n_wl, sizeof *b->stack);
 	enum optics_fresnel model = OPTICS_FRESNEL_EXACT;
 	if (json_object_object_get_ex(sp, "fresnel", &fr) &&

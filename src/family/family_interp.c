@@ -12,6 +12,7 @@
 
 #include "base/check.h"
 #include "base/util.h"
+#include "engine/macro.h"
 
 /* Weights of axis a at x: nodes first .. first + *k - 1. */
 static void axis_weights(const struct family_axis *a, double x, int *first, int *k, double w[4])
@@ -233,8 +234,13 @@ struct bake *family_bake_at(const struct family *f, const double *x)
 	for (int j = 0; j < st.n; j++) {
 		b->ior += st.w[j] * f->bake[st.member[j]]->ior;
 		b->roughness += st.w[j] * f->bake[st.member[j]]->roughness;
+		b->macro_slope += st.w[j] * f->bake[st.member[j]]->macro_slope;
 		if (st.w[j] > st.w[heavy])
 			heavy = j;
+	}
+	if (b->macro_slope > 0.0) {	/* the members' mm-scale relief, blended as the roughness */
+		b->macro = xmalloc(sizeof *b->macro);
+		macro_rule_init(b->macro, b->macro_slope, MACRO_NQ);
 	}
 	b->stack = xmalloc(sizeof *b->stack * (size_t)b->n_wl);
 	memcpy(b->stack, f->bake[st.member[heavy]]->stack, sizeof *b->stack * (size_t)b->n_wl);

@@ -173,8 +173,9 @@ static int write_member(const struct family_plan *pl, struct family *f, int m, c
 		}
 	double *w = xmalloc(sizeof(double) * 3 * (size_t)s->n_wl);
 	struct bake_meta meta = { .preset = pl->preset, .ior = preset_surface_ior(p),
-		.roughness = preset_surface_roughness(p), .rgb_from_wl = w, .rgb_note = bake_rgb_weights(s, w),
-		.command = pl->command };
+		.roughness = preset_surface_roughness(p), .macro_slope = p->macro_slope,
+		.rgb_from_wl = w,
+		.rgb_note = bake_rgb_weights(s, w), .command = pl->command };
 	char *mdir = xasprintf("%s/m%04d", stage, m);
 	int rc = util_mkdirs(mdir, cause) || bake_write_files(mdir, s, &r, &meta, cause) ||
 	    member_record(f, m, s, &r, mdir, cause) ? -1 : 0;

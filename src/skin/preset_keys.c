@@ -90,6 +90,10 @@ const struct preset_key preset_key_table[] = {
 	{ "surface", "multiple_scattering", K_ROUGH, NONE, POFF(facet_ms), 0, 1, "", "0",
 	  "1: light meets the rough boundaries' microfacets as often as it hits them (Heitz 2016 random "
 	  "walk, energy conserving); 0: once (Walter 2007; what shadowing and masking stop is lost)" },
+	{ "surface", "macro_slope", K_ROUGH, NONE, POFF(macro_slope), 0, 0.8, "", "0",
+	  "RMS slope (Beckmann m) of the mm-scale relief, furrows and tilted patches, over "
+	  "the whole BRDF: facets with the baked BRDF, height-correlated Smith shadowing "
+	  "(engine/macro.h); 0 = flat" },
 	{ "epidermis", "top_roughness", K_ROUGH, SKIN_EPIDERMIS, LOFF(rough_top), 0, 1, "", "0",
 	  "GGX alpha of the boundary under the sebum film (needs a film); 0 = smooth" },
 	{ "dermis", "top_roughness", K_ROUGH, SKIN_DERMIS, LOFF(rough_top), 0, 1, "", "0",

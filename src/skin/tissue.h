@@ -67,6 +67,9 @@ struct skin_params {
 				 * 0 = smooth; > 0 is also the specular lobe's alpha */
 	double facet_ms;	/* 1 = light scatters on the rough boundaries' facets until it leaves
 				 * (Heitz 2016), 0 = once (Walter 2007, the rest booked as lost) */
+	double macro_slope;	/* RMS slope of the mm-scale relief (Beckmann m) over the
+				 * baked BRDF, applied where it is evaluated (engine/macro.h)
+				 * [-]; 0 = none */
 	int n_override;
 	struct skin_override *override;	/* [n_override], ascending wl */
 };

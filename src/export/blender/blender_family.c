@@ -88,8 +88,8 @@ static int family_sss_fit(const struct brdf_family *f, const struct mapset *m,
 		brdf_family_member_index(f, k, idx);
 		for (int a = 0; a < f->n_axes; a++)
 			in &= idx[a] >= lo[a] && idx[a] <= hi[a];
-		if (in &&
-		    blender_sss_fit(brdf_family_member_bake(f, k), &fs->member[k], &err[k]) != 0)
+		const struct bake *b = brdf_family_member_bake(f, k);
+		if (in && blender_sss_fit(b, &fs->member[k], &err[k]) != 0)
 			fs->member[k].n = 0;
 	}
 	int rc = 0;
@@ -139,22 +139,19 @@ static float *family_lut(const struct brdf_family *f, const struct subgrid *g, i
 		if (fs) {
 			family_sss_at(f, fs, x, scratch, &ws);
 			blender_sss_wrap_fitted(src, &ws);
+			size_t row = (size_t)(g->slices - 1 - s) * BLENDER_SSS_N_VIEW;
 			for (int v = 0; v < fs->n; v++)
 				for (int k = 0; k < BLENDER_SSS_N_VIEW; k++) {
-					double e[3];
-					double view = blender_sss_view_deg[k] * M_PI / 180;
-					size_t row = (size_t)(g->slices - 1 - s);
-					size_t at = row * BLENDER_SSS_N_VIEW + k;
-					blender_sss_extra(&ws, v, view, e);
+					double e[3], to = blender_sss_view_deg[k] * M_PI / 180;
+					blender_sss_extra(&ws, v, to, e);
 					for (int c = 0; c < 3; c++)
-						extra[v][(size_t)c * eplane + at] = (float)e[c];
+						extra[v][(size_t)c * eplane + row + k] = (float)e[c];
 				}
 		}
 		float *one = blender_lut(src, nc, nphi);
 		size_t row0 = h - (size_t)(s + 1) * nc;
 		for (int c = 0; c < 3; c++)
-			memcpy(lut + (size_t)c * plane + row0 * w, one + (size_t)c * sp,
-			    sizeof(float) * sp);
+			memcpy(lut + (size_t)c * plane + row0 * w, one + (size_t)c * sp, sizeof(float) * sp);
 		free(one);
 		brdf_source_free(src);
 	}
@@ -186,8 +183,7 @@ static void texel_sss(const struct brdf_family *f, const struct mapset *m,
 	}
 }
 
-static int write_rgb(const char *dir, const char *name, int w, int h, const float *v,
-    const char *what, char **cause)
+static int write_rgb(const char *dir, const char *name, int w, int h, const float *v, const char *what, char **cause)
 {
 	static const char *const names[3] = { "R", "G", "B" };
 	size_t plane = (size_t)w * h;
@@ -209,18 +205,15 @@ static json_object *file_entry(const char *name, int w, int h, const char *what)
 	return o;
 }
 
-static char *section(const struct brdf_family *f, const struct mapset *m, const struct subgrid *g,
-    int nc, int nphi)
+static char *section(const struct brdf_family *f, const struct mapset *m, const struct subgrid *g, int nc, int nphi)
 {
-	json_object *o = json_object_new_object(), *axes = json_object_new_array(),
-	    *files = json_object_new_object();
+	json_object *o = json_object_new_object(), *axes = json_object_new_array(), *files = json_object_new_object();
 	json_object_object_add(o, "family_dir", json_object_new_string(f->dir ? f->dir : ""));
 	json_object_object_add(o, "preset", json_object_new_string(f->preset ? f->preset : ""));
 	for (int a = 0; a < g->k; a++) {
 		json_object *x = json_object_new_object(), *nodes = json_object_new_array();
 		json_object_object_add(x, "key", json_object_new_string(f->axis[a].key));
-		json_object_object_add(x, "log_coordinate",
-		    json_object_new_boolean(f->axis[a].log_coord));
+		json_object_object_add(x, "log_coordinate", json_object_new_boolean(f->axis[a].log_coord));
 		for (int i = 0; i < g->n[a]; i++) {
 			double t = g->n[a] > 1 ? (double)i / (g->n[a] - 1) : 0.5;
 			double c = g->c0[a] + t * (g->c1[a] - g->c0[a]);
@@ -235,15 +228,12 @@ static char *section(const struct brdf_family *f, const struct mapset *m, const 
 		json_object_array_add(cnt, json_object_new_int(g->n[a]));
 	json_object_object_add(o, "sub_counts", cnt);
 	json_object_object_add(o, "slices", json_object_new_int(g->slices));
-	json_object_object_add(o, "slice_order", json_object_new_string(
-	    "s = i0 + n0 * (i1 + n1 * i2); slice s is rows s * cos_nodes .. (s + 1) * cos_nodes - "
-	    "1 counted from the bottom (Blender v), each laid out as brdf_lut.exr"));
-	json_object_object_add(o, "interpolation", json_object_new_string(
-	    "multilinear between the atlases of the texel's neighbouring sub-grid points "
-	    "(family_coord: the position per axis); each atlas is the family interpolated at its "
-	    "point (cubic in log between members)"));
-	json_object_object_add(files, "family_lut",
-	    file_entry("family_lut.exr", nc * nphi, nc * g->slices,
+	json_object_object_add(o, "slice_order", json_object_new_string("s = i0 + n0 * (i1 + n1 * i2); slice s is rows "
+	    "s * cos_nodes .. (s + 1) * cos_nodes - 1 counted from the bottom (Blender v), each laid out as brdf_lut.exr"));
+	json_object_object_add(o, "interpolation", json_object_new_string("multilinear between the atlases of the "
+	    "texel's neighbouring sub-grid points (family_coord: the position per axis); each atlas is the family "
+	    "interpolated at its point (cubic in log between members)"));
+	json_object_object_add(files, "family_lut", file_entry("family_lut.exr", nc * nphi, nc * g->slices,
 	    "pi * f_r atlases of the sub-grid points, stacked"));
 	json_object_object_add(files, "family_coord", file_entry("family_coord.exr", m->w, m->h,
 	    "position of the texel in the sub-grid, per axis (R, G, B)"));
@@ -259,8 +249,8 @@ static char *section(const struct brdf_family *f, const struct mapset *m, const 
 
 /* Per texel: albedo (members' bihemispherical albedos blended), radius,
  * sub-grid position; three planes each. */
-static void texel_maps(const struct brdf_family *f, const struct mapset *m, const struct subgrid *g,
-    float *alb, float *rad, float *pos)
+static void texel_maps(const struct brdf_family *f, const struct mapset *m, const struct subgrid *g, float *alb, float *rad,
+    float *pos)
 {
 	double *bm = xmalloc(sizeof(double) * 3 * (size_t)f->n_members);
 	for (int k = 0; k < f->n_members; k++) {
@@ -281,8 +271,7 @@ static void texel_maps(const struct brdf_family *f, const struct mapset *m, cons
 			rad[(size_t)c * n + i] = (float)(0.01 * r[c]);
 			double p = 0.0;
 			if (c < g->k && g->n[c] > 1) {
-				double v = fmin(fmax(x[c], f->axis[c].node[0]),
-				    f->axis[c].node[f->axis[c].n - 1]);
+				double v = fmin(fmax(x[c], f->axis[c].node[0]), f->axis[c].node[f->axis[c].n - 1]);
 				double cv = family_axis_coord(&f->axis[c], v);
 				p = (cv - g->c0[c]) / (g->c1[c] - g->c0[c]) * (g->n[c] - 1);
 				p = fmin(fmax(p, 0.0), g->n[c] - 1.0);
@@ -300,24 +289,23 @@ static char *sss_maps_json(const char *ser, const struct mapset *m, int slices)
 	    "\"height\": %d, \"content\": \"the node's Color per texel [-] (R, G, B)\"}, "
 	    "\"radius_m\": {\"file\": \"sss_radius_%s.exr\", \"width\": %d, \"height\": %d, "
 	    "\"content\": \"the node's Radius per texel [m] (R, G, B)\"}, \"extra\": {\"file\": "
-	    "\"sss_extra_%s.exr\", \"width\": %d, \"height\": %d, \"content\": \"lambert_extra per "
-	    "family sub-grid point: column k at theta_o_deg[k], row s (from the bottom) at slice "
-	    "s; blended at family_coord as family_lut is\"}, \"interpolation\": \"colour, radius: "
-	    "the members' fits (each to its own Rd(r)) per axis linear in the axis coordinate "
-	    "between neighbouring members, the colour linearly, the radius as its log; "
+	    "\"sss_extra_%s.exr\", \"width\": %d, \"height\": %d, \"content\": \"lambert_extra "
+	    "per family sub-grid point: column k at theta_o_deg[k], row s (from the bottom) at "
+	    "slice s; blended at family_coord as family_lut is\"}, \"interpolation\": \"colour, "
+	    "radius: the members' fits (each to its own Rd(r)) per axis linear in the axis "
+	    "coordinate between neighbouring members, the colour linearly, the radius as its log; "
 	    "family_lut.exr holds each sub-grid point's remainder (its table less the largest far "
-	    "field of the versions' nodes at that point's "
-	    "fits)\"}", ser, m->w, m->h, ser, m->w, m->h, ser,
-	    BLENDER_SSS_N_VIEW, slices);
+	    "field of the versions' nodes at that point's fits)\"}", ser, m->w, m->h, ser, m->w,
+	    m->h, ser, BLENDER_SSS_N_VIEW, slices);
 }
 
 int blender_family_export(struct brdf_family *f, const struct mapset *m,
-    const struct blender_options *o, int sub,
-    const char *detail_dir, int translucent, const char *out_dir, char **cause)
+    const struct blender_options *o, int sub, const char *detail_dir, int translucent,
+    const char *out_dir, char **cause)
 {
 	if (sub < BLENDER_FAMILY_SUB_MIN || sub > BLENDER_FAMILY_SUB_MAX) {
-		*cause = xasprintf("%d sub-grid points per axis is out of range [%d, %d]", sub,
-		    BLENDER_FAMILY_SUB_MIN, BLENDER_FAMILY_SUB_MAX);
+		*cause = xasprintf("%d sub-grid points per axis is out of range [%d, %d]", sub, BLENDER_FAMILY_SUB_MIN,
+		    BLENDER_FAMILY_SUB_MAX);
 		return -1;
 	}
 	if (mapset_check_family(m, m->family_dir ? m->family_dir : "maps", f->family, cause) != 0 ||
@@ -371,32 +359,26 @@ int blender_family_export(struct brdf_family *f, const struct mapset *m,
 	struct outdir od;
 	int rc = outdir_begin(&od, out_dir, &blender_outdir_kind, cause) != 0 ? -1 : 0;
 	const char *dir = rc == 0 ? outdir_path(&od) : NULL;
-	rc = rc != 0 ? -1
-	    : write_rgb(dir, "family_lut.exr", o->lut_cos * o->lut_phi, o->lut_cos * g.slices, lut,
-	    translucent
-	    ? "pi * f_r atlases of the family's sub-grid, stacked, less the subsurface node's far "
-	    "field "
-	    "(manifest translucent)"
-	    : "pi * f_r atlases of the family's sub-grid, stacked (manifest family)", cause) ||
-	    write_rgb(dir, "family_coord.exr", m->w, m->h, pos, "sub-grid position per axis",
-	    cause) ||
-	    write_rgb(dir, "albedo_map.exr", m->w, m->h, alb,
-	    "bihemispherical diffuse albedo, linear Rec.709", cause) ||
-	    write_rgb(dir, "sss_radius_map.exr", m->w, m->h, rad,
-	    "mean exit radius per R, G, B [m]", cause) ? -2 : 0;
+	const char *lut_what = translucent ? "pi * f_r atlases of the family's sub-grid, stacked, less "
+	    "the subsurface node's far field (manifest translucent)" :
+	    "pi * f_r atlases of the family's sub-grid, stacked (manifest family)";
+	rc = rc != 0 ? -1 : write_rgb(dir, "family_lut.exr", o->lut_cos * o->lut_phi, o->lut_cos * g.slices, lut,
+	    lut_what, cause) ||
+	    write_rgb(dir, "family_coord.exr", m->w, m->h, pos, "sub-grid position per axis", cause) ||
+	    write_rgb(dir, "albedo_map.exr", m->w, m->h, alb, "bihemispherical diffuse albedo, linear Rec.709", cause) ||
+	    write_rgb(dir, "sss_radius_map.exr", m->w, m->h, rad, "mean exit radius per R, G, B [m]", cause) ? -2 : 0;
 	for (int v = 0; rc == 0 && v < fs.n; v++) {
 		float *col = xmalloc(sizeof(float) * 3 * n), *len = xmalloc(sizeof(float) * 3 * n);
 		texel_sss(f, m, &fs, v, col, len);
-		char *nc = xasprintf("sss_colour_%s.exr", ser[v]),
-		    *nr = xasprintf("sss_radius_%s.exr", ser[v]);
+		char *nc = xasprintf("sss_colour_%s.exr", ser[v]);
+		char *nr = xasprintf("sss_radius_%s.exr", ser[v]);
 		char *ne = xasprintf("sss_extra_%s.exr", ser[v]);
 		rc = write_rgb(dir, nc, m->w, m->h, col,
-		    "Cycles subsurface node Color per texel (manifest translucent)",
-		    cause) || write_rgb(dir, nr, m->w, m->h, len,
+		    "Cycles subsurface node Color per texel (manifest translucent)", cause) ||
+		    write_rgb(dir, nr, m->w, m->h, len,
 		    "Cycles subsurface node Radius per texel [m]", cause) ||
 		    write_rgb(dir, ne, BLENDER_SSS_N_VIEW, g.slices, extra[v],
-		    "lambert_extra per sub-grid point and view node (manifest "
-		    "translucent)", cause) ? -2 : 0;
+		    "lambert_extra per sub-grid point and view node (manifest translucent)", cause) ? -2 : 0;
 		free(nc);
 		free(nr);
 		free(ne);
