@@ -268,9 +268,9 @@ scripts/validate-mitsuba.sh, so check it when the scene or the renderers change)
   skin: the one light does not reach them, and with the exporter's defaults POV-Ray has no
   interreflection (no radiosity), which lights them in the path tracers. Its 95th percentile (22)
   is far above the others' (7-13).
-- *Mitsuba translucent*: about 10 % brighter than the reference all over the face (the remainder
-  is clipped at grazing angles, where the fitted medium returns more than the bake;
-  docs/mitsuba.md) and speckled in the shadow at 256 samples.
+- *Mitsuba translucent*: what it shows beyond the table's error is the fitted medium's (one
+  homogeneous medium for the layers; where the remainder is still clipped at grazing angles the
+  surface is brighter than the bake, docs/mitsuba.md) and its noise (speckle in the shadow).
 - *Back light*: only a rim shows. The light is behind and above the head, the ear is not between
   it and the camera, so no light through the ear is tested; the rim is a thin white specular line
   in every renderer, wider and brighter in POV-Ray and Blender's general mode. At 40 x 30 px the

@@ -6,14 +6,11 @@
 # 1. Per-texel parameters: maps at blood = 0.015 and 0.06 (between the
 #    nodes 0.005, 0.03, 0.1): the closure's colour and length per channel in
 #    BASE_skin_sss.exr against the fit of a single bake of that texel's
-#    parameters (tests/sss_fit_print), within the stated error: 3 sigma of
-#    the two profiles' Monte Carlo error (the relative standard error of the
-#    power, from radial.rd_r_err, for the colour, which sets the power, and
-#    of the mean radius, radial.mean_radius_err_cm, for the length, which
-#    sets it; the largest over the channel's wavelengths, an upper bound for
-#    their weighted mean), plus the error of interpolating linearly in the
-#    axis coordinate t between two nodes, bounded by (t - t0)(t1 - t)/2
-#    times the members' second divided difference.
+#    parameters (tests/sss_fit_print), within the stated error
+#    (tests/lib/sss_texel.py): 3 sigma of the two profiles' Monte Carlo
+#    error (the power's for the colour, the mean radius's for the length)
+#    plus the bound of linear interpolation in the axis coordinate between
+#    two nodes from the members' second divided difference.
 # 2. Flat skin (tests/data/pov/flat.scene) under one parallel light, 96 x 96,
 #    mean over pixels per channel: maps uniform at member m0001's blood
 #    against the translucent render of that member's bake, and maps halfway
@@ -44,48 +41,17 @@ for v in 0.015 0.06; do
 	check "export pov --family --maps --mode translucent (blood $v)" \
 		test -s "$tmpd/e$v/flat_skin_sss.exr"
 	r=$(python3 - "$tmpd" "$v" "$fam" <<'PY'
-import json, math, os, sys
+import json, os, sys
 sys.path.insert(0, os.path.join(os.environ["top_srcdir"], "tests", "lib"))
 from images import read_exr
-d, v, fam = sys.argv[1], float(sys.argv[2]), sys.argv[3]
-exr = read_exr(d + "/e%s/flat_skin_sss.exr" % sys.argv[2])
-texel = {k: rows[3][3] for k, rows in exr.items()}
-direct = json.load(open(d + "/b%s.json" % sys.argv[2]))
+from sss_texel import check
+d, v, fam = sys.argv[1], sys.argv[2], sys.argv[3]
+exr = read_exr(d + "/e%s/flat_skin_sss.exr" % v)
+texel = {k: [exr["%s.%s" % (k, ch)][3][3] for ch in "RGB"] for k in ("colour", "length_mm")}
 members = [json.load(open(d + "/m%d.json" % m)) for m in range(3)]
-ax = json.load(open(fam + "/family.json"))["axes"][0]
-coord = math.log if ax["log_coordinate"] else float  # the axis coordinate t is linear in it
-def rel_err(bake, kind, c):
-    """Largest relative standard error over the wavelengths that make channel c."""
-    m = json.load(open(bake + "/manifest.json"))
-    w, rad = m["rgb"]["rgb_from_wl"][c], m["radial"]
-    if kind == "length":
-        e = [s / x for s, x in zip(rad["mean_radius_err_cm"], rad["mean_radius_cm"]) if x > 0]
-    else:
-        dr = rad["dr_cm"]
-        ring = [2 * math.pi * (k + 0.5) * dr * dr for k in range(rad["n_r"])]
-        e = [math.sqrt(sum((a * s) ** 2 for a, s in zip(ring, es)))
-             / sum(a * x for a, x in zip(ring, xs)) for xs, es in zip(rad["rd_r"], rad["rd_r_err"])]
-    return max(x for x, wj in zip(e, w) if abs(wj) > 0.05 * max(abs(y) for y in w))
-ok, out = 1, []
-for kind, key in (("colour", "colour"), ("length", "length_mm")):
-    for c, ch in enumerate("RGB"):
-        got, want = texel["%s.%s" % (key, ch)], direct[key][c]
-        # Node values in the quantity the blend is linear in (the length: its log), and t.
-        f = [m[key][c] if kind == "colour" else math.log(m[key][c]) for m in members]
-        t, tv = [coord(x) for x in ax["nodes"]], coord(v)
-        j = 0 if tv < t[1] else 1
-        dd = ((f[2] - f[1]) / (t[2] - t[1]) - (f[1] - f[0]) / (t[1] - t[0])) / (t[2] - t[0]) * 2
-        interp = abs((tv - t[j]) * (t[j + 1] - tv) / 2 * dd)
-        if kind == "colour":
-            interp /= abs(want)
-        sig = math.hypot(rel_err(fam + "/m0001", kind, c),
-                         rel_err(d + "/b%s" % sys.argv[2], kind, c))
-        tol = 3 * sig + interp
-        dev = got / want - 1
-        ok &= abs(dev) <= tol
-        out.append("%s %s %+.2f%% (tol %.2f%%: 3 sigma %.2f%% + interpolation %.2f%%)"
-                   % (kind, ch, 100 * dev, 100 * tol, 300 * sig, 100 * interp))
-print("; ".join(out), ok)
+ok, out = check(texel, json.load(open(d + "/b%s.json" % v)), members, fam, float(v),
+                fam + "/m0001", d + "/b%s" % v)
+print("; ".join(out), int(ok))
 PY
 )
 	echo "# blood $v: texel / single bake - 1: ${r% *}"

@@ -251,7 +251,8 @@ done
 python3 - "$top_srcdir/src/cli" "$tmpd" <<'EOF' >"$tmpd/table.tap"
 import re, sys
 src, tmp = sys.argv[1], sys.argv[2]
-files = {"cmd_simulate.c": "simulate", "cmd_bake.c": "bake", "cmd_eval.c": "eval",
+# A command's tables may be split over files by concept (bake: cmd_bake.c and bake_opts.c).
+files = {"cmd_simulate.c": "simulate", "cmd_bake.c bake_opts.c": "bake", "cmd_eval.c": "eval",
          "cmd_export_blender.c": "export_blender", "cmd_preset.c": "preset_show", "cmd_texture.c": "texture",
          "cmd_verify.c": "verify"}
 n = 0
@@ -260,12 +261,12 @@ def say(good, what):
     n += 1
     print(("ok" if good else "not ok") + " - " + what)
 for fn, cmd in files.items():
-    text = open(src + "/" + fn).read()
-    m = re.search(r"struct opt opts\[(?:OPT_MAX)?\] = \{(.*?)(OPT_END|\n\t\};)", text, re.S)
-    say(m is not None, "%s: option table found" % fn)
-    if not m:
+    text = "".join(open(src + "/" + f).read() for f in fn.split())
+    tables = re.findall(r"struct opt [a-z]+\[(?:OPT_MAX)?\] = \{(.*?)(?:OPT_END|\n\t\};)", text, re.S)
+    say(tables != [], "%s: option table found" % fn)
+    if not tables:
         continue
-    body = m.group(1)
+    body = "".join(tables)
     # One entry per '{ "name", OPT_' at the start of a line.
     starts = [e.start() for e in re.finditer(r'\n\t+\{ "[a-z-]+", OPT_', body)]
     entries = [body[a:b] for a, b in zip(starts, starts[1:] + [len(body)])]

@@ -347,6 +347,33 @@ static void test_solver_seam(void **state)
 	free(cause);
 }
 
+/* ad_orders = 1 (the family's node pilot): only Fourier order 0, and the
+ * albedos, Rsp and Tt bit for bit those of the bake of every order. */
+static void test_ad_orders_albedo(void **state)
+{
+	(void)state;
+	static struct bake_spec s;
+	base_spec(&s);
+	s.method = BAKE_SOLVER_AD;
+	s.n_r = 0;
+	s.ad_quad = 8;
+	s.ad_tol = 0.01;
+	struct bake_result a, b;
+	assert_int_equal(bake_run(&s, &a, NULL), 0);
+	s.ad_orders = 1;
+	assert_int_equal(bake_run(&s, &b, NULL), 0);
+	for (int j = 0; j < s.n_wl * s.n_ti; j++) {
+		assert_true(a.table.entry[j].albedo.v == b.table.entry[j].albedo.v);
+		assert_true(a.table.entry[j].rsp == b.table.entry[j].rsp);
+		assert_true(a.table.entry[j].tt.v == b.table.entry[j].tt.v);
+		assert_true(a.table.entry[j].albedo.v > 0.0);
+		assert_int_equal(b.table.entry[j].n_orders, 1);
+		assert_true(a.table.entry[j].n_orders > 1);
+	}
+	bake_result_free(&a);
+	bake_result_free(&b);
+}
+
 int main(void)
 {
 	const struct CMUnitTest tests[] = {
@@ -357,6 +384,7 @@ int main(void)
 		cmocka_unit_test(test_target_error_met),
 		cmocka_unit_test(test_reciprocity),
 		cmocka_unit_test(test_solver_seam),
+		cmocka_unit_test(test_ad_orders_albedo),
 	};
 	return cmocka_run_group_tests_name("bake", tests, NULL, NULL);
 }

@@ -27,7 +27,8 @@ struct ad_elem {
 	double *td;	/* [N x (N + E)] transmission down */
 	double *rb;	/* [N x N] reflection of light from below */
 	double *tu;	/* [N x N] transmission up */
-	double *rt_d, *td_d, *rb_d, *tu_d;	/* [E] collimated in, collimated out (from above: r, t; below) */
+	double *rt_d, *td_d, *rb_d, *tu_d;	/* [E] collimated in, collimated out
+						 * (from above: r, t; below) */
 };
 
 /* Doubles one element needs (ad_elem_bind carves them). */
@@ -37,11 +38,12 @@ void ad_elem_bind(struct ad_elem *e, double *block, int N, int E);
 
 /* A smooth interface between indices n_above and n_below at the nodes' s
  * values s[N] and the beams' se[E] (diagonal, optics.h Fresnel). */
-void ad_elem_smooth(struct ad_elem *x, int N, int E, enum optics_fresnel model, double n_above, double n_below,
-    const double *s, const double *se);
+void ad_elem_smooth(struct ad_elem *x, int N, int E, enum optics_fresnel model, double n_above,
+    double n_below, const double *s, const double *se);
 
 /* Doubles of workspace ad_elem_add needs. */
 size_t ad_elem_work(int N, int E);
 /* out = A above B (out may be B).  -1 if the LU solve fails. */
-int ad_elem_add(int N, int E, const struct ad_elem *A, const struct ad_elem *B, struct ad_elem *out, double *work);
+int ad_elem_add(int N, int E, const struct ad_elem *A, const struct ad_elem *B, struct ad_elem *out,
+    double *work);
 #endif

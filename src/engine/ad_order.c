@@ -25,7 +25,8 @@ struct medium {
 	struct ad_hg hg;
 	double tau, omega;	/* delta-M scaled */
 	double dtau_max;	/* thickest starting layer */
-	double *corr;		/* [n] correction of h_m's diagonal (forward scattering), from order 0 */
+	double *corr;		/* [n] correction of h_m's diagonal (forward
+				 * scattering), from order 0 */
 	double *ext;		/* [E] beams' extinction factor */
 	double *bscale;		/* [E] factor on a beam's backward column (g < 0) */
 };
@@ -40,7 +41,8 @@ struct ctx {
 	double *sqW;		/* [N] */
 	const double *se;	/* [E] */
 	int max_m;		/* orders that can be nonzero */
-	struct ad_rough rough[SLAB_MAX_LAYERS + 1][SLAB_MAX_LAYERS + 1];	/* boundary k's interface j, if rough */
+	/* boundary k's interface j, if rough */
+	struct ad_rough rough[SLAB_MAX_LAYERS + 1][SLAB_MAX_LAYERS + 1];
 };
 
 /* Per-thread scratch for one order. */
@@ -48,7 +50,8 @@ struct ws {
 	double *Hpp, *Hpm, *hgw, *lR, *lT, *ldT, *lwork, *swork;
 	struct ad_op R[SLAB_MAX_LAYERS], T[SLAB_MAX_LAYERS], U[2 * SLAB_MAX_LAYERS + 1];
 	double *block;	/* one allocation behind the ops */
-	struct ad_elem xb[SLAB_MAX_LAYERS + 1], xi;	/* rough boundaries for the order; one interface */
+	struct ad_elem xb[SLAB_MAX_LAYERS + 1], xi;	/* rough boundaries for the
+							 * order; one interface */
 	double *eblock, *ework;	/* behind them; NULL when all boundaries are smooth */
 };
 
@@ -125,7 +128,8 @@ static int rough_boundary(const struct ctx *c, int k, int mo, struct ws *w, char
 	for (int j = cnt - 3; j >= 0; j--) {
 		interface_order(c, k, j, mo, &w->xi);
 		if (ad_elem_add(c->lv->N, c->lv->E, &w->xi, &w->xb[k], &w->xb[k], w->ework)) {
-			*cause = xasprintf("adding-doubling: adding a rough boundary's interfaces failed (LAPACK dgesv)");
+			*cause = xasprintf("adding-doubling: adding a rough boundary's interfaces "
+			    "failed (LAPACK dgesv)");
 			return -1;
 		}
 	}
@@ -148,7 +152,8 @@ static void normalize(struct ctx *c, struct medium *m, const double *Hpp, const 
 	for (int i = 0; i < n; i++) {
 		double s = fb;
 		for (int j = 0; j < n; j++)
-			s += (1.0 - fb) * m->w[j] * (Hpp[j + (size_t)n * i] + Hpm[j + (size_t)n * i]);
+			s += (1.0 - fb) * m->w[j]
+			    * (Hpp[j + (size_t)n * i] + Hpm[j + (size_t)n * i]);
 		m->corr[i] = (1.0 - s) / m->w[i];
 		c->lv->norm_max = fmax(c->lv->norm_max, fabs(1.0 - s));
 		m->corr[i] += fb / m->w[i];
@@ -247,11 +252,13 @@ static int solve_order(struct ctx *c, int mo, struct ws *w, char **cause)
 	for (int e = 0; e < E; e++)
 		for (int i = 0; i < na; i++)
 			lv->F[((size_t)mo * E + e) * na + i] = n2 *
-			    (w->U[0].a[i + (size_t)N * (N + e)] - (top ? top[i + (size_t)N * e] : 0.0)) / (kap * c->sqW[i]);
+			    (w->U[0].a[i + (size_t)N * (N + e)]
+			    - (top ? top[i + (size_t)N * e] : 0.0)) / (kap * c->sqW[i]);
 	if (mo > 0)
 		return 0;
-	struct ad_flux fx = { .rsp = lv->rsp, .rd = lv->rd, .rd_d = lv->rd_d, .tt = lv->tt, .tt_d = lv->tt_d,
-		.a = lv->a };
+	struct ad_flux fx = {
+		.rsp = lv->rsp, .rd = lv->rd, .rd_d = lv->rd_d, .tt = lv->tt, .tt_d = lv->tt_d, .a = lv->a
+	};
 	return ad_stack_flux(N, E, K, bnd, w->R, w->T, w->U, c->sqW, &fx, w->swork, cause);
 }
 
@@ -292,7 +299,8 @@ static void setup(struct ctx *c, const double *se)
 		}
 		int lmax = (int)(c->o->dm_terms * m->n);
 		ad_hg_init(&m->hg, md->g[k], lmax < 2 ? 2 : lmax);
-		double f = md->g[k] > 0.0 ? m->hg.f : 0.0, om = md->omega[k];	/* retro-reflection stays scattering */
+		/* retro-reflection stays scattering */
+		double f = md->g[k] > 0.0 ? m->hg.f : 0.0, om = md->omega[k];
 		m->tau = md->tau[k] * (1.0 - om * f);
 		m->omega = om * (1.0 - f) / (1.0 - om * f);
 		m->dtau_max = c->o->dtau_frac * mu_min;
@@ -314,8 +322,10 @@ static void setup(struct ctx *c, const double *se)
 		for (int j = 0; md->brough[k] && j + 1 < md->bcnt[k]; j++)
 			if (md->balpha[k][j] > 0.0) {
 				struct ad_rough *r = &c->rough[k][j];
-				ad_rough_init(r, &lv->q, md->bn[k][j], md->bn[k][j + 1], md->balpha[k][j], md->fresnel, se, E,
-				    md->rough_nu > 0 ? md->rough_nu : ad_rough_nu(c->o->density), md->rough_walks);
+				ad_rough_init(r, &lv->q, md->bn[k][j], md->bn[k][j + 1],
+				    md->balpha[k][j], md->fresnel, se, E,
+				    md->rough_nu > 0 ? md->rough_nu : ad_rough_nu(c->o->density),
+				    md->rough_walks);
 				lv->rough_lost = fmax(lv->rough_lost, r->lost_max);
 			}
 	lv->t_air = xcalloc((size_t)lv->na + 1, sizeof(double));
@@ -366,8 +376,8 @@ static double order_size(const struct ad_level *lv, int mo)
 	return s;
 }
 
-int ad_level_solve(const struct ad_model *md, const double *se, int E, const struct ad_level_opts *o,
-    struct ad_level *lv, char **cause)
+int ad_level_solve(const struct ad_model *md, const double *se, int E,
+    const struct ad_level_opts *o, struct ad_level *lv, char **cause)
 {
 	memset(lv, 0, sizeof *lv);
 	if (ad_quad_build(&lv->q, md->sigma, md->nstar, md->n_iv, o->density, o->n_min, cause))
@@ -417,7 +427,8 @@ int ad_level_solve(const struct ad_model *md, const double *se, int E, const str
 		for (int mo = m0; mo < m1 && !done; mo++) {
 			lv->order_size[mo] = order_size(lv, mo);
 			lv->M = mo + 1;
-			if (mo >= 2 && lv->order_size[mo] < o->tol_f && lv->order_size[mo - 1] < o->tol_f)
+			if (mo >= 2 && lv->order_size[mo] < o->tol_f &&
+			    lv->order_size[mo - 1] < o->tol_f)
 				done = 1;
 		}
 		if (lv->M >= c.max_m)

@@ -16,19 +16,22 @@ struct ad_model {
 	int K;					/* turbid layers, >= 1 */
 	int slab_layer[SLAB_MAX_LAYERS];	/* index in struct slab of turbid layer k */
 	double n[SLAB_MAX_LAYERS];		/* refractive index [-] */
-	double tau[SLAB_MAX_LAYERS];		/* optical thickness (mu_a + mu_s) d [-], INFINITY allowed */
+	double tau[SLAB_MAX_LAYERS];		/* optical thickness (mu_a + mu_s)
+						 * d [-], INFINITY allowed */
 	double omega[SLAB_MAX_LAYERS];		/* single-scattering albedo [-] */
 	double g[SLAB_MAX_LAYERS];		/* HG anisotropy [-] */
 	int bcnt[SLAB_MAX_LAYERS + 1];		/* boundary k's index list length */
-	double bn[SLAB_MAX_LAYERS + 1][SLAB_MAX_LAYERS + 2];	/* its indices, medium above first [-] */
+	double bn[SLAB_MAX_LAYERS + 1][SLAB_MAX_LAYERS + 2];	/* its indices, medium above
+								 * first [-] */
 	double n_above;				/* ambient above [-] */
 	/* Rough interfaces (ad_rough.h): GGX alpha of boundary k's interface j,
 	 * between bn[k][j] and bn[k][j + 1]; 0 = smooth. */
 	double balpha[SLAB_MAX_LAYERS + 1][SLAB_MAX_LAYERS + 1];
 	int brough[SLAB_MAX_LAYERS + 1];	/* 1 if boundary k has a rough interface */
-	int rough_nu;				/* facet rule per axis; 0 = ad_rough_nu of the quadrature */
-	int rough_walks;			/* multiple scattering on the facets: walks per direction
-						 * (ad_rough.h); 0 = single scattering */
+	int rough_nu;				/* facet rule per axis; 0 =
+						 * ad_rough_nu of the quadrature */
+	int rough_walks;			/* multiple scattering on the facets: walks per
+						 * direction (ad_rough.h); 0 = single scattering */
 	enum optics_fresnel fresnel;		/* at every interface */
 	int n_iv;				/* quadrature pieces (ad_quad.h) */
 	double sigma[AD_MAX_IV + 1];		/* piece edges in s [-] */
@@ -53,7 +56,8 @@ struct ad_level {
 	int na;			/* exit nodes: directions that exist in the ambient above */
 	int M;			/* Fourier orders computed */
 	int complete;		/* 1 if the phase function has no orders beyond M */
-	double *F;		/* [M * E * na] BRDF coefficient of cos(m psi) [1/sr] at (m, e, i) */
+	double *F;		/* [M * E * na] BRDF coefficient of
+				 * cos(m psi) [1/sr] at (m, e, i) */
 	double *t_air;		/* [na] transmittance of the top boundary at the exit nodes (smooth
 				 * interfaces: the exit interpolation's divisor, ad_eval.h) */
 	double *order_size;	/* [M] largest |F_m| / largest F_0 */
@@ -70,7 +74,7 @@ struct ad_level {
 
 /* Solve md for beams arriving at s = n_above sin(theta_i) given in se[E].
  * -1 with *cause on failure; free with ad_level_free either way. */
-int ad_level_solve(const struct ad_model *md, const double *se, int E, const struct ad_level_opts *o,
-    struct ad_level *lv, char **cause);
+int ad_level_solve(const struct ad_model *md, const double *se, int E,
+    const struct ad_level_opts *o, struct ad_level *lv, char **cause);
 void ad_level_free(struct ad_level *lv);
 #endif

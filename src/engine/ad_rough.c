@@ -22,14 +22,15 @@ struct pt {
  * per interval, the intervals halving toward phi = 0, where lobes are
  * narrow (grazing directions). */
 #define AD_ROUGH_GPTS 8
-static const double phi_edges[AD_ROUGH_GIV + 1] = { 0.0, M_PI / 128, M_PI / 64, M_PI / 32, M_PI / 16, M_PI / 8,
-	M_PI / 4, M_PI / 2, M_PI };
+static const double phi_edges[AD_ROUGH_GIV + 1] = {
+	0.0, M_PI / 128, M_PI / 64, M_PI / 32, M_PI / 16, M_PI / 8, M_PI / 4, M_PI / 2, M_PI
+};
 
 static void gauss_phi(double *phi, double *w)
 {
 	for (int k = 0; k < AD_ROUGH_GIV; k++)
-		ad_gauss_legendre(AD_ROUGH_GPTS, phi_edges[k], phi_edges[k + 1], phi + AD_ROUGH_GPTS * k,
-		    w + AD_ROUGH_GPTS * k);
+		ad_gauss_legendre(AD_ROUGH_GPTS, phi_edges[k], phi_edges[k + 1],
+		    phi + AD_ROUGH_GPTS * k, w + AD_ROUGH_GPTS * k);
 }
 
 int ad_rough_nu(double density)
@@ -164,7 +165,8 @@ static void point_col(const struct side *sd, struct ad_rough_col *c)
 		double st = q->s[i] / n_o, mu = ad_quad_mu(q, i, n_o), f = q->W[i] / (n_o * n_o);
 		for (int b = 0; b < AD_ROUGH_GNP; b++) {
 			double wo[3] = { st * cos(phi[b]), st * sin(phi[b]), sd->up ? mu : -mu };
-			double v = 2.0 * w[b] * f * microfacet_bsdf(sd->mf, sd->n_i, sd->n_t, sd->wi, wo);
+			double v = 2.0 * w[b] * f
+			    * microfacet_bsdf(sd->mf, sd->n_i, sd->n_t, sd->wi, wo);
 			if (sd->hc && v != 0.0)
 				v *= hc_factor(sd->mf, sd->wi[2], mu, sd->up);
 			c->a[(size_t)i * AD_ROUGH_GNP + b] = (float)v;
@@ -312,8 +314,8 @@ static double column(struct rule *ru, double n_i, double n_t, double s, double m
 		for (int a = 0; a < n_u; a++)
 			for (int b = 0; b < n_u; b++) {
 				double wr[3], wt[3], gr, gt;
-				microfacet_sample_split(mf, n_i, n_t, wi, ru->gx[a], (b + 0.5) / n_u, wr, &gr,
-				    wt, &gt);
+				microfacet_sample_split(mf, n_i, n_t, wi, ru->gx[a],
+				    (b + 0.5) / n_u, wr, &gr, wt, &gt);
 				int j = a * n_u + b;
 				gr *= ru->gw[a] / n_u;
 				gt *= ru->gw[a] / n_u;
@@ -347,8 +349,8 @@ static double cos_of_s(double s, double n)
 
 static void ms_norm(struct ad_rough *r, const struct ad_quad *q);
 
-void ad_rough_init(struct ad_rough *r, const struct ad_quad *q, double n_above, double n_below, double alpha,
-    enum optics_fresnel model, const double *se, int E, int n_u, int walks)
+void ad_rough_init(struct ad_rough *r, const struct ad_quad *q, double n_above, double n_below,
+    double alpha, enum optics_fresnel model, const double *se, int E, int n_u, int walks)
 {
 	const int N = q->n;
 	const struct microfacet mf = { MICROFACET_GGX, alpha, model };
@@ -379,14 +381,16 @@ void ad_rough_init(struct ad_rough *r, const struct ad_quad *q, double n_above, 
 	/* Gauss-Legendre in u1 (the visible-normal map has a square-root edge
 	 * there: the midpoint rule was 2.5e-3 off the albedo at alpha 0.05,
 	 * this 4e-4), midpoints in the periodic u2. */
-	double *gx = xcalloc((size_t)n_u, sizeof(double)), *gw = xcalloc((size_t)n_u, sizeof(double));
+	double *gx = xcalloc((size_t)n_u, sizeof(double));
+	double *gw = xcalloc((size_t)n_u, sizeof(double));
 	ad_gauss_legendre(n_u, 0.0, 1.0, gx, gw);
 	struct rule ru = { q, &mf, n_u, gx, gw, NULL, NULL, walks > 0 };
 	ru.pr = xcalloc((size_t)n_u * n_u, sizeof *ru.pr);
 	ru.pt = xcalloc((size_t)n_u * n_u, sizeof *ru.pt);
 	for (int j = 0; j < N + E; j++) {
 		double s = j < N ? q->s[j] : se[j - N];
-		double mu = j < N ? (s < n_above ? ad_quad_mu(q, j, n_above) : 0.0) : cos_of_s(s, n_above);
+		double mu = j < N ? (s < n_above ? ad_quad_mu(q, j, n_above) : 0.0)
+		    : cos_of_s(s, n_above);
 		double l = column(&ru, n_above, n_below, s, mu, &r->top_r[j], &r->top_t[j]);
 		r->lost_max = fmax(r->lost_max, l);
 	}
@@ -423,7 +427,8 @@ static double ms_power(const struct ad_rough *r, const struct ad_quad *q, int fr
 		double n_o = (from == side) ? r->n_above : r->n_below;
 		for (int i = 0; i < r->N; i++)
 			if (mo[i] > 0.0)
-				p += q->W[i] * ms_fm(from ? r->ms_bot : r->ms_top, mu_i, mo[i], side, 0)
+				p += q->W[i]
+				    * ms_fm(from ? r->ms_bot : r->ms_top, mu_i, mo[i], side, 0)
 				    / (n_o * n_o);
 	}
 	return p;
@@ -452,8 +457,8 @@ static void ms_norm(struct ad_rough *r, const struct ad_quad *q)
 /* Column out[N] of an operator from c at order m (cm: cos(m phi_b)): the
  * powers, over sqrt(W_i), times in (sqrt(W_j) for a node column), added
  * to out. */
-static void order_col(const struct ad_rough_col *c, const double *cm, const double *cg, const double *sqW,
-    double in, double *out)
+static void order_col(const struct ad_rough_col *c, const double *cm, const double *cg,
+    const double *sqW, double in, double *out)
 {
 	const int np = c->point ? AD_ROUGH_GNP : AD_ROUGH_NPHI;
 	const double *cs = c->point ? cg : cm;
@@ -478,7 +483,8 @@ static void ms_order(const struct ad_rough *r, int m, const double *sqW, struct 
 			double mu_i = from ? r->mu_b[j] : r->mu_a[j];
 			if (!(mu_i > 0.0))
 				continue;
-			double in = (j < N ? sqW[j] : 1.0) * (from ? r->ms_scale_b : r->ms_scale_a)[j];
+			double in = (j < N ? sqW[j] : 1.0)
+			    * (from ? r->ms_scale_b : r->ms_scale_a)[j];
 			double *xr = (from ? x->rb : x->rt) + (size_t)N * j;
 			double *xt = (from ? x->tu : x->td) + (size_t)N * j;
 			for (int side = 0; side < 2; side++) {

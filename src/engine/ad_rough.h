@@ -113,8 +113,8 @@ struct ad_rough {
  * walks = 0 single scattering, > 0 multiple scattering (its tables take
  * AD_ROUGH_MS_WALKS walks per incoming cosine).  Allocates; free with
  * ad_rough_free. */
-void ad_rough_init(struct ad_rough *r, const struct ad_quad *q, double n_above, double n_below, double alpha,
-    enum optics_fresnel model, const double *se, int E, int n_u, int walks);
+void ad_rough_init(struct ad_rough *r, const struct ad_quad *q, double n_above, double n_below,
+    double alpha, enum optics_fresnel model, const double *se, int E, int n_u, int walks);
 
 /* Order m of the interface into x (bound by ad_elem_bind, overwritten);
  * sqW[N] = sqrt(W).  The collimated factors are 0: nothing passes a rough

@@ -15,19 +15,23 @@ struct ad_value {
 /* Results for one incidence angle. */
 struct ad_beam {
 	double theta_i;			/* [rad] */
-	double rsp;			/* specular reflectance of the top and clear layers on it: exact for
-					 * smooth ones; a rough top's own reflection of the beam (glossy, never
-					 * entered a turbid layer) to the facet rule's error otherwise */
+	double rsp;			/* specular reflectance of the top and clear layers on
+					 * it: exact for smooth ones; a rough top's own
+					 * reflection of the beam (glossy, never entered a turbid
+					 * layer) to the facet rule's error otherwise */
 	struct ad_value rd;		/* diffuse reflectance: leaves the top, excluding rsp */
 	double rd_unscat;		/* part of rd that never scattered */
 	struct ad_value tt;		/* leaves the bottom, unscattered included */
 	double tt_unscat;		/* part of tt that never scattered */
 	struct ad_value a[SLAB_MAX_LAYERS + 2];	/* absorbed per layer, index as in struct slab */
-	struct ad_value facet_loss;	/* rough boundaries: shadowed and masked by their single-scattering
-					 * facets, 1 - rsp - rd - tt - sum a (0 when all are smooth) */
-	double balance;			/* rsp + rd + tt + sum a - 1 (absorption from each layer's own R, T);
-					 * with rough boundaries the loss takes it: 0, no check */
-	double *fr, *fr_err;		/* [n_to * n_phi] diffuse BRDF bin means [1/sr], it * n_phi + ip */
+	struct ad_value facet_loss;	/* rough boundaries: shadowed and masked by their
+					 * single-scattering facets, 1 - rsp - rd - tt - sum a
+					 * (0 when all are smooth) */
+	double balance;			/* rsp + rd + tt + sum a - 1 (absorption from each
+					 * layer's own R, T); with rough boundaries the
+					 * loss takes it: 0, no check */
+	double *fr, *fr_err;		/* [n_to * n_phi] diffuse BRDF bin means
+					 * [1/sr], it * n_phi + ip */
 	double *fr_az, *fr_az_err;	/* [n_to] their azimuthal means [1/sr] */
 	double rms_rel_err;		/* this angle's table */
 };

@@ -54,12 +54,14 @@ double microfacet_g1(const struct microfacet *m, double cos_v)
 /* Fresnel reflectance of the facet with normal h for light from wi (index
  * n_i) into n_t; the refraction cosine (> 0) into *ct, 0 on total internal
  * reflection. */
-static double facet_fresnel(const struct microfacet *m, double n_i, double n_t, double cos_ih, double *ct)
+static double facet_fresnel(const struct microfacet *m, double n_i, double n_t, double cos_ih,
+    double *ct)
 {
 	return optics_fresnel(m->fresnel, n_i, n_t, cos_ih, ct);
 }
 
-double microfacet_bsdf(const struct microfacet *m, double n_i, double n_t, const double wi[3], const double wo[3])
+double microfacet_bsdf(const struct microfacet *m, double n_i, double n_t, const double wi[3],
+    const double wo[3])
 {
 	if (wi[2] <= 0.0 || wo[2] == 0.0)
 		return 0.0;
@@ -92,7 +94,8 @@ double microfacet_bsdf(const struct microfacet *m, double n_i, double n_t, const
 		return 0.0;
 	double G = microfacet_g1(m, wi[2]) * microfacet_g1(m, wo[2]);
 	double den = n_i * ih + n_t * oh;
-	return ih * -oh * n_t * n_t * (1.0 - F) * microfacet_d(m, h[2]) * G / (wi[2] * -wo[2] * den * den);
+	return ih * -oh * n_t * n_t * (1.0 - F) * microfacet_d(m, h[2]) * G
+	    / (wi[2] * -wo[2] * den * den);
 }
 
 /* A GGX visible normal for wi (Heitz 2018): stretch wi to the unit-roughness
@@ -139,8 +142,8 @@ static void normal_from_d(const struct microfacet *m, double u1, double u2, doub
 	mo[2] = c;
 }
 
-double microfacet_sample(const struct microfacet *m, double n_i, double n_t, const double wi[3], double u1,
-    double u2, double u3, double wo[3])
+double microfacet_sample(const struct microfacet *m, double n_i, double n_t, const double wi[3],
+    double u1, double u2, double u3, double wo[3])
 {
 	if (n_i == n_t) {
 		wo[0] = -wi[0];
@@ -175,8 +178,8 @@ double microfacet_sample(const struct microfacet *m, double n_i, double n_t, con
 	return ih * microfacet_g1(m, wi[2]) * g1o / (wi[2] * h[2]);
 }
 
-void microfacet_sample_split(const struct microfacet *m, double n_i, double n_t, const double wi[3], double u1,
-    double u2, double wr[3], double *w_r, double wt[3], double *w_t)
+void microfacet_sample_split(const struct microfacet *m, double n_i, double n_t, const double wi[3],
+    double u1, double u2, double wr[3], double *w_r, double wt[3], double *w_t)
 {
 	*w_r = 0.0;
 	*w_t = 0.0;
@@ -206,8 +209,8 @@ void microfacet_sample_split(const struct microfacet *m, double n_i, double n_t,
 		*w_t = (1.0 - F) * microfacet_g1(m, wt[2]);
 }
 
-void microfacet_albedo(const struct microfacet *m, double n_i, double n_t, double cos_i, int n_mu, int n_phi,
-    double *R, double *T)
+void microfacet_albedo(const struct microfacet *m, double n_i, double n_t, double cos_i, int n_mu,
+    int n_phi, double *R, double *T)
 {
 	double wi[3] = { sqrt(fmax(0.0, 1.0 - cos_i * cos_i)), 0.0, cos_i };
 	double g1i = microfacet_g1(m, cos_i), r = 0.0, t = 0.0;
@@ -289,7 +292,8 @@ static double next_height(const struct microfacet *m, const double w[3], double 
  * in the unit-roughness configuration the visible normals are v + c
  * normalised, c uniform on the spherical cap c.z >= -v.z (Dupuy & Benyoub,
  * "Sound and complete visible normal sampling", 2023), then unstretched. */
-static void ggx_visible_normal_any(double alpha, const double v[3], double u1, double u2, double mo[3])
+static void ggx_visible_normal_any(double alpha, const double v[3], double u1, double u2,
+    double mo[3])
 {
 	double vs[3] = { alpha * v[0], alpha * v[1], v[2] };
 	normalize3(vs);

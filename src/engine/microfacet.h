@@ -46,7 +46,8 @@ double microfacet_g1(const struct microfacet *m, double cos_v);
 /* The BSDF [1/sr] from wi (wi[2] > 0) to wo: reflection when wo[2] > 0,
  * transmission into index n_t when wo[2] < 0.  n_i == n_t (no interface)
  * gives 0: the transmission is then a delta straight through. */
-double microfacet_bsdf(const struct microfacet *m, double n_i, double n_t, const double wi[3], const double wo[3]);
+double microfacet_bsdf(const struct microfacet *m, double n_i, double n_t, const double wi[3],
+    const double wo[3]);
 
 /* Scatter the light from wi (wi[2] > 0) at the interface: pick a facet
  * normal (GGX: from the visible normals; Beckmann: from D cos_m), reflect
@@ -56,8 +57,8 @@ double microfacet_bsdf(const struct microfacet *m, double n_i, double n_t, const
  * the path is shadowed (wo on the wrong side).  u1, u2 choose the facet,
  * u3 reflection or refraction; all uniform in (0, 1).  n_i == n_t passes
  * straight through with weight 1. */
-double microfacet_sample(const struct microfacet *m, double n_i, double n_t, const double wi[3], double u1,
-    double u2, double u3, double wo[3]);
+double microfacet_sample(const struct microfacet *m, double n_i, double n_t, const double wi[3],
+    double u1, double u2, double u3, double wo[3]);
 
 /* Both outcomes of microfacet_sample at once (GGX only), for deterministic
  * rules over the facets: the facet chosen by u1, u2 reflects into wr with
@@ -65,8 +66,8 @@ double microfacet_sample(const struct microfacet *m, double n_i, double n_t, con
  * a weight is 0 where that path is shadowed or impossible (total internal
  * reflection on the facet).  Their means over u1, u2 are the directional
  * albedos R and T.  n_i == n_t passes straight through with *w_t = 1. */
-void microfacet_sample_split(const struct microfacet *m, double n_i, double n_t, const double wi[3], double u1,
-    double u2, double wr[3], double *w_r, double wt[3], double *w_t);
+void microfacet_sample_split(const struct microfacet *m, double n_i, double n_t, const double wi[3],
+    double u1, double u2, double wr[3], double *w_r, double wt[3], double *w_t);
 
 /* The multiple-scattering alternative to microfacet_sample (GGX only):
  * the random walk on the Smith microsurface of Heitz, Hanika, d'Eon &
@@ -86,6 +87,6 @@ double microfacet_sample_ms(const struct microfacet *m, double n_i, double n_t, 
  * per hemisphere (the lobe's width sets how many are needed: n_mu = 400,
  * n_phi = 400 resolve alpha >= 0.02 to 1e-5).  The single-scattering loss is
  * 1 - R - T. */
-void microfacet_albedo(const struct microfacet *m, double n_i, double n_t, double cos_i, int n_mu, int n_phi,
-    double *R, double *T);
+void microfacet_albedo(const struct microfacet *m, double n_i, double n_t, double cos_i, int n_mu,
+    int n_phi, double *R, double *T);
 #endif

@@ -78,7 +78,8 @@ void relief_lines_factors(const struct delaunay *d, const double *xy, double sd,
 		struct pair *pr = xmalloc(sizeof *pr * (size_t)(deg * deg / 2 + 1));
 		for (int a = 0; a < deg; a++)
 			for (int b = a + 1; b < deg; b++) {
-				double t = fabs(remainder(ends[k0 + a].angle - ends[k0 + b].angle, 2 * M_PI));
+				double da = ends[k0 + a].angle - ends[k0 + b].angle;
+				double t = fabs(remainder(da, 2 * M_PI));
 				if (M_PI - t <= LINE_MAX_TURN)
 					pr[n++] = (struct pair){ a, b, M_PI - t };
 			}

@@ -29,7 +29,8 @@ static int parse_row(char *line, struct relief_range *r)
 	char *e1, *e2;
 	r->lo = strtod(f[2], &e1);
 	r->hi = strtod(f[3], &e2);
-	if (*e1 || *e2 || !(r->lo <= r->hi) || strlen(f[0]) >= sizeof r->site || strlen(f[1]) >= sizeof r->stat)
+	if (*e1 || *e2 || !(r->lo <= r->hi) || strlen(f[0]) >= sizeof r->site ||
+	    strlen(f[1]) >= sizeof r->stat)
 		return -1;
 	int known = 0;
 	for (int i = 0; i < RELIEF_STATS_KEYS; i++)
@@ -45,7 +46,8 @@ static int parse_row(char *line, struct relief_range *r)
 struct relief_ranges *relief_ranges_load(char **cause)
 {
 	const char *env = getenv("SKINBAKE_DATADIR");
-	char *path = env && *env ? xasprintf("%s/relief_sites.tsv", env) : xasprintf("%s/relief_sites.tsv", PKGDATADIR);
+	char *path = env && *env ? xasprintf("%s/relief_sites.tsv", env)
+	    : xasprintf("%s/relief_sites.tsv", PKGDATADIR);
 	FILE *fp = fopen(path, "r");
 	if (fp == NULL) {
 		*cause = xasprintf("%s: %s", path, strerror(errno));
@@ -68,8 +70,8 @@ struct relief_ranges *relief_ranges_load(char **cause)
 			rr->row = grown;
 		}
 		if (parse_row(line, &rr->row[rr->n]) != 0) {
-			*cause = xasprintf("%s:%d: expected site, a statistic key, lo <= hi and a source, tab-separated",
-			    path, lineno);
+			*cause = xasprintf("%s:%d: expected site, a statistic key, lo <= hi and a "
+			    "source, tab-separated", path, lineno);
 			fclose(fp);
 			free(path);
 			relief_ranges_free(rr);
@@ -90,7 +92,8 @@ void relief_ranges_free(struct relief_ranges *rr)
 	free(rr);
 }
 
-const struct relief_range *relief_ranges_find(const struct relief_ranges *rr, const char *site, const char *stat)
+const struct relief_range *relief_ranges_find(const struct relief_ranges *rr, const char *site,
+    const char *stat)
 {
 	for (int i = 0; rr && i < rr->n; i++) {
 		if (strcmp(rr->row[i].site, site) == 0 && strcmp(rr->row[i].stat, stat) == 0)
@@ -112,12 +115,13 @@ char *relief_ranges_report(const struct relief_stats *st, const char *site, int 
 		const struct relief_range *r = relief_ranges_find(rr, site, relief_stats_key(i));
 		char *t;
 		if (r == NULL) {
-			t = xasprintf("%s%-22s %10.4g  no sourced range\n", s, relief_stats_key(i), v);
+			t = xasprintf("%s%-22s %10.4g  no sourced range\n", s, relief_stats_key(i),
+			    v);
 		} else {
 			int in = v >= r->lo && v <= r->hi;
 			*outside += !in;
-			t = xasprintf("%s%-22s %10.4g  %s [%g, %g] (%s)\n", s, relief_stats_key(i), v, in ? "in" : "OUT OF", r->lo, r->hi,
-			    r->source);
+			t = xasprintf("%s%-22s %10.4g  %s [%g, %g] (%s)\n", s, relief_stats_key(i),
+			    v, in ? "in" : "OUT OF", r->lo, r->hi, r->source);
 		}
 		free(s);
 		s = t;

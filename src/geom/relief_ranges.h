@@ -27,7 +27,8 @@ struct relief_ranges {
 struct relief_ranges *relief_ranges_load(char **cause);
 void relief_ranges_free(struct relief_ranges *rr);	/* NULL is a no-op */
 /* The row of SITE and STAT, or NULL. */
-const struct relief_range *relief_ranges_find(const struct relief_ranges *rr, const char *site, const char *stat);
+const struct relief_range *relief_ranges_find(const struct relief_ranges *rr, const char *site,
+    const char *stat);
 
 /* The table (relief_ranges_load), then one line per statistic: key,
  * value, and "in [lo, hi] (source)", "OUT OF [lo, hi] (source)" or "no

@@ -281,7 +281,8 @@ static void add_waves(const struct relief *r, const struct window *w, float *out
 	free(sa);
 }
 
-void relief_render(const struct relief *r, int n, double x0, double y0, float *pores, float *furrows)
+void relief_render(const struct relief *r, int n, double x0, double y0, float *pores,
+    float *furrows)
 {
 	struct window w = { n, (n + BLOCK - 1) / BLOCK, x0 - floor(x0), y0 - floor(y0) };
 	struct bins pb = { 0 }, fb[RELIEF_MAX_LEVELS], tb[RELIEF_MAX_LEVELS];
@@ -294,7 +295,8 @@ void relief_render(const struct relief *r, int n, double x0, double y0, float *p
 	int nblk = w.nb * w.nb;
 #pragma omp parallel for schedule(dynamic, 4)
 	for (int blk = 0; blk < nblk; blk++) {
-		float acc[BLOCK * BLOCK], groove[BLOCK * BLOCK], dome[BLOCK * BLOCK], sh[BLOCK * BLOCK];
+		float acc[BLOCK * BLOCK], groove[BLOCK * BLOCK];
+		float dome[BLOCK * BLOCK], sh[BLOCK * BLOCK];
 		struct rect k;
 		k.r0 = blk / w.nb * BLOCK;
 		k.c0 = blk % w.nb * BLOCK;

@@ -37,7 +37,8 @@ static void heights(size_t npx, const float *h, struct relief_stats *st)
  * the downward crossings of `level` and add the depth of each excursion's
  * deepest point below `mean` to *depth.  Each line starts at a pixel above
  * the level so that no excursion is split by the start. */
-static long crossings(int n, const float *f, int dr, int dc, double level, double mean, double *depth)
+static long crossings(int n, const float *f, int dr, int dc, double level, double mean,
+    double *depth)
 {
 	long count = 0;
 	for (int line = 0; line < n; line++) {
@@ -94,8 +95,10 @@ static void tensor(int n, const float *h, double pitch, struct relief_stats *st)
 	for (int r = 0; r < n; r++) {
 		for (int c = 0; c < n; c++) {
 			/* y is up, toward row 0. */
-			double gx = (h[(size_t)r * n + (c + 1) % n] - h[(size_t)r * n + (c + n - 1) % n]) / (2 * pitch);
-			double gy = (h[(size_t)((r + n - 1) % n) * n + c] - h[(size_t)((r + 1) % n) * n + c]) / (2 * pitch);
+			double gx = (h[(size_t)r * n + (c + 1) % n]
+			    - h[(size_t)r * n + (c + n - 1) % n]) / (2 * pitch);
+			double gy = (h[(size_t)((r + n - 1) % n) * n + c]
+			    - h[(size_t)((r + 1) % n) * n + c]) / (2 * pitch);
 			jxx += gx * gx;
 			jyy += gy * gy;
 			jxy += gx * gy;
@@ -137,7 +140,9 @@ static void pore_regions(int n, const float *p, double pitch, double t, struct r
 		parent[i] = (int)i;
 	for (int r = 0; r < n; r++) {
 		for (int c = 0; c < n; c++) {
-			int i = r * n + c, right = r * n + (c + 1) % n, down = ((r + 1) % n) * n + c;
+			int i = r * n + c;
+			int right = r * n + (c + 1) % n;
+			int down = ((r + 1) % n) * n + c;
 			if (!(p[i] < -t))
 				continue;
 			if (p[right] < -t)
@@ -181,10 +186,12 @@ int relief_stats_for(const struct relief_params *p, int n, const float *h, const
 int relief_stats_compute(int n, const float *h, const float *furrow_map, const float *pores,
     const struct relief_stats_spec *spec, struct relief_stats *st, char **cause)
 {
-	if (n < 3 || !(spec->pitch > 0) || !(spec->furrow_threshold > 0) || !(spec->pore_threshold > 0)) {
+	if (n < 3 || !(spec->pitch > 0) || !(spec->furrow_threshold > 0) ||
+	    !(spec->pore_threshold > 0)) {
 		if (cause)
-			*cause = xasprintf("relief statistics need n >= 3 and positive pitch and thresholds "
-			    "(n = %d, pitch = %g cm, furrow threshold = %g cm, pore threshold = %g cm)",
+			*cause = xasprintf("relief statistics need n >= 3 and positive pitch and "
+			    "thresholds (n = %d, pitch = %g cm, furrow threshold = %g cm, pore "
+			    "threshold = %g cm)",
 			    n, spec->pitch, spec->furrow_threshold, spec->pore_threshold);
 		return -1;
 	}
@@ -198,7 +205,8 @@ int relief_stats_compute(int n, const float *h, const float *furrow_map, const f
 }
 
 static const char *const keys[RELIEF_STATS_KEYS] = { "sa_um", "sz_um", "furrow_density_per_mm",
-	"furrow_depth_um", "anisotropy", "direction_deg", "pore_density_per_mm2", "pore_diameter_um",
+	"furrow_depth_um", "anisotropy", "direction_deg", "pore_density_per_mm2",
+	"pore_diameter_um",
 	"sdr_pct" };
 
 const char *relief_stats_key(int i)

@@ -5,8 +5,7 @@ radial.rd_r_err, for the colour, which sets the power; of the mean radius,
 radial.mean_radius_err_cm, for the length, which sets it; the largest over the channel's
 wavelengths, an upper bound for their weighted mean), plus the error of interpolating linearly in
 the axis coordinate t between two nodes, bounded by (t - t0)(t1 - t)/2 times the members' second
-divided difference.  Used by tests/maps_pov_translucent.sh's method for Blender
-(tests/maps_blender_translucent.sh)."""
+divided difference.  Used by tests/maps_pov_translucent.sh and tests/maps_blender_translucent.sh."""
 import json
 import math
 

@@ -14,6 +14,19 @@ So on a flat surface under a distant light the medium returns its own BRDF and
 the remainder adds the rest of the bake's: the bake's BRDF wherever the
 remainder is not clipped (transfit.py, tests/mitsuba_translucent.sh).
 
+Grazing weights: the medium under the rough top returns far more light at
+grazing angles than the bake's layers under their smooth top (red, paper: 1.9
+times at light 0, view 84 deg; 2.7 at 80, 80), so the remainder would be
+clipped there and the surface too bright. The medium's BRDF is nearly separable
+in that excess, so the dielectric's transmission across the surface, either
+way, is multiplied by c(theta) of its outside direction, c = min(1,
+sqrt(bake / medium)) of the azimuthal means on the diagonal theta_i = theta_o
+(exit_weights): the medium's BRDF becomes c(theta_i) c(theta_o) times its own
+(exactly: entry and exit each pass the surface once), which is at most the
+bake's up to the separability's error, and the remainder is the bake's minus
+that. The weights only take light away (the interface absorbs what it would
+send beyond the bake), reciprocally.
+
 Parameters: bake, fit (the directory transfit.fit wrote), channel (0, 1, 2),
 specular (default true; false leaves the bake's GGX lobe out, for profiles).
 Sampling from outside: the remainder cosine-weighted with probability P_TABLE,
@@ -33,16 +46,48 @@ from . import tablegrid
 P_TABLE = 0.5
 
 
-def remainder_grid(bake, medium_bake, k):
-    """(remainder [N_THETA][N_THETA][N_PHI], bake grid, medium grid) at the
-    wavelength index k of both bakes."""
+def _az_mean(g):
+    """Azimuthal mean over the grid's delta_phi axis (the last; trapezoids)."""
+    ph = tablegrid.grid_phi()
+    return (0.5 * (g[..., 1:] + g[..., :-1]) * np.diff(ph)).sum(axis=-1) / (ph[-1] - ph[0])
+
+
+def exit_weights(bake_grid, medium_grid):
+    """The grazing weights c [N_THETA] on tablegrid.grid_theta() (see the module's
+    text): min(1, sqrt(bake / medium)) of the azimuthal means at theta_i =
+    theta_o; at 90 deg, where both are 0, the value at the node before."""
+    b = np.diagonal(_az_mean(bake_grid)).astype(np.float64)
+    m = np.diagonal(_az_mean(medium_grid)).astype(np.float64)
+    c = np.ones_like(b)
+    ok = m > 0.0
+    c[ok] = np.minimum(1.0, np.sqrt(np.maximum(b[ok], 0.0) / m[ok]))
+    c[-1] = c[-2]
+    return c
+
+
+def remainder_grid(bake, medium_bake, k, weights=True):
+    """(remainder [N_THETA][N_THETA][N_PHI], bake grid, medium grid as the
+    surface passes it, grazing weights c [N_THETA]) at the wavelength index k of
+    both bakes; weights=False: c = 1 (the medium as it is)."""
     grids = []
     for d in (bake, medium_bake):
         with open(os.path.join(d, "manifest.json")) as f:
             man = json.load(f)
         _, planes = tablebsdf._load_planes(os.path.join(d, "brdf.exr"), "fr.")
         grids.append(tablegrid.resample(man, planes)[k])
-    return np.maximum(grids[0] - grids[1], 0.0), grids[0], grids[1]
+    c = exit_weights(grids[0], grids[1]) if weights else np.ones(tablegrid.N_THETA)
+    med = grids[1] * c[:, None, None] * c[None, :, None]
+    return np.maximum(grids[0] - med, 0.0), grids[0], med, c
+
+
+def medium_exit_factor(medium_grid_raw, c):
+    """The share of the medium's light at normal incidence that the weights c let
+    out: its albedo's integrand over theta_o weighted by c(theta_o), over the
+    unweighted one (c(0) = 1 enters)."""
+    gt = tablegrid.grid_theta()
+    row = _az_mean(medium_grid_raw[0]) * np.cos(gt) * np.sin(gt)
+    trap = lambda y: float((0.5 * (y[1:] + y[:-1]) * np.diff(gt)).sum())
+    return c[0] * trap(row * c) / trap(row)
 
 
 class TranslucentBSDF(tablebsdf.TableBSDF):
@@ -61,7 +106,8 @@ class TranslucentBSDF(tablebsdf.TableBSDF):
         stacks = [tuple(s) for s in man["specular"]["stack_n"]]
         self.stacks = sorted(set(stacks))
         self.stack_of_wl = [self.stacks.index(s) for s in stacks]
-        rem, _, _ = remainder_grid(bake, os.path.join(fitdir, fit["medium_bake"]), k)
+        rem, _, _, cw = remainder_grid(bake, os.path.join(fitdir, fit["medium_bake"]), k)
+        self.cw = mi.Float(cw.astype(np.float32))
         self.mode = "mono"
         self.mono_wl = k
         self.npx = tablegrid.N_THETA * tablegrid.N_THETA * tablegrid.N_PHI
@@ -91,13 +137,22 @@ class TranslucentBSDF(tablebsdf.TableBSDF):
         t.type_mask = +mi.BSDFFlags.GlossyTransmission
         return t
 
+    def _c(self, cos_out):
+        """The grazing weight c(theta) of an outside direction's cosine (linear on
+        tablegrid's nodes, uniform in u = acos(1 - 4 theta / pi))."""
+        nt = tablegrid.N_THETA
+        th = dr.acos(dr.clip(dr.abs(cos_out), 0.0, 1.0))
+        i0, t = tablebsdf._cell(dr.acos(dr.clip(1.0 - 4.0 * th / dr.pi, -1.0, 1.0)) * ((nt - 1) / dr.pi), nt)
+        return (1.0 - t) * dr.gather(mi.Float, self.cw, i0) + t * dr.gather(mi.Float, self.cw, i0 + 1)
+
     def eval(self, ctx, si, wo, active=True):
         ci = mi.Frame3f.cos_theta(si.wi)
         co = mi.Frame3f.cos_theta(wo)
         out = ci > 0.0
         table = self._f(si, wo) * dr.maximum(co, 0.0)
-        trans = self.rough.eval(self._trans_ctx(ctx), si, wo, active & out & (co < 0.0))
-        inside = self.rough.eval(ctx, si, wo, active & ~out)
+        # across the surface: the grazing weight of the outside direction
+        trans = self.rough.eval(self._trans_ctx(ctx), si, wo, active & out & (co < 0.0)) * self._c(ci)
+        inside = self.rough.eval(ctx, si, wo, active & ~out) * dr.select(co > 0.0, self._c(co), 1.0)
         v = dr.select(out, dr.select(co > 0.0, table, trans), inside)
         return dr.select(active, v, 0.0)
 
@@ -129,7 +184,8 @@ class TranslucentBSDF(tablebsdf.TableBSDF):
         bs.pdf = dr.select(out, bs_o.pdf, bs.pdf)
         bs.eta = dr.select(out, bs_o.eta, bs.eta)
         bs.sampled_type = dr.select(out, bs_o.sampled_type, bs.sampled_type)
-        w = dr.select(out, w_o, w)
+        w = dr.select(out, w_o * self._c(ci),
+                      w * dr.select(mi.Frame3f.cos_theta(bs.wo) > 0.0, self._c(mi.Frame3f.cos_theta(bs.wo)), 1.0))
         wt = mi.warp.square_to_cosine_hemisphere(sample2)
         table = self._f(si, wt) * dr.pi / P_TABLE
         bs.wo = dr.select(pick_table, wt, bs.wo)

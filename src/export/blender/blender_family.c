@@ -71,8 +71,8 @@ struct family_sss {
 
 /* Fit every version to each member the maps reach (about 8 s of CPU per
  * member and version: the members in parallel).  -1 and *cause. */
-static int family_sss_fit(const struct brdf_family *f, const struct mapset *m, struct family_sss *fs,
-    char **cause)
+static int family_sss_fit(const struct brdf_family *f, const struct mapset *m,
+    struct family_sss *fs, char **cause)
 {
 	size_t n = (size_t)m->w * m->h;
 	int lo[FAMILY_MAX_AXES], hi[FAMILY_MAX_AXES];
@@ -87,7 +87,8 @@ static int family_sss_fit(const struct brdf_family *f, const struct mapset *m, s
 		brdf_family_member_index(f, k, idx);
 		for (int a = 0; a < f->n_axes; a++)
 			in &= idx[a] >= lo[a] && idx[a] <= hi[a];
-		if (in && blender_sss_fit(brdf_family_member_bake(f, k), &fs->member[k], &err[k]) != 0)
+		const struct bake *b = brdf_family_member_bake(f, k);
+		if (in && blender_sss_fit(b, &fs->member[k], &err[k]) != 0)
 			fs->member[k].n = 0;
 	}
 	int rc = 0;
@@ -137,13 +138,13 @@ static float *family_lut(const struct brdf_family *f, const struct subgrid *g, i
 		if (fs) {
 			family_sss_at(f, fs, x, scratch, &ws);
 			blender_sss_wrap_fitted(src, &ws);
+			size_t row = (size_t)(g->slices - 1 - s) * BLENDER_SSS_N_VIEW;
 			for (int v = 0; v < fs->n; v++)
 				for (int k = 0; k < BLENDER_SSS_N_VIEW; k++) {
-					double e[3];
-					blender_sss_extra(&ws, v, blender_sss_view_deg[k] * M_PI / 180, e);
+					double e[3], to = blender_sss_view_deg[k] * M_PI / 180;
+					blender_sss_extra(&ws, v, to, e);
 					for (int c = 0; c < 3; c++)
-						extra[v][(size_t)c * eplane + (size_t)(g->slices - 1 - s) *
-						    BLENDER_SSS_N_VIEW + k] = (float)e[c];
+						extra[v][(size_t)c * eplane + row + k] = (float)e[c];
 				}
 		}
 		float *one = blender_lut(src, nc, nphi);
@@ -158,8 +159,8 @@ static float *family_lut(const struct brdf_family *f, const struct subgrid *g, i
 }
 
 /* Per texel, version v's node colour [-] and radius [m] (3 planes each). */
-static void texel_sss(const struct brdf_family *f, const struct mapset *m, const struct family_sss *fs,
-    int v, float *col, float *rad)
+static void texel_sss(const struct brdf_family *f, const struct mapset *m,
+    const struct family_sss *fs, int v, float *col, float *rad)
 {
 	long n = (long)m->w * m->h;
 #pragma omp parallel
@@ -282,21 +283,23 @@ static void texel_maps(const struct brdf_family *f, const struct mapset *m, cons
 /* Version v's per-texel files in the manifest's translucent section ("maps"). */
 static char *sss_maps_json(const char *ser, const struct mapset *m, int slices)
 {
-	return xasprintf("{\"colour\": {\"file\": \"sss_colour_%s.exr\", \"width\": %d, \"height\": %d, "
-	    "\"content\": \"the node's Color per texel [-] (R, G, B)\"}, \"radius_m\": {\"file\": "
-	    "\"sss_radius_%s.exr\", \"width\": %d, \"height\": %d, \"content\": \"the node's Radius per "
-	    "texel [m] (R, G, B)\"}, \"extra\": {\"file\": \"sss_extra_%s.exr\", \"width\": %d, "
-	    "\"height\": %d, \"content\": \"lambert_extra per family sub-grid point: column k at "
-	    "theta_o_deg[k], row s (from the bottom) at slice s; blended at family_coord as family_lut is\"}, "
-	    "\"interpolation\": \"colour, radius: the members' fits (each to its own Rd(r)) per axis linear "
-	    "in the axis coordinate between neighbouring members, the colour linearly, the radius as its log; "
-	    "family_lut.exr holds each sub-grid point's remainder (its table less the largest far field of the "
-	    "versions' nodes at that point's fits)\"}", ser, m->w, m->h, ser, m->w, m->h, ser,
-	    BLENDER_SSS_N_VIEW, slices);
+	return xasprintf("{\"colour\": {\"file\": \"sss_colour_%s.exr\", \"width\": %d, "
+	    "\"height\": %d, \"content\": \"the node's Color per texel [-] (R, G, B)\"}, "
+	    "\"radius_m\": {\"file\": \"sss_radius_%s.exr\", \"width\": %d, \"height\": %d, "
+	    "\"content\": \"the node's Radius per texel [m] (R, G, B)\"}, \"extra\": {\"file\": "
+	    "\"sss_extra_%s.exr\", \"width\": %d, \"height\": %d, \"content\": \"lambert_extra "
+	    "per family sub-grid point: column k at theta_o_deg[k], row s (from the bottom) at "
+	    "slice s; blended at family_coord as family_lut is\"}, \"interpolation\": \"colour, "
+	    "radius: the members' fits (each to its own Rd(r)) per axis linear in the axis "
+	    "coordinate between neighbouring members, the colour linearly, the radius as its log; "
+	    "family_lut.exr holds each sub-grid point's remainder (its table less the largest far "
+	    "field of the versions' nodes at that point's fits)\"}", ser, m->w, m->h, ser, m->w,
+	    m->h, ser, BLENDER_SSS_N_VIEW, slices);
 }
 
-int blender_family_export(struct brdf_family *f, const struct mapset *m, const struct blender_options *o, int sub,
-    const char *detail_dir, int translucent, const char *out_dir, char **cause)
+int blender_family_export(struct brdf_family *f, const struct mapset *m,
+    const struct blender_options *o, int sub, const char *detail_dir, int translucent,
+    const char *out_dir, char **cause)
 {
 	if (sub < BLENDER_FAMILY_SUB_MIN || sub > BLENDER_FAMILY_SUB_MAX) {
 		*cause = xasprintf("%d sub-grid points per axis is out of range [%d, %d]", sub, BLENDER_FAMILY_SUB_MIN,
@@ -354,21 +357,26 @@ int blender_family_export(struct brdf_family *f, const struct mapset *m, const s
 	struct outdir od;
 	int rc = outdir_begin(&od, out_dir, &blender_outdir_kind, cause) != 0 ? -1 : 0;
 	const char *dir = rc == 0 ? outdir_path(&od) : NULL;
+	const char *lut_what = translucent ? "pi * f_r atlases of the family's sub-grid, stacked, less "
+	    "the subsurface node's far field (manifest translucent)" :
+	    "pi * f_r atlases of the family's sub-grid, stacked (manifest family)";
 	rc = rc != 0 ? -1 : write_rgb(dir, "family_lut.exr", o->lut_cos * o->lut_phi, o->lut_cos * g.slices, lut,
-	    translucent ? "pi * f_r atlases of the family's sub-grid, stacked, less the subsurface node's far field "
-	    "(manifest translucent)" : "pi * f_r atlases of the family's sub-grid, stacked (manifest family)", cause) ||
+	    lut_what, cause) ||
 	    write_rgb(dir, "family_coord.exr", m->w, m->h, pos, "sub-grid position per axis", cause) ||
 	    write_rgb(dir, "albedo_map.exr", m->w, m->h, alb, "bihemispherical diffuse albedo, linear Rec.709", cause) ||
 	    write_rgb(dir, "sss_radius_map.exr", m->w, m->h, rad, "mean exit radius per R, G, B [m]", cause) ? -2 : 0;
 	for (int v = 0; rc == 0 && v < fs.n; v++) {
 		float *col = xmalloc(sizeof(float) * 3 * n), *len = xmalloc(sizeof(float) * 3 * n);
 		texel_sss(f, m, &fs, v, col, len);
-		char *nc = xasprintf("sss_colour_%s.exr", ser[v]), *nr = xasprintf("sss_radius_%s.exr", ser[v]);
+		char *nc = xasprintf("sss_colour_%s.exr", ser[v]);
+		char *nr = xasprintf("sss_radius_%s.exr", ser[v]);
 		char *ne = xasprintf("sss_extra_%s.exr", ser[v]);
-		rc = write_rgb(dir, nc, m->w, m->h, col, "Cycles subsurface node Color per texel (manifest translucent)",
-		    cause) || write_rgb(dir, nr, m->w, m->h, len, "Cycles subsurface node Radius per texel [m]", cause) ||
-		    write_rgb(dir, ne, BLENDER_SSS_N_VIEW, g.slices, extra[v], "lambert_extra per sub-grid point and "
-		    "view node (manifest translucent)", cause) ? -2 : 0;
+		rc = write_rgb(dir, nc, m->w, m->h, col,
+		    "Cycles subsurface node Color per texel (manifest translucent)", cause) ||
+		    write_rgb(dir, nr, m->w, m->h, len,
+		    "Cycles subsurface node Radius per texel [m]", cause) ||
+		    write_rgb(dir, ne, BLENDER_SSS_N_VIEW, g.slices, extra[v],
+		    "lambert_extra per sub-grid point and view node (manifest translucent)", cause) ? -2 : 0;
 		free(nc);
 		free(nr);
 		free(ne);

@@ -55,15 +55,16 @@ static double as_pi_f(double e, double cl, double cv, double dphi)
 	return (e + 1.0) / 8.0 * pow(hz, e) / (hl * (cl > cv ? cl : cv));
 }
 
-static double spec_pi_f(const struct specular_stack *st, double alpha, double cl, double cv, double dphi)
+static double spec_pi_f(const struct specular_stack *st, double alpha, double cl, double cv,
+    double dphi)
 {
 	return M_PI * specular_ggx(st, alpha, acos(cl), acos(cv), dphi);
 }
 
 /* Weights at view cosine cv: weighted non-negative least squares of
  * s SSS(l, v) + g AS(l, v) against pi f - spec, relative error, weight cl cv. */
-static void fit_node(enum blender_fit_model model, const double *pf, const double *spec, const double *as,
-    double cmin, double cv, double s[3], double g[3])
+static void fit_node(enum blender_fit_model model, const double *pf, const double *spec,
+    const double *as, double cmin, double cv, double s[3], double g[3])
 {
 	for (int c = 0; c < 3; c++) {
 		double xx = 0, xy = 0, yy = 0, xr = 0, yr = 0;
@@ -100,7 +101,8 @@ static void fit_node(enum blender_fit_model model, const double *pf, const doubl
 	}
 }
 
-void blender_fit_eval(const struct blender_fit *fit, double cos_l, double cos_v, double dphi, double pi_f[3])
+void blender_fit_eval(const struct blender_fit *fit, double cos_l, double cos_v, double dphi,
+    double pi_f[3])
 {
 	struct specular_stack st = { .n = 2, .n_list = { 1.0, fit->spec_ior }, .model = OPTICS_FRESNEL_EXACT };
 	double cl = clamp01(cos_l), cv = clamp01(cos_v);
@@ -119,7 +121,8 @@ void blender_fit_eval(const struct blender_fit *fit, double cos_l, double cos_v,
 
 /* Fill fit's weights for exponent e from the tabulated BRDF (pf at the fit
  * nodes, NULL rows below cos_min) and its specular. */
-static void fit_all(struct blender_fit *fit, double e, double *const *pf, const double *spec, double *as)
+static void fit_all(struct blender_fit *fit, double e, double *const *pf, const double *spec,
+    double *as)
 {
 	int first = -1;
 	for (int j = 0; j < fit->n_view; j++) {
@@ -190,8 +193,8 @@ int blender_fit_general(const struct brdf_source *m, struct blender_fit *fit, ch
 	return blender_fit_general_model(m, BLENDER_FIT_CYCLES3, fit, cause);
 }
 
-int blender_fit_general_model(const struct brdf_source *m, enum blender_fit_model model, struct blender_fit *fit,
-    char **cause)
+int blender_fit_general_model(const struct brdf_source *m, enum blender_fit_model model,
+    struct blender_fit *fit, char **cause)
 {
 	memset(fit, 0, sizeof *fit);
 	fit->model = model;
@@ -384,8 +387,9 @@ static void add_fit(json_object *j, const struct brdf_source *m, enum blender_fi
 	}
 }
 
-void blender_fit_manifest(json_object *j, const struct brdf_source *m, const double sun[3], const double view[3],
-    double sun_strength, const float *lut, int lut_cos, int lut_phi, const uint16_t *normal, int w, int h)
+void blender_fit_manifest(json_object *j, const struct brdf_source *m, const double sun[3],
+    const double view[3], double sun_strength, const float *lut, int lut_cos, int lut_phi,
+    const uint16_t *normal, int w, int h)
 {
 	json_object *x, *ref;
 	add_fit(j, m, BLENDER_FIT_CYCLES3, "general_fit");

@@ -68,11 +68,12 @@ struct blender_fit {
  * or -1 and *cause when the BRDF gives no usable values. */
 int blender_fit_general(const struct brdf_source *m, struct blender_fit *fit, char **cause);
 /* The same with the subsurface term of MODEL (blender_fit_general: BLENDER_FIT_CYCLES3). */
-int blender_fit_general_model(const struct brdf_source *m, enum blender_fit_model model, struct blender_fit *fit,
-    char **cause);
+int blender_fit_general_model(const struct brdf_source *m, enum blender_fit_model model,
+    struct blender_fit *fit, char **cause);
 /* pi f of the fitted mixture at cos_light, cos_view in (0, 1] and dphi in
  * [0, pi], with the weights interpolated linearly in cos_view. */
-void blender_fit_eval(const struct blender_fit *fit, double cos_l, double cos_v, double dphi, double pi_f[3]);
+void blender_fit_eval(const struct blender_fit *fit, double cos_l, double cos_v, double dphi,
+    double pi_f[3]);
 
 /* Add to an image set's manifest (written by blender.c): "general_fit" (the
  * fit above, or null with "general_fit_error"), "general_fit_v4" (the
@@ -80,7 +81,7 @@ void blender_fit_eval(const struct blender_fit *fit, double cos_l, double cos_v,
  * exact.reference.radiance_detail_rgb (blender_detail.h) for the detail
  * normal map NORMAL of W x H texels and the atlas LUT. */
 struct json_object;
-void blender_fit_manifest(struct json_object *manifest, const struct brdf_source *m, const double sun[3],
-    const double view[3], double sun_strength, const float *lut, int lut_cos, int lut_phi, const uint16_t *normal, int w,
-    int h);
+void blender_fit_manifest(struct json_object *manifest, const struct brdf_source *m,
+    const double sun[3], const double view[3], double sun_strength, const float *lut, int lut_cos,
+    int lut_phi, const uint16_t *normal, int w, int h);
 #endif

@@ -9,10 +9,8 @@
 #include "export/blender/blender.h"
 
 static const char *const blender_names[] = {
-	"albedo.exr", "brdf_lut.exr", "roughness.png", "height.png", "normal.png",
-	"roughness_far.png", "family_lut.exr", "family_coord.exr", "albedo_map.exr",
-	"sss_radius_map.exr", "sss_colour_*.exr", "sss_radius_*.exr", "sss_extra_*.exr",
-	NULL
+	"albedo*.exr", "brdf_lut.exr", "roughness*.png", "height.png", "normal.png",
+	"family_lut.exr", "family_coord.exr", "sss_*.exr", NULL
 };
 
 const struct outdir_kind blender_outdir_kind = {

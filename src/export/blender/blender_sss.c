@@ -174,7 +174,8 @@ char *blender_sss_json(const struct blender_sss *w, const char *const *maps)
 	jvec(mb, sizeof mb, f->mean_bake_mm, 1e-3);
 	char *list = xstrdup("");
 	for (int v = 0; v < w->n; v++) {
-		char *e = version_json(w, v, maps ? maps[v] : NULL), *l = xasprintf("%s%s%s", list, v ? ", " : "", e);
+		char *e = version_json(w, v, maps ? maps[v] : NULL);
+		char *l = xasprintf("%s%s%s", list, v ? ", " : "", e);
 		free(e);
 		free(list);
 		list = l;

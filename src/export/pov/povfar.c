@@ -26,8 +26,8 @@ int povfar_read(const char *dir, uint16_t **out, int *n, char **cause)
 		return -1;
 	}
 	if (w != h || ch != 1 || bits != 16) {
-		*cause = xasprintf("%s: %dx%d px, %d channel(s) of %d bits; a far roughness map is square "
-		    "16-bit gray", path, w, h, ch, bits);
+		*cause = xasprintf("%s: %dx%d px, %d channel(s) of %d bits; a far roughness map is "
+		    "square 16-bit gray", path, w, h, ch, bits);
 		free(px);
 		free(path);
 		return -1;
@@ -52,8 +52,10 @@ uint16_t *povfar_filter(const uint16_t *px, int n, int m, double *alpha_max)
 		for (int j = 0; j < m; j++) {
 			double s = 0, wsum = 0;
 			for (int y = (int)floor(i * r); y < n && y < (int)ceil((i + 1) * r); y++)
-				for (int x = (int)floor(j * r); x < n && x < (int)ceil((j + 1) * r); x++) {
-					double w = overlap(y, i * r, (i + 1) * r) * overlap(x, j * r, (j + 1) * r);
+				for (int x = (int)floor(j * r); x < n &&
+				    x < (int)ceil((j + 1) * r); x++) {
+					double w = overlap(y, i * r, (i + 1) * r)
+					    * overlap(x, j * r, (j + 1) * r);
 					double a = px[(size_t)y * n + x] / 65535.0;
 					s += w * a * a;
 					wsum += w;
@@ -95,20 +97,23 @@ void povfar_brdf(void *ctx, double theta_i, double theta_o, double dphi, double 
 		rgb[c] = seen > 0 ? sum[c] / (seen * cn) : 0;
 }
 
-int povfar_write_key(FILE *fp, const char *name, const struct pov_far *far, const struct pov_brdf *f,
-    const struct pov_light *l, const struct pov_view *v, const double lo[3], const double hi[3], int n_theta,
-    int n_gamma)
+int povfar_write_key(FILE *fp, const char *name, const struct pov_far *far,
+    const struct pov_brdf *f, const struct pov_light *l, const struct pov_view *v,
+    const double lo[3], const double hi[3], int n_theta, int n_gamma)
 {
 	int g = littable_write_key(fp, name, f, l, v, lo, hi, n_theta, n_gamma);
 	if (far == NULL || !far->on)
 		return g;
 	struct pov_far fr = *far;
 	fr.base = f;
-	struct pov_brdf rough = { povfar_brdf, &fr, f->n_ti_hint, f->n_to_hint, f->ti_hint, f->to_hint };
+	struct pov_brdf rough = {
+		povfar_brdf, &fr, f->n_ti_hint, f->n_to_hint, f->ti_hint, f->to_hint
+	};
 	char *rn = xasprintf("%s_Rough", name);
 	int g2 = littable_write_key(fp, rn, &rough, l, v, lo, hi, n_theta, n_gamma);
 	double T = far->tile_units;
-	fprintf(fp, "// The relief below a pixel: the table blended with its rough copy by alpha_relief\n"
+	fprintf(fp, "// The relief below a pixel: the table blended with its rough copy by "
+	    "alpha_relief\n"
 	    "// (roughness_far.png, one tile of %.6g units, projected along z; docs/relief.md).\n"
 	    "#declare %s = pigment { image_pattern { png \"%s\" map_type 0 interpolate 2 }\n"
 	    "  pigment_map { [0 %s scale %.9g] [%.6f %s scale %.9g] } scale %.9g }\n",

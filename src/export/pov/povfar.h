@@ -49,7 +49,7 @@ void povfar_brdf(void *far, double theta_i, double theta_o, double dphi, double 
 
 /* littable_write_key for NAME, then with far->on also NAME_Rough and NAME
  * redeclared as the blend above.  Returns littable_write_key's gamma nodes. */
-int povfar_write_key(FILE *fp, const char *name, const struct pov_far *far, const struct pov_brdf *f,
-    const struct pov_light *l, const struct pov_view *v, const double lo[3], const double hi[3], int n_theta,
-    int n_gamma);
+int povfar_write_key(FILE *fp, const char *name, const struct pov_far *far,
+    const struct pov_brdf *f, const struct pov_light *l, const struct pov_view *v,
+    const double lo[3], const double hi[3], int n_theta, int n_gamma);
 #endif
