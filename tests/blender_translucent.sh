@@ -38,7 +38,25 @@ check "export blender --mode translucent" test $? -eq 0 -a -f "$set/manifest.jso
 check "  ... the manifest has the fitted node" python3 -c 'import json,sys
 sys.exit(json.load(open(sys.argv[1]))["translucent"]["node"] != "ShaderNodeSubsurfaceScattering")' "$set/manifest.json"
 
-# 1. Flat skin, exact mode with the node.
+# A Blender without its own fit in the set (the export calibrates 3.4, 4.5 and 5.0; Debian 13's
+# 4.3, say) is refused by the importer with the versions it has: checked here, and sections 1-2 and
+# the radius-0 check below, which need this version's fit, skipped with a line that says so.
+hasfit=$(python3 -c 'import json,sys
+print(int(any(v.get("blender") == sys.argv[2] for v in json.load(open(sys.argv[1]))["translucent"]["versions"])))' \
+	"$set/manifest.json" "$blver" 2>/dev/null)
+if [ "$hasfit" != 1 ]; then
+	B --python "$imp" -- "$set" --mode exact --scene box --samples 1 --render "$tmpd/nofit.exr" >"$tmpd/nofit.log" 2>&1
+	rc=$?
+	check "Blender $blver has no translucent fit in the set: the importer refuses it (exit $rc, no render)" \
+		test $rc -eq 2 -a ! -s "$tmpd/nofit.exr"
+	check "  ... naming the versions it has: $(sed -n 's/.*translucent.versions has fits for Blender \(.*\), not for this.*/\1/p' "$tmpd/nofit.log")" \
+		grep -q "translucent.versions has fits for Blender .* not for this Blender" "$tmpd/nofit.log"
+	skip "Blender $blver: flat skin, back light and the radius-0 check need this version's fit (make calibrate-blender with this Blender adds one)"
+fi
+
+# 1. Flat skin, exact mode with the node (sections 1-2 and the radius-0 check, not indented, only
+# with this version's fit).
+if [ "$hasfit" = 1 ]; then
 B --python "$imp" -- "$set" --mode exact --scene box --samples 256 --render "$tmpd/box.exr" >"$tmpd/box.log" 2>&1
 check "exact mode with the translucent set: import and render" test $? -eq 0
 check "  ... the importer added this Blender's fitted node" \
@@ -108,7 +126,10 @@ PY
 		"a homogeneous walk fitted to the reflection transmits up to 2x the layered slab" test "${r##* }" = 1
 done
 
+fi
+
 # 3. Bad input: the importer refuses a translucent section with a radius of 0.
+if [ "$hasfit" = 1 ]; then
 cp -r "$set" "$tmpd/bad"
 python3 -c 'import json,sys; p=sys.argv[1]; m=json.load(open(p))
 for v in m["translucent"]["versions"]: v["radius_m"][0] = 0
@@ -117,6 +138,7 @@ B --python "$imp" -- "$tmpd/bad" --mode exact --scene box --samples 1 --render "
 check "a translucent radius of 0: the importer fails" test $? -ne 0 -a ! -s "$tmpd/bad.exr"
 check "  ... naming translucent.versions[$blver].radius_m" \
 	grep -q "translucent.versions\[$blver\].radius_m" "$tmpd/bad.log"
+fi
 # ... and a set without a fit for this Blender (5.0.1 rendered the 3.4.1 fit 12 % dark).
 cp -r "$set" "$tmpd/bad2"
 python3 -c 'import json,sys; p=sys.argv[1]; m=json.load(open(p))

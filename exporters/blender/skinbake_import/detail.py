@@ -2,6 +2,8 @@
 relief as roughness where it is smaller than a pixel (roughness_far.png, docs/relief.md)."""
 import math
 import os
+import struct
+import zlib
 
 import bpy
 
@@ -40,6 +42,15 @@ def detail_normal(tr, m, no_detail, geo, far=False):
     tr.link(t.outputs["Color"], nm.inputs["Color"])
     if far:
         _far_setup(tr, m, co, size, nm)
+    tr.nrm_diffuse = None
+    dimg = diffuse_normal_image(m, img)
+    if dimg is not None:
+        td = tr.tex(dimg, co, (-1300, -400), label="normal.png blurred by the subsurface radius")
+        nd = tr.node("ShaderNodeNormalMap", (-1000, -400), space="TANGENT")
+        tr.link(td.outputs["Color"], nd.inputs["Color"])
+        if nm.inputs["Strength"].is_linked:
+            tr.link(nm.inputs["Strength"].links[0].from_socket, nd.inputs["Strength"])
+        tr.nrm_diffuse = nd.outputs["Normal"]
     nz = tr.math("MAXIMUM", tr.vmath("DOT_PRODUCT", nm.outputs["Normal"], geo.outputs["Normal"], (-800, -850)),
                  0.2, loc=(-650, -850))
     area = tr.math("DIVIDE", 1.0, nz, loc=(-500, -850))
@@ -48,6 +59,50 @@ def detail_normal(tr, m, no_detail, geo, far=False):
         area = tr.math("MULTIPLY_ADD", tr.math("SUBTRACT", 1.0, area, loc=(-500, -1000)), tr.far[0], area,
                        loc=(-350, -900))
     return nm.outputs["Normal"], area
+
+
+def diffuse_normal_image(m, img):
+    """normal.png with its slopes blurred by the subsurface light's spread (docs/relief.md section
+    7): the diffuse light leaves 0.1-1 mm from where it entered, so to first order it sees the
+    relief convolved with Rd(r).  Here Rd(r) is a Gaussian of the set's luminance-weighted mean
+    exit radius (sss_radius_m; mean radius = sigma sqrt(pi / 2)), applied to the slopes n_x / n_z,
+    n_y / n_z by FFT (the tile is periodic).  None when SKINBAKE_DIFFUSE_RELIEF=sharp, without a
+    radius or without numpy."""
+    if os.environ.get("SKINBAKE_DIFFUSE_RELIEF") == "sharp" or "sss_radius_m" not in m:
+        return None
+    try:
+        import numpy as np
+    except ImportError:
+        return None
+    w, h = img.size
+    r = sum(k * float(x) for k, x in zip((0.2126, 0.7152, 0.0722), m["sss_radius_m"]))
+    texel = float(m["detail"]["tile_mm"]) * 1e-3 / w
+    sigma = r / math.sqrt(math.pi / 2) / texel
+    if not sigma > 0.5:
+        return None
+    px = np.empty(w * h * 4, dtype=np.float32)
+    img.pixels.foreach_get(px)
+    n = px.reshape(h, w, 4)[:, :, :3].astype(np.float64) * 2 - 1
+    nz = np.maximum(n[:, :, 2], 0.05)
+    fy, fx = np.meshgrid(np.fft.fftfreq(h), np.fft.fftfreq(w), indexing="ij")
+    g = np.exp(-2 * (math.pi * sigma) ** 2 * (fx * fx + fy * fy))
+    blur = lambda a: np.real(np.fft.ifft2(np.fft.fft2(a) * g))
+    sx, sy = blur(n[:, :, 0] / nz), blur(n[:, :, 1] / nz)
+    k = 1 / np.sqrt(1 + sx * sx + sy * sy)
+    rgb = np.stack((0.5 + 0.5 * sx * k, 0.5 + 0.5 * sy * k, 0.5 + 0.5 * k), axis=2)
+    # Blender's pixels run bottom row first; a PNG's top row first.  16-bit, next to normal.png.
+    q = np.round(np.clip(rgb[::-1], 0, 1) * 65535).astype(">u2")
+    raw = b"".join(b"\0" + q[y].tobytes() for y in range(h))
+    chunk = lambda t, b: struct.pack(">I", len(b)) + t + b + struct.pack(">I", zlib.crc32(t + b) & 0xffffffff)
+    path = os.path.join(m["_dir"], "normal_diffuse.png")
+    with open(path, "wb") as f:
+        f.write(b"\x89PNG\r\n\x1a\n" + chunk(b"IHDR", struct.pack(">IIBBBBB", w, h, 16, 2, 0, 0, 0))
+                + chunk(b"IDAT", zlib.compress(raw, 6)) + chunk(b"IEND", b""))
+    d = bpy.data.images.load(path, check_existing=False)
+    d.colorspace_settings.name = "Non-Color"
+    print(f"skinbake: {path}: normal.png blurred by a Gaussian of mean radius {r * 1e3:.3g} mm for the "
+          "subsurface closures (SKINBAKE_DIFFUSE_RELIEF=sharp keeps normal.png)")
+    return d
 
 
 def _pixel_m_per_m():
