@@ -80,9 +80,11 @@ void bake_eval_diffuse(const struct bake *b, double theta_i, double theta_o, dou
 void bake_eval_specular(const struct bake *b, double theta_i, double theta_o, double dphi, double *f);
 /* Analytic surface specular BRDF in linear sRGB [1/sr] (the part of
  * bake_eval_rgb that is not the diffuse table). */
-void bake_eval_specular_rgb(const struct bake *b, double theta_i, double theta_o, double dphi, double rgb[3]);
+void bake_eval_specular_rgb(const struct bake *b, double theta_i, double theta_o, double dphi,
+    double rgb[3]);
 /* The diffuse table's part of bake_eval_rgb in linear sRGB [1/sr]. */
-void bake_eval_diffuse_rgb(const struct bake *b, double theta_i, double theta_o, double dphi, double rgb[3]);
+void bake_eval_diffuse_rgb(const struct bake *b, double theta_i, double theta_o, double dphi,
+    double rgb[3]);
 /* Total (diffuse + specular) BRDF in linear sRGB [1/sr]. */
 void bake_eval_rgb(const struct bake *b, double theta_i, double theta_o, double dphi, double rgb[3]);
 #endif

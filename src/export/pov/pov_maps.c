@@ -260,7 +260,8 @@ int pov_maps_write_key(FILE *fp, const char *name, const struct pov_maps *pm,
  * top stack), checked on a few angles. */
 static int one_specular(const struct pov_maps *pm, double alpha)
 {
-	static const double ang[4][3] = { { 0, 0, 0 }, { 0.5, 0.6, 3.0 }, { 1.2, 1.3, 2.5 }, { 1.5, 0.2, 1.0 } };
+	static const double ang[4][3] = { { 0, 0, 0 }, { 0.5, 0.6, 3.0 }, { 1.2, 1.3, 2.5 },
+		{ 1.5, 0.2, 1.0 } };
 	const struct brdf_family *f = pm->fam;
 	struct povsplit_spec r = { brdf_family_member_bake(f, pm->ref), alpha };
 	for (int m = 0; m < f->n_members; m++) {
@@ -287,8 +288,8 @@ void pov_maps_write_fill(FILE *fp, const char *name, const struct pov_maps *pm, 
 		if (pm->src[m] == NULL)
 			continue;
 		const struct brdf_source *b = pm->src[m];
-		double *a = povsplit_fill_curve(brdf_family_member_bake(f, m), b->n_albedo, b->theta_albedo,
-		    b->albedo_rgb);
+		const struct bake *mb = brdf_family_member_bake(f, m);
+		double *a = povsplit_fill_curve(mb, b->n_albedo, b->theta_albedo, b->albedo_rgb);
 		fprintf(fp, "#declare %s_M%04d = ", name, m);
 		sdl_albedo_pigment(fp, b->n_albedo, b->theta_albedo, a);
 		free(a);
@@ -308,8 +309,10 @@ int pov_maps_write_part(FILE *fp, const char *name, const struct pov_maps *pm, i
 	if (part == 2 && one_specular(pm, spec_alpha)) {
 		struct povsplit_spec sp = { brdf_family_member_bake(f, pm->ref), spec_alpha };
 		const struct brdf_source *b = pm->src[pm->ref];
-		struct pov_brdf t = { povsplit_specular, &sp, b->n_ti, b->n_to, b->theta_i, b->theta_o };
-		fprintf(fp, "// The members' surface specular is the same (GGX alpha %.4g): one table.\n", spec_alpha);
+		struct pov_brdf t = { povsplit_specular, &sp, b->n_ti, b->n_to, b->theta_i,
+			b->theta_o };
+		fprintf(fp, "// The members' surface specular is the same (GGX alpha %.4g): one "
+		    "table.\n", spec_alpha);
 		return littable_write_key(fp, name, &t, l, v, lo, hi, n_theta, n_gamma);
 	}
 	fprintf(fp, "// Family %s blended by maps (%d x %d texels): one lit table per member the maps reach.\n",
