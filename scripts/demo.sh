@@ -63,14 +63,20 @@ echo "== maps: fair (with freckles), medium, brown"
 maps fair 0.011 1
 maps medium 0.035 0
 maps brown 0.10 0
+echo "== a young cheek's relief (docs/relief.md), for the head and the close-up"
+# Shallower than the face site's default (primary lines 18 um, measured 25 um: the low end of
+# Hashimoto's 20-100 um), and a tile wider than the close-up's view, so that it does not repeat in it.
+[ -f "$out/cheek/manifest.json" ] ||
+	$B texture --site face --size 1024 --tile-mm 20 --furrow-depth 18 --level-gain 0.2 \
+		--out "$out/cheek" --quiet
 echo "== the head (scenes/showcase-head.scene)"
-# No bump map at this distance: the relief's cells (0.35 mm) are below the pixels (0.42 mm), its
-# far roughness (docs/relief.md) is not applied with maps yet, and the box-filtered bump map
-# would only add grain.
-render scenes/showcase-head.scene human-head "$out/maps-fair"
+# The relief is split (docs/relief.md section 7): the diffuse part sees it blurred by Rd(r), the
+# specular the bump map box-filtered to half a pixel, the relief below that as a wider GGX alpha.
+render scenes/showcase-head.scene human-head "$out/maps-fair" --textures "$out/cheek"
 echo "== three complexions, 320x240 each"
 for c in fair medium brown; do
-	render scenes/showcase-head.scene "c-$c" "$out/maps-$c" --size 320x240 --nodes 9 --gamma-nodes 3
+	render scenes/showcase-head.scene "c-$c" "$out/maps-$c" --size 320x240 --nodes 9 --gamma-nodes 3 \
+		--textures "$out/cheek"
 done
 {
 	echo "#version 3.7;"
@@ -87,10 +93,6 @@ done
 	{ echo "demo.sh: povray failed, see $out/complexions.log" >&2; exit 1; }
 echo "wrote $out/complexions.png"
 echo "== close-up of the cheek (scenes/showcase-closeup.scene), a young cheek's relief"
-# Shallower than the face site's default (primary lines 18 um, measured 25 um: the low end of
-# Hashimoto's 20-100 um), and a tile wider than the view, so that it does not repeat in it.
-$B texture --site face --size 1024 --tile-mm 20 --furrow-depth 18 --level-gain 0.2 \
-	--out "$out/cheek" --quiet
 render scenes/showcase-closeup.scene human-pores "$out/maps-fair" --textures "$out/cheek" --nodes 9 --gamma-nodes 3
 
 # The translucent head lit from behind the ear (issue 27), exact and translucent mode.

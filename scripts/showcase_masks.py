@@ -2,10 +2,11 @@
 #   blender -b --factory-startup --python scripts/showcase_masks.py -- MODEL OUT_DIR SIZE
 # Imports the MakeHuman model (a .zae zip or its .dae), and paints three 8-bit grey masks in the
 # UV space of its body mesh (human-baseMesh), SIZE x SIZE texels, from 3-D regions of the face:
-# lips.png (an ellipsoid around the mouth), cheeks.png (two flushes fading over their radius), nose.png (the tip and
-# the wings), ears.png (both ears), freckles.png (90 spots of 0.6-1.3 mm radius over the nose and
-# upper cheeks, from vertices picked by a fixed seed).  scripts/demo.sh reads the copies in
-# scenes/masks/ (made with SIZE 512).  Landmarks were measured on the model in Blender's frame (z up, face toward -y): nose tip
+# lips.png (an ellipse around the mouth, fading over its outer half and in depth: no outline),
+# cheeks.png (two flushes fading over their radius), nose.png (the tip and the wings), ears.png
+# (both ears), freckles.png (160 spots of 1-2 mm radius, strengths 0.45-1, over the nose and upper
+# cheeks, from vertices picked by a fixed seed).  scripts/demo.sh reads the copies in
+# scenes/masks/ (made with SIZE 2048).  Landmarks were measured on the model in Blender's frame (z up, face toward -y): nose tip
 # (0, -0.160, 1.516) m, upper lip at z 1.495, lower lip at z 1.480, mouth 5 cm wide.
 import bpy, math, os, random, struct, sys, zipfile, zlib, tempfile
 
@@ -28,11 +29,13 @@ uv = me.uv_layers.active.data
 def smooth(d):  # 1 inside, 0 outside, smooth between d = 0.7 and 1
     return 1.0 if d <= 0.7 else 0.0 if d >= 1 else 0.5 + 0.5 * math.cos(math.pi * (d - 0.7) / 0.3)
 
-def lips(p):
+def ramp(t):  # 0 at t <= 0, 1 at t >= 1, a cosine between
+    return 0.0 if t <= 0 else 1.0 if t >= 1 else 0.5 - 0.5 * math.cos(math.pi * t)
+
+def lips(p):  # full inside half the ellipse, fading over the rest and 10 mm in depth (no outline)
     x, y, z = p
-    if y > -0.125:
-        return 0.0
-    return smooth(math.sqrt((x / 0.026) ** 2 + ((z - 1.4875) / 0.0135) ** 2))
+    d = math.sqrt((x / 0.027) ** 2 + ((z - 1.4875) / 0.0145) ** 2)
+    return ramp((1.05 - d) / 0.55) * ramp((-0.122 - y) / 0.010)
 
 def soft(d):  # a flush: 1 at the centre, fading over the whole radius (no visible rim)
     return 0.0 if d >= 1 else (0.5 + 0.5 * math.cos(math.pi * d)) ** 1.5
@@ -58,17 +61,17 @@ def ears(p):  # head half-width 0.0835 m at the ears; measured on the model
 rng = random.Random(15)
 cand = [p for p in P if abs(p[0]) < 0.065 and 1.50 < p[2] < 1.56 and p[1] < -0.105]
 spots = []
-for _ in range(90):
+for _ in range(160):  # ephelides 2-4 mm across (radius 1-2 mm), of varied strength
     c = rng.choice(cand)
     c = (c[0] + rng.uniform(-0.003, 0.003), c[1], c[2] + rng.uniform(-0.003, 0.003))
-    spots.append((c, rng.uniform(0.0006, 0.0013)))
+    spots.append((c, rng.uniform(0.0010, 0.0020), rng.uniform(0.45, 1.0)))
 
 def freckles(p):
     best = 0.0
-    for c, r in spots:
+    for c, r, a in spots:
         d = math.dist(p, c) / r
         if d < 1:
-            best = max(best, smooth(d))
+            best = max(best, a * (0.5 + 0.5 * math.cos(math.pi * d)))
     return best
 
 masks = {'lips': lips, 'cheeks': cheeks, 'nose': nose, 'ears': ears, 'freckles': freckles}

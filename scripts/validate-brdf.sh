@@ -719,11 +719,14 @@ side at grazing (the tilted facets facing the light, as with Oren & Nayar's roug
 surfaces), which was already about right. So the fit keeps m small.
 EOF
 	if [ -f "$all" ]; then
+		best_all() { awk -F'\t' '/^[0-9]/ { if (b == "" || $8 < b) { b = $8; r = $10 } } END { print r }' "$1"; }
+		with=$(best_all "$all")
+		without=$(best_all "$top_srcdir/docs/validation/fit-curet39-rough-all.tsv" 2>/dev/null)
 		cat <<EOF
 Fitted to every point but the 4 saturated ones (\`--train all\`, a diagnostic; log
 docs/validation/fit-curet39-rough-macro-all.tsv) the best of $(grep -c '^[0-9]' "$all") evaluations is
-$(awk -F'\t' '/^[0-9]/ { if (b == "" || $8 < b) { b = $8; r = $10; m = $11 } } END { printf "%.1f %% at m = %s", r, m }' "$all"):
-the relief adds no freedom this data can use.
+$(awk -F'\t' '/^[0-9]/ { if (b == "" || $8 < b) { b = $8; r = $10; m = $11 } } END { printf "%.1f %% at m = %s", r, m }' "$all")
+(without the relief, round 3: ${without:-?} %)$(awk -v a="$with" -v b="${without:-0}" 'BEGIN { if (b > 0 && a > b - 0.5) print ": the relief adds no freedom this data can use."; else print "." }')
 EOF
 	fi
 }

@@ -31,9 +31,6 @@ if [ -z "$BLENDER" ] || ! command -v "$BLENDER" >/dev/null 2>&1 || ! command -v 
 	exit 1
 fi
 B() { timeout 900 "$BLENDER" -b --factory-startup -noaudio --python-exit-code 1 "$@"; }
-# todo DESC REASON CMD...: a known limit, reported but not failing.
-todo() { d=$1; why=$2; shift 2; tap_n=$((tap_n+1)); if "$@"; then echo "ok $tap_n - $d (known limit met this run: $why)"; \
-	else echo "not ok $tap_n - $d # TODO $why"; fi; }
 blver=$(B --python-expr 'import bpy; print("BLVER %d.%d" % tuple(bpy.app.version[:2]))' \
 	2>/dev/null | sed -n 's/^BLVER //p' | head -n 1)
 echo "# Blender $blver ($BLENDER)"

@@ -305,13 +305,13 @@ static void raw_specular(const struct bake *b, double theta_i, double theta_o, d
 		f[w] = specular_ggx(&b->stack[w], b->roughness, theta_i, theta_o, fold_phi(dphi));
 }
 
-static void raw_rgb(const struct bake *b, double theta_i, double theta_o, double dphi,
+/* The diffuse table's part of raw_rgb. */
+static void raw_diffuse_rgb(const struct bake *b, double theta_i, double theta_o, double dphi,
     double rgb[3])
 {
 	double ph = fold_phi(dphi), ti = clamp_theta(theta_i), to = clamp_theta(theta_o);
-	double sp[BAKE_MAX_WL], fd[BAKE_MAX_WL];
+	double fd[BAKE_MAX_WL];
 	CHECK(b->n_wl <= BAKE_MAX_WL);	/* bake_load guarantees it */
-	raw_specular(b, theta_i, theta_o, ph, sp);
 	int mixed = 0;
 	for (int c = 0; c < 3; c++)
 		mixed |= bake_interp_rgb(b, c, ti, to, ph, &rgb[c]) != 0;
@@ -323,6 +323,15 @@ static void raw_rgb(const struct bake *b, double theta_i, double theta_o, double
 				rgb[c] += b->rgb_from_wl[c * b->n_wl + w] * fd[w];
 		}
 	}
+}
+
+static void raw_rgb(const struct bake *b, double theta_i, double theta_o, double dphi,
+    double rgb[3])
+{
+	double sp[BAKE_MAX_WL];
+	CHECK(b->n_wl <= BAKE_MAX_WL);	/* bake_load guarantees it */
+	raw_specular(b, theta_i, theta_o, fold_phi(dphi), sp);
+	raw_diffuse_rgb(b, theta_i, theta_o, dphi, rgb);
 	for (int c = 0; c < 3; c++)
 		for (int w = 0; w < b->n_wl; w++)
 			rgb[c] += b->rgb_from_wl[c * b->n_wl + w] * sp[w];
@@ -331,7 +340,7 @@ static void raw_rgb(const struct bake *b, double theta_i, double theta_o, double
 /* The macro-scale roughness (engine/macro.h): the facet BRDF above
  * integrated over the mm-scale facets, part by part (the sum of the parts'
  * integrals is the total's: the integral is linear). */
-enum part { PART_DIFFUSE, PART_DIFFUSE_ERR, PART_SPECULAR, PART_RGB };
+enum part { PART_DIFFUSE, PART_DIFFUSE_ERR, PART_SPECULAR, PART_RGB, PART_DIFFUSE_RGB };
 struct part_ctx {
 	const struct bake *b;
 	enum part part;
@@ -352,6 +361,9 @@ static void part_at(void *ctx, double ti, double to, double ph, double *out)
 		break;
 	case PART_RGB:
 		raw_rgb(c->b, ti, to, ph, out);
+		break;
+	case PART_DIFFUSE_RGB:
+		raw_diffuse_rgb(c->b, ti, to, ph, out);
 		break;
 	}
 }
@@ -395,6 +407,31 @@ void bake_eval_rgb(const struct bake *b, double theta_i, double theta_o, double 
 		return;
 	}
 	struct part_ctx c = { b, PART_RGB };
+	macro_eval(b->macro, part_at, &c, 3, clamp_theta(theta_i), clamp_theta(theta_o),
+	    fold_phi(dphi), rgb);
+}
+
+void bake_eval_specular_rgb(const struct bake *b, double theta_i, double theta_o, double dphi,
+    double rgb[3])
+{
+	double sp[BAKE_MAX_WL];
+	CHECK(b->n_wl <= BAKE_MAX_WL);
+	bake_eval_specular(b, theta_i, theta_o, dphi, sp);
+	for (int c = 0; c < 3; c++) {
+		rgb[c] = 0.0;
+		for (int w = 0; w < b->n_wl; w++)
+			rgb[c] += b->rgb_from_wl[c * b->n_wl + w] * sp[w];
+	}
+}
+
+void bake_eval_diffuse_rgb(const struct bake *b, double theta_i, double theta_o, double dphi,
+    double rgb[3])
+{
+	if (b->macro == NULL) {
+		raw_diffuse_rgb(b, theta_i, theta_o, dphi, rgb);
+		return;
+	}
+	struct part_ctx c = { b, PART_DIFFUSE_RGB };
 	macro_eval(b->macro, part_at, &c, 3, clamp_theta(theta_i), clamp_theta(theta_o),
 	    fold_phi(dphi), rgb);
 }

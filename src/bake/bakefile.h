@@ -26,10 +26,12 @@
  * A bake with a mm-scale relief (manifest specular.macro_slope > 0, preset
  * key [surface] macro_slope) keeps the facets' own table and lobe in its
  * files; bake_eval_diffuse, bake_eval_specular and bake_eval_rgb return them
- * integrated over the tilted facets (engine/macro.h), so eval and every
- * exporter (export/source.h reads through these) see the relief.  The
- * albedo curve stays the facets' (the relief's single-scattering loss,
- * 0.5-7 % for m 0.1-0.4, is not in it). */
+ * integrated over the tilted facets (engine/macro.h), so eval and the C
+ * exporters' tables (POV-Ray, Blender's LUT: export/source.h reads through
+ * these) see the relief.  The albedo curve, the analytic GGX parameters the
+ * renderers' general modes use, and the Mitsuba table plugin (which reads
+ * brdf.exr itself and says so on stderr) stay the facets' (the relief's
+ * single-scattering loss, 0.5-7 % for m 0.1-0.4, is not in the albedo). */
 #ifndef SKINBAKE_BAKEFILE_H
 #define SKINBAKE_BAKEFILE_H
 #include "bake/bakedir.h"
@@ -76,6 +78,11 @@ void bake_prepare(struct bake *b);
 void bake_eval_diffuse(const struct bake *b, double theta_i, double theta_o, double dphi, double *f, double *err);
 /* Analytic surface specular BRDF per wavelength [1/sr]. */
 void bake_eval_specular(const struct bake *b, double theta_i, double theta_o, double dphi, double *f);
+/* Analytic surface specular BRDF in linear sRGB [1/sr] (the part of
+ * bake_eval_rgb that is not the diffuse table). */
+void bake_eval_specular_rgb(const struct bake *b, double theta_i, double theta_o, double dphi, double rgb[3]);
+/* The diffuse table's part of bake_eval_rgb in linear sRGB [1/sr]. */
+void bake_eval_diffuse_rgb(const struct bake *b, double theta_i, double theta_o, double dphi, double rgb[3]);
 /* Total (diffuse + specular) BRDF in linear sRGB [1/sr]. */
 void bake_eval_rgb(const struct bake *b, double theta_i, double theta_o, double dphi, double rgb[3]);
 #endif

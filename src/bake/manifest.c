@@ -121,8 +121,8 @@ static json_object *specular_info(const struct bake_spec *s, const struct bake_r
 		add(sp, "macro_slope", json_num(m->macro_slope));
 		add(sp, "macro", jstr("mm-scale relief (engine/macro.h): eval and the exporters "
 		    "integrate the table and this lobe together over Beckmann facets of this RMS "
-		    "slope with height-correlated Smith shadowing; the table and albedo here are the "
-		    "facets' own"));
+		    "slope with height-correlated Smith shadowing; the table and albedo here are "
+		    "the facets' own"));
 	}
 	add(sp, "fresnel", jstr(s->opts.fresnel == OPTICS_FRESNEL_SCHLICK ? "schlick" : "exact"));
 	json_object *stacks = json_object_new_array();

@@ -39,13 +39,14 @@ static void smooth_rt(enum optics_fresnel model, const double nl[2], double s, d
 	else if (!above || !below)
 		*r = 1.0;
 	else {
-		*r = optics_stack_reflectance(model, nl, 2, sqrt(fmax(0.0, (nl[0] - s) * (nl[0] + s))) / nl[0], &ct);
+		*r = optics_stack_reflectance(model, nl, 2,
+		    sqrt(fmax(0.0, (nl[0] - s) * (nl[0] + s))) / nl[0], &ct);
 		*t = 1.0 - *r;
 	}
 }
 
-void ad_elem_smooth(struct ad_elem *x, int N, int E, enum optics_fresnel model, double n_above, double n_below,
-    const double *s, const double *se)
+void ad_elem_smooth(struct ad_elem *x, int N, int E, enum optics_fresnel model, double n_above,
+    double n_below, const double *s, const double *se)
 {
 	const double nl[2] = { n_above, n_below };
 	memset(x->rt, 0, sizeof(double) * ad_elem_size(N, E));
@@ -67,21 +68,25 @@ void ad_elem_smooth(struct ad_elem *x, int N, int E, enum optics_fresnel model, 
 size_t ad_elem_work(int N, int E)
 {
 	/* o, S and Su [N x (2N + E)], M [N x N], cdn [E], piv [N] (ints). */
-	return ad_elem_size(N, E) + 2 * (size_t)N * (size_t)(2 * N + E) + (size_t)N * (size_t)N + (size_t)E + (size_t)N + 1;
+	return ad_elem_size(N, E) + 2 * (size_t)N * (size_t)(2 * N + E) + (size_t)N * (size_t)N
+	    + (size_t)E + (size_t)N + 1;
 }
 
 static void gemm(int m, int n, int k, const double *A, const double *B, double beta, double *C)
 {
-	cblas_dgemm(CblasColMajor, CblasNoTrans, CblasNoTrans, m, n, k, 1.0, A, m, B, k, beta, C, m);
+	cblas_dgemm(CblasColMajor, CblasNoTrans, CblasNoTrans, m, n, k, 1.0, A, m, B, k, beta,
+	    C, m);
 }
 
-int ad_elem_add(int N, int E, const struct ad_elem *A, const struct ad_elem *B, struct ad_elem *out, double *work)
+int ad_elem_add(int N, int E, const struct ad_elem *A, const struct ad_elem *B, struct ad_elem *out,
+    double *work)
 {
 	const int nc = N + E, ncb = 2 * N + E;	/* from above (N + E), then from below (N) */
 	struct ad_elem o;
 	ad_elem_bind(&o, work, N, E);
 	double *S = work + ad_elem_size(N, E);	/* [N x ncb]: the gap's sources, then d */
-	double *Su = S + (size_t)N * ncb;	/* [N x ncb]: light going up in the gap from its sources */
+	double *Su = S + (size_t)N * ncb;	/* [N x ncb]: light going up in
+						 * the gap from its sources */
 	double *M = Su + (size_t)N * ncb;	/* [N x N]: I - Rb_A Rt_B */
 	double *cdn = M + (size_t)N * N;	/* [E] collimated going down in the gap */
 	int *piv = (int *)(cdn + E);
@@ -123,7 +128,8 @@ int ad_elem_add(int N, int E, const struct ad_elem *A, const struct ad_elem *B, 
 		double den = 1.0 - A->rb_d[e] * B->rt_d[e];
 		o.rt_d[e] = A->rt_d[e] + A->tu_d[e] * B->rt_d[e] * cdn[e];
 		o.td_d[e] = B->td_d[e] * cdn[e];
-		o.rb_d[e] = B->rb_d[e] + (B->tu_d[e] == 0.0 ? 0.0 : B->td_d[e] * A->rb_d[e] * B->tu_d[e] / den);
+		o.rb_d[e] = B->rb_d[e]
+		    + (B->tu_d[e] == 0.0 ? 0.0 : B->td_d[e] * A->rb_d[e] * B->tu_d[e] / den);
 		o.tu_d[e] = B->tu_d[e] == 0.0 ? 0.0 : A->tu_d[e] * B->tu_d[e] / den;
 	}
 	memcpy(out->rt, o.rt, sizeof(double) * ad_elem_size(N, E));

@@ -32,8 +32,8 @@ void ad_bnd_rt(enum optics_fresnel model, const double *nl, int cnt, double s, d
 	}
 }
 
-void ad_bnd_fill(struct ad_bnd *b, enum optics_fresnel model, const double *nl, int cnt, const double *s, int N,
-    const double *se, int E)
+void ad_bnd_fill(struct ad_bnd *b, enum optics_fresnel model, const double *nl, int cnt,
+    const double *s, int N, const double *se, int E)
 {
 	for (int i = 0; i < N; i++)
 		ad_bnd_rt(model, nl, cnt, s[i], &b->r[i], &b->t[i]);
@@ -46,10 +46,11 @@ size_t ad_stack_work(int N, int E)
 	return (size_t)N * (size_t)N + 2 * (size_t)N * (size_t)(N + E) + (size_t)N + 2 * (size_t)E;
 }
 
-static void gemm(int m, int n, int k, const double *A, int lda, const double *B, int ldb, double beta, double *C,
-    int ldc)
+static void gemm(int m, int n, int k, const double *A, int lda, const double *B, int ldb,
+    double beta, double *C, int ldc)
 {
-	cblas_dgemm(CblasColMajor, CblasNoTrans, CblasNoTrans, m, n, k, 1.0, A, lda, B, ldb, beta, C, ldc);
+	cblas_dgemm(CblasColMajor, CblasNoTrans, CblasNoTrans, m, n, k, 1.0, A, lda, B, ldb, beta,
+	    C, ldc);
 }
 
 /* V <- (I - Pm)^-1 V for all N + E columns, Pm the first N columns of P. */
@@ -62,8 +63,8 @@ static int solve_i_minus(int N, int E, const double *P, double *V, double *A, in
 }
 
 /* Un = reflection of layer (Rl, Tl) above the stack Ub. */
-static int add_layer(int N, int E, const struct ad_op *Rl, const struct ad_op *Tl, const struct ad_op *Ub,
-    struct ad_op *Un, double *w)
+static int add_layer(int N, int E, const struct ad_op *Rl, const struct ad_op *Tl,
+    const struct ad_op *Ub, struct ad_op *Un, double *w)
 {
 	const int nc = N + E;
 	double *P = w, *V = P + (size_t)N * nc, *A = V + (size_t)N * nc, *vd = A + (size_t)N * N;
@@ -93,7 +94,8 @@ static int add_layer(int N, int E, const struct ad_op *Rl, const struct ad_op *T
 
 /* Un = reflection of the full element x above the stack Ub (add_bnd with
  * matrices for the diagonals). */
-static int add_elem(int N, int E, const struct ad_elem *x, const struct ad_op *Ub, struct ad_op *Un, double *w)
+static int add_elem(int N, int E, const struct ad_elem *x, const struct ad_op *Ub, struct ad_op *Un,
+    double *w)
 {
 	const int nc = N + E;
 	double *P = w, *V = P + (size_t)N * nc, *A = V + (size_t)N * nc, *vd = A + (size_t)N * N;
@@ -120,7 +122,8 @@ static int add_elem(int N, int E, const struct ad_elem *x, const struct ad_op *U
 }
 
 /* Un = reflection of boundary b above the stack Ub. */
-static int add_bnd(int N, int E, const struct ad_bnd *b, const struct ad_op *Ub, struct ad_op *Un, double *w)
+static int add_bnd(int N, int E, const struct ad_bnd *b, const struct ad_op *Ub, struct ad_op *Un,
+    double *w)
 {
 	const int nc = N + E;
 	double *P = w, *V = P + (size_t)N * nc, *A = V + (size_t)N * nc, *vd = A + (size_t)N * N;
@@ -147,14 +150,15 @@ static int add_bnd(int N, int E, const struct ad_bnd *b, const struct ad_op *Ub,
 		return -1;
 	for (int j = 0; j < nc; j++)
 		for (int i = 0; i < N; i++)
-			Un->a[i + (size_t)N * j] = b->t[i] * V[i + (size_t)N * j] + (i == j ? b->r[i] : 0.0);
+			Un->a[i + (size_t)N * j] = b->t[i] * V[i + (size_t)N * j]
+			    + (i == j ? b->r[i] : 0.0);
 	for (int e = 0; e < E; e++)
 		Un->d[e] = b->re[e] + b->te[e] * vd[e];
 	return 0;
 }
 
-int ad_stack_reflect(int N, int E, int K, const struct ad_bnd *bnd, const struct ad_op *R, const struct ad_op *T,
-    struct ad_op *U, double *work, char **cause)
+int ad_stack_reflect(int N, int E, int K, const struct ad_bnd *bnd, const struct ad_op *R,
+    const struct ad_op *T, struct ad_op *U, double *work, char **cause)
 {
 	const int nc = N + E;
 	struct ad_op *u = &U[2 * K];
@@ -165,7 +169,8 @@ int ad_stack_reflect(int N, int E, int K, const struct ad_bnd *bnd, const struct
 	for (int k = K - 1; k >= 0; k--) {
 		if (add_layer(N, E, &R[k], &T[k], &U[2 * k + 2], &U[2 * k + 1], work) ||
 		    add_bnd(N, E, &bnd[k], &U[2 * k + 1], &U[2 * k], work)) {
-			*cause = xasprintf("adding-doubling: adding failed (singular I - U R, LAPACK dgesv)");
+			*cause = xasprintf("adding-doubling: adding failed (singular I - U R, "
+			    "LAPACK dgesv)");
 			return -1;
 		}
 	}
@@ -182,7 +187,8 @@ static double field_flux(int N, const double *sqW, const double *v, const double
 }
 
 /* out = X v: X an operator, v a field (v [N x E], vd [E]); out [N x E], od [E]. */
-static void apply(int N, int E, const struct ad_op *X, const double *v, const double *vd, double *out, double *od)
+static void apply(int N, int E, const struct ad_op *X, const double *v, const double *vd,
+    double *out, double *od)
 {
 	gemm(N, E, N, X->a, N, v, N, 0.0, out, N);
 	for (int e = 0; e < E; e++) {
@@ -195,8 +201,8 @@ static void apply(int N, int E, const struct ad_op *X, const double *v, const do
 
 /* Power absorbed by layer (Rl, Tl) from field (v, vd), per beam, added to
  * a: what enters minus what the layer's own R and T send out. */
-static void absorbed(int N, int E, const struct ad_op *Rl, const struct ad_op *Tl, const double *sqW,
-    const double *v, const double *vd, double *a)
+static void absorbed(int N, int E, const struct ad_op *Rl, const struct ad_op *Tl,
+    const double *sqW, const double *v, const double *vd, double *a)
 {
 	for (int j = 0; j < N + E; j++) {
 		/* Loss per unit input of column j. */
@@ -213,8 +219,8 @@ static void absorbed(int N, int E, const struct ad_op *Rl, const struct ad_op *T
 }
 
 /* step_down through a full element x: D' = (I - Rb U_below)^-1 Td D. */
-static int step_down_elem(int N, int E, const struct ad_elem *x, const struct ad_op *Ub, const double *D,
-    const double *Dd, double *Dn, double *Dnd, double *w)
+static int step_down_elem(int N, int E, const struct ad_elem *x, const struct ad_op *Ub,
+    const double *D, const double *Dd, double *Dn, double *Dnd, double *w)
 {
 	const int nc = N + E;
 	double *Q = w, *A = Q + (size_t)N * nc;
@@ -243,8 +249,9 @@ static int step_down_elem(int N, int E, const struct ad_elem *x, const struct ad
 
 /* One step down: the field below element j from the field above it,
  * D' = (I - R_j U_below)^-1 T_j D; Ub == NULL when nothing is below. */
-static int step_down(int N, int E, const struct ad_bnd *b, const struct ad_op *Rl, const struct ad_op *Tl,
-    const struct ad_op *Ub, const double *D, const double *Dd, double *Dn, double *Dnd, double *w)
+static int step_down(int N, int E, const struct ad_bnd *b, const struct ad_op *Rl,
+    const struct ad_op *Tl, const struct ad_op *Ub, const double *D, const double *Dd, double *Dn,
+    double *Dnd, double *w)
 {
 	const int nc = N + E;
 	double *Q = w, *A = Q + (size_t)N * nc;
@@ -269,8 +276,10 @@ static int step_down(int N, int E, const struct ad_bnd *b, const struct ad_op *R
 	} else {
 		gemm(N, nc, N, Rl->a, N, Ub->a, N, 0.0, Q, N);
 		for (int e = 0; e < E; e++)
-			for (int i = 0; i < N; i++)
-				Q[i + (size_t)N * (N + e)] += Rl->a[i + (size_t)N * (N + e)] * Ub->d[e];
+			for (int i = 0; i < N; i++) {
+				size_t q = i + (size_t)N * (N + e);
+				Q[q] += Rl->a[q] * Ub->d[e];
+			}
 	}
 	for (int e = 0; e < E; e++) {
 		double qd = b ? b->re[e] * Ub->d[e] : 0.0;
@@ -291,8 +300,9 @@ static double top_reflect(int N, int E, const struct ad_elem *x, const double *s
 	return field_flux(N, sqW, x->rt + (size_t)N * N, x->rt_d, e);
 }
 
-int ad_stack_flux(int N, int E, int K, const struct ad_bnd *bnd, const struct ad_op *R, const struct ad_op *T,
-    const struct ad_op *U, const double *sqW, struct ad_flux *fx, double *work, char **cause)
+int ad_stack_flux(int N, int E, int K, const struct ad_bnd *bnd, const struct ad_op *R,
+    const struct ad_op *T, const struct ad_op *U, const double *sqW, struct ad_flux *fx,
+    double *work, char **cause)
 {
 	const int ne = 2 * K + 1;	/* elements */
 	const size_t fs = (size_t)N * E + E;	/* one field: node part then collimated part */
@@ -307,10 +317,12 @@ int ad_stack_flux(int N, int E, int K, const struct ad_bnd *bnd, const struct ad
 		apply(N, E, &U[j], D, D + (size_t)N * E, up + j * fs, up + j * fs + (size_t)N * E);
 		int lay = j & 1, k = j >> 1;	/* element j: boundary k, or layer k (odd j) */
 		if (step_down(N, E, lay ? NULL : &bnd[k], lay ? &R[k] : NULL, lay ? &T[k] : NULL,
-		    j + 1 < ne ? &U[j + 1] : NULL, D, D + (size_t)N * E, Dn, Dn + (size_t)N * E, work)) {
+		    j + 1 < ne ? &U[j + 1] : NULL, D, D + (size_t)N * E, Dn, Dn + (size_t)N * E,
+		    work)) {
 			free(dn);
 			free(up);
-			*cause = xasprintf("adding-doubling: flux sweep failed (singular I - R U, LAPACK dgesv)");
+			*cause = xasprintf("adding-doubling: flux sweep failed (singular I - R U, "
+			    "LAPACK dgesv)");
 			return -1;
 		}
 	}
@@ -320,7 +332,8 @@ int ad_stack_flux(int N, int E, int K, const struct ad_bnd *bnd, const struct ad
 		fx->rsp[e] = bnd[0].x ? top_reflect(N, E, bnd[0].x, sqW, e) : bnd[0].re[e];
 		fx->rd[e] = field_flux(N, sqW, u0, u0 + (size_t)N * E, e) - u0[(size_t)N * E + e];
 		if (bnd[0].x)
-			fx->rd[e] -= fx->rsp[e] - bnd[0].x->rt_d[e];	/* the diffuse part of rsp */
+			/* the diffuse part of rsp */
+			fx->rd[e] -= fx->rsp[e] - bnd[0].x->rt_d[e];
 		fx->rd_d[e] = u0[(size_t)N * E + e] - (bnd[0].x ? bnd[0].x->rt_d[e] : fx->rsp[e]);
 		fx->tt_d[e] = bot[(size_t)N * E + e];
 		fx->tt[e] = field_flux(N, sqW, bot, bot + (size_t)N * E, e) - fx->tt_d[e];

@@ -30,15 +30,15 @@
 #ifndef SKINBAKE_MACRO_H
 #define SKINBAKE_MACRO_H
 
-#define MACRO_NQ 16			/* Gauss-Hermite nodes per slope axis of the bake's rule */
-#define MACRO_NQ_MAX 32			/* most nodes per axis (the tests' reference rules) */
+#define MACRO_NQ 16			/* Gauss-Hermite nodes per slope axis (bakes) */
+#define MACRO_NQ_MAX 32			/* most nodes per axis (tests' reference) */
 #define MACRO_N (MACRO_NQ_MAX * MACRO_NQ_MAX)
 #define MACRO_SLOPE_MAX 0.8		/* largest RMS slope taken [-] */
 #define MACRO_MAX_OUT 256		/* most values per evaluation */
 
 /* The quadrature over facet normals for RMS slope m_rms in [0, MACRO_SLOPE_MAX]. */
 struct macro_rule {
-	double m_rms;		/* Beckmann m: RMS slope over all directions [-]; 0 = identity */
+	double m_rms;		/* Beckmann m: RMS slope, all directions [-]; 0 = identity */
 	int n;			/* normals in the rule (0 when m_rms == 0) */
 	double m[MACRO_N][3];	/* facet normals (unit, z up) */
 	double w[MACRO_N];	/* weights of the slope density, summing to 1 */

@@ -76,6 +76,7 @@ struct scene {
 	double unit_mm;		/* one scene unit [mm] */
 	double background[3];	/* linear RGB */
 	double antialias;	/* POV +A threshold, 0 = off */
+	double fill[3];		/* uniform sky light, as a light's colour on a surface facing it (POV-Ray, one light) */
 	enum scene_strategy lights_strategy;
 	struct scene_camera camera;
 	int n_lights;

@@ -158,6 +158,9 @@ static int key_scene(struct scene_parse *p, const char *k, const char *v)
 	} else if (!strcmp(k, "antialias")) {
 		if (num(p, k, v, 0, 3, &s->antialias) != 0)
 			return 0;
+	} else if (!strcmp(k, "fill")) {
+		if (color(p, k, v, s->fill) != 0)
+			return 0;
 	} else if (!strcmp(k, "lights")) {
 		size_t i;
 		for (i = 0; i < sizeof strategy_names / sizeof strategy_names[0]; i++)
@@ -168,7 +171,7 @@ static int key_scene(struct scene_parse *p, const char *k, const char *v)
 		s->lights_strategy = (enum scene_strategy)i;
 	} else
 		return scene_fail(p, "[scene]: unknown key '%s' (keys title, width, height, unit_mm, background, "
-		    "antialias, lights)", k);
+		    "antialias, fill, lights)", k);
 	return 1;
 }
 

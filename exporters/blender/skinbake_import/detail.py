@@ -2,6 +2,8 @@
 relief as roughness where it is smaller than a pixel (roughness_far.png, docs/relief.md)."""
 import math
 import os
+import struct
+import zlib
 
 import bpy
 
@@ -40,6 +42,15 @@ def detail_normal(tr, m, no_detail, geo, far=False):
     tr.link(t.outputs["Color"], nm.inputs["Color"])
     if far:
         _far_setup(tr, m, co, size, nm)
+    tr.nrm_diffuse = None
+    dimg = diffuse_normal_image(m, img)
+    if dimg is not None:
+        td = tr.tex(dimg, co, (-1300, -400), label="normal.png blurred by the subsurface radius")
+        nd = tr.node("ShaderNodeNormalMap", (-1000, -400), space="TANGENT")
+        tr.link(td.outputs["Color"], nd.inputs["Color"])
+        if nm.inputs["Strength"].is_linked:
+            tr.link(nm.inputs["Strength"].links[0].from_socket, nd.inputs["Strength"])
+        tr.nrm_diffuse = nd.outputs["Normal"]
     nz = tr.math("MAXIMUM", tr.vmath("DOT_PRODUCT", nm.outputs["Normal"], geo.outputs["Normal"], (-800, -850)),
                  0.2, loc=(-650, -850))
     area = tr.math("DIVIDE", 1.0, nz, loc=(-500, -850))
@@ -48,6 +59,70 @@ def detail_normal(tr, m, no_detail, geo, far=False):
         area = tr.math("MULTIPLY_ADD", tr.math("SUBTRACT", 1.0, area, loc=(-500, -1000)), tr.far[0], area,
                        loc=(-350, -900))
     return nm.outputs["Normal"], area
+
+
+def diffuse_normal_image(m, img):
+    """normal.png with its slopes blurred by the subsurface light's spread (docs/relief.md section
+    7): the diffuse light leaves 0.1-1 mm from where it entered, so to first order it sees the
+    relief convolved with Rd(r).  Here Rd(r) is a Gaussian of the set's luminance-weighted mean
+    exit radius (sss_radius_m; mean radius = sigma sqrt(pi / 2)), applied to the slopes n_x / n_z,
+    n_y / n_z as three periodic box passes per axis (the tile is periodic; plain Python, as
+    Debian's Blender has no numpy: about 10 s for 1024 px).  None when
+    SKINBAKE_DIFFUSE_RELIEF=sharp or without a radius."""
+    if os.environ.get("SKINBAKE_DIFFUSE_RELIEF") == "sharp" or "sss_radius_m" not in m:
+        return None
+    w, h = img.size
+    r = sum(k * float(x) for k, x in zip((0.2126, 0.7152, 0.0722), m["sss_radius_m"]))
+    texel = float(m["detail"]["tile_mm"]) * 1e-3 / w
+    sigma = r / math.sqrt(math.pi / 2) / texel
+    if not sigma > 0.5 or w != h:
+        return None
+    px = list(img.pixels)
+    sx = [0.0] * (w * h)
+    sy = [0.0] * (w * h)
+    for i in range(w * h):
+        nz = max(2 * px[4 * i + 2] - 1, 0.05)
+        sx[i] = (2 * px[4 * i] - 1) / nz
+        sy[i] = (2 * px[4 * i + 1] - 1) / nz
+    # The Gaussian as three periodic box passes per axis: variance 3 (b^2 - 1) / 12 = sigma^2.
+    b = max(1, int(round(math.sqrt(4 * sigma * sigma + 1))) | 1)
+    b = min(b, w - 1 if w % 2 == 0 else w)
+    for a in (sx, sy):
+        for _ in range(3):
+            _box(a, w, 1, w, b)        # rows
+            _box(a, w, w, 1, b)        # columns
+    q = bytearray()
+    for y in range(h - 1, -1, -1):    # Blender's pixels run bottom row first; a PNG's top first
+        q += b"\0"
+        for x in range(w):
+            i = y * w + x
+            k = 1 / math.sqrt(1 + sx[i] * sx[i] + sy[i] * sy[i])
+            for v in (0.5 + 0.5 * sx[i] * k, 0.5 + 0.5 * sy[i] * k, 0.5 + 0.5 * k):
+                q += struct.pack(">H", int(round(min(max(v, 0.0), 1.0) * 65535)))
+    raw = bytes(q)
+    chunk = lambda t, b: struct.pack(">I", len(b)) + t + b + struct.pack(">I", zlib.crc32(t + b) & 0xffffffff)
+    path = os.path.join(m["_dir"], "normal_diffuse.png")
+    with open(path, "wb") as f:
+        f.write(b"\x89PNG\r\n\x1a\n" + chunk(b"IHDR", struct.pack(">IIBBBBB", w, h, 16, 2, 0, 0, 0))
+                + chunk(b"IDAT", zlib.compress(raw, 6)) + chunk(b"IEND", b""))
+    d = bpy.data.images.load(path, check_existing=False)
+    d.colorspace_settings.name = "Non-Color"
+    print(f"skinbake: {path}: normal.png blurred by a Gaussian of mean radius {r * 1e3:.3g} mm for the "
+          "subsurface closures (SKINBAKE_DIFFUSE_RELIEF=sharp keeps normal.png)")
+    return d
+
+
+def _box(a, n, step, stride, b):
+    """Box filter of odd width b, periodic, over the n lines of n values of a (value j of line i
+    at i * stride + j * step)."""
+    r = b // 2
+    for i in range(n):
+        o = i * stride
+        line = [a[o + j * step] for j in range(n)]
+        s = sum(line[j % n] for j in range(-r, r + 1))
+        for j in range(n):
+            a[o + j * step] = s / b
+            s += line[(j + r + 1) % n] - line[(j - r) % n]
 
 
 def _pixel_m_per_m():

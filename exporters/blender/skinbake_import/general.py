@@ -179,9 +179,10 @@ def _general_fit(tr, m, f, nrm, area, geo, unit_scale, no_specular, calibrate, a
         tr.link(sp.outputs["BSDF"], add.inputs[1])
         out = add.outputs["Shader"]
         closures.append(sp)
-    if nrm is not None:
-        for c in closures:
-            tr.link(nrm, c.inputs["Normal"])
+    if nrm is not None:       # the subsurface closures under the relief blurred by their spread
+        dn = getattr(tr, "nrm_diffuse", None) or nrm
+        for i, c in enumerate(closures):
+            tr.link(nrm if i >= 2 else dn, c.inputs["Normal"])     # [sss, gl, surface specular]
     return out
 
 

@@ -8,7 +8,9 @@ mode's fit) hold the rest of the baked BRDF: the table minus the largest of the 
 view), so material = rest + node + a Diffuse BSDF whose colour is lambert_extra (that largest far
 field minus this version's) at the view angle (translucent.theta_o_deg).  The node is lit by each
 lamp in the view layer that renders that lamp, so the exact mode's per-lamp layers count every
-lamp once."""
+lamp once.  A family set (`--family --maps`) gives each version's node colour and radius per texel
+(versions[].maps: sss_colour_M.N.exr, sss_radius_M.N.exr) and lambert_extra per sub-grid point
+(sss_extra_M.N.exr, blended as family_lut.exr is)."""
 import math
 import os
 

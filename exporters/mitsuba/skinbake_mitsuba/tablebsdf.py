@@ -20,6 +20,7 @@ Parameters: bake (directory written by skinbake bake).
 import json
 import math
 import os
+import sys
 
 import numpy as np
 
@@ -69,6 +70,12 @@ class TableBSDF(mi.BSDF):
             man = json.load(f)
         self.wl = list(man["wavelengths_nm"])
         self.alpha = float(man["specular"]["alpha"])
+        if float(man["specular"].get("macro_slope", 0.0)) > 0.0:
+            # The mm-scale relief (src/engine/macro.h) is applied where skinbake evaluates the
+            # BRDF; this plugin reads brdf.exr and draws the lobe itself, without it.
+            print("skinbake_mitsuba: %s has specular.macro_slope %g: the table BSDF renders the "
+                  "facets' BRDF without that relief (not implemented here)"
+                  % (bake, float(man["specular"]["macro_slope"])), file=sys.stderr)
         stacks = [tuple(s) for s in man["specular"]["stack_n"]]
         self.stacks = sorted(set(stacks))
         self.stack_of_wl = [self.stacks.index(s) for s in stacks]

@@ -397,8 +397,8 @@ static json_object *manifest_build(const struct brdf_source *m, const struct ble
 	    "the node tree computes cos_view, cos_light and delta_phi per shading point; sun_direction is the "
 	    "demo scene's sun. World light and area lamps are shaded by the general material."));
 	json_object *ref = json_object_new_object();
-	json_object_object_add(ref, "geometry", json_object_new_string(
-	    "plane with normal +Z, orthographic camera looking along -view_direction, black world"));
+	json_object_object_add(ref, "geometry", json_object_new_string("plane with normal +Z, "
+	    "orthographic camera looking along -view_direction, black world"));
 	json_object_object_add(ref, "view_direction", jvec(r->view, 3));
 	json_object_object_add(ref, "view_elevation_deg", jd(o->view_elevation * 180 / M_PI));
 	json_object_object_add(ref, "view_azimuth_deg", jd(o->view_azimuth * 180 / M_PI));

@@ -13,6 +13,7 @@
 #include "export/blender/blender_sss.h"
 #include "export/sss_family.h"
 #include "io/exrio.h"
+#include "io/json.h"
 
 /* The sub-grid: per axis K points uniform in the axis coordinate over the
  * maps' range. */
@@ -215,7 +216,8 @@ static char *section(const struct brdf_family *f, const struct mapset *m, const 
 		json_object_object_add(x, "log_coordinate", json_object_new_boolean(f->axis[a].log_coord));
 		for (int i = 0; i < g->n[a]; i++) {
 			double t = g->n[a] > 1 ? (double)i / (g->n[a] - 1) : 0.5;
-			json_object_array_add(nodes, json_object_new_double(family_axis_value(&f->axis[a], g->c0[a] + t * (g->c1[a] - g->c0[a]))));
+			double c = g->c0[a] + t * (g->c1[a] - g->c0[a]);
+			json_object_array_add(nodes, json_num(family_axis_value(&f->axis[a], c)));
 		}
 		json_object_object_add(x, "sub_nodes", nodes);
 		json_object_array_add(axes, x);
@@ -240,7 +242,7 @@ static char *section(const struct brdf_family *f, const struct mapset *m, const 
 	json_object_object_add(files, "sss_radius_map", file_entry("sss_radius_map.exr", m->w, m->h,
 	    "mean exit radius per R, G, B per texel [m]"));
 	json_object_object_add(o, "files", files);
-	char *t = xstrdup(json_object_to_json_string_ext(o, JSON_C_TO_STRING_PLAIN | JSON_C_TO_STRING_NOSLASHESCAPE));
+	char *t = json_text(o, JSON_PLAIN);
 	json_object_put(o);
 	return t;
 }

@@ -46,7 +46,8 @@ void mesh2_visible(const struct mesh *m, const struct scene_camera *c, double as
 /* Per-triangle textures: bump triangles get PRE " matrix <...>" POST, the
  * others (and degenerate ones) PLAIN. */
 struct mesh2_textures {
-	const char *pre, *post, *plain;
+	const char *pre, *post, *plain;	/* a bumped triangle: pre MATRIX post */
+	const char *mid;		/* or NULL; else pre MATRIX mid MATRIX post (two normals) */
 	double tile_units;
 	const struct mesh2_uvmap *uv;
 	const unsigned char *on;	/* [n_triangles] 1 = bump, or NULL: every triangle */

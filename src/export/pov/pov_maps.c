@@ -9,6 +9,7 @@
 #include <string.h>
 
 #include "base/util.h"
+#include "export/pov/povsplit.h"
 #include "export/pov/sdl.h"
 #include "maps/image.h"
 
@@ -252,8 +253,65 @@ int pov_maps_write_key(FILE *fp, const char *name, const struct pov_maps *pm,
     const struct pov_light *l, const struct pov_view *v, const double lo[3], const double hi[3],
     int n_theta, int n_gamma, int uv)
 {
+	return pov_maps_write_part(fp, name, pm, 0, 0, l, v, lo, hi, n_theta, n_gamma, uv);
+}
+
+/* Whether every member reached has member ref's specular (ior, alpha and
+ * top stack), checked on a few angles. */
+static int one_specular(const struct pov_maps *pm, double alpha)
+{
+	static const double ang[4][3] = { { 0, 0, 0 }, { 0.5, 0.6, 3.0 }, { 1.2, 1.3, 2.5 }, { 1.5, 0.2, 1.0 } };
+	const struct brdf_family *f = pm->fam;
+	struct povsplit_spec r = { brdf_family_member_bake(f, pm->ref), alpha };
+	for (int m = 0; m < f->n_members; m++) {
+		if (pm->src[m] == NULL)
+			continue;
+		struct povsplit_spec q = { brdf_family_member_bake(f, m), alpha };
+		for (int i = 0; i < 4; i++) {
+			double a[3], b[3];
+			povsplit_specular(&r, ang[i][0], ang[i][1], ang[i][2], a);
+			povsplit_specular(&q, ang[i][0], ang[i][1], ang[i][2], b);
+			for (int c = 0; c < 3; c++)
+				if (fabs(a[c] - b[c]) > 1e-12 * (1 + fabs(a[c])))
+					return 0;
+		}
+	}
+	return 1;
+}
+
+void pov_maps_write_fill(FILE *fp, const char *name, const struct pov_maps *pm, const double lo[3],
+    const double hi[3], int uv)
+{
+	const struct brdf_family *f = pm->fam;
+	for (int m = 0; m < f->n_members; m++) {
+		if (pm->src[m] == NULL)
+			continue;
+		const struct brdf_source *b = pm->src[m];
+		double *a = povsplit_fill_curve(brdf_family_member_bake(f, m), b->n_albedo, b->theta_albedo,
+		    b->albedo_rgb);
+		fprintf(fp, "#declare %s_M%04d = ", name, m);
+		sdl_albedo_pigment(fp, b->n_albedo, b->theta_albedo, a);
+		free(a);
+	}
+	int idx[FAMILY_MAX_AXES] = { 0 };
+	fprintf(fp, "#declare %s =\n", name);
+	write_blend(fp, name, "pigment", "", pm, f->n_axes - 1, idx, 0, 1, uv ? "uv_mapping " : "");
+	write_planar(fp, lo, hi, uv);
+}
+
+int pov_maps_write_part(FILE *fp, const char *name, const struct pov_maps *pm, int part,
+    double spec_alpha, const struct pov_light *l, const struct pov_view *v, const double lo[3],
+    const double hi[3], int n_theta, int n_gamma, int uv)
+{
 	const struct brdf_family *f = pm->fam;
 	int g = 1;
+	if (part == 2 && one_specular(pm, spec_alpha)) {
+		struct povsplit_spec sp = { brdf_family_member_bake(f, pm->ref), spec_alpha };
+		const struct brdf_source *b = pm->src[pm->ref];
+		struct pov_brdf t = { povsplit_specular, &sp, b->n_ti, b->n_to, b->theta_i, b->theta_o };
+		fprintf(fp, "// The members' surface specular is the same (GGX alpha %.4g): one table.\n", spec_alpha);
+		return littable_write_key(fp, name, &t, l, v, lo, hi, n_theta, n_gamma);
+	}
 	fprintf(fp, "// Family %s blended by maps (%d x %d texels): one lit table per member the maps reach.\n",
 	    f->dir, pm->maps->w, pm->maps->h);
 	for (int m = 0; m < f->n_members; m++) {
@@ -261,6 +319,11 @@ int pov_maps_write_key(FILE *fp, const char *name, const struct pov_maps *pm,
 			continue;
 		char *nm = xasprintf("%s_M%04d", name, m);
 		struct pov_brdf b = pov_maps_brdf(pm, m);
+		struct povsplit_spec sp = { brdf_family_member_bake(f, m), spec_alpha };
+		if (part != 0) {
+			b.f_rgb = part == 1 ? povsplit_diffuse : povsplit_specular;
+			b.ctx = part == 1 ? (void *)sp.b : (void *)&sp;
+		}
 		int gm = littable_write_key(fp, nm, &b, l, v, lo, hi, n_theta, n_gamma);
 		g = gm > g ? gm : g;
 		free(nm);

@@ -80,4 +80,16 @@ void pov_maps_write_sss(FILE *fp, const char *skin, const struct pov_maps *pm, i
 int pov_maps_write_key(FILE *fp, const char *name, const struct pov_maps *pm,
     const struct pov_light *l, const struct pov_view *v, const double lo[3], const double hi[3],
     int n_theta, int n_gamma, int uv);
+/* The same for a part of each member's bake (povsplit.h): part 1 the
+ * diffuse table, 2 the surface specular with GGX alpha spec_alpha (one
+ * table when every member's specular is the same, as a family varying
+ * only absorbers has). */
+int pov_maps_write_part(FILE *fp, const char *name, const struct pov_maps *pm, int part,
+    double spec_alpha, const struct pov_light *l, const struct pov_view *v, const double lo[3],
+    const double hi[3], int n_theta, int n_gamma, int uv);
+/* `#declare NAME_M<m> = pigment { aoi ... }` per member reached, its
+ * directional-hemispherical albedo a(theta_o) (the fill, povinc.c), and
+ * NAME blending them by the maps. */
+void pov_maps_write_fill(FILE *fp, const char *name, const struct pov_maps *pm, const double lo[3],
+    const double hi[3], int uv);
 #endif

@@ -19,6 +19,7 @@
 #include "io/pngio.h"
 #include "export/pov/povfiles.h"
 #include "export/pov/pov_maps.h"
+#include "export/pov/povsplit.h"
 #include "scene/placement.h"
 #include "scene/scene_load.h"
 #include "export/pov/povscene.h"
@@ -336,6 +337,9 @@ struct inputs {
 						 * pixel (povfar.h), or NULL */
 	int far_m[SCENE_MAX_SKINS];	/* its edge [px] */
 	char *fars[SCENE_MAX_SKINS];	/* its name in the output directory */
+	struct bumpmap blur[SCENE_MAX_SKINS];	/* the height map blurred by Rd(r) (povsplit.h) */
+	char *blurs[SCENE_MAX_SKINS];	/* its name in the output directory, or NULL */
+	double *fill_curve[SCENE_MAX_SKINS];	/* the whole albedo for the fill (povsplit_fill_curve), or NULL */
 	struct pov_maps *maps[SCENE_MAX_SKINS];
 	char *shapes;
 };
@@ -348,6 +352,9 @@ static void inputs_free(struct inputs *in)
 		free(in->heights[k]);
 		free(in->far_px[k]);
 		free(in->fars[k]);
+		bumpmap_free(&in->blur[k]);
+		free(in->blurs[k]);
+		free(in->fill_curve[k]);
 		pov_maps_free(in->maps[k]);
 	}
 	free(in->shapes);
@@ -421,6 +428,12 @@ static int load_brdf(const struct povexport_options *o, struct scene *s, int k, 
 		sk->preset = xstrdup(b->preset);
 	}
 	ps->brdf = (struct pov_brdf){ b->f_rgb, b->ctx, b->n_ti, b->n_to, b->theta_i, b->theta_o };
+	ps->diffuse = (struct pov_brdf){ povsplit_diffuse, b->bake, b->n_ti, b->n_to, b->theta_i, b->theta_o };
+	ps->spec = (struct povsplit_spec){ b->bake, b->bake ? b->bake->roughness : 0 };
+	ps->specular = (struct pov_brdf){ povsplit_specular, &ps->spec, b->n_ti, b->n_to, b->theta_i, b->theta_o };
+	ps->n_albedo = b->n_albedo;
+	ps->theta_albedo = b->theta_albedo;
+	ps->albedo_curve = b->albedo_rgb;
 	ps->ior = b->ior;
 	for (int ch = 0; ch < 3; ch++)
 		ps->albedo_rgb[ch] = b->albedo_rgb[ch * b->n_albedo];
@@ -510,6 +523,79 @@ static int load_sss(const struct povexport_options *o, struct scene *s, int k, s
 	return 0;
 }
 
+/* Whether the lights resolve to key (one table per skin). */
+static int key_only(const struct scene *s)
+{
+	return s->lights_strategy == SCENE_LIGHTS_KEY || (s->lights_strategy == SCENE_LIGHTS_AUTO && s->n_lights == 1);
+}
+
+/* The scene's fill on skin k: one light (key), not translucent. */
+static void set_fill(const struct scene *s, int k, struct inputs *in, struct povexport_result *r)
+{
+	struct pov_skin *ps = &in->ps[k];
+	if (!(s->fill[0] > 0 || s->fill[1] > 0 || s->fill[2] > 0))
+		return;
+	if (!key_only(s) || ps->sss.on || (!ps->maps && ps->n_albedo < 1)) {
+		msg(r, "skin '%s': fill left out (it needs lights key, a bake, and not --mode translucent)",
+		    s->skins[k].name);
+		return;
+	}
+	ps->fill = 1;
+	if (!ps->maps && in->src[k] && in->src[k]->bake)
+		ps->albedo_curve = in->fill_curve[k] = povsplit_fill_curve(in->src[k]->bake, ps->n_albedo,
+		    ps->theta_albedo, ps->albedo_curve);
+}
+
+/* The bake whose Rd(r) blurs skin k's relief for the split (the maps'
+ * median member), or NULL when the split does not apply: it needs one
+ * light (key), a bake, no reflection and not translucent (povsplit.h). */
+static const struct bake *split_bake(const struct povexport_options *o, const struct scene *s, int k,
+    const struct inputs *in)
+{
+	const struct pov_skin *ps = &in->ps[k];
+	const struct bake *b = ps->maps ? brdf_family_member_bake(ps->maps->fam, ps->maps->ref)
+		: in->src[k] ? in->src[k]->bake : NULL;
+	if (o->sharp_diffuse || ps->sss.on || !key_only(s) || s->skins[k].reflection)
+		return NULL;
+	return b;
+}
+
+/* The split (povsplit.h): the diffuse part gets the height map blurred by
+ * the bake's Rd(r); alpha_sub is the relief the box filter took away, added
+ * to the specular's alpha (povsplit_spec). */
+static int load_split(const struct povexport_options *o, const struct scene *s, const char *base, int k,
+    struct inputs *in, double alpha_sub, struct povexport_result *r, char **cause)
+{
+	struct pov_skin *ps = &in->ps[k];
+	const char *sn = s->skins[k].name;
+	const struct bake *b = split_bake(o, s, k, in);
+	if (ps->height_png == NULL || b == NULL || !(in->hm[k].h_range_um > 0))
+		return 0;	/* a flat relief: nothing to blur, the whole table renders the same */
+	struct povsplit_kernel kr;
+	double ratio;
+	char *err = NULL;
+	if (povsplit_make(&in->hm[k], b, &in->blur[k], &kr, &ratio, &err) != 0) {
+		msg(r, "skin '%s': the diffuse part keeps the sharp relief: %s", sn, err);
+		free(err);
+		return 0;
+	}
+	in->blurs[k] = xasprintf("%s_%s_height_diffuse.png", base, sn);
+	ps->diffuse_png = in->blurs[k];
+	double toksvig = sqrt(b->roughness * b->roughness + alpha_sub * alpha_sub);
+	ps->spec_alpha = fmax(b->roughness, fmin(toksvig, POVSPLIT_ALPHA_WHOLE));
+	ps->spec.alpha = ps->spec_alpha;
+	if (alpha_sub > 0)
+		msg(r, "skin '%s': the relief below the bump map's texels (RMS slope %.3g) widens the specular's GGX alpha "
+		       "%.3g -> %.3g (Toksvig's %.3g, capped at the measured whole-face lobe %.2f)", sn, alpha_sub,
+		    b->roughness, ps->spec_alpha, toksvig, POVSPLIT_ALPHA_WHOLE);
+	ps->diffuse_bump_size = bumpmap_size(in->blur[k].h_range_um, in->blur[k].size_px, in->blur[k].tile_mm);
+	msg(r, "skin '%s': the diffuse part sees the height map blurred by Rd(r)%s (mean radius %.3g mm, %.0f %% of it "
+	       "within half a texel), its RMS slope %.0f %% of the relief's; the surface specular sees the relief",
+	    sn, ps->maps ? " of the maps' median member" : "", kr.mean_um * 1e-3, 100 * kr.w0, 100 * ratio);
+	(void)cause;
+	return 0;
+}
+
 static int load_bumps(const struct povexport_options *o, const struct scene *s, const char *base,
     int k, struct inputs *in, struct povexport_result *r, char **cause)
 {
@@ -548,9 +634,13 @@ static int load_bumps(const struct povexport_options *o, const struct scene *s, 
 	in->heights[k] = xasprintf("%s_%s_height.png", base, sk->name);
 	in->ps[k].height_png = in->heights[k];
 	in->ps[k].tile_units = h->tile_mm / s->unit_mm;
-	int f = o->bump_filter ? bumpmap_filter_factor(h->size_px,
-	    in->ps[k].tile_units / h->size_px, pixel_footprint(s, k))
-			       : 1;
+	/* With the split the specular takes the relief below the map's texels as
+	 * roughness (maps: load_far does not apply). */
+	double texel = in->ps[k].tile_units / h->size_px, px = pixel_footprint(s, k), s2 = 0;
+	int split = split_bake(o, s, k, in) != NULL && in->ps[k].maps;
+	int f = o->bump_filter ? bumpmap_filter_factor(h->size_px, texel, px) : 1;
+	if (f > 1 && split)
+		s2 = povsplit_slope2(h);
 	if (f > 1) {
 		msg(r, "skin '%s': height map box-filtered %d -> %d px (texel %.3g mm, image pixel "
 		    "%.3g mm on the nearest object; --bump-filter off keeps it)",
@@ -558,9 +648,12 @@ static int load_bumps(const struct povexport_options *o, const struct scene *s, 
 		    pixel_footprint(s, k) * s->unit_mm);
 		bumpmap_reduce(h, f);
 	}
+	double alpha_sub = split && f > 1 ? sqrt(fmax(0, s2 - povsplit_slope2(h))) : 0;
 	in->ps[k].bump_size = bumpmap_size(h->h_range_um, h->size_px, h->tile_mm);
 	/* --bump-filter off keeps the bump map as it is, also below a pixel. */
-	return o->bump_filter ? load_far(s, base, k, tdir, in, r, cause) : 0;
+	if (o->bump_filter && load_far(s, base, k, tdir, in, r, cause) != 0)
+		return -1;
+	return load_split(o, s, base, k, in, alpha_sub, r, cause);
 }
 
 /* The height maps, far roughness maps and the shape macros next to the written scene. */
@@ -572,6 +665,14 @@ static int write_extras(const struct scene *s, const char *out, const char *base
 			char *dst = xasprintf("%s/%s", out, in->heights[k]);
 			int e = in->hm[k].filter > 1 ? bumpmap_write_png(&in->hm[k], dst, cause)
 						     : povfiles_copy(in->hm[k].src, dst, cause);
+			free(dst);
+			if (e != 0)
+				return -1;
+		}
+	for (int k = 0; k < s->n_skins; k++)
+		if (in->blurs[k]) {
+			char *dst = xasprintf("%s/%s", out, in->blurs[k]);
+			int e = bumpmap_write_png(&in->blur[k], dst, cause);
 			free(dst);
 			if (e != 0)
 				return -1;
@@ -732,6 +833,8 @@ int povexport_run(const struct povexport_options *o, struct povexport_result *r,
 		    load_sss(o, s, k, &in, r, cause) != 0 ||
 		    load_bumps(o, s, base, k, &in, r, cause) != 0)
 			goto done;
+	for (int k = 0; k < s->n_skins; k++)
+		set_fill(s, k, &in, r);
 	int need_shapes = 0;
 	for (int i = 0; i < s->n_objects; i++)
 		need_shapes |= s->objects[i].shape == SCENE_HAND ||

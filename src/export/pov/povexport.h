@@ -27,6 +27,7 @@ struct povexport_options {
 	const char *family, *maps;	/* a family and its maps for every skin (pov_maps.h), or NULL */
 	int plan;			/* print the plan to `plan_out`, write nothing */
 	int bump_filter;		/* box-filter height maps to the pixel footprint */
+	int sharp_diffuse;		/* --diffuse-relief sharp: no split (export/pov/povsplit.h) */
 	int width, height;		/* image size [px], 0 = the scene's (320x240 without one) */
 	double unit_mm;			/* one scene unit [mm], 0 = the scene's (10 without one) */
 	int translucent;		/* --mode translucent (export/pov/povsss.h) */

@@ -63,13 +63,15 @@ static int write_mesh(FILE *fp, const struct scene *s, const struct pov_skin *sk
 		char *name = n > 1 ? xasprintf("SKIN_Mesh_%s_L%d", o->name, k + 1) : xasprintf("SKIN_Mesh_%s", o->name);
 		if (bumps) {
 			struct mesh2_textures tex = { .tile_units = skins[o->skin].tile_units, .uv = &uv, .on = on };
-			char *pre, *post, *plain;
-			povscene_mesh_texture(s, o, st, n > 1 ? k : -1, &pre, &post, &plain);
+			char *pre, *mid, *post, *plain;
+			povscene_mesh_texture(s, skins, o, st, n > 1 ? k : -1, &pre, &mid, &post, &plain);
 			tex.pre = pre;
+			tex.mid = mid;
 			tex.post = post;
 			tex.plain = plain;
 			nb = mesh2_write(fp, name, o->mesh, n > 1 ? povscene_inset(s, k) : 0, &tex);
 			free(pre);
+			free(mid);
 			free(post);
 			free(plain);
 		} else

@@ -66,6 +66,47 @@ static void write_frame_selection(FILE *fp, const struct scene *s, const struct 
 	fputs("#end\n", fp);
 }
 
+/* The split (povsplit.h) and the fill: SKIN_s_Diffuse and SKIN_s_Specular
+ * tables, SKIN_s_Fill = albedo(theta_o), the finish of the averaged
+ * entries (diffuse N for N entries) and the fill's (emission N x fill). */
+static void write_split_fill(FILE *fp, const struct scene *s, const char *sn, const struct pov_skin *ps,
+    const struct pov_light *l, const struct pov_view *v, const double lo[3], const double hi[3],
+    const struct pov_options *o, struct pov_report *r)
+{
+	int n = (ps->diffuse_png ? 2 : 1) + (ps->fill ? 1 : 0);
+	if (n == 1)
+		return;
+	if (ps->diffuse_png) {
+		fputs("// The split (docs/relief.md): the diffuse part of the table under the height map\n"
+		    "// blurred by Rd(r), the surface specular under the whole relief.\n", fp);
+		for (int part = 1; part <= 2; part++) {
+			char *nm = xasprintf("SKIN_%s_%s", sn, part == 1 ? "Diffuse" : "Specular");
+			int g = ps->maps ? pov_maps_write_part(fp, nm, ps->maps, part, ps->spec_alpha, l, v, lo, hi,
+			    o->n_theta, o->n_gamma, ps->maps_uv) : littable_write_key(fp, nm, part == 1 ? &ps->diffuse :
+			    &ps->specular, l, v, lo, hi, o->n_theta, o->n_gamma);
+			r->n_gamma_used = g > r->n_gamma_used ? g : r->n_gamma_used;
+			free(nm);
+		}
+	}
+	if (ps->fill) {
+		double e[3] = { n * s->fill[0], n * s->fill[1], n * s->fill[2] };
+		char *nm = xasprintf("SKIN_%s_Fill", sn);
+		fputs("// The fill: a uniform sky light gives radiance albedo(theta_o) x fill (reciprocity).\n", fp);
+		if (ps->maps)
+			pov_maps_write_fill(fp, nm, ps->maps, lo, hi, ps->maps_uv);
+		else {
+			fprintf(fp, "#declare %s = ", nm);
+			sdl_albedo_pigment(fp, ps->n_albedo, ps->theta_albedo, ps->albedo_curve);
+		}
+		free(nm);
+		fprintf(fp, "#declare SKIN_%s_FillFinish = finish { diffuse 0 brilliance 1 ambient 0 emission ", sn);
+		sdl_rgb(fp, e);
+		fputs(" specular 0 }\n", fp);
+	}
+	fprintf(fp, "#declare SKIN_%s_FinishAvg = finish { diffuse %d brilliance 1 ambient 0 emission 0 specular 0 }\n",
+	    sn, n);
+}
+
 static int has_mesh(const struct scene *s, int k)
 {
 	for (int i = 0; i < s->n_objects; i++)
@@ -118,12 +159,16 @@ void povinc_write(FILE *fp, const struct scene *s, const struct pov_skin *skins,
 		fprintf(fp, "#declare SKIN_%s_Interior = interior { ior " SDL_G " }\n", sk->name, ps->ior);
 		if (ps->sss.on && !ps->maps)
 			povsss_write(fp, sk->name, &ps->sss, sk->reflection);
-		if (st == SCENE_LIGHTS_KEY) {
+		if (st == SCENE_LIGHTS_KEY && ps->diffuse_png && o->write_scene) {
+			/* The scene uses the parts only (povscene.c). */
+			write_split_fill(fp, s, sk->name, ps, &pl[0], &v, lo, hi, o, r);
+		} else if (st == SCENE_LIGHTS_KEY) {
 			nm = xasprintf("SKIN_%s_%s", sk->name, table);
 			int g = ps->maps ? pov_maps_write_key(fp, nm, ps->maps, &pl[0], &v, lo, hi, o->n_theta, o->n_gamma,
 			    ps->maps_uv) : povfar_write_key(fp, nm, &ps->far, &ps->brdf, &pl[0], &v, lo, hi, o->n_theta, o->n_gamma);
 			r->n_gamma_used = g > r->n_gamma_used ? g : r->n_gamma_used;
 			free(nm);
+			write_split_fill(fp, s, sk->name, ps, &pl[0], &v, lo, hi, o, r);
 		} else if (st == SCENE_LIGHTS_MIXTURE) {
 			double spread;
 			nm = xasprintf("SKIN_%s_%s", sk->name, table);
@@ -163,6 +208,13 @@ void povinc_write(FILE *fp, const struct scene *s, const struct pov_skin *skins,
 			    "#declare SKIN_%s_Normal = normal { bump_map { png \"%s\" map_type 0 interpolate 2 "
 			    "bump_size " SDL_G " } scale " SDL_G " }\n", ps->bump_size, ps->tile_units, sk->name, ps->height_png,
 			    ps->bump_size, ps->tile_units);
+		if (ps->diffuse_png != NULL)
+			fprintf(fp, "#declare SKIN_%s_NormalDiffuse = normal { bump_map { png \"%s\" map_type 0 interpolate 2 "
+			    "bump_size " SDL_G " } scale " SDL_G " }\n", sk->name, ps->diffuse_png, ps->diffuse_bump_size,
+			    ps->tile_units);
+		if (ps->diffuse_png != NULL && has_mesh(s, k))
+			fprintf(fp, "#declare SKIN_%s_NormalDiffuseMesh = normal { bump_map { png \"%s\" map_type 0 "
+			    "interpolate 2 bump_size " SDL_G " } }\n", sk->name, ps->diffuse_png, ps->diffuse_bump_size);
 		if (ps->height_png != NULL && has_mesh(s, k))
 			fprintf(fp, "// On meshes each triangle maps the tile onto its UVs by its own matrix (docs/pov.md).\n"
 			    "#declare SKIN_%s_NormalMesh = normal { bump_map { png \"%s\" map_type 0 interpolate 2 "

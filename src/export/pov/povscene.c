@@ -139,9 +139,9 @@ static void write_shape(FILE *fp, const struct scene_object *o, double inset, in
 
 /* The bump map of a non-mesh skin object: patches and boxes carry it with
  * their own orientation, curved shapes get it projected along the view. */
-static void write_bump(FILE *fp, const struct scene *s, const struct scene_object *o)
+static void write_bump(FILE *fp, const struct scene *s, const struct scene_object *o, const char *which)
 {
-	fprintf(fp, "\n    normal { SKIN_%s_Normal", s->skins[o->skin].name);
+	fprintf(fp, "\n    normal { SKIN_%s_Normal%s", s->skins[o->skin].name, which);
 	if (o->shape == SCENE_PATCH || o->shape == SCENE_BOX) {
 		fputs(" translate ", fp);
 		sdl_vec(fp, o->center);
@@ -165,17 +165,32 @@ static void write_skin_texture(FILE *fp, const struct scene *s, const struct sce
 		fprintf(fp, "\n  texture { SKIN_%s_Translucent }", sk->name);
 	} else if (o->shape == SCENE_MESH && bumped(s, skins, o)) {
 		/* The per-triangle textures are in the mesh2. */
+	} else if (rest == 0 && povscene_averaged(&skins[o->skin])) {
+		/* The split and the fill (povsplit.h, povinc.c): entries averaged, finish diffuse N. */
+		const struct pov_skin *ps = &skins[o->skin];
+		const char *sn = sk->name;
+		fputs("\n  texture { average texture_map {", fp);
+		for (int e = ps->diffuse_png ? 1 : 0; e <= (ps->diffuse_png ? 2 : 0); e++) {
+			fprintf(fp, " [1 pigment { %s%s%s }", e ? "SKIN_" : pigment, e ? sn : "",
+			    e == 1 ? "_Diffuse" : e == 2 ? "_Specular" : "");
+			if (bumped(s, skins, o))
+				write_bump(fp, s, o, e == 1 ? "Diffuse" : "");
+			fprintf(fp, "\n    finish { SKIN_%s_FinishAvg }]", sn);
+		}
+		if (ps->fill)
+			fprintf(fp, "\n    [1 pigment { SKIN_%s_Fill } finish { SKIN_%s_FillFinish }]", sn, sn);
+		fputs(" } }", fp);
 	} else if (rest > 0) {
 		fprintf(fp, "\n  texture { average texture_map { [1 pigment { %s }", pigment);
 		if (bumped(s, skins, o))
-			write_bump(fp, s, o);
+			write_bump(fp, s, o, "");
 		fprintf(fp, "\n    finish { %s }] [%d SKIN_Clear] } }", finish, rest);
 	} else {
 		if (skins[o->skin].sss.on)
 			fprintf(fp, "\n  texture { SKIN_%s_Subsurface }", sk->name);
 		fprintf(fp, "\n  texture { pigment { %s }", pigment);
 		if (bumped(s, skins, o))
-			write_bump(fp, s, o);
+			write_bump(fp, s, o, "");
 		fprintf(fp, "\n    finish { %s } }", finish);
 	}
 	if (sk->reflection || skins[o->skin].sss.on)
@@ -199,11 +214,43 @@ static void skin_names(const struct scene *s, const char *sn, enum scene_strateg
 	}
 }
 
-void povscene_mesh_texture(const struct scene *s, const struct scene_object *o, enum scene_strategy st, int layer,
-    char **pre, char **post, char **plain)
+int povscene_averaged(const struct pov_skin *ps)
+{
+	return ps->diffuse_png != NULL || ps->fill;
+}
+
+/* The averaged texture of povscene_averaged's skins on a mesh: normals
+ * around the per-triangle matrix (pre MATRIX mid MATRIX post, or pre
+ * MATRIX post without the split), plain without normals. */
+static void mesh_averaged(const struct pov_skin *ps, const char *sn, const char *pig, char **pre, char **mid,
+    char **post, char **plain)
+{
+	char *fill = ps->fill ? xasprintf(" [1 pigment { SKIN_%s_Fill } finish { SKIN_%s_FillFinish }]", sn, sn)
+			      : xstrdup("");
+	if (ps->diffuse_png) {
+		*pre = xasprintf("texture { average texture_map { [1 pigment { SKIN_%s_Diffuse } normal { "
+				 "SKIN_%s_NormalDiffuseMesh", sn, sn);
+		*mid = xasprintf(" } finish { SKIN_%s_FinishAvg }] [1 pigment { SKIN_%s_Specular } normal { "
+				 "SKIN_%s_NormalMesh", sn, sn, sn);
+		*plain = xasprintf("texture { average texture_map { [1 pigment { SKIN_%s_Diffuse } finish { "
+				   "SKIN_%s_FinishAvg }] [1 pigment { SKIN_%s_Specular } finish { SKIN_%s_FinishAvg }]%s } }",
+		    sn, sn, sn, sn, fill);
+	} else {
+		*pre = xasprintf("texture { average texture_map { [1 pigment { %s } normal { SKIN_%s_NormalMesh", pig, sn);
+		*mid = NULL;
+		*plain = xasprintf("texture { average texture_map { [1 pigment { %s } finish { SKIN_%s_FinishAvg }]%s } }",
+		    pig, sn, fill);
+	}
+	*post = xasprintf(" } finish { SKIN_%s_FinishAvg }]%s } }", sn, fill);
+	free(fill);
+}
+
+void povscene_mesh_texture(const struct scene *s, const struct pov_skin *skins, const struct scene_object *o,
+    enum scene_strategy st, int layer, char **pre, char **mid, char **post, char **plain)
 {
 	const char *sn = s->skins[o->skin].name;
 	char *pig, *fin;
+	*mid = NULL;
 	if (layer >= 0)
 		skin_names(s, sn, st, povscene_layer_light(s, layer) + 1, 1, &pig, &fin);
 	else if (st == SCENE_LIGHTS_PASSES) {	/* frames: declared per frame in BASE.pov */
@@ -212,7 +259,9 @@ void povscene_mesh_texture(const struct scene *s, const struct scene_object *o, 
 	} else
 		skin_names(s, sn, st, 0, 0, &pig, &fin);
 	int rest = layer >= 0 ? s->n_lights - 1 - layer : 0;
-	if (rest > 0) {
+	if (layer < 0 && st == SCENE_LIGHTS_KEY && povscene_averaged(&skins[o->skin]))
+		mesh_averaged(&skins[o->skin], sn, pig, pre, mid, post, plain);
+	else if (rest > 0) {
 		*pre = xasprintf("texture { average texture_map { [1 pigment { %s } normal { SKIN_%s_NormalMesh", pig, sn);
 		*post = xasprintf(" } finish { %s }] [%d SKIN_Clear] } }", fin, rest);
 		*plain = xasprintf("texture { average texture_map { [1 pigment { %s } finish { %s }] [%d SKIN_Clear] } }", pig,
@@ -244,7 +293,7 @@ char *povscene_model_texture(const struct scene_object *o, const char *base)
 /* The model file's own material: its diffuse texture through the UVs (POV
  * 3.7 maps uv pigments right; only uv bumps are wrong) or colour, and its
  * specular as a Phong highlight. */
-static void write_model_texture(FILE *fp, const struct scene_object *o, const char *base)
+static void write_model_texture(FILE *fp, const struct scene_object *o, const char *base, const double *fill)
 {
 	const struct mesh *m = o->mesh;
 	char *tex = povscene_model_texture(o, base);
@@ -258,6 +307,10 @@ static void write_model_texture(FILE *fp, const struct scene_object *o, const ch
 	} else
 		sdl_rgb(fp, m->diffuse_rgb);
 	fputs(" } finish { " POVSCENE_FINISH_LIT, fp);
+	if (fill != NULL && (fill[0] > 0 || fill[1] > 0 || fill[2] > 0)) {
+		fputs(" emission ", fp);
+		sdl_rgb(fp, fill);
+	}
 	if (m->specular > 0)
 		fprintf(fp, " phong " SDL_G " phong_size " SDL_G, fmin(m->specular, 1), fmin(fmax(m->shininess, 1), 1000));
 	fputs(" } }", fp);
@@ -277,9 +330,14 @@ static void write_object(FILE *fp, const struct scene *s, const struct pov_skin 
 	if (o->material == SCENE_MAT_PLAIN) {
 		fputs("\n  texture { pigment { ", fp);
 		sdl_rgb(fp, o->color);
-		fputs(" } finish { " POVSCENE_FINISH_LIT " } }", fp);
+		fputs(" } finish { " POVSCENE_FINISH_LIT, fp);
+		if (st == SCENE_LIGHTS_KEY && (s->fill[0] > 0 || s->fill[1] > 0 || s->fill[2] > 0)) {
+			fputs(" emission ", fp);
+			sdl_rgb(fp, s->fill);
+		}
+		fputs(" } }", fp);
 	} else if (o->material == SCENE_MAT_MODEL)
-		write_model_texture(fp, o, base);
+		write_model_texture(fp, o, base, st == SCENE_LIGHTS_KEY ? s->fill : NULL);
 	else if (o->material == SCENE_MAT_LAMBERT)
 		fprintf(fp, "\n  texture { SKIN_%s_Lambert }", sn);
 	else if (o->material == SCENE_MAT_PHONG)

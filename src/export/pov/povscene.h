@@ -34,8 +34,11 @@ double povscene_inset(const struct scene *s, int k);
 /* The skin textures a mesh object's triangles carry (bump maps follow the
  * UVs, so they live in the mesh2): pigment, finish and the layer wrapping of
  * pass or layer `layer` (-1: not layered). */
-void povscene_mesh_texture(const struct scene *s, const struct scene_object *o, enum scene_strategy st,
-    int layer, char **pre, char **post, char **plain);
+void povscene_mesh_texture(const struct scene *s, const struct pov_skin *skins, const struct scene_object *o,
+    enum scene_strategy st, int layer, char **pre, char **mid, char **post, char **plain);
+/* Whether skin ps is written as an average of entries (the split of
+ * povsplit.h or the fill; lights key only). */
+int povscene_averaged(const struct pov_skin *ps);
 
 /* The file name of a model-material mesh's texture in the output (the
  * exporter writes it there), or NULL when it has none POV-Ray reads. */

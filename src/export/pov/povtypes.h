@@ -6,6 +6,7 @@
 #define SKINBAKE_POVTYPES_H
 #include "export/pov/littable.h"
 #include "export/pov/povfar.h"
+#include "export/pov/povsplit.h"
 #include "export/pov/povsss.h"
 #include "scene/scene.h"
 
@@ -22,6 +23,16 @@ struct pov_skin {
 	int maps_uv;		/* the maps follow the mesh UVs (else a planar projection) */
 	struct pov_sss sss;	/* translucent mode: the subsurface layer under the remainder (povsss.h) */
 	struct pov_far far;	/* the relief below a pixel as a blended table (povfar.h) */
+	/* The split (povsplit.h): diffuse part under the height map blurred by Rd(r). */
+	const char *diffuse_png;	/* the blurred height map in the output directory, or NULL: no split */
+	double diffuse_bump_size;	/* its POV bump_size [-] */
+	struct pov_brdf diffuse, specular;	/* the parts of brdf (maps: split per member instead) */
+	struct povsplit_spec spec;		/* specular's context */
+	double spec_alpha;			/* the specular's GGX alpha with the relief below the bump map [-] */
+	int fill;			/* the scene's fill is added as albedo(theta_o) x fill */
+	int n_albedo;			/* the fill's albedo curve (maps: per member instead) */
+	const double *theta_albedo;	/* [n_albedo] [rad], ascending */
+	const double *albedo_curve;	/* [3][n_albedo] linear sRGB [-] */
 };
 
 struct pov_options {

@@ -59,3 +59,19 @@ void sdl_align(FILE *fp, const double d[3])
 		    ", 0,0,0>",
 	    u[0], u[1], u[2], w[0], w[1], w[2], d[0], d[1], d[2]);
 }
+
+void sdl_albedo_pigment(FILE *fp, int n, const double *th, const double *a)
+{
+	fputs("pigment { aoi color_map {", fp);
+	for (int i = n - 1; i >= 0; i--) {
+		double rgb[3] = { a[i], a[n + i], a[2 * n + i] };
+		sdl_aoi_entry(fp, i == n - 1, th[i], rgb);
+	}
+	if (th[0] > 0) {
+		double rgb[3] = { a[0], a[n], a[2 * n] };
+		fputs(" [1 ", fp);
+		sdl_rgb(fp, rgb);
+		fputs("]", fp);
+	}
+	fputs(" } }\n", fp);
+}

@@ -20,4 +20,7 @@ char *sdl_ident(const char *base);
 /* " matrix <...>" taking z to the unit vector d (and x, y to a frame around
  * it): planar bump maps project along z. */
 void sdl_align(FILE *fp, const double d[3]);
+/* `pigment { aoi color_map { ... } }\n`: a(theta_o) at the n nodes th
+ * (ascending [rad]) of curves a ([3][n], linear sRGB), flat beyond them. */
+void sdl_albedo_pigment(FILE *fp, int n, const double *th, const double *a);
 #endif

@@ -1,0 +1,113 @@
+# blender_five_minute.py: the comparison for scripts/demo.sh's head (issue 24): what a Blender
+# user makes in five minutes, rendered in the view and light of scenes/showcase-head.scene.
+#
+#   blender -b --factory-startup --python scripts/blender_five_minute.py -- OUT.png \
+#       [--model /usr/share/assimp/models/Collada/human.zae] [--size 640x480] [--samples 64]
+#       [--base R,G,B]
+#
+# The material: one Principled BSDF on the whole body, base and subsurface colour R,G,B (default
+# the diffuse albedo at normal incidence of the demo's fair skin, from the export's Lambert
+# stand-in), subsurface 1 with random walk, radius 3.67, 1.37, 0.68 mm, roughness 0.45, specular
+# 0.5, no maps, no relief; the eyes keep the model's material.  The light: the showcase's key (a
+# point light of colour 1.15 with a 250 mm area at 1.5 m) as a sun of strength pi x 1.15 and
+# angle 9.5 degrees (a white Lambert surface facing it gives 1.15 in both renderers), and its fill
+# (0.15 0.15 0.16) as a uniform world of that radiance (which, unlike the POV-Ray fill, is
+# occluded).  One level of subdivision, Cycles CPU, Standard view transform, sRGB 8-bit PNG.
+# Coordinates: POV-Ray's (x, y, z) mm of the scene are Blender's (x, z, y) / 1000 after the
+# Collada import (Z up, face toward -Y).
+import math
+import os
+import sys
+import tempfile
+import zipfile
+
+import bpy
+from mathutils import Vector
+
+
+def pov(v):
+    return Vector((v[0] / 1000, v[2] / 1000, v[1] / 1000))
+
+
+def main(argv):
+    import argparse
+    ap = argparse.ArgumentParser(prog="blender_five_minute.py")
+    ap.add_argument("out")
+    ap.add_argument("--model", default="/usr/share/assimp/models/Collada/human.zae")
+    ap.add_argument("--size", default="640x480")
+    ap.add_argument("--samples", type=int, default=64)
+    ap.add_argument("--base", default="0.4322,0.2283,0.2030")
+    a = ap.parse_args(argv)
+    w, h = (int(x) for x in a.size.lower().split("x"))
+    base = tuple(float(x) for x in a.base.split(",")) + (1.0,)
+    dae = a.model
+    if dae.lower().endswith(".zae"):
+        dest = tempfile.mkdtemp()
+        with zipfile.ZipFile(dae) as z:
+            z.extractall(dest)
+            dae = next(os.path.join(dest, n) for n in z.namelist() if n.lower().endswith(".dae"))
+    bpy.ops.wm.read_factory_settings(use_empty=True)
+    bpy.ops.wm.collada_import(filepath=dae)
+    sc = bpy.context.scene
+    body = bpy.data.objects["human-base"]
+    for o in sc.objects:
+        if o.type == "MESH":
+            for p in o.data.polygons:
+                p.use_smooth = True
+    sub = body.modifiers.new("smooth", "SUBSURF")
+    sub.levels = sub.render_levels = 1
+
+    m = bpy.data.materials.new("five-minute skin")
+    m.use_nodes = True
+    b = m.node_tree.nodes["Principled BSDF"]
+    b.inputs["Base Color"].default_value = base
+    b.inputs["Subsurface"].default_value = 1.0          # a multiplier of the radius too (3.x)
+    b.inputs["Subsurface Radius"].default_value = (0.00367, 0.00137, 0.00068)
+    b.inputs["Subsurface Color"].default_value = base
+    b.subsurface_method = "RANDOM_WALK"
+    b.inputs["Roughness"].default_value = 0.45
+    b.inputs["Specular"].default_value = 0.5
+    body.data.materials.clear()
+    body.data.materials.append(m)
+
+    cd = bpy.data.cameras.new("Camera")
+    cd.sensor_fit = "HORIZONTAL"
+    cd.angle = math.radians(30)
+    cd.clip_start = 0.01
+    cam = bpy.data.objects.new("Camera", cd)
+    sc.collection.objects.link(cam)
+    eye, target = pov((200, 1580, -620)), pov((0, 1545, -90))
+    cam.location = eye
+    cam.rotation_euler = (target - eye).to_track_quat("-Z", "Y").to_euler()
+    sc.camera = cam
+
+    sun = bpy.data.lights.new("Key", "SUN")
+    sun.energy = math.pi * 1.15
+    sun.angle = math.radians(9.5)
+    so = bpy.data.objects.new("Key", sun)
+    sc.collection.objects.link(so)
+    lp = pov((-500, 1900, -1300))
+    so.rotation_euler = (target - lp).to_track_quat("-Z", "Y").to_euler()
+
+    world = bpy.data.worlds.new("fill")
+    world.use_nodes = True
+    bg = world.node_tree.nodes["Background"]
+    bg.inputs["Color"].default_value = (0.15, 0.15, 0.16, 1)
+    bg.inputs["Strength"].default_value = 1.0
+    sc.world = world
+
+    sc.render.engine = "CYCLES"
+    sc.cycles.device = "CPU"
+    sc.cycles.samples = a.samples
+    sc.cycles.use_denoising = False
+    sc.render.resolution_x, sc.render.resolution_y = w, h
+    sc.render.resolution_percentage = 100
+    sc.view_settings.view_transform = "Standard"
+    sc.render.film_transparent = False
+    sc.render.image_settings.file_format = "PNG"
+    sc.render.filepath = os.path.abspath(a.out)
+    bpy.ops.render.render(write_still=True)
+    print(f"blender_five_minute.py: wrote {a.out} ({w}x{h}, {a.samples} samples)")
+
+
+main(sys.argv[sys.argv.index("--") + 1:] if "--" in sys.argv else [])
