@@ -5,6 +5,7 @@
 #                 machine's Python), numpy, scipy, mitsuba, drjit
 #   .venv-bpy45/  requirements-bpy45.txt: bpy 4.5 LTS, which has wheels for Python 3.11
 #                 only (Debian 12); on another Python it is skipped with a line saying so
+#   .venv-bpy43/  requirements-bpy43.txt: bpy 4.3 (Debian 13's Blender line), Python 3.11 only too
 # Debian's own python3 is used, not one on the PATH (pyenv and the like differ per machine).
 # A venv is made again when its requirements file changed.
 set -eu
@@ -27,7 +28,8 @@ mkvenv() {      # DIR REQUIREMENTS
 mkvenv .venv requirements-test.txt
 if [ "$pyv" = 3.11 ]; then
 	mkvenv .venv-bpy45 requirements-bpy45.txt
+	mkvenv .venv-bpy43 requirements-bpy43.txt
 else
-	echo "setup-venv.sh: .venv-bpy45 skipped: bpy 4.5 has wheels for Python 3.11 only, this machine's is $pyv"
-	rm -rf .venv-bpy45
+	echo "setup-venv.sh: .venv-bpy45 and .venv-bpy43 skipped: bpy 4.5 and 4.3 have wheels for Python 3.11 only, this machine's is $pyv"
+	rm -rf .venv-bpy45 .venv-bpy43
 fi

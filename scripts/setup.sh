@@ -62,6 +62,7 @@ bpyv() { "$1/bin/python" -c 'import importlib.metadata as m; print(m.version("bp
 tested="Debian's blender $(dpkg-query -W -f='${Version}' blender | ver), bpy $(bpyv .venv) (.venv)"
 if [ -x .venv-bpy45/bin/python ]; then tested="$tested, bpy $(bpyv .venv-bpy45) (.venv-bpy45)"; else
 	tested="$tested; not bpy 4.5 LTS (wheels for Python 3.11 only)"; fi
+if [ -x .venv-bpy43/bin/python ]; then tested="$tested, bpy $(bpyv .venv-bpy43) (.venv-bpy43)"; fi
 echo "setup.sh: Debian $(cat /etc/debian_version), Python $(/usr/bin/python3 -c 'import platform; print(platform.python_version())')," \
 	"gcc $(gcc -dumpfullversion), clang $clangv; Blender tested here: $tested"
 echo "setup.sh: done in $(( $(date +%s) - start )) s"

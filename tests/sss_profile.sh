@@ -47,6 +47,10 @@ for py in $BPY_PYTHONS; do
 	v=$(timeout 120 "$py" -c "import bpy; print('V %d.%d' % tuple(bpy.app.version[:2]))" \
 		2>/dev/null | sed -n 's/^V //p')
 	[ -n "$v" ] || continue
+	if ! "$FIT" "cycles-$v" "$tmpd/paper" >/dev/null 2>&1; then
+		skip "bpy $v: no calibrated subsurface closure for this Cycles (translucent mode refuses it)"
+		continue
+	fi
 	runs="$runs cycles-$v"
 	eval "bpy_$(echo "$v" | tr . _)=\$py"
 done
