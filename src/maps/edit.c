@@ -28,11 +28,15 @@ int maps_edit(struct mapset *m, const struct maps_op *ops, int n_ops, const stru
 				w = 1.0 - w;
 			double v = p->v[i], e = ops[k].kind == MAPS_SCALE ? v * ops[k].value
 			    : ops[k].kind == MAPS_ADD ? v + ops[k].value : ops[k].value;
-			double nv = v + w * (e - v);
-			if (nv < p->fam_lo || nv > p->fam_hi) {
-				nv = fmin(fmax(nv, p->fam_lo), p->fam_hi);
+			/* A convex mix, exact at w = 0 and 1: `--set` to the range's end
+			 * under a full mask gives the end itself, not one rounding beyond. */
+			double nv = (1.0 - w) * v + w * e;
+			/* Only a texel beyond the range by more than rounding counts as
+			 * clamped (the message tells of a real edit limit). */
+			double slack = 1e-9 * (p->fam_hi - p->fam_lo);
+			if (nv < p->fam_lo - slack || nv > p->fam_hi + slack)
 				hit[i * FAMILY_MAX_AXES + (size_t)ops[k].param] = 1;
-			}
+			nv = fmin(fmax(nv, p->fam_lo), p->fam_hi);
 			p->v[i] = (float)nv;
 		}
 	}
