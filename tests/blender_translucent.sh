@@ -17,6 +17,7 @@
 # tests/blender_matrix.sh runs it on 4.5 and 5.0), with that version's fit from the set.
 # Paper bake (adding-doubling, Monte Carlo Rd(r)); about 1 minute per version.
 . "$top_srcdir/tests/tap.sh"
+. "$top_srcdir/tests/lib/translucent_fit.sh"
 imp="$top_srcdir/exporters/blender/import_skin.py"
 PROF="$top_srcdir/scripts/sss_profile.py"
 if [ -z "$BLENDER" ] || ! command -v "$BLENDER" >/dev/null 2>&1 || ! command -v python3 >/dev/null 2>&1; then
@@ -38,21 +39,10 @@ check "export blender --mode translucent" test $? -eq 0 -a -f "$set/manifest.jso
 check "  ... the manifest has the fitted node" python3 -c 'import json,sys
 sys.exit(json.load(open(sys.argv[1]))["translucent"]["node"] != "ShaderNodeSubsurfaceScattering")' "$set/manifest.json"
 
-# A Blender without its own fit in the set (the export calibrates 3.4, 4.5 and 5.0; Debian 13's
-# 4.3, say) is refused by the importer with the versions it has: checked here, and sections 1-2 and
-# the radius-0 check below, which need this version's fit, skipped with a line that says so.
-hasfit=$(python3 -c 'import json,sys
-print(int(any(v.get("blender") == sys.argv[2] for v in json.load(open(sys.argv[1]))["translucent"]["versions"])))' \
-	"$set/manifest.json" "$blver" 2>/dev/null)
-if [ "$hasfit" != 1 ]; then
-	B --python "$imp" -- "$set" --mode exact --scene box --samples 1 --render "$tmpd/nofit.exr" >"$tmpd/nofit.log" 2>&1
-	rc=$?
-	check "Blender $blver has no translucent fit in the set: the importer refuses it (exit $rc, no render)" \
-		test $rc -eq 2 -a ! -s "$tmpd/nofit.exr"
-	check "  ... naming the versions it has: $(sed -n 's/.*translucent.versions has fits for Blender \(.*\), not for this.*/\1/p' "$tmpd/nofit.log")" \
-		grep -q "translucent.versions has fits for Blender .* not for this Blender" "$tmpd/nofit.log"
-	skip "Blender $blver: flat skin, back light and the radius-0 check need this version's fit (make calibrate-blender with this Blender adds one)"
-fi
+# A Blender without its own fit in the set is refused by the importer (tests/lib/translucent_fit.sh);
+# sections 1-2 and the radius-0 check below need this version's fit.
+hasfit=1
+translucent_fit "$set" "$blver" "flat skin, back light and the radius-0 check" || hasfit=0
 
 # 1. Flat skin, exact mode with the node (sections 1-2 and the radius-0 check, not indented, only
 # with this version's fit).

@@ -23,6 +23,7 @@
 # Runs on $BLENDER (Debian's 3.4, or a bpy venv through tests/bpy-blender: tests/blender_matrix.sh
 # runs it on 4.5 and 5.0).  About 3 minutes of CPU (the fits: about 8 s per member and version).
 . "$top_srcdir/tests/tap.sh"
+. "$top_srcdir/tests/lib/translucent_fit.sh"
 imp="$top_srcdir/exporters/blender/import_skin.py"
 FIT="$top_builddir/tests/sss_fit_print"
 if [ -z "$BLENDER" ] || ! command -v "$BLENDER" >/dev/null 2>&1 || ! command -v python3 >/dev/null 2>&1; then
@@ -64,20 +65,9 @@ for mode in exact translucent; do
 done
 set="$tmpd/set-translucent"
 
-# A Blender without its own fit in the set (the export calibrates 3.4, 4.5 and 5.0; Debian 13's
-# 4.3, say) is refused by the importer with the versions it has: checked here, and the rest,
-# which needs this version's fit, skipped with a line that says so (as blender_translucent.sh).
-hasfit=$(python3 -c 'import json,sys
-print(int(any(v.get("blender") == sys.argv[2] for v in json.load(open(sys.argv[1]))["translucent"]["versions"])))' \
-	"$set/manifest.json" "$blver" 2>/dev/null)
-if [ "$hasfit" != 1 ]; then
-	B --python "$imp" -- "$set" --mode exact --scene box --samples 1 --render "$tmpd/nofit.exr" >"$tmpd/nofit.log" 2>&1
-	rc=$?
-	check "Blender $blver has no translucent fit in the set: the importer refuses it (exit $rc, no render)" \
-		test $rc -eq 2 -a ! -s "$tmpd/nofit.exr"
-	check "  ... naming the versions it has" \
-		grep -q "translucent.versions has fits for Blender .* not for this Blender" "$tmpd/nofit.log"
-	skip "Blender $blver: per-texel checks and renders need this version's fit (make calibrate-blender with this Blender adds one)"
+# A Blender without its own fit in the set is refused by the importer (tests/lib/translucent_fit.sh);
+# everything below needs this version's fit.
+if ! translucent_fit "$set" "$blver" "per-texel checks and renders"; then
 	tap_done
 	exit 0
 fi
