@@ -326,7 +326,10 @@ static void lambert_finish(void *state, struct brdf_table *out)
 static void test_solver_seam(void **state)
 {
 	(void)state;
-	static const struct solver_ops lambert = { "lambert", SOLVER_BRDF, lambert_begin, lambert_step, lambert_finish };
+	static const struct solver_ops lambert = {
+		.name = "lambert", .provides = SOLVER_BRDF, .begin = lambert_begin, .step = lambert_step,
+		.finish = lambert_finish,
+	};
 	static struct bake_spec s;
 	base_spec(&s);
 	struct solver_problem p = { .n_wl = s.n_wl, .wl_nm = s.wl_nm, .slab = s.slab, .n_ti = s.n_ti,
@@ -354,7 +357,7 @@ static void test_ad_orders_albedo(void **state)
 	(void)state;
 	static struct bake_spec s;
 	base_spec(&s);
-	s.method = BAKE_SOLVER_AD;
+	s.method = solvers_index("ad");
 	s.n_r = 0;
 	s.ad_quad = 8;
 	s.ad_tol = 0.01;

@@ -79,7 +79,7 @@ static int setup(void **state)
 	s.n_r = 10;
 	s.dr = 0.01;
 	transport_opts_default(&s.opts);
-	s.method = BAKE_SOLVER_AD;
+	s.method = solvers_index("ad");
 	s.radial_error = 0.5;
 	s.radial_photons = 2000;
 	s.seed = 1;

@@ -43,7 +43,7 @@ static void bake_paper(uint64_t seed, double radial_error, struct bake_result *r
 	s->n_r = 250;
 	s->dr = 0.002;
 	transport_opts_default(&s->opts);
-	s->method = BAKE_SOLVER_AD;
+	s->method = solvers_index("ad");
 	s->seed = seed;
 	s->batch_photons = 1000;
 	s->min_batches = 8;

@@ -84,8 +84,8 @@ static void test_ad_agrees_with_mc(void **state)
 {
 	(void)state;
 	static struct bake_spec a, m;
-	paper_spec(&a, BAKE_SOLVER_AD);
-	paper_spec(&m, BAKE_SOLVER_MC);
+	paper_spec(&a, solvers_index("ad"));
+	paper_spec(&m, solvers_index("mc"));
 	struct bake_result ra, rm;
 	char *cause = NULL;
 	if (bake_run(&a, &ra, &cause) != 0)
@@ -164,7 +164,7 @@ static void test_verify_fails_on_scaled_table(void **state)
 {
 	(void)state;
 	static struct bake_spec a;
-	paper_spec(&a, BAKE_SOLVER_AD);
+	paper_spec(&a, solvers_index("ad"));
 	struct bake_result r;
 	assert_int_equal(bake_run(&a, &r, NULL), 0);
 	for (int j = 0; j < 6; j++)
@@ -194,7 +194,7 @@ static void test_ad_threads(void **state)
 {
 	(void)state;
 	static struct bake_spec s;
-	paper_spec(&s, BAKE_SOLVER_AD);
+	paper_spec(&s, solvers_index("ad"));
 	s.n_r = 0;	/* the table only */
 	struct bake_result a, b;
 	s.threads = 1;
@@ -222,7 +222,7 @@ static void test_target_error_photons(void **state)
 {
 	(void)state;
 	static struct bake_spec s;
-	paper_spec(&s, BAKE_SOLVER_MC);
+	paper_spec(&s, solvers_index("mc"));
 	double wl = 550, th = 30;
 	bake_spec_axes(&s, &wl, 1, &th, 1, 0);
 	struct skin_params *p = preset_load_builtin("paper", NULL);

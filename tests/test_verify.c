@@ -36,7 +36,7 @@ static void spec(struct bake_spec *s, const char *preset, int method, uint64_t s
 	double wl = 550.0, th[2] = { 0.0, 40.0 };
 	s->n_to = n_to;
 	s->n_phi = n_phi;
-	if (method == BAKE_SOLVER_MC)
+	if (method == solvers_index("mc"))
 		bake_spec_axes(s, &wl, 1, th, 2, 0);
 	else
 		bake_spec_axes(s, &wl, 1, NULL, 0, 0);	/* the default nodes */
@@ -94,7 +94,7 @@ static void test_false_alarms(void **state)
 	for (int t = 0; t < 20; t++) {
 		static struct bake_spec s;
 		int mc = t < 10;
-		spec(&s, mc ? "paper" : ad_presets[t - 10], mc ? BAKE_SOLVER_MC : BAKE_SOLVER_AD, (uint64_t)t + 1,
+		spec(&s, mc ? "paper" : ad_presets[t - 10], mc ? solvers_index("mc") : solvers_index("ad"), (uint64_t)t + 1,
 		    mc ? 6 : 9, mc ? 4 : 6);
 		bake_to(&s, 1.0, dir);
 		struct verify_opts vo;
@@ -128,7 +128,7 @@ static void test_scaled_caught(void **state)
 {
 	(void)state;
 	static struct bake_spec s;
-	spec(&s, "fair-oily", BAKE_SOLVER_AD, 1, 3, 2);
+	spec(&s, "fair-oily", solvers_index("ad"), 1, 3, 2);
 	s.bin_means = 1;
 	char dir[64];
 	snprintf(dir, sizeof dir, "tests/verify-bad.tmp.%ld", (long)getpid());

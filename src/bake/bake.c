@@ -13,25 +13,28 @@
 #include "base/util.h"
 #include "bake/checkpoint.h"
 #include "bake/radial.h"
-#include "engine/ad_solver.h"
 #include "engine/mc.h"
 #include "engine/solvers.h"
 #include "skin/colour.h"
 #include "skin/preset.h"
 
-/* Monte Carlo's settings from the spec. */
-static void mc_from_spec(const struct bake_spec *s, struct mc_settings *mc)
+/* Every method's settings from the spec (solver_knobs). */
+static void knobs_of(const struct bake_spec *s, struct solver_knobs *k)
 {
-	mc_settings_default(mc);
-	mc->seed = s->seed;
-	mc->batch_photons = s->batch_photons;
-	mc->min_batches = s->min_batches;
-	mc->max_photons = s->max_photons;
-	mc->nee = s->nee;
-	mc->roulette_w = s->opts.roulette_w;
-	mc->roulette_chance = s->opts.roulette_chance;
-	mc->max_steps = s->opts.max_steps;
+	*k = (struct solver_knobs){
+		.seed = s->seed, .batch_photons = s->batch_photons, .min_batches = s->min_batches,
+		.max_photons = s->max_photons, .nee = s->nee, .roulette_w = s->opts.roulette_w,
+		.roulette_chance = s->opts.roulette_chance, .max_steps = s->opts.max_steps,
+		.tol = s->ad_tol, .n_quad = s->ad_quad, .n_quad_max = s->ad_quad_max, .n_orders = s->ad_orders,
+		.strict = s->method != BAKE_SOLVER_AUTO,
+	};
 }
+
+/* Solve p (or its n wavelengths w[] when w is not NULL) with ops, its
+ * settings from the spec, into t. */
+static int solve_with(const struct solver_ops *ops, const struct bake_spec *s,
+    const struct solver_problem *p, const struct solver_run *run, const int *w, int n,
+    struct brdf_table *t, char **cause);
 
 /* The wavelengths (indices) of a table whose entry at angle 0 passes keep(). */
 static int pick(const struct bake_spec *s, const struct brdf_table *t, int (*keep)(const struct brdf_entry *),
@@ -56,43 +59,50 @@ static int no_radial(const struct brdf_entry *e)
 	return ops != NULL && !(ops->provides & SOLVER_RADIAL);
 }
 
-/* Solve p restricted to the n wavelengths w[] (all angles) with ops into t. */
-static int solve_part(const struct solver_ops *ops, const void *settings, const struct solver_problem *p,
-    const struct solver_run *run, const int *w, int n, struct brdf_table *t, char **cause)
+static int solve_with(const struct solver_ops *ops, const struct bake_spec *s,
+    const struct solver_problem *p, const struct solver_run *run, const int *w, int n,
+    struct brdf_table *t, char **cause)
 {
-	double wl[BAKE_MAX_WL];
-	struct slab *sl = xcalloc((size_t)n, sizeof *sl);
-	for (int i = 0; i < n; i++) {
-		wl[i] = p->wl_nm[w[i]];
-		sl[i] = p->slab[w[i]];
-	}
+	struct solver_knobs k;
+	knobs_of(s, &k);
+	void *settings = ops->settings(&k);
 	struct solver_problem q = *p;
-	q.n_wl = n;
-	q.wl_nm = wl;
-	q.slab = sl;
+	double wl[BAKE_MAX_WL];
+	struct slab *sl = NULL;
+	if (w != NULL) {
+		sl = xcalloc((size_t)n, sizeof *sl);
+		for (int i = 0; i < n; i++) {
+			wl[i] = p->wl_nm[w[i]];
+			sl[i] = p->slab[w[i]];
+		}
+		q.n_wl = n;
+		q.wl_nm = wl;
+		q.slab = sl;
+	}
 	int rc = solver_solve(ops, settings, &q, run, t, cause);
 	free(sl);
+	free(settings);
 	return rc;
 }
 
-/* Monte Carlo for the n wavelengths w[] that adding-doubling refused. */
-static int fallback_mc(const struct bake_spec *s, const struct solver_problem *p, const struct solver_run *run,
+/* The fallback method fb for the n wavelengths w[] that ops refused. */
+static int fallback(const struct solver_ops *ops, const struct solver_ops *fb,
+    const struct bake_spec *s, const struct solver_problem *p, const struct solver_run *run,
     const int *w, int n, struct bake_result *r, char **cause)
 {
-	struct mc_settings mc;
-	mc_from_spec(s, &mc);
 	struct brdf_table t;
-	if (solve_part(&mc_solver, &mc, p, run, w, n, &t, cause) != 0)
+	if (solve_with(fb, s, p, run, w, n, &t, cause) != 0)
 		return -1;
 	for (int i = 0; i < n; i++) {
 		struct brdf_entry *dst = &r->table.entry[w[i] * s->n_ti];
-		char *line = xasprintf("%sadding-doubling cannot solve %g nm (%s); Monte Carlo instead (target error %g)\n",
-		    r->notes ? r->notes : "", s->wl_nm[w[i]], dst->refused ? dst->refused : "not solved", s->target_error);
+		const char *why = dst->refused ? dst->refused : "not solved";
+		char *line = xasprintf("%s%s cannot solve %g nm (%s); %s instead (target error %g)\n",
+		    r->notes ? r->notes : "", ops->title, s->wl_nm[w[i]], why, fb->title, s->target_error);
 		free(r->notes);
 		r->notes = line;
 		if (r->fallback_cause == NULL)
 			r->fallback_cause = xcalloc((size_t)s->n_wl, sizeof *r->fallback_cause);
-		r->fallback_cause[w[i]] = xstrdup(dst->refused ? dst->refused : "not solved");
+		r->fallback_cause[w[i]] = xstrdup(why);
 		for (int k = 0; k < s->n_ti; k++) {
 			struct brdf_entry tmp = r->table.entry[w[i] * s->n_ti + k];
 			r->table.entry[w[i] * s->n_ti + k] = t.entry[i * s->n_ti + k];
@@ -104,7 +114,7 @@ static int fallback_mc(const struct bake_spec *s, const struct solver_problem *p
 	r->table.seconds += t.seconds;
 	r->table.target_met &= t.target_met;
 	brdf_table_free(&t);
-	r->solver = n == s->n_wl ? "mc" : "ad+mc";
+	r->solver = n == s->n_wl ? fb->name : solvers_union(ops->name, fb->name);
 	return 0;
 }
 
@@ -197,36 +207,35 @@ static int radial_mc(const struct bake_spec *s, const struct solver_problem *p, 
 	return 0;
 }
 
-/* Adding-doubling, with Monte Carlo where it refuses (auto), and Monte
- * Carlo's Rd(r). */
-static int bake_ad(const struct bake_spec *s, const struct solver_problem *p, const struct solver_run *run,
-    struct bake_result *r, char **cause)
+/* The method, with its fallback where it refuses (auto), and Rd(r) by
+ * Monte Carlo where it gives none. */
+static int bake_method(const struct bake_spec *s, const struct solver_problem *p,
+    const struct solver_run *run, struct bake_result *r, char **cause)
 {
-	struct ad_solver_settings ad;
-	ad_solver_settings_default(&ad);
-	if (s->ad_tol > 0.0)
-		ad.ad.tol = s->ad_tol;
-	ad.ad.n_quad = s->ad_quad;
-	if (s->ad_quad_max > 0)
-		ad.ad.n_quad_max = s->ad_quad_max;
-	if (s->ad_orders > 0)
-		ad.ad.max_orders = s->ad_orders;
-	ad.strict = s->method == BAKE_SOLVER_AD;
-	r->ad_tol = ad_solver_tol(&ad, p);
-	if (solver_solve(&ad_solver, &ad, p, run, &r->table, cause) != 0)
+	const struct solver_ops *ops = bake_method_ops(s->method);
+	if (ops->tol) {
+		struct solver_knobs k;
+		knobs_of(s, &k);
+		void *settings = ops->settings(&k);
+		r->tol = ops->tol(settings, p);
+		free(settings);
+	}
+	if (solve_with(ops, s, p, run, NULL, 0, &r->table, cause) != 0)
 		return -1;
-	r->solver = "ad";
+	r->solver = ops->name;
 	int w[BAKE_MAX_WL], n = pick(s, &r->table, not_solved, w);
-	if (n > 0 && ad.strict) {
+	const struct solver_ops *fb = solvers_find(ops->fallback);
+	if (n > 0 && (s->method != BAKE_SOLVER_AUTO || fb == NULL)) {
 		for (int j = 0; j < s->n_wl * s->n_ti; j++)
 			if (r->table.entry[j].refused) {
-				*cause = xasprintf("--solver ad at %g nm: %s (--solver auto or mc bakes it by Monte Carlo)",
-				    r->table.entry[j].wl_nm, r->table.entry[j].refused);
+				*cause = xasprintf("--solver %s at %g nm: %s (--solver auto or %s bakes it by %s)", ops->name,
+				    r->table.entry[j].wl_nm, r->table.entry[j].refused, fb ? fb->name : "another method",
+				    fb ? fb->title : "it");
 				break;
 			}
 		return -1;
 	}
-	if (n > 0 && fallback_mc(s, p, run, w, n, r, cause) != 0)
+	if (n > 0 && fallback(ops, fb, s, p, run, w, n, r, cause) != 0)
 		return -1;
 	if (radial_mc(s, p, run, r, cause) != 0)
 		return -1;
@@ -234,63 +243,67 @@ static int bake_ad(const struct bake_spec *s, const struct solver_problem *p, co
 	return 0;
 }
 
-/* Monte Carlo alone. */
-static int bake_mc(const struct bake_spec *s, const struct solver_problem *p, const struct solver_run *run,
-    struct bake_result *r, char **cause)
+int bake_method_at(int i)
 {
-	struct mc_settings mc;
-	mc_from_spec(s, &mc);
-	if (solver_solve(&mc_solver, &mc, p, run, &r->table, cause) != 0)
-		return -1;
-	r->solver = mc_solver.name;
-	return 0;
+	if (i == 0)
+		return BAKE_SOLVER_AUTO;
+	/* auto's chain of fallbacks, then the rest in table order */
+	int chain[SOLVERS_MAX], n = 0;
+	const struct solver_ops *o = solvers_find(solvers_auto);
+	for (; o && n < SOLVERS_MAX; o = solvers_find(o->fallback))
+		chain[n++] = solvers_index(o->name);
+	for (int j = 0; solvers[j] != NULL; j++) {
+		int in = 0;
+		for (int c = 0; c < n; c++)
+			in |= chain[c] == j;
+		if (!in && n < SOLVERS_MAX)
+			chain[n++] = j;
+	}
+	return i > 0 && i <= n ? chain[i - 1] : BAKE_SOLVER_NONE;
 }
 
-/* The table of bake.h: one row per method. */
-static const struct bake_method_row {
-	struct bake_method_info info;
-	int (*solve)(const struct bake_spec *s, const struct solver_problem *p, const struct solver_run *run,
-	    struct bake_result *r, char **cause);
-} bake_methods[] = {
-	{ { "auto", BAKE_SOLVER_AUTO, "ad, and mc for the wavelengths where ad cannot meet its tolerance" }, bake_ad },
-	{ { "ad", BAKE_SOLVER_AD, "adding-doubling (engine/ad_solver.h)" }, bake_ad },
-	{ { "mc", BAKE_SOLVER_MC, "Monte Carlo (engine/mc.h)" }, bake_mc },
-};
-#define N_METHODS ((int)(sizeof bake_methods / sizeof bake_methods[0]))
-
-const struct bake_method_info *bake_method_at(int i)
+const char *bake_method_name(int id)
 {
-	if (i < 0 || i >= N_METHODS)
-		return NULL;
-	return &bake_methods[i].info;
+	if (id == BAKE_SOLVER_AUTO)
+		return "auto";
+	CHECK(id >= 0 && id < SOLVERS_MAX && solvers[id] != NULL);
+	return solvers[id]->name;
 }
 
-const struct bake_method_info *bake_method_of(int id)
+int bake_method_named(const char *name)
 {
-	for (int i = 0; i < N_METHODS; i++)
-		if ((int)bake_methods[i].info.id == id)
-			return &bake_methods[i].info;
-	CHECK(!"a bake method of the table");
-	return NULL;
-}
-
-const struct bake_method_info *bake_method_named(const char *name)
-{
-	for (int i = 0; i < N_METHODS; i++)
-		if (strcmp(bake_methods[i].info.name, name) == 0)
-			return &bake_methods[i].info;
-	return NULL;
+	for (int i = 0; bake_method_at(i) != BAKE_SOLVER_NONE; i++)
+		if (strcmp(bake_method_name(bake_method_at(i)), name) == 0)
+			return bake_method_at(i);
+	return BAKE_SOLVER_NONE;
 }
 
 const char *bake_method_choices(void)
 {
 	static char buf[128];
 	if (buf[0] == '\0')
-		for (int i = 0; i < N_METHODS; i++) {
+		for (int i = 0; bake_method_at(i) != BAKE_SOLVER_NONE; i++) {
 			size_t n = strlen(buf);
-			snprintf(buf + n, sizeof buf - n, "%s%s", i ? "|" : "", bake_methods[i].info.name);
+			snprintf(buf + n, sizeof buf - n, "%s%s", i ? "|" : "", bake_method_name(bake_method_at(i)));
 		}
 	return buf;
+}
+
+const struct solver_ops *bake_method_ops(int id)
+{
+	if (id == BAKE_SOLVER_AUTO)
+		return solvers_find(solvers_auto);
+	CHECK(id >= 0 && id < SOLVERS_MAX && solvers[id] != NULL);
+	return solvers[id];
+}
+
+/* The method's code in the identity: auto was 2 when Monte Carlo (0) and
+ * adding-doubling (1) were the only methods; later ones come after it. */
+static int identity_code(int method)
+{
+	if (method == BAKE_SOLVER_AUTO)
+		return 2;
+	return method < 2 ? method : method + 1;
 }
 
 #define HASH(h, x) ((h) = checkpoint_hash((h), &(x), sizeof(x)))
@@ -326,7 +339,8 @@ uint64_t bake_spec_identity(const struct bake_spec *s)
 	HASH(h, s->opts.roulette_w);
 	HASH(h, s->opts.roulette_chance);
 	HASH(h, s->opts.max_steps);
-	HASH(h, s->method);
+	int code = identity_code(s->method);
+	HASH(h, code);
 	HASH(h, s->ad_tol);
 	HASH(h, s->ad_quad);
 	if (s->ad_quad_max > 0)	/* identities of bakes without it unchanged */
@@ -410,8 +424,7 @@ static int bake_solve_p(const struct bake_spec *s, const struct solver_problem *
 {
 	struct solver_problem p = *pp;
 	struct solver_run run = *run0;
-	const struct bake_method_row *m = (const struct bake_method_row *)bake_method_of(s->method);
-	if (m->solve(s, &p, &run, r, cause) != 0) {
+	if (bake_method(s, &p, &run, r, cause) != 0) {
 		bake_result_free(r);
 		return -1;
 	}
@@ -481,7 +494,8 @@ struct skin_params *bake_spec_preset(struct bake_spec *s, const char *name, cons
 			s->n_wl = preset_default_wavelengths(p, s->wl_nm, BAKE_MAX_WL);
 		/* Monte Carlo's first round (the pilot's size without batch_photons, mc.h). */
 		long bp = s->batch_photons > 0 ? s->batch_photons : s->target_error > 0 ? 250 : MC_BATCH_PHOTONS;
-		if (s->method == BAKE_SOLVER_MC && (long)s->n_wl * s->n_ti * s->min_batches * bp > s->max_photons)
+		int sampled = bake_method_ops(s->method)->traits & SOLVER_SAMPLED;
+		if (sampled && (long)s->n_wl * s->n_ti * s->min_batches * bp > s->max_photons)
 			*cause = xasprintf("--max-photons = %ld is below the first round of the bake (%d wavelengths x %d "
 			    "angles x %d batches x %ld photons)", s->max_photons, s->n_wl, s->n_ti, s->min_batches, bp);
 		else if (bake_spec_layers(s, p, label, cause) == 0)
@@ -539,6 +553,7 @@ void bake_nodes_phi(int n, double *phi)
 
 int bake_spec_points(const struct bake_spec *s)
 {
-	return s->method != BAKE_SOLVER_MC && !s->bin_means && s->n_to >= 3 && s->n_phi >= 2;
+	int points = bake_method_ops(s->method)->traits & SOLVER_POINTS;
+	return points && !s->bin_means && s->n_to >= 3 && s->n_phi >= 2;
 }
 

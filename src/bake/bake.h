@@ -32,6 +32,7 @@
 #include <stdint.h>
 #include "engine/slab.h"
 #include "engine/solver.h"
+#include "engine/solvers.h"
 #include "engine/specular.h"
 #include "engine/transport.h"
 #include "skin/tissue.h"
@@ -44,28 +45,24 @@
 #define BAKE_RADIAL_ROUNDS 4		/* Rd(r) runs added to the pilot at most */
 #define BAKE_RADIAL_MARGIN 1.1		/* photons over the estimate of those needed */
 
-/* The method of a bake (0 = Monte Carlo, as before there was a choice). */
-enum bake_method { BAKE_SOLVER_MC = 0, BAKE_SOLVER_AD, BAKE_SOLVER_AUTO };
-
-/* The bake methods, in one table (bake_methods[] in bake.c): each row is a
- * name (for --solver, the manifest's solver.requested and family.json's
- * bake.requested), its enum value, a phrase for --help, and the function
- * that solves a spec with it (in bake.c, using the engine's methods of
- * engine/solvers.h).  Rows in the order --solver lists them, the default
- * first. */
-struct bake_method_info {
-	const char *name;
-	enum bake_method id;
-	const char *help;
-};
-/* Row i, or NULL past the last. */
-const struct bake_method_info *bake_method_at(int i);
-/* The row of method ID (CHECKed). */
-const struct bake_method_info *bake_method_of(int id);
-/* The row named NAME, or NULL. */
-const struct bake_method_info *bake_method_named(const char *name);
+/* The method of a bake (bake_spec.method): an index of solvers[]
+ * (engine/solvers.h: 0, Monte Carlo, as before there was a choice), or
+ * BAKE_SOLVER_AUTO: solvers_auto, and its fallback for the wavelengths it
+ * refuses.  The methods are the engine's table: nothing here names one. */
+#define BAKE_SOLVER_AUTO (-1)
+#define BAKE_SOLVER_NONE (-2)	/* no method of that name */
+/* Row i of --solver's choices (the id of the method), BAKE_SOLVER_NONE past
+ * the last: auto first, then auto's method and its fallbacks, then the others. */
+int bake_method_at(int i);
+/* The name of method ID, for --solver, the manifest's solver.requested and
+ * family.json's bake.requested. */
+const char *bake_method_name(int id);
+/* The id of the method named NAME, or BAKE_SOLVER_NONE. */
+int bake_method_named(const char *name);
 /* The names joined by '|', as OPT_ENUM choices ("auto|ad|mc"). */
 const char *bake_method_choices(void);
+/* The engine method that method ID runs first (auto: solvers_auto's). */
+const struct solver_ops *bake_method_ops(int id);
 
 /* Rd(r) made outside bake_run for some wavelengths (a family's members
  * share one white Monte Carlo run per wavelength, family/family_radial.h). */
@@ -90,7 +87,7 @@ struct bake_spec {
 	double dr;				/* radial bin width [cm] */
 	struct transport_opts opts;		/* boundary model and the
 						 * kernel's roulette and step cap */
-	int method;				/* enum bake_method */
+	int method;				/* BAKE_SOLVER_AUTO or an index of solvers[] */
 	double ad_tol;				/* adding-doubling tolerance (table RMS
 						 * relative error); 0 = 1e-3; the target
 						 * error when that is smaller */
@@ -144,8 +141,8 @@ struct bake_result {
 					 * wavelength * n_ti + angle */
 	const char *solver;		/* the methods that made the table: "mc", "ad", or "ad+mc"
 					 * (static; each entry's method says which) */
-	double ad_tol;			/* tolerance adding-doubling worked to (0
-					 * when it did not run) [-] */
+	double tol;			/* tolerance the (deterministic) method worked
+					 * to (0 when it has none: Monte Carlo) [-] */
 	char *notes;			/* lines for the user (the fallbacks,
 					 * with causes); NULL: none */
 	char **fallback_cause;		/* [n_wl] why adding-doubling refused the wavelength

@@ -12,7 +12,7 @@
 
 #include "base/check.h"
 #include "base/util.h"
-#include "engine/ad_solver.h"
+#include "engine/solvers.h"
 #include "io/json.h"
 
 static json_object *jarr(const double *v, int n)
@@ -79,15 +79,16 @@ static json_object *table_info(const struct bake_spec *s, const struct bake_resu
 	json_object *vals = json_object_new_array();
 	for (int w = 0; w < s->n_wl; w++) {	/* "points" at the nodes
 						 * (adding-doubling) or "bins" (means) */
-		const char *m = r->table.entry[w * s->n_ti].method;
-		json_object_array_add(vals,
-		    jstr(bake_spec_points(s) && m && strcmp(m, "ad") == 0 ? "points" : "bins"));
+		const struct solver_ops *m = solvers_find(r->table.entry[w * s->n_ti].method);
+		int points = bake_spec_points(s) && m && (m->traits & SOLVER_POINTS);
+		json_object_array_add(vals, jstr(points ? "points" : "bins"));
 	}
 	add(t, "values", vals);
 	add(t, "values_note", jstr("per wavelength: 'bins' as 'value' says; 'points': the BRDF at "
 	    "the theta_i node, theta_o_nodes_deg[row], delta_phi_nodes_deg[column]; at theta_i 90 "
 	    "deg it is 0 (nothing enters at grazing)"));
-	add(t, "channels", jstr(strcmp(r->solver, "mc") == 0 ?
+	const struct solver_ops *so = solvers_find(r->solver);
+	add(t, "channels", jstr(so && (so->traits & SOLVER_SAMPLED) ?
 	    "fr.<WL>nm and fr_err.<WL>nm (standard error)"
 	    : "fr.<WL>nm and fr_err.<WL>nm (its error estimate: see solver.error)"));
 	return t;
@@ -229,32 +230,38 @@ static json_object *radial_info(const struct bake_spec *s, const struct bake_res
 	return rad;
 }
 
+/* What the errors of entries made by each method are. */
+static char *error_doc(void)
+{
+	char *t = xstrdup("fr_err, albedo_err and rms_rel_err of entries made ");
+	for (int i = 0; solvers[i] != NULL; i++) {
+		char *u = xasprintf("%sby %s: %s; ", t, solvers[i]->name, solvers[i]->error_doc);
+		free(t);
+		t = u;
+	}
+	char *u = xasprintf("%srms_rel_err: solid-angle-weighted RMS relative error of the table",
+	    t);
+	free(t);
+	return u;
+}
+
 /* Which method made the table, how, and what its errors mean. */
 static json_object *solver_info(const struct bake_spec *s, const struct bake_result *r)
 {
 	json_object *so = json_object_new_object();
 	add(so, "name", jstr(r->solver));
-	add(so, "requested", jstr(bake_method_of(s->method)->name));
+	add(so, "requested", jstr(bake_method_name(s->method)));
 	add(so, "rms_rel_err", json_num(r->table.rms_rel_err));
-	add(so, "error", jstr("fr_err, albedo_err and rms_rel_err of entries made by mc: standard "
-	    "errors (batch means); by ad: the adding-doubling error estimates (|X_N - X_N/2| from "
-	    "a solve at half the quadrature nodes, scaled up where convergence is slow, plus the "
-	    "Fourier series' tail: bounds, not standard errors; src/engine/ad.h); rms_rel_err: "
-	    "solid-angle-weighted RMS relative error of the table"));
-	if (r->ad_tol > 0.0) {
-		struct ad_solver_settings d;
-		ad_solver_settings_default(&d);
-		json_object *ad = json_object_new_object();
-		add(ad, "method",
-		    jstr("adding-doubling, Fourier series in delta_phi (src/engine/ad.h)"));
-		add(ad, "tol", json_num(r->ad_tol));
-		add(ad, "n_quad", s->ad_quad > 0 ? json_object_new_int(s->ad_quad) : jstr("auto"));
-		add(ad, "n_quad_max",
-		    json_object_new_int(s->ad_quad_max > 0 ? s->ad_quad_max : d.ad.n_quad_max));
-		add(ad, "dtau_frac", json_num(d.ad.dtau_frac));
-		add(ad, "dm_terms", json_num(d.ad.dm_terms));
-		add(ad, "max_orders", json_object_new_int(d.ad.max_orders));
-		add(so, "ad", ad);
+	char *doc = error_doc();
+	add(so, "error", jstr(doc));
+	free(doc);
+	const struct solver_ops *ops = bake_method_ops(s->method);
+	if (r->tol > 0.0 && ops->manifest) {
+		struct solver_knobs k = {
+			.tol = s->ad_tol, .n_quad = s->ad_quad, .n_quad_max = s->ad_quad_max,
+			.n_orders = s->ad_orders,
+		};
+		add(so, ops->name, ops->manifest(&k, r->tol));
 	}
 	json_object *fb = json_object_new_array();
 	for (int w = 0; r->fallback_cause && w < s->n_wl; w++)

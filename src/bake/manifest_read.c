@@ -333,8 +333,9 @@ static void read_entries(json_object *o, struct bake_provenance *p)
 		return;
 	for (int j = 0; j < p->n_wl * p->n_ti && j < (int)json_object_array_length(jobs); j++) {
 		json_object *jo = json_object_array_get_idx(jobs, (size_t)j);
-		int mc = !json_object_object_get_ex(jo, "solver", &v) ||
-		    strcmp(json_object_get_string(v), "mc") == 0;
+		const struct solver_ops *ops = json_object_object_get_ex(jo, "solver", &v) ?
+		    solvers_find(json_object_get_string(v)) : solvers[0];
+		int mc = ops != NULL && (ops->traits & SOLVER_SAMPLED);
 		long photons = (long)jnum(jo, "photons", 0.0);
 		p->entry_mc[j] = mc;
 		p->entry_batches[j] = !mc ? 0 : json_object_object_get_ex(jo, "batches", &v)
@@ -354,7 +355,7 @@ int bake_provenance_read(const char *dir, struct bake_provenance *p, char **caus
 		goto out;
 	p->n_wl = b->n_wl;
 	p->n_ti = b->n_ti;
-	snprintf(p->solver, sizeof p->solver, "mc");
+	snprintf(p->solver, sizeof p->solver, "%s", solvers[0]->name);
 	if (json_object_object_get_ex(o, "solver", &so) &&
 	    json_object_object_get_ex(so, "name", &v))
 		snprintf(p->solver, sizeof p->solver, "%s", json_object_get_string(v));

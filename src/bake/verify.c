@@ -293,7 +293,7 @@ void verify_table(FILE *fp, const char *dir, const struct verify_result *r)
 {
 	fprintf(fp, "skinbake verify: %s (solver %s) against Monte Carlo: %d cells in %d (wavelength, angle) pairs, "
 	    "%ld photons, %.2f s\n\n", dir, r->solver, r->n_cells, r->n_pairs, r->photons, r->seconds);
-	fprintf(fp, "  %6s %6s %6s %6s %12s %10s %12s %10s %7s %5s\n", "wl", "th_i", "th_o", "dphi", "bake", "error", "mc",
+	fprintf(fp, "  %6s %6s %6s %6s %12s %10s %12s %10s %7s %5s\n", "wl", "th_i", "th_o", "dphi", "bake", "error", mc_solver.name,
 	    "std.err", "z", "dof");
 	for (int i = 0; i < r->n_cells; i++) {
 		const struct verify_cell *c = &r->cell[i];

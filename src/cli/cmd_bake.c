@@ -118,7 +118,7 @@ int cmd_bake(int argc, char **argv)
 		    s.target_error);
 	bake_spec_axes(&s, wl.v, wl.n, th.v, th.n, nodes);
 	s.opts.fresnel = b.fresnel == 0 ? OPTICS_FRESNEL_EXACT : OPTICS_FRESNEL_SCHLICK;
-	s.method = bake_method_at(b.solver)->id;
+	s.method = bake_method_at(b.solver);
 	s.nee = b.estimator == 0;
 	s.seed = b.seed;
 	s.min_batches = 8;

@@ -12,23 +12,18 @@
 #include "cli/opt.h"
 #include "cli/opt_layer.h"
 #include "engine/sim_report.h"
+#include "engine/solvers.h"
 #include "base/util.h"
-
-/* Options of Monte Carlo only: given with --solver ad they are refused
- * (r-bins only when above 0, as ad gives no Rd(r)). */
-static const char *const mc_only[] = {
-	"photons", "seed", "batches", "r-step", "r-bins", "roulette-w", "roulette-chance",
-	"max-steps", NULL
-};
 
 int cmd_simulate(int argc, char **argv)
 {
 	struct sim_config c;
 	sim_config_default(&c);
 	struct opt_layers ls = { 0 };
-	double na, nbw, th, tos, phs, tol;
+	double na, nbw, th, tos, phs;
 	uint64_t seed;
-	int json = 0, fresnel, solver, n_quad = 0;
+	int json = 0, fresnel, solver;
+	struct solver_knobs k = { 0 };
 	char *cause = NULL;
 	const struct opt opts[] = {
 		{ "layer", OPT_CUSTOM, &ls, "SPEC", .fn = opt_layer_add, .keys = opt_layer_keys,
@@ -40,13 +35,14 @@ int cmd_simulate(int argc, char **argv)
 		  .help = "index of the medium below" },
 		{ "theta-in", OPT_DOUBLE, &th, "DEG", "0", .lo = 0, .hi = 90, .flags = OPT_HI_OPEN,
 		  .unit = "deg", .help = "incidence angle" },
-		{ "solver", OPT_ENUM, &solver, .def = "mc", .choices = "mc|ad",
+		{ "solver", OPT_ENUM, &solver, .def = solvers[0]->name,
+		  .choices = solvers_choices(),
 		  .help = "Monte Carlo (mc) or adding-doubling (ad: no Rd(r); errors are its error "
 		  "estimates)" },
-		{ "ad-tol", OPT_DOUBLE, &tol, "E", "1e-4", .lo = 1e-6, .hi = 0.1,
+		{ "ad-tol", OPT_DOUBLE, &k.tol, "E", "1e-4", .lo = 1e-6, .hi = 0.1,
 		  .help = "ad: estimated RMS relative error of the BRDF bins to reach "
 		  "(and of Rd, Tt)" },
-		{ "ad-quad", OPT_INT, &n_quad, "N", "0", .lo = 0, .hi = 1024,
+		{ "ad-quad", OPT_INT, &k.n_quad, "N", "0", .lo = 0, .hi = 1024,
 		  .help = "ad: quadrature nodes per unit cosine, 4 or more (0 = the fewest from 16 "
 		  "up, doubling, that meet --ad-tol)" },
 		{ "photons", OPT_LONG, &c.photons, "N", "1e6", .lo = 1, .hi = 1e12,
@@ -108,31 +104,33 @@ int cmd_simulate(int argc, char **argv)
 		free(cause);
 		return rc;
 	}
-	if (n_quad > 0 && n_quad < 4)
+	if (k.n_quad > 0 && k.n_quad < 4)
 		return opt_error(&x,
-		    "--ad-quad = %d: 0 (automatic) or 4..1024 nodes per unit cosine", n_quad);
+		    "--ad-quad = %d: 0 (automatic) or 4..1024 nodes per unit cosine", k.n_quad);
 	slab_prepare(&c.slab);
 	c.theta_in = th * M_PI / 180.0;
-	for (const char *const *o = mc_only; solver == 1 && *o; o++)
+	const struct solver_ops *ops = solvers[solver];
+	for (const char *const *o = ops->sim_ignores; o && *o; o++)
 		if (opt_given(&x, *o) && (strcmp(*o, "r-bins") != 0 || c.grid.n_r > 0))
-			return opt_error(&x, "--%s applies to --solver mc only", *o);
+			return opt_error(&x, "--%s applies to --solver %s only", *o,
+			    solvers_reading(*o));
 	struct sim_result r;
-	struct ad_sim_info ad;
+	struct sim_solve_info info = { 0 };
 	struct cli_progress pr;
 	cli_progress_start(&pr, "simulate");
-	if (solver == 0)
-		sim_run(&c, &r, cli_progress_update, &pr);
-	else if (ad_sim_run(&c, tol, n_quad, &r, &ad, &cause) != 0) {
-		int rc = opt_error(&x, "--solver ad: %s (--solver mc samples it)", cause);
+	if (ops->simulate(&c, &k, &r, &info, cli_progress_update, &pr, &cause) != 0) {
+		int rc = opt_error(&x, "--solver %s: %s (--solver %s samples it)", ops->name, cause,
+		    ops->fallback ? ops->fallback : solvers[0]->name);
 		free(cause);
 		return rc;
 	}
 	cli_progress_end(&pr);
-	char *text = json ? sim_report_json(&c, &r, solver ? &ad : NULL) : NULL;
+	const struct sim_solve_info *told = info.method ? &info : NULL;
+	char *text = json ? sim_report_json(&c, &r, told) : NULL;
 	if (json)
 		printf("%s\n", text);
 	else
-		sim_report_table(stdout, &c, &r, solver ? &ad : NULL);
+		sim_report_table(stdout, &c, &r, told);
 	free(text);
 	sim_result_free(&r);
 	return CLI_EXIT_OK;

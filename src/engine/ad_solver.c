@@ -3,6 +3,7 @@
 #include "config.h"
 #include "engine/ad_solver.h"
 
+#include <json-c/json.h>
 #include <math.h>
 #include <stdlib.h>
 #include <string.h>
@@ -13,6 +14,7 @@
 #include "base/check.h"
 #include "base/util.h"
 #include "engine/ad_err.h"
+#include "io/json.h"
 
 /* Wavelengths per step and thread: enough for dynamic scheduling to even
  * out their costs, few enough to stop (and later checkpoint) often. */
@@ -193,9 +195,79 @@ static int ad_unpack(void *state, const void *buf, size_t len)
 	return b.bad || b.pos != len ? -1 : 0;
 }
 
+static void *ad_settings(const struct solver_knobs *k)
+{
+	struct ad_solver_settings *st = xmalloc(sizeof *st);
+	ad_solver_settings_default(st);
+	if (k->tol > 0.0)
+		st->ad.tol = k->tol;
+	st->ad.n_quad = k->n_quad;
+	if (k->n_quad_max > 0)
+		st->ad.n_quad_max = k->n_quad_max;
+	if (k->n_orders > 0)
+		st->ad.max_orders = k->n_orders;
+	st->strict = k->strict;
+	return st;
+}
+
+static double ad_tol(const void *settings, const struct solver_problem *p)
+{
+	return ad_solver_tol(settings, p);
+}
+
+/* The manifest's solver.ad: the quadrature's settings (max_orders: the
+ * default, as it was written before n_orders could be set). */
+static json_object *ad_manifest(const struct solver_knobs *k, double tol)
+{
+	struct ad_solver_settings d;
+	ad_solver_settings_default(&d);
+	json_object *ad = json_object_new_object();
+	const char *how = "adding-doubling, Fourier series in delta_phi (src/engine/ad.h)";
+	json_object_object_add(ad, "method", json_object_new_string(how));
+	json_object_object_add(ad, "tol", json_num(tol));
+	json_object *nq = json_object_new_string("auto");
+	if (k->n_quad > 0) {
+		json_object_put(nq);
+		nq = json_object_new_int(k->n_quad);
+	}
+	json_object_object_add(ad, "n_quad", nq);
+	int nq_max = k->n_quad_max > 0 ? k->n_quad_max : d.ad.n_quad_max;
+	json_object_object_add(ad, "n_quad_max", json_object_new_int(nq_max));
+	json_object_object_add(ad, "dtau_frac", json_num(d.ad.dtau_frac));
+	json_object_object_add(ad, "dm_terms", json_num(d.ad.dm_terms));
+	json_object_object_add(ad, "max_orders", json_object_new_int(d.ad.max_orders));
+	return ad;
+}
+
+static int ad_simulate(const struct sim_config *c, const struct solver_knobs *k,
+    struct sim_result *r, struct sim_solve_info *info, solver_progress *progress, void *user,
+    char **cause)
+{
+	(void)progress;
+	(void)user;
+	return ad_sim_run(c, k->tol, k->n_quad, r, info, cause);
+}
+
+/* simulate's options of Monte Carlo alone (r-bins refused only above 0). */
+static const char *const ad_sim_ignores[] = {
+	"photons", "seed", "batches", "r-step", "r-bins", "roulette-w", "roulette-chance",
+	"max-steps", NULL
+};
+
 const struct solver_ops ad_solver = {
 	.name = "ad",
+	.title = "adding-doubling",
 	.provides = SOLVER_BRDF,
+	.traits = SOLVER_POINTS,
+	.fallback = "mc",
+	.error_doc = "the adding-doubling error estimates (|X_N - X_N/2| from a solve at half "
+	    "the quadrature nodes, scaled up where convergence is slow, plus the Fourier series' "
+	    "tail: bounds, not standard errors; src/engine/ad.h)",
+	.settings = ad_settings,
+	.tol = ad_tol,
+	.manifest = ad_manifest,
+	.simulate = ad_simulate,
+	.sim_ignores = ad_sim_ignores,
 	.begin = ad_begin,
 	.step = ad_step,
 	.finish = ad_finish,
@@ -232,8 +304,8 @@ static void sim_of_ad(const struct ad_result *a, int n_layers, const struct tall
 	out->balance = b->balance;
 }
 
-int ad_sim_run(const struct sim_config *c, double tol, int n_quad, struct sim_result *r, struct ad_sim_info *info,
-    char **cause)
+int ad_sim_run(const struct sim_config *c, double tol, int n_quad, struct sim_result *r,
+    struct sim_solve_info *info, char **cause)
 {
 	struct ad_opts o;
 	struct ad_result a;
@@ -241,7 +313,7 @@ int ad_sim_run(const struct sim_config *c, double tol, int n_quad, struct sim_re
 	o.tol = tol, o.n_quad = n_quad, o.n_to = c->grid.n_theta, o.n_phi = c->grid.n_phi, o.threads = c->threads;
 	if (ad_solve(&c->slab, c->opts.fresnel, &c->theta_in, 1, &o, &a, cause) != 0)
 		return -1;
-	*info = (struct ad_sim_info){ tol, a.n_quad, a.n_orders, a.rms_rel_err };
+	*info = (struct sim_solve_info){ ad_solver.name, tol, a.n_quad, a.n_orders, a.rms_rel_err };
 	sim_of_ad(&a, c->slab.n_layers, &c->grid, r);
 	ad_result_free(&a);
 	return 0;

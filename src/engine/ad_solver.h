@@ -43,13 +43,7 @@ extern const struct solver_ops ad_solver;
  * model and exit grid (no Rd(r)) to tolerance tol at n_quad nodes per unit
  * cosine (0: the fewest that meet tol, as ad_opts), with c->threads over the
  * Fourier orders, as a sim_result (errors: the error estimates; no photons)
- * and what else it tells.  0, or -1 and *cause where the solver refuses. */
-struct ad_sim_info {
-	double tol;		/* tolerance asked [-] */
-	int n_quad;		/* quadrature nodes per unit cosine used */
-	int n_orders;		/* Fourier orders kept */
-	double rms_rel_err;	/* estimated RMS relative error of the BRDF bins [-] */
-};
-int ad_sim_run(const struct sim_config *c, double tol, int n_quad, struct sim_result *r, struct ad_sim_info *info,
-    char **cause);
+ * and what else it tells (info).  0, or -1 and *cause where the solver refuses. */
+int ad_sim_run(const struct sim_config *c, double tol, int n_quad, struct sim_result *r,
+    struct sim_solve_info *info, char **cause);
 #endif

@@ -413,9 +413,42 @@ static int mc_unpack(void *state, const void *buf, size_t len)
 	return b.bad || b.pos != len || m->bp < 1 ? -1 : 0;
 }
 
+/* Every sampling knob as given (a bake states them all). */
+static void *mc_settings(const struct solver_knobs *k)
+{
+	struct mc_settings *st = xmalloc(sizeof *st);
+	mc_settings_default(st);
+	st->seed = k->seed;
+	st->batch_photons = k->batch_photons;
+	st->min_batches = k->min_batches;
+	st->max_photons = k->max_photons;
+	st->nee = k->nee;
+	st->roulette_w = k->roulette_w;
+	st->roulette_chance = k->roulette_chance;
+	st->max_steps = k->max_steps;
+	return st;
+}
+
+/* simulate: sim_run, which c configures whole. */
+static int mc_simulate(const struct sim_config *c, const struct solver_knobs *k,
+    struct sim_result *r, struct sim_solve_info *info, solver_progress *progress, void *user,
+    char **cause)
+{
+	(void)k;
+	(void)info;
+	(void)cause;
+	sim_run(c, r, progress, user);
+	return 0;
+}
+
 const struct solver_ops mc_solver = {
 	.name = "mc",
+	.title = "Monte Carlo",
 	.provides = SOLVER_BRDF | SOLVER_RADIAL,
+	.traits = SOLVER_SAMPLED,
+	.error_doc = "standard errors (batch means)",
+	.settings = mc_settings,
+	.simulate = mc_simulate,
 	.begin = mc_begin,
 	.step = mc_step,
 	.finish = mc_finish,

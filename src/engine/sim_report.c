@@ -92,11 +92,11 @@ static void add_tables(json_object *o, const struct sim_result *r)
 	}
 }
 
-char *sim_report_json(const struct sim_config *c, const struct sim_result *r, const struct ad_sim_info *ad)
+char *sim_report_json(const struct sim_config *c, const struct sim_result *r, const struct sim_solve_info *ad)
 {
 	json_object *o = json_object_new_object();
 	if (ad) {
-		add(o, "solver", json_object_new_string("ad"));
+		add(o, "solver", json_object_new_string(ad->method));
 		add(o, "seconds", json_num(r->seconds));
 		add(o, "theta_in_deg", json_num(c->theta_in * 180.0 / M_PI));
 		add_totals(o, r);
@@ -120,7 +120,7 @@ char *sim_report_json(const struct sim_config *c, const struct sim_result *r, co
 	return s;
 }
 
-void sim_report_table(FILE *fp, const struct sim_config *c, const struct sim_result *r, const struct ad_sim_info *ad)
+void sim_report_table(FILE *fp, const struct sim_config *c, const struct sim_result *r, const struct sim_solve_info *ad)
 {
 	if (ad)
 		fprintf(fp, "skinbake simulate: adding-doubling, theta_in %.4g deg, tolerance %g, %d nodes per unit cosine, "

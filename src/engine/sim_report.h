@@ -8,12 +8,12 @@
 #ifndef SKINBAKE_SIM_REPORT_H
 #define SKINBAKE_SIM_REPORT_H
 #include <stdio.h>
-#include "engine/ad_solver.h"
 #include "engine/sim.h"
+#include "engine/solver.h"
 
 /* The JSON object (one line, caller frees).  ad = NULL: Monte Carlo's run
  * c; otherwise adding-doubling's, c giving the angle only. */
-char *sim_report_json(const struct sim_config *c, const struct sim_result *r, const struct ad_sim_info *ad);
+char *sim_report_json(const struct sim_config *c, const struct sim_result *r, const struct sim_solve_info *ad);
 /* The readable table on fp; ad as above. */
-void sim_report_table(FILE *fp, const struct sim_config *c, const struct sim_result *r, const struct ad_sim_info *ad);
+void sim_report_table(FILE *fp, const struct sim_config *c, const struct sim_result *r, const struct sim_solve_info *ad);
 #endif

@@ -159,8 +159,9 @@ double brdf_table_rms(const struct brdf_table *t)
 			for (int ip = 0; ip < g->n_phi; ip++) {
 				int e = it * g->n_phi + ip;
 				/* An empty bin counts as 100%; a deterministic 0 with error 0
-				 * is exact (adding-doubling's point value at grazing exit). */
-				int exact = o->fr_err[e] == 0.0 && o->method && strcmp(o->method, "mc") != 0;
+				 * is exact (adding-doubling's point value at grazing exit):
+				 * an entry a method filled without photons. */
+				int exact = o->fr_err[e] == 0.0 && o->method && o->photons == 0;
 				double rel = o->fr[e] > 0.0 ? o->fr_err[e] / o->fr[e] : exact ? 0.0 : 1.0;
 				num += w * rel * rel;
 				den += w;

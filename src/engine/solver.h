@@ -21,7 +21,9 @@
 #define SKINBAKE_SOLVER_H
 #include <stddef.h>
 #include "engine/batchstat.h"
+#include <stdint.h>
 #include "engine/optics.h"
+#include "engine/sim.h"
 #include "engine/slab.h"
 #include "engine/tally.h"
 
@@ -115,9 +117,68 @@ enum {
 	SOLVER_RADIAL = 2	/* rd_r, rd_r_err */
 };
 
+/* What kind of values a method gives (solver_ops.traits). */
+enum {
+	SOLVER_SAMPLED = 1,	/* errors are standard errors of sampling (batches of photons) */
+	SOLVER_POINTS = 2	/* fr at the problem's point nodes when it names them */
+};
+
+/* The settings a bake or `simulate` gives, for every method: each method's
+ * settings() reads the ones it has (knobs of the others are ignored). */
+struct solver_knobs {
+	/* Sampling (Monte Carlo). */
+	uint64_t seed;
+	long batch_photons;	/* 0: sized from the target */
+	int min_batches;
+	long max_photons;
+	int nee;		/* exit bins by next-event estimation */
+	double roulette_w, roulette_chance;
+	long max_steps;
+	/* Quadrature (adding-doubling): 0 = the method's default. */
+	double tol;		/* tolerance of the table [-] */
+	int n_quad, n_quad_max, n_orders;
+	int strict;		/* refuse the problem rather than leave entries for a fallback */
+};
+
+/* What a deterministic method's `simulate` tells beside the sim_result
+ * (Monte Carlo leaves it zero: method NULL). */
+struct sim_solve_info {
+	const char *method;	/* its name, as the report writes it */
+	double tol;		/* tolerance asked [-] */
+	int n_quad;		/* quadrature nodes per unit cosine used */
+	int n_orders;		/* Fourier orders kept */
+	double rms_rel_err;	/* estimated RMS relative error of the BRDF bins [-] */
+};
+
+struct json_object;
+/* A progress callback: work units done of total. */
+typedef void solver_progress(void *user, long done, long total);
+
 struct solver_ops {
-	const char *name;	/* as in a later --solver NAME and the manifest, e.g. "mc" */
+	const char *name;	/* as in --solver NAME and the manifest, e.g. "mc" */
+	const char *title;	/* for messages, e.g. "Monte Carlo" */
 	unsigned provides;	/* SOLVER_BRDF | SOLVER_RADIAL */
+	unsigned traits;	/* SOLVER_SAMPLED | SOLVER_POINTS */
+	/* The method that solves the entries this one refuses (bake --solver
+	 * auto), by name; NULL: it refuses none. */
+	const char *fallback;
+	/* What the errors of its entries are, for the manifest's solver.error. */
+	const char *error_doc;
+	/* New settings (caller frees) from the knobs: what begin takes. */
+	void *(*settings)(const struct solver_knobs *k);
+	/* The tolerance it works to for p under settings [-]; NULL: none (sampled). */
+	double (*tol)(const void *settings, const struct solver_problem *p);
+	/* Its block of the manifest's "solver" object, under its name (NULL:
+	 * none): the settings it worked with, tol as tol() gave it. */
+	struct json_object *(*manifest)(const struct solver_knobs *k, double tol);
+	/* `skinbake simulate`: one stack at one angle (c; k for what c does not
+	 * hold) into r, and info for a deterministic method; 0, or -1 and *cause
+	 * when it refuses.  sim_ignores: simulate's options it does not read
+	 * (refused when given with it), NULL-terminated. */
+	int (*simulate)(const struct sim_config *c, const struct solver_knobs *k,
+	    struct sim_result *r, struct sim_solve_info *info, solver_progress *progress,
+	    void *user, char **cause);
+	const char *const *sim_ignores;
 	/* Check p against the method's settings and set up; NULL and *cause
 	 * (caller frees) when the method cannot solve p. */
 	void *(*begin)(const struct solver_problem *p, const void *settings, char **cause);

@@ -178,7 +178,7 @@ static json_object *spec_json(const struct family *f)
 	add(o, "max_steps", json_object_new_int64(s->opts.max_steps));
 	/* The solver asked for and its settings, so that a reader (an off-node
 	 * bake, family_bake_at's users) bakes as the members were baked. */
-	add(o, "requested", json_object_new_string(bake_method_of(s->method)->name));
+	add(o, "requested", json_object_new_string(bake_method_name(s->method)));
 	add(o, "ad_tol", json_num(s->ad_tol));
 	add(o, "ad_quad", json_object_new_int(s->ad_quad));
 	add(o, "radial_error", json_num(s->radial_error));

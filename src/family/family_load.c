@@ -165,17 +165,17 @@ static int read_spec(const struct rd *r, json_object *o, struct family *f)
 	if ((v = get(r, b, "bake", "solver", json_type_string)) == NULL)
 		return -1;
 	f->solver = xstrdup(json_object_get_string(v));
-	/* Families from before the adding-doubling solver have no "requested": Monte Carlo. */
-	s->method = BAKE_SOLVER_MC;
+	/* Families from before the adding-doubling solver have no "requested": Monte Carlo (solvers[0]). */
+	s->method = 0;
 	if (json_object_object_get_ex(b, "requested", &v) && json_object_is_type(v, json_type_string)) {
 		const char *q = json_object_get_string(v);
-		const struct bake_method_info *m = bake_method_named(q);
-		if (m == NULL) {
+		int m = bake_method_named(q);
+		if (m == BAKE_SOLVER_NONE) {
 			*r->cause = xasprintf("%s: field bake.requested = '%s' is not one of %s", r->path, q,
 			    bake_method_choices());
 			return -1;
 		}
-		s->method = m->id;
+		s->method = m;
 		double y[4] = { 0 };
 		static const char *k2[] = { "ad_tol", "ad_quad", "radial_error", "radial_photons" };
 		for (int i = 0; i < 4; i++)

@@ -104,7 +104,7 @@ int family_place_nodes(struct family_plan *pl, char **cause)
 	 * The albedo is order 0's alone: the higher orders (all the BRDF's
 	 * azimuthal detail, 3-10x the work) are not solved; the albedos are
 	 * bit for bit those of a solve of every order. */
-	if (ps->method != BAKE_SOLVER_MC && ps->ad_quad == 0) {
+	if (!(bake_method_ops(ps->method)->traits & SOLVER_SAMPLED) && ps->ad_quad == 0) {
 		ps->ad_quad = 8;
 		ps->ad_tol = 0.01;
 	}

@@ -123,7 +123,7 @@ void family_pack(const struct bake_spec *s, const struct bake_result *r, double 
 	*p++ = (double)r->table.photons;
 	*p++ = r->table.seconds;
 	*p++ = (double)r->table.pilot_photons;
-	*p++ = r->ad_tol;
+	*p++ = r->tol;
 	*p++ = (double)r->radial_photons;
 	*p++ = r->radial_seconds;
 	size_t nb = (size_t)s->n_to * s->n_phi;
@@ -194,7 +194,7 @@ void family_unpack(const struct bake_spec *s, const double *v, char *solver, str
 	r->table.photons = (long)p[2];
 	r->table.seconds = p[3];
 	r->table.pilot_photons = (long)p[4];
-	r->ad_tol = p[5];
+	r->tol = p[5];
 	r->radial_photons = (long)p[6];
 	r->radial_seconds = p[7];
 	p += 8;

@@ -141,7 +141,7 @@ int family_radial_run(const struct bake_spec *s, const struct slab *slabs, int n
     struct family_radial *fr)
 {
 	memset(fr, 0, sizeof *fr);
-	if (s->method == BAKE_SOLVER_MC || s->n_r <= 0 || n_members < 2)
+	if ((bake_method_ops(s->method)->provides & SOLVER_RADIAL) || s->n_r <= 0 || n_members < 2)
 		return 0;
 	fr->n_members = n_members;
 	fr->n_wl = s->n_wl;

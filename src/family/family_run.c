@@ -161,8 +161,9 @@ static int write_member(const struct family_plan *pl, struct family *f, int m, c
 	if (f->solver == NULL)
 		f->solver = xstrdup(solver);
 	else if (strcmp(f->solver, solver) != 0) {
+		char *u = xstrdup(solvers_union(f->solver, solver));
 		free(f->solver);
-		f->solver = xstrdup("ad+mc");
+		f->solver = u;
 	}
 	for (int w = 0; r.fallback_cause && w < s->n_wl; w++)
 		if (r.fallback_cause[w]) {
@@ -259,7 +260,7 @@ static uint64_t family_identity(const struct family_plan *pl, const struct famil
 static int shared_radial(const struct family_plan *pl, const struct family *f,
     struct family_radial *fr, char **cause)
 {
-	if (pl->spec.method == BAKE_SOLVER_MC || pl->spec.n_r <= 0)
+	if ((bake_method_ops(pl->spec.method)->provides & SOLVER_RADIAL) || pl->spec.n_r <= 0)
 		return 0;
 	int n = f->n_members, nw = pl->spec.n_wl;
 	struct bake_spec *s = xmalloc(sizeof *s);
