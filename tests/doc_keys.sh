@@ -3,7 +3,9 @@
 # scripts/doc_keys.py makes from `skinbake preset keys` (preset_key_table[]; `make doc-keys`
 # rewrites it); docs/presets.md's own table (its words, sources) has the same keys and the same
 # numbers as units, defaults and ranges; scenes/README.md's key tables list the scene reader's
-# keys. Probes: a row dropped, a default changed, a scene key missing or made up are caught.
+# keys and are generated from its key table (src/scene/scene_keytab.c, printed by
+# tests/scene_keys_table). Probes: a row dropped, a default changed, a scene key missing or made
+# up are caught.
 . "$top_srcdir/tests/tap.sh"
 G="$top_srcdir/scripts/doc_keys.py"
 check "README.md: the table of preset keys is the program's" python3 "$G" --check "$SKINBAKE" "$top_srcdir/README.md"
@@ -27,4 +29,11 @@ check "probe: a scene key missing from the table is caught" \
 sed 's/^| `bumps` |/| `bumps`, `glow` |/' "$top_srcdir/scenes/README.md" >"$tmpd/scenes.md"
 check "probe: a key the reader does not take is caught" \
 	sh -c "! python3 '$G' --check-scene-keys '$SKINBAKE' '$tmpd/scenes.md' >/dev/null"
+T="$top_builddir/tests/scene_keys_table"
+check "scenes/README.md: the key tables are generated from the reader's table" \
+	python3 "$G" --scene --check "$T" "$top_srcdir/scenes/README.md"
+sed 's/^| `radius` | number | units | 1e-9 to 1e9 | 1 |/| `radius` | number | units | 1e-9 to 1e9 | 2 |/' \
+	"$top_srcdir/scenes/README.md" >"$tmpd/scenes.md"
+check "probe: a scene key's default edited by hand is caught" \
+	sh -c "! python3 '$G' --scene --check '$T' '$tmpd/scenes.md' >/dev/null"
 tap_done

@@ -165,7 +165,8 @@ static int read_spec(const struct rd *r, json_object *o, struct family *f)
 	if ((v = get(r, b, "bake", "solver", json_type_string)) == NULL)
 		return -1;
 	f->solver = xstrdup(json_object_get_string(v));
-	/* Families from before the adding-doubling solver have no "requested": Monte Carlo (solvers[0]). */
+	/* Families from before the adding-doubling solver have no "requested":
+	 * Monte Carlo (solvers[0]). */
 	s->method = 0;
 	if (json_object_object_get_ex(b, "requested", &v) && json_object_is_type(v, json_type_string)) {
 		const char *q = json_object_get_string(v);

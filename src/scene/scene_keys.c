@@ -13,6 +13,7 @@
 
 #include "base/util.h"
 #include "geom/sites.h"
+#include "scene/scene_keytab.h"
 
 /* A key given twice in one section (also when the section is opened again)
  * would silently take the last value: an error naming both lines. */
@@ -60,9 +61,12 @@ static int parse_bool(const char *v, int *out)
 	return -1;
 }
 
-/* A number in [lo, hi]; on failure an error naming key, value and range. */
-static int num(struct scene_parse *p, const char *key, const char *v, double lo, double hi, double *out)
+/* A number in the key's range [d->lo, d->hi]; on failure an error naming
+ * key, value and range. */
+static int num(struct scene_parse *p, const struct scene_key *d, const char *v, double *out)
 {
+	const char *key = d->name;
+	double lo = d->lo, hi = d->hi;
 	double x;
 	if (util_parse_decimal(v, &x) != 0) {
 		scene_fail(p, "%s = '%s' is not a decimal number in [%g, %g]", key, v, lo, hi);
@@ -85,13 +89,13 @@ static int vec(struct scene_parse *p, const char *key, const char *v, double *ou
 	return 0;
 }
 
-static int color(struct scene_parse *p, const char *key, const char *v, double *out)
+static int color(struct scene_parse *p, const struct scene_key *d, const char *v, double *out)
 {
-	if (vec(p, key, v, out) != 0)
+	if (vec(p, d->name, v, out) != 0)
 		return -1;
 	for (int i = 0; i < 3; i++)
-		if (out[i] < 0 || out[i] > 1e6) {
-			scene_fail(p, "%s = '%s': components must be in [0, 1e6]", key, v);
+		if (out[i] < d->lo || out[i] > d->hi) {
+			scene_fail(p, "%s = '%s': components must be in [0, 1e6]", d->name, v);
 			return -1;
 		}
 	return 0;
@@ -136,30 +140,47 @@ const char *scene_strategy_name(enum scene_strategy st)
 	return strategy_names[st];
 }
 
+/* A key not in the table: an error listing the section's keys. */
+static int unknown(struct scene_parse *p, const char *label, const char *section, const char *k)
+{
+	return scene_fail(p, "%s: unknown key '%s' (keys %s)", label, k, scene_key_list(section));
+}
+
+static int unknown_named(struct scene_parse *p, const char *section, const char *name, const char *k)
+{
+	char *label = xasprintf("[%s %s]", section, name);
+	int rc = unknown(p, label, section, k);
+	free(label);
+	return rc;
+}
+
 static int key_scene(struct scene_parse *p, const char *k, const char *v)
 {
+	const struct scene_key *d = scene_key_find("scene", k);
+	if (d == NULL)
+		return unknown(p, "[scene]", "scene", k);
 	struct scene *s = p->s;
 	double x;
 	if (!strcmp(k, "title")) {
 		free(s->title);
 		s->title = xstrdup(v);
 	} else if (!strcmp(k, "width") || !strcmp(k, "height")) {
-		if (num(p, k, v, 16, 8192, &x) != 0)
+		if (num(p, d, v, &x) != 0)
 			return 0;
 		if (x != floor(x))
 			return scene_fail(p, "%s = %s is not a whole number of pixels", k, v);
 		*(k[0] == 'w' ? &s->width : &s->height) = (int)x;
 	} else if (!strcmp(k, "unit_mm")) {
-		if (num(p, k, v, 1e-3, 1e6, &s->unit_mm) != 0)
+		if (num(p, d, v, &s->unit_mm) != 0)
 			return 0;
 	} else if (!strcmp(k, "background")) {
-		if (color(p, k, v, s->background) != 0)
+		if (color(p, d, v, s->background) != 0)
 			return 0;
 	} else if (!strcmp(k, "antialias")) {
-		if (num(p, k, v, 0, 3, &s->antialias) != 0)
+		if (num(p, d, v, &s->antialias) != 0)
 			return 0;
 	} else if (!strcmp(k, "fill")) {
-		if (color(p, k, v, s->fill) != 0)
+		if (color(p, d, v, s->fill) != 0)
 			return 0;
 	} else if (!strcmp(k, "lights")) {
 		size_t i;
@@ -170,13 +191,15 @@ static int key_scene(struct scene_parse *p, const char *k, const char *v)
 			return scene_fail(p, "lights = '%s' is not one of auto, key, mixture, passes, separable", v);
 		s->lights_strategy = (enum scene_strategy)i;
 	} else
-		return scene_fail(p, "[scene]: unknown key '%s' (keys title, width, height, unit_mm, background, "
-		    "antialias, fill, lights)", k);
+		return unknown(p, "[scene]", "scene", k);
 	return 1;
 }
 
 static int key_camera(struct scene_parse *p, const char *k, const char *v)
 {
+	const struct scene_key *d = scene_key_find("camera", k);
+	if (d == NULL)
+		return unknown(p, "[camera]", "camera", k);
 	struct scene_camera *c = &p->s->camera;
 	double x;
 	if (!strcmp(k, "type")) {
@@ -194,21 +217,24 @@ static int key_camera(struct scene_parse *p, const char *k, const char *v)
 		if (vec(p, k, v, c->look_at) != 0)
 			return 0;
 	} else if (!strcmp(k, "angle")) {
-		if (num(p, k, v, 1, 170, &x) != 0)
+		if (num(p, d, v, &x) != 0)
 			return 0;
 		c->angle = x * M_PI / 180;
 		p->cam_has |= CAM_ANGLE;
 	} else if (!strcmp(k, "width")) {
-		if (num(p, k, v, 1e-6, 1e9, &c->width) != 0)
+		if (num(p, d, v, &c->width) != 0)
 			return 0;
 		p->cam_has |= CAM_WIDTH;
 	} else
-		return scene_fail(p, "[camera]: unknown key '%s' (keys type, location, look_at, angle, width)", k);
+		return unknown(p, "[camera]", "camera", k);
 	return 1;
 }
 
 static int key_light(struct scene_parse *p, struct scene_light *l, const char *k, const char *v)
 {
+	const struct scene_key *d = scene_key_find("light", k);
+	if (d == NULL)
+		return unknown_named(p, "light", l->name, k);
 	double x;
 	if (!strcmp(k, "type")) {
 		if (!strcmp(v, "parallel"))
@@ -224,23 +250,25 @@ static int key_light(struct scene_parse *p, struct scene_light *l, const char *k
 		if (vec(p, k, v, l->point_at) != 0)
 			return 0;
 	} else if (!strcmp(k, "color")) {
-		if (color(p, k, v, l->color) != 0)
+		if (color(p, d, v, l->color) != 0)
 			return 0;
 	} else if (!strcmp(k, "area_size")) {
-		if (num(p, k, v, 0, 1e9, &l->area_size) != 0)
+		if (num(p, d, v, &l->area_size) != 0)
 			return 0;
 	} else if (!strcmp(k, "area_samples")) {
-		if (num(p, k, v, 2, 33, &x) != 0)
+		if (num(p, d, v, &x) != 0)
 			return 0;
 		l->area_samples = (int)x;
 	} else
-		return scene_fail(p, "[light %s]: unknown key '%s' (keys type, position, point_at, color, area_size, "
-		    "area_samples)", l->name, k);
+		return unknown_named(p, "light", l->name, k);
 	return 1;
 }
 
 static int key_skin(struct scene_parse *p, struct scene_skin *sk, const char *k, const char *v)
 {
+	const struct scene_key *d = scene_key_find("skin", k);
+	if (d == NULL)
+		return unknown_named(p, "skin", sk->name, k);
 	if (!strcmp(k, "preset")) {
 		free(sk->preset);
 		sk->preset = xstrdup(v);
@@ -266,13 +294,15 @@ static int key_skin(struct scene_parse *p, struct scene_skin *sk, const char *k,
 		if (boolean(p, k, v, &sk->reflection) != 0)
 			return 0;
 	} else
-		return scene_fail(p, "[skin %s]: unknown key '%s' (keys preset, site, bake, textures, bumps, reflection)",
-		    sk->name, k);
+		return unknown_named(p, "skin", sk->name, k);
 	return 1;
 }
 
 static int key_object(struct scene_parse *p, int idx, const char *k, const char *v)
 {
+	const struct scene_key *d = scene_key_find("object", k);
+	if (d == NULL)
+		return unknown_named(p, "object", p->s->objects[idx].name, k);
 	struct scene_object *o = &p->s->objects[idx];
 	double r[3];
 	if (!strcmp(k, "shape")) {
@@ -302,7 +332,7 @@ static int key_object(struct scene_parse *p, int idx, const char *k, const char 
 			return scene_fail(p, "skin = '%s' is not a name", v);
 		snprintf(p->obj_skin[idx], SCENE_NAME_MAX, "%s", v);
 	} else if (!strcmp(k, "color")) {
-		if (color(p, k, v, o->color) != 0)
+		if (color(p, d, v, o->color) != 0)
 			return 0;
 		p->obj_has[idx] |= OBJ_COLOR;
 	} else if (!strcmp(k, "center")) {
@@ -310,7 +340,7 @@ static int key_object(struct scene_parse *p, int idx, const char *k, const char 
 			return 0;
 		p->obj_has[idx] |= OBJ_CENTER;
 	} else if (!strcmp(k, "radius")) {
-		if (num(p, k, v, 1e-9, 1e9, &o->radius) != 0)
+		if (num(p, d, v, &o->radius) != 0)
 			return 0;
 		p->obj_has[idx] |= OBJ_RADIUS;
 	} else if (!strcmp(k, "size")) {
@@ -330,10 +360,10 @@ static int key_object(struct scene_parse *p, int idx, const char *k, const char 
 			o->normal[i] /= n;
 		p->obj_has[idx] |= OBJ_NORMAL;
 	} else if (!strcmp(k, "offset")) {
-		if (num(p, k, v, -1e9, 1e9, &o->offset) != 0)
+		if (num(p, d, v, &o->offset) != 0)
 			return 0;
 	} else if (!strcmp(k, "scale")) {
-		if (num(p, k, v, 1e-6, 1e6, &o->scale) != 0)
+		if (num(p, d, v, &o->scale) != 0)
 			return 0;
 	} else if (!strcmp(k, "rotate")) {
 		if (vec(p, k, v, r) != 0)
@@ -353,15 +383,14 @@ static int key_object(struct scene_parse *p, int idx, const char *k, const char 
 		p->obj_has[idx] |= OBJ_MESH;
 	} else if (!strcmp(k, "subdivide")) {
 		double x;
-		if (num(p, k, v, 0, 3, &x) != 0)
+		if (num(p, d, v, &x) != 0)
 			return 0;
 		if (x != floor(x))
 			return scene_fail(p, "subdivide = %s is not a whole number of levels", v);
 		o->subdivide = (int)x;
 		p->obj_has[idx] |= OBJ_MESH;
 	} else
-		return scene_fail(p, "[object %s]: unknown key '%s' (keys shape, material, skin, color, center, radius, "
-		    "size, normal, offset, scale, rotate, translate, file, mesh, subdivide)", o->name, k);
+		return unknown_named(p, "object", o->name, k);
 	return 1;
 }
 
