@@ -4,6 +4,7 @@
 #include "io/json.h"
 
 #include <math.h>
+#include <stdio.h>
 #include <stdlib.h>
 
 #include "base/util.h"
@@ -20,6 +21,23 @@ struct json_object *json_num_array(const double *v, int n)
 	struct json_object *a = json_object_new_array();
 	for (int i = 0; i < n; i++)
 		json_object_array_add(a, json_num(v[i]));
+	return a;
+}
+
+struct json_object *json_num_g(double v, int digits)
+{
+	if (!isfinite(v))
+		return NULL;
+	char buf[48];
+	snprintf(buf, sizeof buf, "%.*g", digits, v);
+	return json_object_new_double_s(v, buf);
+}
+
+struct json_object *json_num_g_array(const double *v, int n, int digits)
+{
+	struct json_object *a = json_object_new_array_ext(n);
+	for (int i = 0; i < n; i++)
+		json_object_array_add(a, json_num_g(v[i], digits));
 	return a;
 }
 

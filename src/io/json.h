@@ -25,6 +25,10 @@ enum json_layout { JSON_PRETTY, JSON_PLAIN };
 struct json_object *json_num(double v);
 /* An array of the N numbers V (each through json_num). */
 struct json_object *json_num_array(const double *v, int n);
+/* V written with DIGITS significant digits ("%.*g"), or null when V is not
+ * finite; and an array of N such numbers. */
+struct json_object *json_num_g(double v, int digits);
+struct json_object *json_num_g_array(const double *v, int n, int digits);
 /* Add KEY = VAL to object O (VAL may be NULL: null). */
 void json_put(struct json_object *o, const char *key, struct json_object *val);
 /* O as text in LAYOUT, slashes not escaped; caller frees. */

@@ -8,6 +8,7 @@
 #include "export/blender/blender.h"
 #include "export/blender/blender_detail.h"
 #include "export/blender/blender_fit.h"
+#include "export/blender/blender_manifest.h"
 
 #include <errno.h>
 #include <json-c/json.h>
@@ -84,7 +85,8 @@ static double albedo_at(const struct brdf_source *m, int c, double theta)
 	if (theta <= t[0] && (n > 1 || t[0] >= M_PI / 2))
 		return a[0];
 	if (theta >= t[n - 1])
-		return t[n - 1] < M_PI / 2 ? a[n - 1] * fmax(0.0, (M_PI / 2 - theta) / (M_PI / 2 - t[n - 1])) : a[n - 1];
+		return t[n - 1] < M_PI / 2 ? a[n - 1] * fmax(0.0,
+		    (M_PI / 2 - theta) / (M_PI / 2 - t[n - 1])) : a[n - 1];
 	int i = 0;
 	while (i < n - 2 && theta > t[i + 1])
 		i++;
@@ -106,29 +108,14 @@ void blender_albedo_mean(const struct brdf_source *m, double rgb[3])
 	}
 }
 
-/* Detail maps: the source's (borrowed) or flat (owned). */
-struct detail {
-	int w, h;		/* size [px] */
-	const uint16_t *height;	/* [h][w] gray */
-	const uint16_t *normal;	/* [h][w][3] RGB */
-	int flat;		/* 1 when no textures were given */
-	const char *tile_mm;	/* tEXt values as read, or NULL */
-	const char *hmin_um, *hmax_um;
-	uint16_t *own_height, *own_normal;	/* flat maps */
-	/* The relief as roughness for distant views (DIR/roughness_far.png of
-	 * `skinbake texture`, docs/relief.md), or NULL when the textures have none. */
-	uint16_t *far;		/* [far_n][far_n] alpha_relief * 65535 */
-	int far_n;		/* its edge [px] */
-};
-
-static void detail_free(struct detail *d)
+static void detail_free(struct blender_maps *d)
 {
 	free(d->own_height);
 	free(d->own_normal);
 	free(d->far);
 }
 
-static void detail_use(const struct texdir *t, struct detail *d)
+static void detail_use(const struct texdir *t, struct blender_maps *d)
 {
 	d->w = t->w;
 	d->h = t->h;
@@ -155,7 +142,7 @@ static void detail_use(const struct texdir *t, struct detail *d)
 	free(fp);
 }
 
-static void detail_flat(int size, struct detail *d)
+static void detail_flat(int size, struct blender_maps *d)
 {
 	size_t n = (size_t)size * (size_t)size;
 	d->w = d->h = size;
@@ -173,23 +160,24 @@ static void detail_flat(int size, struct detail *d)
 static int check_options(const struct blender_options *o, char **cause)
 {
 	if (o->lut_cos < BLENDER_LUT_COS_MIN || o->lut_cos > BLENDER_LUT_COS_MAX) {
-		*cause = xasprintf("lut_cos = %d is out of range [%d, %d]", o->lut_cos, BLENDER_LUT_COS_MIN,
-		    BLENDER_LUT_COS_MAX);
+		*cause = xasprintf("lut_cos = %d is out of range [%d, %d]", o->lut_cos,
+		    BLENDER_LUT_COS_MIN, BLENDER_LUT_COS_MAX);
 		return -1;
 	}
 	if (o->lut_phi < BLENDER_LUT_PHI_MIN || o->lut_phi > BLENDER_LUT_PHI_MAX) {
-		*cause = xasprintf("lut_phi = %d is out of range [%d, %d]", o->lut_phi, BLENDER_LUT_PHI_MIN,
-		    BLENDER_LUT_PHI_MAX);
+		*cause = xasprintf("lut_phi = %d is out of range [%d, %d]", o->lut_phi,
+		    BLENDER_LUT_PHI_MIN, BLENDER_LUT_PHI_MAX);
 		return -1;
 	}
 	if ((size_t)o->lut_cos * (size_t)o->lut_phi > 65536) {
-		*cause = xasprintf("lut_cos * lut_phi = %d is wider than 65536 px", o->lut_cos * o->lut_phi);
+		*cause = xasprintf("lut_cos * lut_phi = %d is wider than 65536 px",
+		    o->lut_cos * o->lut_phi);
 		return -1;
 	}
 	if (!(o->sun_elevation > 0 && o->sun_elevation <= M_PI / 2) ||
 	    !(o->view_elevation > 0 && o->view_elevation <= M_PI / 2)) {
-		*cause = xasprintf("sun/view elevation %g/%g deg is out of range (0, 90]", o->sun_elevation * 180 / M_PI,
-		    o->view_elevation * 180 / M_PI);
+		*cause = xasprintf("sun/view elevation %g/%g deg is out of range (0, 90]",
+		    o->sun_elevation * 180 / M_PI, o->view_elevation * 180 / M_PI);
 		return -1;
 	}
 	if (!(o->sun_strength > 0) || !isfinite(o->sun_strength)) {
@@ -197,8 +185,8 @@ static int check_options(const struct blender_options *o, char **cause)
 		return -1;
 	}
 	if (o->map_size < BLENDER_MAP_MIN || o->map_size > BLENDER_MAP_MAX) {
-		*cause = xasprintf("map_size = %d is out of range [%d, %d]", o->map_size, BLENDER_MAP_MIN,
-		    BLENDER_MAP_MAX);
+		*cause = xasprintf("map_size = %d is out of range [%d, %d]", o->map_size,
+		    BLENDER_MAP_MIN, BLENDER_MAP_MAX);
 		return -1;
 	}
 	return 0;
@@ -211,16 +199,19 @@ static int check_model(const struct brdf_source *m, char **cause)
 		return -1;
 	}
 	if (!(m->ior >= 1.0 && m->ior <= 10.0) || !(m->roughness >= 0.0 && m->roughness <= 1.0)) {
-		*cause = xasprintf("ior %g / roughness %g out of range [1, 10] / [0, 1]", m->ior, m->roughness);
+		*cause = xasprintf("ior %g / roughness %g out of range [1, 10] / [0, 1]", m->ior,
+		    m->roughness);
 		return -1;
 	}
 	if (m->detail != NULL && m->detail->normal == NULL) {
-		*cause = xasprintf("%s: the detail maps were read without normal.png", m->detail->dir);
+		*cause = xasprintf("%s: the detail maps were read without normal.png",
+		    m->detail->dir);
 		return -1;
 	}
 	for (int c = 0; c < 3; c++)
 		if (!(m->sss_radius_cm[c] > 0) || !isfinite(m->sss_radius_cm[c])) {
-			*cause = xasprintf("subsurface radius[%d] = %g cm must be > 0", c, m->sss_radius_cm[c]);
+			*cause = xasprintf("subsurface radius[%d] = %g cm must be > 0", c,
+			    m->sss_radius_cm[c]);
 			return -1;
 		}
 	return 0;
@@ -231,56 +222,8 @@ int blender_check(const struct brdf_source *m, const struct blender_options *o, 
 	return check_options(o, cause) != 0 || check_model(m, cause) != 0 ? -1 : 0;
 }
 
-/* Nine significant digits: plenty for the data, readable in the manifest. */
-static json_object *jd(double v)
-{
-	char buf[32];
-	snprintf(buf, sizeof buf, "%.9g", v);
-	return json_object_new_double_s(v, buf);
-}
-
-static json_object *jvec(const double *v, int n)
-{
-	json_object *a = json_object_new_array_ext(n);
-	for (int i = 0; i < n; i++)
-		json_object_array_add(a, jd(v[i]));
-	return a;
-}
-
-static json_object *jfile(const char *path, int w, int h, const char *channels, const char *encoding,
-    const char *colorspace, const char *role)
-{
-	json_object *f = json_object_new_object();
-	json_object_object_add(f, "path", json_object_new_string(path));
-	json_object_object_add(f, "width", json_object_new_int(w));
-	json_object_object_add(f, "height", json_object_new_int(h));
-	json_object_object_add(f, "channels", json_object_new_string(channels));
-	json_object_object_add(f, "encoding", json_object_new_string(encoding));
-	json_object_object_add(f, "blender_colorspace", json_object_new_string(colorspace));
-	json_object_object_add(f, "role", json_object_new_string(role));
-	return f;
-}
-
-static json_object *jnum_or_null(const char *s)
-{
-	double v;
-	if (s == NULL || util_parse_double(s, &v) != 0)
-		return NULL;
-	return jd(v);
-}
-
-/* Everything the exact-mode check needs: the reference plane (+Z normal)
- * under the sun, seen from the reference camera. */
-struct reference {
-	double sun[3], view[3];		/* unit vectors toward sun and camera */
-	double cos_l, cos_v, dphi;	/* on the +Z plane [-], [-], [rad] */
-	double pi_fr[3];		/* pi f_r straight from the model */
-	double pi_fr_lut[3];		/* what the node tree reads from the atlas */
-	double radiance[3];		/* E cos_l f_r [W/(m^2 sr)] */
-};
-
-static void reference_compute(const struct brdf_source *m, const struct blender_options *o, const float *lut,
-    struct reference *r)
+static void reference_compute(const struct brdf_source *m, const struct blender_options *o,
+    const float *lut, struct blender_reference *r)
 {
 	blender_direction(o->sun_elevation, o->sun_azimuth, r->sun);
 	blender_direction(o->view_elevation, o->view_azimuth, r->view);
@@ -294,123 +237,6 @@ static void reference_compute(const struct brdf_source *m, const struct blender_
 		r->pi_fr[c] = M_PI * f[c];
 		r->radiance[c] = o->sun_strength * r->cos_l * f[c];
 	}
-}
-
-static json_object *manifest_build(const struct brdf_source *m, const struct blender_options *o,
-    const struct detail *d, const double albedo[3], const struct reference *r)
-{
-	json_object *j = json_object_new_object(), *x;
-	int lw = o->lut_cos * o->lut_phi, lh = o->lut_cos;
-	double sss_m[3];
-	for (int c = 0; c < 3; c++)
-		sss_m[c] = m->sss_radius_cm[c] * 0.01;
-
-	json_object_object_add(j, "format", json_object_new_string("skinbake-blender-image-set"));
-	json_object_object_add(j, "format_version", json_object_new_int(BLENDER_FORMAT_VERSION));
-	json_object_object_add(j, "generator", json_object_new_string(o->generator));
-	x = json_object_new_object();
-	json_object_object_add(x, "brdf", json_object_new_string(m->source ? m->source : ""));
-	json_object_object_add(x, "preset", m->preset ? json_object_new_string(m->preset) : NULL);
-	json_object_object_add(x, "textures", m->detail ? json_object_new_string(m->detail->dir) : NULL);
-	json_object_object_add(j, "source", x);
-	x = json_object_new_object();
-	json_object_object_add(x, "length", json_object_new_string("m"));
-	json_object_object_add(x, "angle", json_object_new_string("deg"));
-	json_object_object_add(x, "irradiance", json_object_new_string("W/m^2"));
-	json_object_object_add(x, "brdf", json_object_new_string("1/sr"));
-	json_object_object_add(x, "colour", json_object_new_string("linear Rec.709 (sRGB primaries, D65)"));
-	json_object_object_add(j, "units", x);
-
-	/* Material parameters for the general (Principled BSDF) mode. */
-	json_object_object_add(j, "ior", jd(m->ior));
-	json_object_object_add(j, "roughness_alpha", jd(m->roughness));
-	json_object_object_add(j, "roughness", jd(sqrt(m->roughness)));
-	json_object_object_add(j, "sss_radius_m", jvec(sss_m, 3));
-	json_object_object_add(j, "albedo_rgb", jvec(albedo, 3));
-	json_object_object_add(j, "albedo_definition", json_object_new_string(
-	    "bihemispherical (white-sky) diffuse albedo: 2 * integral of the directional-hemispherical "
-	    "albedo a(theta_i) cos(theta_i) d(cos theta_i); the specular reflection is not included"));
-	x = json_object_new_object();
-	json_object_object_add(x, "theta_i_deg", json_object_new_array());
-	for (int i = 0; i < m->n_albedo; i++)
-		json_object_array_add(json_object_object_get(x, "theta_i_deg"),
-		    jd(m->theta_albedo[i] * 180.0 / M_PI));
-	for (int c = 0; c < 3; c++) {
-		static const char *const key[3] = { "R", "G", "B" };
-		json_object_object_add(x, key[c], jvec(m->albedo_rgb + (size_t)c * (size_t)m->n_albedo, m->n_albedo));
-	}
-	json_object_object_add(j, "albedo_curve", x);
-
-	x = json_object_new_object();
-	json_object_object_add(x, "albedo", jfile("albedo.exr", o->map_size, o->map_size, "R,G,B", "float32",
-	    "default (scene linear)", "Principled Base Color (and Subsurface Color in Blender 3.x)"));
-	json_object_object_add(x, "brdf_lut", jfile("brdf_lut.exr", lw, lh, "R,G,B", "float32", "Non-Color",
-	    "exact mode: Diffuse BSDF colour = pi * f_r, layout in brdf_lut"));
-	json_object_object_add(x, "roughness", jfile("roughness.png", o->map_size, o->map_size, "gray",
-	    "16-bit PNG", "Non-Color", "Principled Roughness = sqrt(GGX alpha)"));
-	json_object_object_add(x, "height", jfile("height.png", d->w, d->h, "gray", "16-bit PNG", "Non-Color",
-	    "height, 0 lowest .. 65535 highest (for a Bump node or displacement)"));
-	json_object_object_add(x, "normal", jfile("normal.png", d->w, d->h, "RGB", "16-bit PNG", "Non-Color",
-	    "tangent-space normal, OpenGL (+Y) convention, for a Normal Map node"));
-	if (d->far != NULL)
-		json_object_object_add(x, "roughness_far", jfile("roughness_far.png", d->far_n, d->far_n, "gray",
-		    "16-bit PNG", "Non-Color", "alpha_relief = value / 65535 per block of the tile (docs/relief.md): "
-		    "GGX alpha^2 = alpha_skin^2 + alpha_relief^2 where the relief is below a pixel"));
-	json_object_object_add(j, "files", x);
-
-	x = json_object_new_object();
-	json_object_object_add(x, "flat", json_object_new_boolean(d->flat));
-	json_object_object_add(x, "note", json_object_new_string(d->flat ?
-	    "no --textures given: constant height and normal (0.5, 0.5, 1) maps" :
-	    "height.png and normal.png copied from the textures directory"));
-	json_object_object_add(x, "tile_mm", jnum_or_null(d->tile_mm));
-	json_object_object_add(x, "height_min_um", jnum_or_null(d->hmin_um));
-	json_object_object_add(x, "height_max_um", jnum_or_null(d->hmax_um));
-	json_object_object_add(j, "detail", x);
-
-	x = json_object_new_object();
-	json_object_object_add(x, "value", json_object_new_string(
-	    "pi * f_r, the total BRDF (diffuse + surface specular) times pi, linear RGB"));
-	json_object_object_add(x, "cos_nodes", json_object_new_int(o->lut_cos));
-	json_object_object_add(x, "phi_nodes", json_object_new_int(o->lut_phi));
-	json_object_object_add(x, "tiles", json_object_new_string(
-	    "phi_nodes tiles side by side, each cos_nodes x cos_nodes; tile k is delta_phi = "
-	    "k * 180 / (phi_nodes - 1) deg, 0 = view back toward the light, 180 = mirror side"));
-	json_object_object_add(x, "u", json_object_new_string(
-	    "inside a tile, column j is cos_view = j / (cos_nodes - 1); texture u = (k * cos_nodes + j + 0.5) / width"));
-	json_object_object_add(x, "v", json_object_new_string(
-	    "file row r from the top is cos_light = 1 - r / (cos_nodes - 1): the bottom row (Blender v = 0) "
-	    "is cos_light = 0; texture v = (cos_light * (cos_nodes - 1) + 0.5) / cos_nodes"));
-	json_object_object_add(x, "interpolation", json_object_new_string(
-	    "bilinear inside the two neighbouring delta_phi tiles, then linear in delta_phi"));
-	json_object_object_add(j, "brdf_lut", x);
-
-	x = json_object_new_object();
-	json_object_object_add(x, "sun_direction", jvec(r->sun, 3));
-	json_object_object_add(x, "sun_elevation_deg", jd(o->sun_elevation * 180 / M_PI));
-	json_object_object_add(x, "sun_azimuth_deg", jd(o->sun_azimuth * 180 / M_PI));
-	json_object_object_add(x, "sun_strength_w_m2", jd(o->sun_strength));
-	json_object_object_add(x, "convention", json_object_new_string(
-	    "world +Z up; sun_direction points toward the sun; azimuth from +X toward +Y"));
-	json_object_object_add(x, "exact_for", json_object_new_string(
-	    "every sun, point and spot lamp, one view layer each (import_skin.py), any geometry and camera: "
-	    "the node tree computes cos_view, cos_light and delta_phi per shading point; sun_direction is the "
-	    "demo scene's sun. World light and area lamps are shaded by the general material."));
-	json_object *ref = json_object_new_object();
-	json_object_object_add(ref, "geometry", json_object_new_string("plane with normal +Z, "
-	    "orthographic camera looking along -view_direction, black world"));
-	json_object_object_add(ref, "view_direction", jvec(r->view, 3));
-	json_object_object_add(ref, "view_elevation_deg", jd(o->view_elevation * 180 / M_PI));
-	json_object_object_add(ref, "view_azimuth_deg", jd(o->view_azimuth * 180 / M_PI));
-	json_object_object_add(ref, "cos_light", jd(r->cos_l));
-	json_object_object_add(ref, "cos_view", jd(r->cos_v));
-	json_object_object_add(ref, "delta_phi_deg", jd(r->dphi * 180 / M_PI));
-	json_object_object_add(ref, "pi_fr_rgb", jvec(r->pi_fr, 3));
-	json_object_object_add(ref, "pi_fr_lut_rgb", jvec(r->pi_fr_lut, 3));
-	json_object_object_add(ref, "radiance_rgb", jvec(r->radiance, 3));
-	json_object_object_add(x, "reference", ref);
-	json_object_object_add(j, "exact", x);
-	return j;
 }
 
 static int write_manifest(const char *dir, json_object *j, char **cause)
@@ -438,7 +264,7 @@ static uint16_t quantise16(double x)
 /* Everything blender_write puts on disk, computed and validated up front. */
 struct blender_set {
 	struct blender_options o;	/* copy; o.generator is borrowed */
-	struct detail d;		/* height and normal maps */
+	struct blender_maps d;		/* height and normal maps */
 	float *lut;			/* pi f_r atlas, 3 planes */
 	float *albedo;			/* map_size^2 x 3 planes */
 	uint16_t *roughness;		/* map_size^2 */
@@ -458,7 +284,8 @@ void blender_set_free(struct blender_set *s)
 	free(s);
 }
 
-struct blender_set *blender_prepare(const struct brdf_source *m, const struct blender_options *o, char **cause)
+struct blender_set *blender_prepare(const struct brdf_source *m, const struct blender_options *o,
+    char **cause)
 {
 	if (blender_check(m, o, cause) != 0)
 		return NULL;
@@ -470,14 +297,14 @@ struct blender_set *blender_prepare(const struct brdf_source *m, const struct bl
 		detail_flat(o->map_size, &s->d);
 
 	double albedo[3];
-	struct reference ref;
+	struct blender_reference ref;
 	blender_albedo_mean(m, albedo);
 	s->lut = blender_lut(m, o->lut_cos, o->lut_phi);
 	reference_compute(m, o, s->lut, &ref);
 	for (int c = 0; c < 3; c++)
 		if (!isfinite(albedo[c]) || !isfinite(ref.pi_fr[c])) {
-			*cause = xasprintf("the BRDF gives a non-finite value (albedo %g, pi f_r %g)", albedo[c],
-			    ref.pi_fr[c]);
+			*cause = xasprintf("the BRDF gives a non-finite value "
+			    "(albedo %g, pi f_r %g)", albedo[c], ref.pi_fr[c]);
 			blender_set_free(s);
 			return NULL;
 		}
@@ -489,12 +316,12 @@ struct blender_set *blender_prepare(const struct brdf_source *m, const struct bl
 			s->albedo[(size_t)c * mp + i] = (float)albedo[c];
 		s->roughness[i] = quantise16(sqrt(m->roughness));
 	}
-	s->manifest = manifest_build(m, o, &s->d, albedo, &ref);
+	s->manifest = blender_manifest_build(m, o, &s->d, albedo, &ref);
 	double sun[3], view[3];
 	blender_direction(o->sun_elevation, o->sun_azimuth, sun);
 	blender_direction(o->view_elevation, o->view_azimuth, view);
-	blender_fit_manifest(s->manifest, m, sun, view, o->sun_strength, s->lut, o->lut_cos, o->lut_phi, s->d.normal,
-	    s->d.w, s->d.h);
+	blender_fit_manifest(s->manifest, m, sun, view, o->sun_strength, s->lut, o->lut_cos,
+	    o->lut_phi, s->d.normal, s->d.w, s->d.h);
 	return s;
 }
 
@@ -513,7 +340,7 @@ int blender_write(const struct blender_set *s, const char *dir, char **cause)
 int blender_write_files(const struct blender_set *s, const char *dir, char **cause)
 {
 	const struct blender_options *o = &s->o;
-	const struct detail *d = &s->d;
+	const struct blender_maps *d = &s->d;
 	char *path = NULL, *np_s = xasprintf("%d", o->lut_phi), *nc_s = xasprintf("%d", o->lut_cos);
 	int rc = -1;
 
@@ -527,8 +354,10 @@ int blender_write_files(const struct blender_set *s, const char *dir, char **cau
 	free(path);
 	struct exr_attr_kv lattr[] = {
 		{ "skinbake:quantity", "pi * f_r (total BRDF), linear Rec.709" },
-		{ "skinbake:layout", "tiles k = delta_phi k*180/(phi_nodes-1) deg side by side; in a tile column j = "
-		    "cos_view j/(cos_nodes-1), row r from the top = cos_light 1 - r/(cos_nodes-1)" },
+		{ "skinbake:layout",
+		    "tiles k = delta_phi k*180/(phi_nodes-1) deg side by side; in a tile column "
+		    "j = cos_view j/(cos_nodes-1), row r from the top = cos_light "
+		    "1 - r/(cos_nodes-1)" },
 		{ "skinbake:phi_nodes", np_s },
 		{ "skinbake:cos_nodes", nc_s },
 		{ "skinbake:generator", o->generator },
@@ -541,7 +370,8 @@ int blender_write_files(const struct blender_set *s, const char *dir, char **cau
 		{ "skinbake:quantity", "Blender roughness = sqrt(GGX alpha)" },
 	};
 	path = xasprintf("%s/roughness.png", dir);
-	if (pngio_write(path, o->map_size, o->map_size, 1, 16, s->roughness, 0, 1, rtext, cause) != 0)
+	if (pngio_write(path, o->map_size, o->map_size, 1, 16, s->roughness, 0, 1, rtext,
+	    cause) != 0)
 		goto out;
 	free(path);
 	struct png_text_kv htext[3];
@@ -557,11 +387,13 @@ int blender_write_files(const struct blender_set *s, const char *dir, char **cau
 		goto out;
 	free(path);
 	path = xasprintf("%s/normal.png", dir);
-	if (pngio_write(path, d->w, d->h, 3, 16, d->normal, 0, d->tile_mm ? 1 : 0, htext, cause) != 0)
+	if (pngio_write(path, d->w, d->h, 3, 16, d->normal, 0, d->tile_mm ? 1 : 0, htext,
+	    cause) != 0)
 		goto out;
 	free(path);
 	path = d->far != NULL ? xasprintf("%s/roughness_far.png", dir) : NULL;
-	if (path != NULL && pngio_write(path, d->far_n, d->far_n, 1, 16, d->far, 0, 0, NULL, cause) != 0)
+	if (path != NULL && pngio_write(path, d->far_n, d->far_n, 1, 16, d->far, 0, 0, NULL,
+	    cause) != 0)
 		goto out;
 	free(path);
 	/* The manifest goes last: its presence marks a complete image set. */

@@ -13,6 +13,7 @@
 #include "export/blender/blender_detail.h"
 #include "engine/specular.h"
 #include "base/util.h"
+#include "io/json.h"
 
 enum {
 	FIT_N_COSL = 24,	/* light cosines per view node */
@@ -271,17 +272,12 @@ int blender_fit_general_model(const struct brdf_source *m, enum blender_fit_mode
 
 static json_object *jd(double v)
 {
-	char buf[32];
-	snprintf(buf, sizeof buf, "%.9g", v);
-	return json_object_new_double_s(v, buf);
+	return json_num_g(v, 9);
 }
 
 static json_object *jvec(const double *v, int n)
 {
-	json_object *a = json_object_new_array_ext(n);
-	for (int i = 0; i < n; i++)
-		json_object_array_add(a, jd(v[i]));
-	return a;
+	return json_num_g_array(v, n, 9);
 }
 
 static const char *const fit_model_name[] = { "skinbake-cycles3-mix-1", "skinbake-cycles4-mix-1" };
