@@ -11,8 +11,8 @@
 # (a statement of several expressions joined by commas) in any file but
 # those of COMMA_OK fails; lines over 100 columns beyond the count that
 # tests/data/long_lines.txt records per file (lower it as files are
-# unpacked; a new file has none) are listed as TODO lines: reported, not
-# failed, while the branches in flight merge (then make them fail).
+# unpacked; a new file has none) fail, but in the files of PENDING (a branch
+# in flight unpacks them), which are TODO lines with their count.
 . "$top_srcdir/tests/tap.sh"
 MAX_FILE=600
 MAX_CMD=150
@@ -57,15 +57,29 @@ done
 
 # Packing: comma chains and lines over 100 columns (see the top).
 COMMA_OK="engine/ad_order.c engine/ad_solver.c"
+# Over their count while the branch that edits them unpacks them ("FILE"
+# each): export/pov/povscene.c has 55 of 42 (the showcase branch). Remove a
+# file when that branch has merged.
+PENDING="export/pov/povscene.c"
+# long_verdict FILE N ALLOWED: ok, todo (a file of PENDING) or fail.
+long_verdict() {
+	if [ "$2" -le "$3" ]; then echo ok; return; fi
+	case " $PENDING " in
+	*" $1 "*) echo todo ;;
+	*) echo fail ;;
+	esac
+}
 python3 "$top_srcdir/tests/check_packed.py" $(find . -name '*.[ch]' | sed 's|^\./||' | LC_ALL=C sort) >"$tmpd/packed"
 for f in $(cut -d: -f1 "$tmpd/packed" | LC_ALL=C sort -u); do
 	n=$(grep -c "^$f:[0-9]*: long" "$tmpd/packed")
 	allowed=$(awk -v f="$f" '$1 == f { print $2 }' "$top_srcdir/tests/data/long_lines.txt")
-	if [ "$n" -gt "${allowed:-0}" ]; then
-		# Reported, not failed, while eight branches still merge: a TODO line.
+	what="$f: $n lines over 100 columns (tests/data/long_lines.txt has ${allowed:-0})"
+	case $(long_verdict "$f" "$n" "${allowed:-0}") in
+	todo)
 		tap_n=$((tap_n + 1))
-		echo "not ok $tap_n - $f: $n lines over 100 columns (tests/data/long_lines.txt has ${allowed:-0}) # TODO unpack"
-	fi
+		echo "not ok $tap_n - $what # TODO unpack (its branch in flight)" ;;
+	fail) fail "$what: unpack them, or split the concept out" ;;
+	esac
 	c=$(grep "^$f:[0-9]*: comma" "$tmpd/packed" | cut -d: -f2 | tr '\n' ' ')
 	case " $(echo $COMMA_OK) " in
 	*" $f "*) ;;
@@ -76,6 +90,9 @@ ok "no comma chains or lines over 100 columns beyond the recorded ones"
 printf '/* probe. */\nvoid f(int *a, int *b)\n{\n\t*a = 1, *b = 2;\n\tint x = 1, y = 2;\n\treturn g(a, b), 0;\n}\n' >"$tmpd/comma.c"
 check "comma chains are caught, declarations are not" \
     test "$(python3 "$top_srcdir/tests/check_packed.py" "$tmpd/comma.c" | tr '\n' ' ')" = "$tmpd/comma.c:4: comma $tmpd/comma.c:6: comma "
+check "a file over its count of long lines fails" test "$(long_verdict bake/bake.c 33 32)" = fail
+check "at its count it passes" test "$(long_verdict bake/bake.c 32 32)" = ok
+check "a file of PENDING over its count is a TODO" test "$(long_verdict export/pov/povscene.c 55 42)" = todo
 printf '/* %0101d */\n' 0 >"$tmpd/longline.c"
 check "a line of 107 columns is caught" test -n "$(python3 "$top_srcdir/tests/check_packed.py" "$tmpd/longline.c")"
 

@@ -61,8 +61,10 @@ int cmd_export_pov(int argc, char **argv)
 		  .def_note = "$SKINBAKE_DATADIR, " PKGDATADIR ", ../exporters/pov", .help = "where skinbake_shapes.inc is" },
 		{ "bump-filter", OPT_ENUM, &filter, .choices = "auto|off", .def = "auto",
 		  .help = "box-filter the height map to half an image pixel" },
-		{ "diffuse-relief", OPT_ENUM, &po.sharp_diffuse, .choices = "blurred|sharp", .def = "blurred",
-		  .help = "blurred: the diffuse part sees the height map blurred by the bake's Rd(r) (docs/relief.md)" },
+		{ "diffuse-relief", OPT_ENUM, &po.sharp_diffuse, .choices = "blurred|sharp",
+		  .def = "blurred",
+		  .help = "blurred: the diffuse part sees the height map blurred by the bake's "
+		  "Rd(r) (docs/relief.md)" },
 		{ "analytic", OPT_FLAG, &po.analytic, .excl = "family", .help = "an analytic skin-like BRDF, no bake (tests)" },
 		{ "family", OPT_PATH_IN, &po.family, "DIR", .flags = OPT_DIR, .excl = "bake|analytic", .help = "with --maps: "
 		  "a family (bake --vary) blended per texel by the maps, one light (docs/maps.md)" },

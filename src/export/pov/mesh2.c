@@ -183,11 +183,13 @@ int mesh2_write(FILE *fp, const char *name, const struct mesh *m, double inset, 
 			if (!tx[t])
 				continue;
 			char mat[256];
-			snprintf(mat, sizeof mat, " matrix <%.7g,%.7g,%.7g, %.7g,%.7g,%.7g, %.7g,%.7g,%.7g, %.9g,%.9g,%.9g>",
-			    mx[t][0], mx[t][1], mx[t][2], mx[t][3], mx[t][4], mx[t][5], mx[t][6], mx[t][7], mx[t][8],
-			    mx[t][9], mx[t][10], mx[t][11]);
+			snprintf(mat, sizeof mat, " matrix <%.7g,%.7g,%.7g, %.7g,%.7g,%.7g, "
+			    "%.7g,%.7g,%.7g, %.9g,%.9g,%.9g>",
+			    mx[t][0], mx[t][1], mx[t][2], mx[t][3], mx[t][4], mx[t][5], mx[t][6],
+			    mx[t][7], mx[t][8], mx[t][9], mx[t][10], mx[t][11]);
 			if (tex->mid)
-				fprintf(fp, ",\n  %s%s%s%s%s", tex->pre, mat, tex->mid, mat, tex->post);
+				fprintf(fp, ",\n  %s%s%s%s%s", tex->pre, mat, tex->mid, mat,
+				    tex->post);
 			else
 				fprintf(fp, ",\n  %s%s%s", tex->pre, mat, tex->post);
 		}

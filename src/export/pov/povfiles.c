@@ -64,7 +64,8 @@ static int write_mesh(FILE *fp, const struct scene *s, const struct pov_skin *sk
 		if (bumps) {
 			struct mesh2_textures tex = { .tile_units = skins[o->skin].tile_units, .uv = &uv, .on = on };
 			char *pre, *mid, *post, *plain;
-			povscene_mesh_texture(s, skins, o, st, n > 1 ? k : -1, &pre, &mid, &post, &plain);
+			povscene_mesh_texture(s, skins, o, st, n > 1 ? k : -1, &pre, &mid, &post,
+			    &plain);
 			tex.pre = pre;
 			tex.mid = mid;
 			tex.post = post;

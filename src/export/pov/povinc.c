@@ -21,7 +21,8 @@
 static void write_light(FILE *fp, const struct scene_light *l, int times)
 {
 	double c[3] = { l->color[0] * times, l->color[1] * times, l->color[2] * times };
-	fprintf(fp, "#declare SKIN_Light_%s%s = light_source { ", l->name, times > 1 ? "_Layer" : "");
+	const char *layer = times > 1 ? "_Layer" : "";
+	fprintf(fp, "#declare SKIN_Light_%s%s = light_source { ", l->name, layer);
 	sdl_vec(fp, l->position);
 	fputs(" color ", fp);
 	sdl_rgb(fp, c);
@@ -30,8 +31,9 @@ static void write_light(FILE *fp, const struct scene_light *l, int times)
 		sdl_vec(fp, l->point_at);
 	}
 	if (l->area_size > 0)
-		fprintf(fp, "\n  area_light <" SDL_G ",0,0>, <0," SDL_G ",0>, %d, %d adaptive 1 circular orient", l->area_size,
-		    l->area_size, l->area_samples, l->area_samples);
+		fprintf(fp,
+		    "\n  area_light <" SDL_G ",0,0>, <0," SDL_G ",0>, %d, %d adaptive 1 circular "
+		    "orient", l->area_size, l->area_size, l->area_samples, l->area_samples);
 	fputs(" }\n", fp);
 }
 
@@ -41,7 +43,9 @@ static void write_light(FILE *fp, const struct scene_light *l, int times)
  * separable fit. */
 static void write_frame_selection(FILE *fp, const struct scene *s, const struct pov_options *o)
 {
-	fprintf(fp, "// Per-light passes: render your scene with `sh %s.sh SCENE.pov` (frames 1 to %d, one\n"
+	fprintf(fp,
+	    "// Per-light passes: render your scene with `sh %s.sh SCENE.pov` "
+	    "(frames 1 to %d, one\n"
 	    "// light each, summed into %s.png).  Use SKIN_Lights() for the lights and SKIN_<skin>_Pigment\n"
 	    "// with SKIN_<skin>_Finish: frame k selects light k and its table.\n#macro SKIN_Lights()\n"
 	    "  #switch (frame_number)\n", o->base, s->n_lights, o->base);
@@ -69,21 +73,23 @@ static void write_frame_selection(FILE *fp, const struct scene *s, const struct 
 /* The split (povsplit.h) and the fill: SKIN_s_Diffuse and SKIN_s_Specular
  * tables, SKIN_s_Fill = albedo(theta_o), the finish of the averaged
  * entries (diffuse N for N entries) and the fill's (emission N x fill). */
-static void write_split_fill(FILE *fp, const struct scene *s, const char *sn, const struct pov_skin *ps,
-    const struct pov_light *l, const struct pov_view *v, const double lo[3], const double hi[3],
-    const struct pov_options *o, struct pov_report *r)
+static void write_split_fill(FILE *fp, const struct scene *s, const char *sn,
+    const struct pov_skin *ps, const struct pov_light *l, const struct pov_view *v,
+    const double lo[3], const double hi[3], const struct pov_options *o, struct pov_report *r)
 {
 	int n = (ps->diffuse_png ? 2 : 1) + (ps->fill ? 1 : 0);
 	if (n == 1)
 		return;
 	if (ps->diffuse_png) {
-		fputs("// The split (docs/relief.md): the diffuse part of the table under the height map\n"
+		fputs("// The split (docs/relief.md): the diffuse part of the table under the "
+		    "height map\n"
 		    "// blurred by Rd(r), the surface specular under the whole relief.\n", fp);
 		for (int part = 1; part <= 2; part++) {
 			char *nm = xasprintf("SKIN_%s_%s", sn, part == 1 ? "Diffuse" : "Specular");
-			int g = ps->maps ? pov_maps_write_part(fp, nm, ps->maps, part, ps->spec_alpha, l, v, lo, hi,
-			    o->n_theta, o->n_gamma, ps->maps_uv) : littable_write_key(fp, nm, part == 1 ? &ps->diffuse :
-			    &ps->specular, l, v, lo, hi, o->n_theta, o->n_gamma);
+			const struct pov_brdf *t = part == 1 ? &ps->diffuse : &ps->specular;
+			int g = ps->maps ? pov_maps_write_part(fp, nm, ps->maps, part, ps->spec_alpha, l, v,
+			    lo, hi, o->n_theta, o->n_gamma, ps->maps_uv)
+			    : littable_write_key(fp, nm, t, l, v, lo, hi, o->n_theta, o->n_gamma);
 			r->n_gamma_used = g > r->n_gamma_used ? g : r->n_gamma_used;
 			free(nm);
 		}
@@ -91,7 +97,8 @@ static void write_split_fill(FILE *fp, const struct scene *s, const char *sn, co
 	if (ps->fill) {
 		double e[3] = { n * s->fill[0], n * s->fill[1], n * s->fill[2] };
 		char *nm = xasprintf("SKIN_%s_Fill", sn);
-		fputs("// The fill: a uniform sky light gives radiance albedo(theta_o) x fill (reciprocity).\n", fp);
+		fputs("// The fill: a uniform sky light gives radiance albedo(theta_o) x fill "
+		    "(reciprocity).\n", fp);
 		if (ps->maps)
 			pov_maps_write_fill(fp, nm, ps->maps, lo, hi, ps->maps_uv);
 		else {
@@ -99,12 +106,13 @@ static void write_split_fill(FILE *fp, const struct scene *s, const char *sn, co
 			sdl_albedo_pigment(fp, ps->n_albedo, ps->theta_albedo, ps->albedo_curve);
 		}
 		free(nm);
-		fprintf(fp, "#declare SKIN_%s_FillFinish = finish { diffuse 0 brilliance 1 ambient 0 emission ", sn);
+		fprintf(fp, "#declare SKIN_%s_FillFinish = finish { diffuse 0 brilliance 1 "
+		    "ambient 0 emission ", sn);
 		sdl_rgb(fp, e);
 		fputs(" specular 0 }\n", fp);
 	}
-	fprintf(fp, "#declare SKIN_%s_FinishAvg = finish { diffuse %d brilliance 1 ambient 0 emission 0 specular 0 }\n",
-	    sn, n);
+	fprintf(fp, "#declare SKIN_%s_FinishAvg = finish { diffuse %d brilliance 1 ambient 0 "
+	    "emission 0 specular 0 }\n", sn, n);
 }
 
 static int has_mesh(const struct scene *s, int k)
@@ -209,12 +217,13 @@ void povinc_write(FILE *fp, const struct scene *s, const struct pov_skin *skins,
 			    "bump_size " SDL_G " } scale " SDL_G " }\n", ps->bump_size, ps->tile_units, sk->name, ps->height_png,
 			    ps->bump_size, ps->tile_units);
 		if (ps->diffuse_png != NULL)
-			fprintf(fp, "#declare SKIN_%s_NormalDiffuse = normal { bump_map { png \"%s\" map_type 0 interpolate 2 "
-			    "bump_size " SDL_G " } scale " SDL_G " }\n", sk->name, ps->diffuse_png, ps->diffuse_bump_size,
-			    ps->tile_units);
+			fprintf(fp, "#declare SKIN_%s_NormalDiffuse = normal { bump_map { png \"%s\" "
+			    "map_type 0 interpolate 2 bump_size " SDL_G " } scale " SDL_G " }\n", sk->name,
+			    ps->diffuse_png, ps->diffuse_bump_size, ps->tile_units);
 		if (ps->diffuse_png != NULL && has_mesh(s, k))
-			fprintf(fp, "#declare SKIN_%s_NormalDiffuseMesh = normal { bump_map { png \"%s\" map_type 0 "
-			    "interpolate 2 bump_size " SDL_G " } }\n", sk->name, ps->diffuse_png, ps->diffuse_bump_size);
+			fprintf(fp, "#declare SKIN_%s_NormalDiffuseMesh = normal { bump_map { png "
+			    "\"%s\" map_type 0 interpolate 2 bump_size " SDL_G " } }\n", sk->name,
+			    ps->diffuse_png, ps->diffuse_bump_size);
 		if (ps->height_png != NULL && has_mesh(s, k))
 			fprintf(fp, "// On meshes each triangle maps the tile onto its UVs by its own matrix (docs/pov.md).\n"
 			    "#declare SKIN_%s_NormalMesh = normal { bump_map { png \"%s\" map_type 0 interpolate 2 "
