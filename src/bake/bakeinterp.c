@@ -40,14 +40,50 @@ static void dct1(double *v, int n, size_t stride, double *tmp)
 		v[(size_t)k * stride] = tmp[k];
 }
 
+/* The square grid's row theta_i = 90 deg (row N - 1 of c) by reciprocity,
+ * f(90, b) = f(b, 90): the table's grazing-exit column.  That column is 0
+ * under a smooth top (no transmittance at grazing), so the row is 0 as the
+ * BRDF's limit says; under a rough top it is not (the facets a grazing
+ * direction sees are tilted toward it: ad_eval.c exit_weights), and a row
+ * of 0 there made the series wiggle by -6..+7 % at exit 60-85 deg along
+ * theta_i = 0 (docs/grazing.md, "Rough tops").  The corner f(90, 90), which
+ * no node holds, is the quadratic through the column's last three nodes
+ * (0.8 deg beyond the last at the default 18 exit nodes). */
+static void grazing_row(const struct bake *b, const struct bake_series *s, double *c)
+{
+	const int N = s->N, P = s->P;
+	const double *t = b->theta_o_nodes;
+	double *row = c + (size_t)(N - 1) * N * P;
+	for (int k = 0; k < N - 1; k++)
+		for (int m = 0; m < P; m++)
+			row[(size_t)k * P + m] = c[((size_t)k * N + N - 1) * P + m];
+	if (N < 4)
+		return;
+	double x = 0.5 * M_PI, l[3];
+	for (int j = 0; j < 3; j++) {
+		l[j] = 1.0;
+		for (int q = 0; q < 3; q++)
+			if (q != j)
+				l[j] *= (x - t[N - 4 + q]) / (t[N - 4 + j] - t[N - 4 + q]);
+	}
+	for (int m = 0; m < P; m++) {
+		double v = 0.0;
+		for (int j = 0; j < 3; j++)
+			v += l[j] * c[((size_t)(N - 4 + j) * N + N - 1) * P + m];
+		row[(size_t)(N - 1) * P + m] = v;
+	}
+}
+
 /* One plane [n_ti][n_to][n_phi] of floats -> coefficients c[len]. */
 static void plane_series(const struct bake *b, const struct bake_series *s, const float *plane, double *c)
 {
 	const int N = s->N, P = s->P;
 	memset(c, 0, sizeof(double) * s->len);
-	for (int a = 0; a < b->n_ti; a++)	/* sym: row N - 1 (theta_i = 90 deg) stays 0 */
+	for (int a = 0; a < b->n_ti; a++)
 		for (int k = 0; k < N * P; k++)
 			c[(size_t)a * N * P + k] = plane[(size_t)a * N * P + k];
+	if (s->sym)
+		grazing_row(b, s, c);
 	double *tmp = xmalloc(sizeof(double) * (size_t)(s->NI > N ? (s->NI > P ? s->NI : P) : (N > P ? N : P)));
 	for (int a = 0; a < s->NI; a++)
 		for (int k = 0; k < N; k++)

@@ -5,8 +5,10 @@ adding-doubling wavelengths (manifest table.values "points") are point values at
 Chebyshev-Lobatto nodes in theta and equally spaced nodes in delta_phi, and eval
 sums the series through them (a Chebyshev series in u = acos(1 - 4 theta / pi)
 per theta axis, a cosine series in delta_phi; with the default incidence nodes
-the grid is completed by theta_i = 90 deg, where the BRDF is 0, and the series is
-made symmetric in (theta_i, theta_o)).  Linear interpolation between those nodes
+the grid is completed by the row theta_i = 90 deg, f(90, b) = f(b, 90) by
+reciprocity (0 under a smooth top; the corner from the quadratic through the
+grazing-exit column's last three nodes), and the series is made symmetric in
+(theta_i, theta_o)).  Linear interpolation between those nodes
 is 1 % low on a lit sphere (the BRDF is concave between nodes 10 deg apart).
 Bin means ("bins", Monte Carlo) are linear between the bin centres and go to 0
 at 90 deg, as in bakeinterp.c.
@@ -104,12 +106,29 @@ def _linear_held(ax, x):
     return w
 
 
+def _grazing_row(c, t):
+    """Row theta_i = 90 deg of the square grid c [n][n][p] (bakeinterp.c grazing_row)."""
+    n = c.shape[0]
+    c[n - 1, :n - 1] = c[:n - 1, n - 1]
+    if n < 4:
+        return
+    x, tt = 0.5 * math.pi, t[n - 4:n - 1]
+    for j in range(3):
+        lj = 1.0
+        for q in range(3):
+            if q != j:
+                lj *= (x - tt[q]) / (tt[j] - tt[q])
+        c[n - 1, n - 1] += lj * c[n - 4 + j, n - 1]
+
+
 def _points_grid(plane, ti, to_nodes, ph_nodes, gt, gp):
     """eval's series through one point-value plane [n_ti][n_to][n_phi], on the grid."""
     n_ti, n, p = plane.shape
     sym = _square_nodes(ti, to_nodes)
     c = np.zeros((n if sym else n_ti, n, p))
     c[:n_ti] = plane
+    if sym:
+        _grazing_row(c, to_nodes)
     c = _dct1(_dct1(c, 2), 1)
     if sym:
         c = _dct1(c, 0)
