@@ -249,6 +249,24 @@ static void incidence_weights(const struct bake *b, const struct bake_series *s,
 	*a1 = lo + 1;
 }
 
+/* Other incidence nodes, past the last one: the value at theta_i = 90 deg
+ * that the linear step goes to, f(90, to) = f(to, 90) by reciprocity: the
+ * table's grazing-exit column, linear in theta_i at to (held past the last
+ * node).  0 under a smooth top; under a rough top the BRDF's finite limit
+ * (grazing_row).  Its first-half series into *half. */
+static double grazing_end(const struct bake *b, const struct bake_series *s, const double *c, double to,
+    const double *bp, double *half)
+{
+	double *bj = xcalloc((size_t)s->NI + (size_t)s->N, sizeof(double)), *b90 = bj + s->NI;
+	int a0, a1;
+	double t;
+	incidence_weights(b, s, fmin(to, b->theta_i[b->n_ti - 1]), bj, &a0, &a1, &t);
+	basis(cheb_u(0.5 * M_PI), s->N, b90);
+	double f = series_sum(c, s, s->NI, bj, 0, b90, bp, half);
+	free(bj);
+	return f;
+}
+
 /* Point-value wavelength w (c: its coefficients) at the angles. */
 static double points_eval(const struct bake *b, const double *c, const double *ce, const double *ca, double ti,
     double to, double ph, double *err)
@@ -257,18 +275,24 @@ static double points_eval(const struct bake *b, const double *c, const double *c
 	double *buf = xmalloc(sizeof(double) * (size_t)(s->NI + s->N + s->P + 2 * s->NI));
 	double *bi = buf, *bo = bi + s->NI, *bp = bo + s->N, *bone = bp + s->P;
 	int a0, a1;
-	double t, half;
+	double t, half, fend = 0.0, fend_half = 0.0;
 	incidence_weights(b, s, ti, bi, &a0, &a1, &t);
 	basis(cheb_u(to), s->N, bo);
 	basis(ph, s->P, bp);
 	double f = series_sum(c, s, s->NI, bi, s->sym, bo, bp, &half);
+	if (!s->sym && a0 >= 0 && a1 < 0 && t > 0.0) {
+		fend = grazing_end(b, s, c, to, bp, &fend_half);
+		f += t * fend;
+		half += t * fend_half;
+	}
 	if (err) {
 		double e = fabs(series_sum(ce, s, s->NI, bi, s->sym, bo, bp, NULL)) + fabs(f - half);
 		if (s->sym)
 			e += fabs(series_sum(ca, s, s->NI, bi, 1, bo, bp, NULL));
 		else if (a0 >= 0) {
-			/* the linear step in theta_i: t (1 - t) |f(a0) - f(a1)| (f = 0 at 90 deg) */
-			double fa[2] = { 0.0, 0.0 };
+			/* the linear step in theta_i: t (1 - t) |f(a0) - f(a1)| (past the
+			 * last node f(a1) = grazing_end) */
+			double fa[2] = { 0.0, fend };
 			for (int q = 0; q < 2; q++) {
 				int a = q ? a1 : a0;
 				if (a < 0)

@@ -9,11 +9,15 @@
  *    in theta through the Chebyshev-Lobatto nodes (bake_nodes_theta), as a
  *    Chebyshev series sum c_k cos(k u), u = acos(1 - 4 theta / pi).  With the
  *    default incidence nodes (the exit nodes below 90 deg) the table is
- *    completed by theta_i = 90 deg, where the BRDF is 0, to a square grid,
- *    and the coefficients are made symmetric in (theta_i, theta_o): eval is
+ *    completed by theta_i = 90 deg to a square grid, f(90, b) = f(b, 90)
+ *    by reciprocity from the grazing-exit column (0 under a smooth top;
+ *    under a rough top the BRDF's finite limit; the corner f(90, 90) from
+ *    the quadratic through that column's last three nodes), and the
+ *    coefficients are made symmetric in (theta_i, theta_o): eval is
  *    reciprocal exactly (f(a, b) = f(b, a)); half the table's asymmetry
  *    goes to the error.  Other incidence nodes: linear in theta_i between
- *    the nodes and to 0 at 90 deg.
+ *    the nodes and to f(90, theta_o) = f(theta_o, 90) at 90 deg (the
+ *    grazing-exit column linear in theta_i, held past the last node).
  *  - Error: the table's error (its fr_err through the same interpolant, in
  *    absolute value) + the interpolation error estimate |f - f_half|, f_half
  *    the series cut to the first half of its terms in every axis (the table
