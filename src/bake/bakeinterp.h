@@ -26,8 +26,15 @@
  *
  * Bin means (Monte Carlo wavelengths, and bakes written before issue 26):
  * linear between the bin centres and the incidence nodes, and from the last
- * centre or node linear to 0 at 90 deg (the limit of the BRDF at grazing;
- * before issue 26 the last value was held).  This reads bin means as if
+ * centre or node linear to 0 at 90 deg (the limit of the BRDF at grazing
+ * under a smooth top; before issue 26 the last value was held).  Under a
+ * rough top (b->rough_top), whose BRDF keeps a finite value at grazing, the
+ * last theta_o centre is held and theta_i goes from the last node linearly
+ * to f(90, theta_o) = f(theta_o, 90) by reciprocity (the last exit bin at
+ * incidence min(theta_o, last node)); the error adds that step's
+ * t (1 - t) |f(a) - f_end|, f_end's own error, its hold in incidence (the
+ * last two exit bins' slope, by reciprocity, over the distance held) and,
+ * past the last theta_o centre, |f'| times the distance.  This reads bin means as if
  * they were point values (no deconvolution); the error is the standard
  * error (interpolated the same way) + what that reading costs: per axis the
  * curvature |f''| from the neighbouring values (divided differences, with

@@ -11,7 +11,9 @@ grazing-exit column's last three nodes), and the series is made symmetric in
 (theta_i, theta_o)).  Linear interpolation between those nodes
 is 1 % low on a lit sphere (the BRDF is concave between nodes 10 deg apart).
 Bin means ("bins", Monte Carlo) are linear between the bin centres and go to 0
-at 90 deg, as in bakeinterp.c.
+at 90 deg, as in bakeinterp.c; under a rough top (the manifest's
+layers[].layers[0].rough_top) the exit axis is held past its last centre and
+incidence goes linearly to f(90, theta_o) = f(theta_o, 90) by reciprocity.
 
 This module computes eval's function on a grid of STEP_DEG in every axis, so
 that the renderer's trilinear lookup on it is within GRID_ERROR of eval (the
@@ -141,11 +143,29 @@ def _points_grid(plane, ti, to_nodes, ph_nodes, gt, gp):
     return np.einsum("jkm,aj,bk,cm->abc", c, bi, bo, bp, optimize=True)
 
 
-def _bins_grid(plane, ti, to_centres, ph_centres, gt, gp):
+def _bins_grid(plane, ti, to_centres, ph_centres, gt, gp, rough=False):
     wi = _linear_to_zero(ti, gt)
-    wo = _linear_to_zero(to_centres, gt)
+    wo = (_linear_held if rough else _linear_to_zero)(to_centres, gt)
     wp = _linear_held(ph_centres, gp)
-    return np.einsum("jkm,aj,bk,cm->abc", plane, wi, wo, wp, optimize=True)
+    g = np.einsum("jkm,aj,bk,cm->abc", plane, wi, wo, wp, optimize=True)
+    if rough:
+        # bakeinterp.c bins_grazing_end: past the last incidence node, linear to
+        # the last exit bin's row at incidence min(theta_o, last node)
+        end = 0.5 * math.pi - ti[-1]
+        t = np.clip((gt - ti[-1]) / end, 0.0, 1.0) if end > 0.0 else np.zeros_like(gt)
+        wl = _linear_held(ti, np.minimum(gt, ti[-1]))
+        fend = np.einsum("jm,bj,cm->bc", plane[:, -1, :], wl, wp, optimize=True)
+        g += t[:, None, None] * fend[None, :, :]
+    return g
+
+
+def rough_top(man):
+    """Whether some wavelength's stack has a rough top boundary (bakeinterp.c)."""
+    for lw in man.get("layers", []):
+        ls = lw.get("layers", []) if isinstance(lw, dict) else []
+        if ls and (ls[0].get("rough_top") or 0) > 0:
+            return True
+    return False
 
 
 def resample(man, planes):
@@ -160,6 +180,8 @@ def resample(man, planes):
         to = np.radians(man["theta_o_nodes_deg" if points else "theta_o_centres_deg"])
         ph = np.radians(man["delta_phi_nodes_deg" if points else "delta_phi_centres_deg"])
         plane = planes[w].astype(np.float64).reshape(len(ti), len(to), len(ph))
-        fn = _points_grid if points else _bins_grid
-        out[w] = fn(plane, ti, to, ph, gt, gp)
+        if points:
+            out[w] = _points_grid(plane, ti, to, ph, gt, gp)
+        else:
+            out[w] = _bins_grid(plane, ti, to, ph, gt, gp, rough_top(man))
     return out
