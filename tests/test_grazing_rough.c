@@ -4,7 +4,7 @@
  * `paper` bake: albedo 0.824, mu_t 11.6 /cm, n 1.43, 656 nm; docs/mitsuba.md)
  * at 128 nodes per unit cosine (what that fit bakes with), default
  * incidence nodes, --resolution 18x18, through bake_eval_diffuse, against
- * adding-doubling's point values from a separate solve at 256 nodes and
+ * adding-doubling's point values from a separate solve at 192 nodes and
  * tolerance 1e-4 (validated against 4e6-photon Monte Carlo in
  * docs/grazing.md, "Rough tops"), at theta_i = 0, 15, ..., 75, 85, 89 deg,
  * theta_o = 60, 61, ..., 89, 89.9 deg and delta_phi = 0, 30, ..., 180 deg:
