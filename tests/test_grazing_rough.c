@@ -20,7 +20,7 @@
  *     64 nodes and incidence 0, 30, 60, 80 deg, so without noise): eval's
  *     error covers the actual error at >= 95 % of the same points (before:
  *     the exit axis and the incidence axis went to 0 at 90 deg).
- * About 25 s of CPU. */
+ * About 30 s of CPU. */
 #include "config.h"
 
 #include <setjmp.h>
