@@ -23,6 +23,9 @@ struct bake {
 	double *rgb_from_wl;	/* [3][n_wl] linear sRGB = rgb_from_wl . spectral values */
 	double ior;		/* refractive index of the top surface (sebum if present) [-] */
 	double roughness;	/* microfacet roughness alpha (GGX) of the top surface [-] */
+	int rough_top;		/* 1: the transport's top boundary is rough at some wavelength
+				 * (manifest layers[].layers[0].rough_top > 0): the diffuse BRDF
+				 * keeps a finite value at grazing instead of going to 0 */
 	double macro_slope;	/* RMS slope of the mm-scale relief over the whole BRDF [-];
 				 * 0 = none */
 	struct macro_rule *macro;	/* its quadrature (engine/macro.h), NULL when

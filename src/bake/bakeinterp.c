@@ -40,14 +40,50 @@ static void dct1(double *v, int n, size_t stride, double *tmp)
 		v[(size_t)k * stride] = tmp[k];
 }
 
+/* The square grid's row theta_i = 90 deg (row N - 1 of c) by reciprocity,
+ * f(90, b) = f(b, 90): the table's grazing-exit column.  That column is 0
+ * under a smooth top (no transmittance at grazing), so the row is 0 as the
+ * BRDF's limit says; under a rough top it is not (the facets a grazing
+ * direction sees are tilted toward it: ad_eval.c exit_weights), and a row
+ * of 0 there made the series wiggle by -6..+7 % at exit 60-85 deg along
+ * theta_i = 0 (docs/grazing.md, "Rough tops").  The corner f(90, 90), which
+ * no node holds, is the quadratic through the column's last three nodes
+ * (0.8 deg beyond the last at the default 18 exit nodes). */
+static void grazing_row(const struct bake *b, const struct bake_series *s, double *c)
+{
+	const int N = s->N, P = s->P;
+	const double *t = b->theta_o_nodes;
+	double *row = c + (size_t)(N - 1) * N * P;
+	for (int k = 0; k < N - 1; k++)
+		for (int m = 0; m < P; m++)
+			row[(size_t)k * P + m] = c[((size_t)k * N + N - 1) * P + m];
+	if (N < 4)
+		return;
+	double x = 0.5 * M_PI, l[3];
+	for (int j = 0; j < 3; j++) {
+		l[j] = 1.0;
+		for (int q = 0; q < 3; q++)
+			if (q != j)
+				l[j] *= (x - t[N - 4 + q]) / (t[N - 4 + j] - t[N - 4 + q]);
+	}
+	for (int m = 0; m < P; m++) {
+		double v = 0.0;
+		for (int j = 0; j < 3; j++)
+			v += l[j] * c[((size_t)(N - 4 + j) * N + N - 1) * P + m];
+		row[(size_t)(N - 1) * P + m] = v;
+	}
+}
+
 /* One plane [n_ti][n_to][n_phi] of floats -> coefficients c[len]. */
 static void plane_series(const struct bake *b, const struct bake_series *s, const float *plane, double *c)
 {
 	const int N = s->N, P = s->P;
 	memset(c, 0, sizeof(double) * s->len);
-	for (int a = 0; a < b->n_ti; a++)	/* sym: row N - 1 (theta_i = 90 deg) stays 0 */
+	for (int a = 0; a < b->n_ti; a++)
 		for (int k = 0; k < N * P; k++)
 			c[(size_t)a * N * P + k] = plane[(size_t)a * N * P + k];
+	if (s->sym)
+		grazing_row(b, s, c);
 	double *tmp = xmalloc(sizeof(double) * (size_t)(s->NI > N ? (s->NI > P ? s->NI : P) : (N > P ? N : P)));
 	for (int a = 0; a < s->NI; a++)
 		for (int k = 0; k < N; k++)
@@ -213,6 +249,24 @@ static void incidence_weights(const struct bake *b, const struct bake_series *s,
 	*a1 = lo + 1;
 }
 
+/* Other incidence nodes, past the last one: the value at theta_i = 90 deg
+ * that the linear step goes to, f(90, to) = f(to, 90) by reciprocity: the
+ * table's grazing-exit column, linear in theta_i at to (held past the last
+ * node).  0 under a smooth top; under a rough top the BRDF's finite limit
+ * (grazing_row).  Its first-half series into *half. */
+static double grazing_end(const struct bake *b, const struct bake_series *s, const double *c, double to,
+    const double *bp, double *half)
+{
+	double *bj = xcalloc((size_t)s->NI + (size_t)s->N, sizeof(double)), *b90 = bj + s->NI;
+	int a0, a1;
+	double t;
+	incidence_weights(b, s, fmin(to, b->theta_i[b->n_ti - 1]), bj, &a0, &a1, &t);
+	basis(cheb_u(0.5 * M_PI), s->N, b90);
+	double f = series_sum(c, s, s->NI, bj, 0, b90, bp, half);
+	free(bj);
+	return f;
+}
+
 /* Point-value wavelength w (c: its coefficients) at the angles. */
 static double points_eval(const struct bake *b, const double *c, const double *ce, const double *ca, double ti,
     double to, double ph, double *err)
@@ -221,18 +275,24 @@ static double points_eval(const struct bake *b, const double *c, const double *c
 	double *buf = xmalloc(sizeof(double) * (size_t)(s->NI + s->N + s->P + 2 * s->NI));
 	double *bi = buf, *bo = bi + s->NI, *bp = bo + s->N, *bone = bp + s->P;
 	int a0, a1;
-	double t, half;
+	double t, half, fend = 0.0, fend_half = 0.0;
 	incidence_weights(b, s, ti, bi, &a0, &a1, &t);
 	basis(cheb_u(to), s->N, bo);
 	basis(ph, s->P, bp);
 	double f = series_sum(c, s, s->NI, bi, s->sym, bo, bp, &half);
+	if (!s->sym && a0 >= 0 && a1 < 0 && t > 0.0) {
+		fend = grazing_end(b, s, c, to, bp, &fend_half);
+		f += t * fend;
+		half += t * fend_half;
+	}
 	if (err) {
 		double e = fabs(series_sum(ce, s, s->NI, bi, s->sym, bo, bp, NULL)) + fabs(f - half);
 		if (s->sym)
 			e += fabs(series_sum(ca, s, s->NI, bi, 1, bo, bp, NULL));
 		else if (a0 >= 0) {
-			/* the linear step in theta_i: t (1 - t) |f(a0) - f(a1)| (f = 0 at 90 deg) */
-			double fa[2] = { 0.0, 0.0 };
+			/* the linear step in theta_i: t (1 - t) |f(a0) - f(a1)| (past the
+			 * last node f(a1) = grazing_end) */
+			double fa[2] = { 0.0, fend };
 			for (int q = 0; q < 2; q++) {
 				int a = q ? a1 : a0;
 				if (a < 0)
@@ -252,13 +312,18 @@ static double points_eval(const struct bake *b, const double *c, const double *c
 /* ---- bin means ---- */
 
 /* Linear weights on an ascending axis: value = (1 - t) v[i0] + t v[i1];
- * i1 = -1 stands for 0 at 90 deg past the last node (the BRDF's limit),
- * held below the first node. */
-static void axis_weights(const double *ax, int n, double x, int *i0, int *i1, double *t)
+ * i1 = -1 stands for 0 at 90 deg past the last node (the BRDF's limit
+ * under a smooth top), held below the first node; hold: held past the last
+ * too (a rough top, whose BRDF keeps a finite value at grazing). */
+static void axis_weights(const double *ax, int n, double x, int hold, int *i0, int *i1, double *t)
 {
 	*t = 0.0;
 	if (x <= ax[0] || (n == 1 && ax[0] >= 0.5 * M_PI)) {
 		*i0 = *i1 = 0;
+		return;
+	}
+	if (x >= ax[n - 1] && hold) {
+		*i0 = *i1 = n - 1;
 		return;
 	}
 	if (x >= ax[n - 1]) {
@@ -296,12 +361,22 @@ static void phi_weights(const double *ax, int n, double x, int *i0, int *i1, dou
 	*t = (x - ax[lo]) / (ax[lo + 1] - ax[lo]);
 }
 
+static double bins_eval(const struct bake *b, const float *plane, double ti, double to, double ph);
+
+/* A rough top's value at theta_i = 90 deg for the linear step past the
+ * last incidence node: f(90, to) = f(to, 90) by reciprocity, the last
+ * theta_o bin held (incidence held at the last node past it). */
+static double bins_grazing_end(const struct bake *b, const float *plane, double to, double ph)
+{
+	return bins_eval(b, plane, fmin(to, b->theta_i[b->n_ti - 1]), 0.5 * M_PI, ph);
+}
+
 static double bins_eval(const struct bake *b, const float *plane, double ti, double to, double ph)
 {
 	int ia[2], ib[2], ic[2];
 	double ta, tb, tc;
-	axis_weights(b->theta_i, b->n_ti, ti, &ia[0], &ia[1], &ta);
-	axis_weights(b->theta_o, b->n_to, to, &ib[0], &ib[1], &tb);
+	axis_weights(b->theta_i, b->n_ti, ti, 0, &ia[0], &ia[1], &ta);
+	axis_weights(b->theta_o, b->n_to, to, b->rough_top, &ib[0], &ib[1], &tb);
 	phi_weights(b->phi, b->n_phi, ph, &ic[0], &ic[1], &tc);
 	double wa[2] = { 1 - ta, ta }, wb[2] = { 1 - tb, tb }, wc[2] = { 1 - tc, tc }, v = 0.0;
 	for (int x = 0; x < 2; x++)
@@ -312,6 +387,8 @@ static double bins_eval(const struct bake *b, const float *plane, double ti, dou
 				size_t k = ((size_t)ia[x] * b->n_to + (size_t)ib[y]) * b->n_phi + (size_t)ic[z];
 				v += wa[x] * wb[y] * wc[z] * (double)plane[k];
 			}
+	if (b->rough_top && ia[1] < 0 && ta > 0.0)
+		v += ta * bins_grazing_end(b, plane, to, ph);
 	return v;
 }
 
@@ -357,10 +434,11 @@ static double bin_width(const double *ax, int n, int i, double end)
  * (h^2 / 24, the offset of a bin's mean from its centre value, when means)
  * + (x - a)(b - x) / 2 between nodes a and b (to 90 deg past the last when
  * zero_end) or (x - a)^2 / 2 where the end value is held (f' = 0 there:
- * the delta_phi axis; theta_o below its first centre adds |f'| (a - x)),
- * f'' from axis_d2 at the nodes beside x. */
+ * the delta_phi axis; theta_o below its first centre adds |f'| (a - x),
+ * and past the last with slope_end, a rough top's held end, |f'| (x - a),
+ * f' from the last two nodes), f'' from axis_d2 at the nodes beside x. */
 static double axis_err(const float *v, size_t stride, const double *ax, int n, double end,
-    int means, int zero_end, double x)
+    int means, int zero_end, int slope_end, double x)
 {
 	int i0 = 0;
 	while (i0 + 1 < n && ax[i0 + 1] <= x)
@@ -369,7 +447,7 @@ static double axis_err(const float *v, size_t stride, const double *ax, int n, d
 	double step, held = 0.0;
 	if (x < ax[0]) {
 		step = 0.5 * (ax[0] - x) * (ax[0] - x);
-		if (zero_end && n > 1)
+		if ((zero_end || slope_end) && n > 1)
 			held = fabs(v[stride] - v[0]) / (ax[1] - ax[0]) * (ax[0] - x);
 	} else if (i0 + 1 < n || zero_end) {
 		double b = i0 + 1 < n ? ax[i0 + 1] : 0.5 * M_PI;
@@ -378,6 +456,9 @@ static double axis_err(const float *v, size_t stride, const double *ax, int n, d
 		step = 0.5 * (x - ax[i0]) * (b - x);
 	} else {
 		step = 0.5 * (x - ax[i0]) * (x - ax[i0]);
+		if (slope_end && n > 1)
+			held = fabs(v[(size_t)(n - 1) * stride] - v[(size_t)(n - 2) * stride])
+			    / (ax[n - 1] - ax[n - 2]) * (x - ax[n - 1]);
 	}
 	return BINS_ERR_SAFETY * (d2 * ((means ? h * h / 24.0 : 0.0) + step) + held);
 }
@@ -392,10 +473,11 @@ static double bins_interp_err(const struct bake *b, const float *plane, double t
 {
 	int ia[2], ib[2], ic[2];
 	double ta, tb, tc;
-	axis_weights(b->theta_i, b->n_ti, ti, &ia[0], &ia[1], &ta);
-	axis_weights(b->theta_o, b->n_to, to, &ib[0], &ib[1], &tb);
+	axis_weights(b->theta_i, b->n_ti, ti, 0, &ia[0], &ia[1], &ta);
+	axis_weights(b->theta_o, b->n_to, to, b->rough_top, &ib[0], &ib[1], &tb);
 	phi_weights(b->phi, b->n_phi, ph, &ic[0], &ic[1], &tc);
 	double wa[2] = { 1 - ta, ta }, wb[2] = { 1 - tb, tb }, wc[2] = { 1 - tc, tc }, e = 0.0;
+	const int rough = b->rough_top;
 	size_t P = (size_t)b->n_phi, row = (size_t)b->n_to * P;
 	float *col = xmalloc(sizeof(float) * (size_t)b->n_ti);
 	for (int a = 0; a < b->n_ti; a++) {
@@ -413,13 +495,31 @@ static double bins_interp_err(const struct bake *b, const float *plane, double t
 			continue;
 		for (int z = 0; z < 2; z++)
 			e += w * wc[z] * axis_err(r + ic[z], P, b->theta_o, b->n_to, 0.5 * M_PI,
-			    1, 1, to);
+			    1, !rough, rough, to);
 		for (int y = 0; y < 2; y++)
 			if (ib[y] >= 0)
 				e += w * wb[y] * axis_err(r + (size_t)ib[y] * P, 1, b->phi,
-				    b->n_phi, M_PI, 1, 0, ph);
+				    b->n_phi, M_PI, 1, 0, 0, ph);
 	}
-	e += axis_err(col, 1, b->theta_i, b->n_ti, 0.5 * M_PI, 0, 1, ti);
+	if (rough && ia[1] < 0 && ta > 0.0) {
+		/* past the last incidence node, linear to bins_grazing_end: the
+		 * step's t (1 - t) |f(a) - f_end| and f_end's own error */
+		double tl = fmin(to, b->theta_i[b->n_ti - 1]);
+		e += BINS_ERR_SAFETY * ta * (1.0 - ta)
+		    * fabs(col[b->n_ti - 1] - bins_grazing_end(b, plane, to, ph))
+		    + ta * bins_interp_err(b, plane, tl, 0.5 * M_PI, ph);
+		/* f_end held in incidence from the last node to `to`: the slope
+		 * there taken by reciprocity from the last two theta_o bins of
+		 * the last node's row, over that distance */
+		if (to > tl && b->n_to > 1) {
+			const double *c = b->theta_o;
+			int n = b->n_to;
+			double d = bins_eval(b, plane, tl, c[n - 1], ph) - bins_eval(b, plane, tl, c[n - 2], ph);
+			e += BINS_ERR_SAFETY * ta * fabs(d) / (c[n - 1] - c[n - 2]) * (to - tl);
+		}
+	} else {
+		e += axis_err(col, 1, b->theta_i, b->n_ti, 0.5 * M_PI, 0, !rough, 0, ti);
+	}
 	free(col);
 	return e;
 }

@@ -9,11 +9,15 @@
  *    in theta through the Chebyshev-Lobatto nodes (bake_nodes_theta), as a
  *    Chebyshev series sum c_k cos(k u), u = acos(1 - 4 theta / pi).  With the
  *    default incidence nodes (the exit nodes below 90 deg) the table is
- *    completed by theta_i = 90 deg, where the BRDF is 0, to a square grid,
- *    and the coefficients are made symmetric in (theta_i, theta_o): eval is
+ *    completed by theta_i = 90 deg to a square grid, f(90, b) = f(b, 90)
+ *    by reciprocity from the grazing-exit column (0 under a smooth top;
+ *    under a rough top the BRDF's finite limit; the corner f(90, 90) from
+ *    the quadratic through that column's last three nodes), and the
+ *    coefficients are made symmetric in (theta_i, theta_o): eval is
  *    reciprocal exactly (f(a, b) = f(b, a)); half the table's asymmetry
  *    goes to the error.  Other incidence nodes: linear in theta_i between
- *    the nodes and to 0 at 90 deg.
+ *    the nodes and to f(90, theta_o) = f(theta_o, 90) at 90 deg (the
+ *    grazing-exit column linear in theta_i, held past the last node).
  *  - Error: the table's error (its fr_err through the same interpolant, in
  *    absolute value) + the interpolation error estimate |f - f_half|, f_half
  *    the series cut to the first half of its terms in every axis (the table
@@ -22,8 +26,15 @@
  *
  * Bin means (Monte Carlo wavelengths, and bakes written before issue 26):
  * linear between the bin centres and the incidence nodes, and from the last
- * centre or node linear to 0 at 90 deg (the limit of the BRDF at grazing;
- * before issue 26 the last value was held).  This reads bin means as if
+ * centre or node linear to 0 at 90 deg (the limit of the BRDF at grazing
+ * under a smooth top; before issue 26 the last value was held).  Under a
+ * rough top (b->rough_top), whose BRDF keeps a finite value at grazing, the
+ * last theta_o centre is held and theta_i goes from the last node linearly
+ * to f(90, theta_o) = f(theta_o, 90) by reciprocity (the last exit bin at
+ * incidence min(theta_o, last node)); the error adds that step's
+ * t (1 - t) |f(a) - f_end|, f_end's own error, its hold in incidence (the
+ * last two exit bins' slope, by reciprocity, over the distance held) and,
+ * past the last theta_o centre, |f'| times the distance.  This reads bin means as if
  * they were point values (no deconvolution); the error is the standard
  * error (interpolated the same way) + what that reading costs: per axis the
  * curvature |f''| from the neighbouring values (divided differences, with

@@ -245,6 +245,22 @@ static int read_points(json_object *o, struct bake *b, const char *mpath, char *
 	return 0;
 }
 
+/* Whether some wavelength's stack has a rough top boundary (b->rough_top). */
+static void read_rough_top(json_object *o, struct bake *b)
+{
+	json_object *layers, *ls;
+	if (!json_object_object_get_ex(o, "layers", &layers) ||
+	    !json_object_is_type(layers, json_type_array))
+		return;
+	for (size_t w = 0; w < json_object_array_length(layers); w++) {
+		json_object *lw = json_object_array_get_idx(layers, w);
+		if (json_object_object_get_ex(lw, "layers", &ls) &&
+		    json_object_is_type(ls, json_type_array) && json_object_array_length(ls) > 0 &&
+		    jnum(json_object_array_get_idx(ls, 0), "rough_top", 0.0) > 0.0)
+			b->rough_top = 1;
+	}
+}
+
 int bake_manifest_read(const char *dir, struct bake *b, char **cause)
 {
 	char *mpath = xasprintf("%s/manifest.json", dir);
@@ -275,6 +291,7 @@ int bake_manifest_read(const char *dir, struct bake *b, char **cause)
 	    read_specular(o, b, mpath, cause) || read_points(o, b, mpath, cause))
 		goto out;
 	read_radial(o, b, mpath);
+	read_rough_top(o, b);
 	rc = 0;
 out:
 	if (o)

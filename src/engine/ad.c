@@ -391,9 +391,10 @@ void ad_brdf_points(const struct ad_result *r, int k, const double *theta_o, int
 			fo[ip] = v;
 			eo[ip] = tf * fabs(tail);
 		}
-		/* At grazing exit the BRDF is 0 in every solve (no transmittance),
-		 * not by coincidence: exact. */
-		if (r->series_lo && theta_o[it] < 0.5 * M_PI)
+		/* At grazing exit under a smooth top the BRDF is 0 in every solve
+		 * (no transmittance), not by coincidence: exact; under a rough top
+		 * it is not 0 (ad_eval.c exit_weights) and has the solves' error. */
+		if (r->series_lo && (theta_o[it] < 0.5 * M_PI || hi->md.brough[0]))
 			points_quad_err(r, k, theta_o[it], cosm, n_phi, c, c2, M, eo);
 	}
 	free(cosm);

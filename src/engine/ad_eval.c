@@ -21,14 +21,24 @@ static double top_t(const struct ad_series *sr, double s)
 }
 
 /* Interpolation weights over all exit nodes (zero outside s's piece) for
- * exit s, times the top transmittance; 0 if no light leaves there. */
+ * exit s, times the top transmittance; 0 if no light leaves there.  Grazing
+ * exit (s = n_above) is 0 under a smooth top (its transmittance), but not
+ * under a rough one: the facets the exit direction sees are tilted toward
+ * it, so the BRDF keeps a finite limit there (e.g. 0.040 /sr at theta_i 0 on
+ * docs/grazing.md's medium), the end value of the exit piece's interpolant
+ * (n_above is a piece edge, ad.c model_pieces). */
 static int exit_weights(const struct ad_series *sr, double s, double *wt)
 {
 	const struct ad_level *lv = &sr->lv;
+	const int rough = sr->md.brough[0];
 	memset(wt, 0, sizeof(double) * (size_t)lv->na);
-	if (lv->na == 0 || s >= lv->q.sigma[lv->q.n_iv] || s >= sr->md.n_above)
+	if (rough && s >= sr->md.n_above)
+		s = sr->md.n_above;
+	if (lv->na == 0 || s >= lv->q.sigma[lv->q.n_iv] || (!rough && s >= sr->md.n_above))
 		return 0;
 	int k = ad_quad_piece(&lv->q, s);
+	if (rough && s == sr->md.n_above && k > 0 && s <= lv->q.sigma[k])
+		k--;	/* grazing: the end of the piece below the edge n_above */
 	if (lv->q.first[k] >= lv->na)
 		return 0;
 	double t = top_t(sr, s);

@@ -5,11 +5,15 @@ adding-doubling wavelengths (manifest table.values "points") are point values at
 Chebyshev-Lobatto nodes in theta and equally spaced nodes in delta_phi, and eval
 sums the series through them (a Chebyshev series in u = acos(1 - 4 theta / pi)
 per theta axis, a cosine series in delta_phi; with the default incidence nodes
-the grid is completed by theta_i = 90 deg, where the BRDF is 0, and the series is
-made symmetric in (theta_i, theta_o)).  Linear interpolation between those nodes
+the grid is completed by the row theta_i = 90 deg, f(90, b) = f(b, 90) by
+reciprocity (0 under a smooth top; the corner from the quadratic through the
+grazing-exit column's last three nodes), and the series is made symmetric in
+(theta_i, theta_o)).  Linear interpolation between those nodes
 is 1 % low on a lit sphere (the BRDF is concave between nodes 10 deg apart).
 Bin means ("bins", Monte Carlo) are linear between the bin centres and go to 0
-at 90 deg, as in bakeinterp.c.
+at 90 deg, as in bakeinterp.c; under a rough top (the manifest's
+layers[].layers[0].rough_top) the exit axis is held past its last centre and
+incidence goes linearly to f(90, theta_o) = f(theta_o, 90) by reciprocity.
 
 This module computes eval's function on a grid of STEP_DEG in every axis, so
 that the renderer's trilinear lookup on it is within GRID_ERROR of eval (the
@@ -104,12 +108,29 @@ def _linear_held(ax, x):
     return w
 
 
+def _grazing_row(c, t):
+    """Row theta_i = 90 deg of the square grid c [n][n][p] (bakeinterp.c grazing_row)."""
+    n = c.shape[0]
+    c[n - 1, :n - 1] = c[:n - 1, n - 1]
+    if n < 4:
+        return
+    x, tt = 0.5 * math.pi, t[n - 4:n - 1]
+    for j in range(3):
+        lj = 1.0
+        for q in range(3):
+            if q != j:
+                lj *= (x - tt[q]) / (tt[j] - tt[q])
+        c[n - 1, n - 1] += lj * c[n - 4 + j, n - 1]
+
+
 def _points_grid(plane, ti, to_nodes, ph_nodes, gt, gp):
     """eval's series through one point-value plane [n_ti][n_to][n_phi], on the grid."""
     n_ti, n, p = plane.shape
     sym = _square_nodes(ti, to_nodes)
     c = np.zeros((n if sym else n_ti, n, p))
     c[:n_ti] = plane
+    if sym:
+        _grazing_row(c, to_nodes)
     c = _dct1(_dct1(c, 2), 1)
     if sym:
         c = _dct1(c, 0)
@@ -122,11 +143,29 @@ def _points_grid(plane, ti, to_nodes, ph_nodes, gt, gp):
     return np.einsum("jkm,aj,bk,cm->abc", c, bi, bo, bp, optimize=True)
 
 
-def _bins_grid(plane, ti, to_centres, ph_centres, gt, gp):
+def _bins_grid(plane, ti, to_centres, ph_centres, gt, gp, rough=False):
     wi = _linear_to_zero(ti, gt)
-    wo = _linear_to_zero(to_centres, gt)
+    wo = (_linear_held if rough else _linear_to_zero)(to_centres, gt)
     wp = _linear_held(ph_centres, gp)
-    return np.einsum("jkm,aj,bk,cm->abc", plane, wi, wo, wp, optimize=True)
+    g = np.einsum("jkm,aj,bk,cm->abc", plane, wi, wo, wp, optimize=True)
+    if rough:
+        # bakeinterp.c bins_grazing_end: past the last incidence node, linear to
+        # the last exit bin's row at incidence min(theta_o, last node)
+        end = 0.5 * math.pi - ti[-1]
+        t = np.clip((gt - ti[-1]) / end, 0.0, 1.0) if end > 0.0 else np.zeros_like(gt)
+        wl = _linear_held(ti, np.minimum(gt, ti[-1]))
+        fend = np.einsum("jm,bj,cm->bc", plane[:, -1, :], wl, wp, optimize=True)
+        g += t[:, None, None] * fend[None, :, :]
+    return g
+
+
+def rough_top(man):
+    """Whether some wavelength's stack has a rough top boundary (bakeinterp.c)."""
+    for lw in man.get("layers", []):
+        ls = lw.get("layers", []) if isinstance(lw, dict) else []
+        if ls and (ls[0].get("rough_top") or 0) > 0:
+            return True
+    return False
 
 
 def resample(man, planes):
@@ -141,6 +180,8 @@ def resample(man, planes):
         to = np.radians(man["theta_o_nodes_deg" if points else "theta_o_centres_deg"])
         ph = np.radians(man["delta_phi_nodes_deg" if points else "delta_phi_centres_deg"])
         plane = planes[w].astype(np.float64).reshape(len(ti), len(to), len(ph))
-        fn = _points_grid if points else _bins_grid
-        out[w] = fn(plane, ti, to, ph, gt, gp)
+        if points:
+            out[w] = _points_grid(plane, ti, to, ph, gt, gp)
+        else:
+            out[w] = _bins_grid(plane, ti, to, ph, gt, gp, rough_top(man))
     return out

@@ -55,7 +55,8 @@ def _az_mean(g):
 def exit_weights(bake_grid, medium_grid):
     """The grazing weights c [N_THETA] on tablegrid.grid_theta() (see the module's
     text): min(1, sqrt(bake / medium)) of the azimuthal means at theta_i =
-    theta_o; at 90 deg, where both are 0, the value at the node before."""
+    theta_o; at 90 deg the value at the node before (the bake's is 0 there under
+    a smooth top; a rough top's medium keeps a finite value, docs/grazing.md)."""
     b = np.diagonal(_az_mean(bake_grid)).astype(np.float64)
     m = np.diagonal(_az_mean(medium_grid)).astype(np.float64)
     c = np.ones_like(b)
