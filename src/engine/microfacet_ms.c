@@ -68,7 +68,8 @@ void microfacet_ms_init(struct microfacet_ms *c, double alpha, double n_i, doubl
 			double wo[3];
 			int order = 0;
 			rng_seed(&r, MS_SEED, (uint32_t)k, (uint64_t)p);
-			double w = microfacet_sample_ms(&m, n_i, n_t, wi, uniform_of, &r, wo, &order);
+			double w = microfacet_sample_ms(&m, n_i, n_t, wi, uniform_of, &r, wo,
+			    &order);
 			if (wo[2] > 0.0 && order >= 2)
 				s += w;
 		}
