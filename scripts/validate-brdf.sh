@@ -905,6 +905,13 @@ fi
 		all=$top_srcdir/docs/validation/fit-curet39-rough-all.tsv
 		[ -f "$all" ] && echo "rough_all=$(awk -F'\t' '/^[0-9]/ { if (m == "" || $8 < m) { m = $8; r = $10 } } END { print r }' "$all")"
 	fi
+	if [ -n "$rough_ms" ] && [ "$fit_ok" = 1 ]; then
+		echo "rough_ms_train=$(hs "$rough_ms" 2)"
+		echo "rough_ms_held=$(hs "$rough_ms" 3)"
+		echo "rough_ms_mar=$(hs "$rough_ms" 7)"
+		echo "rough_ms_back=$(f5 "$rough_ms" total 9)"
+		echo "rough_ms_fwd=$(f5 "$rough_ms" total 10)"
+	fi
 	echo "bake_time=$bake_time"
 	echo "solver_note='$solver_note'"
 	echo "best_held=$best_held"
