@@ -50,6 +50,11 @@ adding-doubling.  --multiple makes the facets scatter light as often as it
 meets them ([surface] multiple_scattering = 1).  --sebum on|off fits one of
 the two films only.
 
+With --multiple the lobe also carries the facets' later reflections
+(issue 21, round 5: src/engine/microfacet_ms.h, added by tests/brdf_model
+and by eval of a bake), so the fitted preset reflects what its transport's
+rough top reflects.
+
 Monte Carlo noise (with --solver ad the errors are the solver's estimates,
 about 1e-4 relative, and the same formulas hold): the objective is the mean over the points of
 r_i^2 - e_i^2, with r_i = (f_i - y_i) / y_i the relative error and e_i the

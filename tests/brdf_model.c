@@ -9,7 +9,7 @@
  * of the diffuse mean.
  *
  *   brdf_model (--preset NAME | --preset-file F) [--wavelengths LIST]
- *              [--alpha A] [--tol T] [--nodes N] < points
+ *              [--alpha A] [--tol T] [--nodes N] [--no-ms-lobe] < points
  *
  * Input lines: theta_i theta_o delta_phi [deg] (delta_phi 0 = back toward
  * the light, 180 = mirror side); '#' lines are skipped.  Default wavelengths
@@ -32,6 +32,7 @@
 
 #include "engine/ad.h"
 #include "engine/macro.h"
+#include "engine/microfacet_ms.h"
 #include "engine/specular.h"
 #include "skin/preset.h"
 #include "skin/tissue.h"
@@ -42,7 +43,7 @@
 static int usage(void)
 {
 	fprintf(stderr, "usage: brdf_model (--preset NAME | --preset-file F) [--wavelengths LIST] [--alpha A] "
-	    "[--tol T] [--nodes N] [--macro M] < points (theta_i theta_o delta_phi in deg)\n");
+	    "[--tol T] [--nodes N] [--macro M] [--no-ms-lobe] < points (theta_i theta_o delta_phi in deg)\n");
 	return 2;
 }
 
@@ -54,6 +55,7 @@ struct facet_ctx {
 	int n_th;
 	const struct specular_stack *st;
 	double alpha;
+	const struct microfacet_ms *ms;	/* the facets' later reflections, or NULL */
 };
 
 static void facet_at(void *ctx, double ti, double to, double ph, double *out)
@@ -68,6 +70,8 @@ static void facet_at(void *ctx, double ti, double to, double ph, double *out)
 	out[0] = (1.0 - t) * f0 + t * f1;
 	out[1] = (1.0 - t) * e0 + t * e1;
 	out[2] = specular_ggx(c->st, c->alpha, ti, to, ph);
+	if (c->ms)
+		out[2] += microfacet_ms_eval(c->ms, cos(ti), cos(to));
 }
 
 /* Index of theta in the list of distinct incidence angles, added if new. */
@@ -86,8 +90,12 @@ int main(int argc, char **argv)
 {
 	const char *name = NULL, *file = NULL, *wls = "470,550,656";
 	double alpha = -1.0, tol = 1e-3, macro = -1.0;
-	int nodes = 0;
+	int nodes = 0, ms_lobe = 1;
 	for (int i = 1; i < argc; i++) {
+		if (strcmp(argv[i], "--no-ms-lobe") == 0) {
+			ms_lobe = 0;
+			continue;
+		}
 		if (i + 1 >= argc)
 			return usage();
 		char *end = NULL;
@@ -184,6 +192,7 @@ int main(int argc, char **argv)
 		o.n_quad = nodes;
 		o.error_estimate = 0;
 	}
+	struct microfacet_ms ms = { .alpha = -1.0 };
 	for (int w = 0; w < n_wl && rc == 0; w++) {
 		struct slab s;
 		struct ad_result r;
@@ -195,7 +204,15 @@ int main(int argc, char **argv)
 			break;
 		}
 		specular_stack_of_slab(&s, OPTICS_FRESNEL_EXACT, &st);
-		struct facet_ctx fc = { &r, th, n_th, &st, alpha };
+		/* Multiple scattering on a rough top: the lobe of its later
+		 * reflections (engine/microfacet_ms.h), as eval adds it to a bake's. */
+		const struct microfacet_ms *msp = NULL;
+		if (ms_lobe && s.rough_ms && s.rough_top && alpha > 0.0) {
+			if (!(ms.alpha == alpha && ms.n_i == st.n_list[0] && ms.n_t == st.n_list[1]))
+				microfacet_ms_init(&ms, alpha, st.n_list[0], st.n_list[1], OPTICS_FRESNEL_EXACT, 0);
+			msp = &ms;
+		}
+		struct facet_ctx fc = { &r, th, n_th, &st, alpha, msp };
 		for (int i = 0; i < n && rule.n > 0; i++) {
 			double v[3], ph = pt[i][2] > 180.0 ? 360.0 - pt[i][2] : pt[i][2];
 			macro_eval(&rule, facet_at, &fc, 3, pt[i][0] * rad, pt[i][1] * rad, ph * rad,
@@ -208,6 +225,8 @@ int main(int argc, char **argv)
 			double e, ph = pt[i][2] > 180.0 ? 360.0 - pt[i][2] : pt[i][2];
 			fd[i] += ad_brdf(&r, beam[i], pt[i][1] * rad, ph * rad, &e) / n_wl;
 			fs[i] += specular_ggx(&st, alpha, pt[i][0] * rad, pt[i][1] * rad, ph * rad) / n_wl;
+			if (msp)
+				fs[i] += microfacet_ms_eval(msp, cos(pt[i][0] * rad), cos(pt[i][1] * rad)) / n_wl;
 			ve[i] += e * e;
 		}
 		ad_result_free(&r);

@@ -23,6 +23,7 @@ void bake_free(struct bake *b)
 	free(b->albedo_rgb);
 	free(b->rgb_from_wl);
 	free(b->stack);
+	free(b->ms);
 	free(b->macro);
 	free(b->sss_radius_cm);
 	free(b->points);

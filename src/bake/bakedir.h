@@ -4,6 +4,7 @@
  * is in bakefile.h. */
 #ifndef SKINBAKE_BAKEDIR_H
 #define SKINBAKE_BAKEDIR_H
+#include "engine/microfacet_ms.h"
 #include "engine/specular.h"
 
 struct bake {
@@ -31,6 +32,9 @@ struct bake {
 	struct macro_rule *macro;	/* its quadrature (engine/macro.h), NULL when
 					 * macro_slope == 0 */
 	struct specular_stack *stack;	/* [n_wl] clear top stack for the specular Fresnel */
+	struct microfacet_ms *ms;	/* [n_wl] the lobe of what the separable lobe does not
+					 * reflect (engine/microfacet_ms.h), NULL unless the
+					 * manifest's specular.multiple_scattering is 1 */
 	double *sss_radius_cm;	/* [n_wl] mean exit radius of the diffuse light at normal incidence [cm] */
 	double sss_radius_rgb_cm[3];
 	int n_r;		/* radial bins of rd_r_rgb (0: the manifest has no profile) */

@@ -301,8 +301,11 @@ static void raw_diffuse(const struct bake *b, double theta_i, double theta_o, do
 static void raw_specular(const struct bake *b, double theta_i, double theta_o, double dphi,
     double *f)
 {
-	for (int w = 0; w < b->n_wl; w++)
+	for (int w = 0; w < b->n_wl; w++) {
 		f[w] = specular_ggx(&b->stack[w], b->roughness, theta_i, theta_o, fold_phi(dphi));
+		if (b->ms)	/* multiple scattering on the facets: their later reflections */
+			f[w] += microfacet_ms_eval(&b->ms[w], cos(theta_i), cos(theta_o));
+	}
 }
 
 /* The diffuse table's part of raw_rgb. */

@@ -133,6 +133,8 @@ static json_object *specular_info(const struct bake_spec *s, const struct bake_r
 	int rough = 0;
 	for (int w = 0; w < s->n_wl; w++)
 		rough |= s->slab[w].rough_top;
+	if (rough && s->slab[0].rough_ms && m->roughness > 0.0)
+		add(sp, "multiple_scattering", json_num(1));
 	if (rough)
 		add(sp, "split", jstr("rough top: this lobe is the surface's own reflection (Rsp "
 		    "of both solvers, light that never entered a turbid layer); the table holds "

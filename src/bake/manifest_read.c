@@ -13,6 +13,7 @@
 
 #include "base/util.h"
 #include "engine/macro.h"
+#include "engine/microfacet_ms.h"
 #include "io/json.h"
 
 static int jnum_array(json_object *o, const char *key, double **out, int *n, char **cause,
@@ -148,6 +149,22 @@ static int read_specular(json_object *o, struct bake *b, const char *mpath, char
 			    xasprintf("%s: specular.stack_n[%d] holds a value that is not a number",
 			    mpath, w);
 			return -1;
+		}
+	}
+	/* Multiple scattering on the facets: the walk's reflection the lobe lacks
+	 * (engine/microfacet_ms.h), at the first interface of the clear stack;
+	 * tabulated once per distinct pair of indices. */
+	if (jnum(sp, "multiple_scattering", 0.0) == 1.0 && b->roughness > 0.0) {
+		b->ms = xcalloc((size_t)b->n_wl, sizeof *b->ms);
+		for (int w = 0; w < b->n_wl; w++) {
+			const double *nl = b->stack[w].n_list;
+			int k = 0;
+			while (k < w && !(b->ms[k].n_i == nl[0] && b->ms[k].n_t == nl[1]))
+				k++;
+			if (k < w)
+				b->ms[w] = b->ms[k];
+			else
+				microfacet_ms_init(&b->ms[w], b->roughness, nl[0], nl[1], model, 0);
 		}
 	}
 	return 0;
