@@ -271,10 +271,12 @@ int ad_solve(const struct slab *s, enum optics_fresnel model, const double *thet
 	if (est && (level_run(&md, se, n_beams, o, nq / 2, threads, &lo, cause) ||
 	    (nq / 4 >= 4 && level_run(&md, se, n_beams, o, nq / 4, threads, &lo2, cause))))
 		goto fail;
+	int tail_ok = 1;	/* every level so far fast (q < 1/4): ad_err.h */
 	for (;;) {
 		if (level_run(&md, se, n_beams, o, nq, threads, &hi, cause))
 			goto fail;
-		ad_err_assemble(hi, lo, lo2, r);
+		ad_err_assemble(hi, lo, lo2, tail_ok, r);
+		tail_ok = tail_ok && r->conv_ratio > 0.0 && r->conv_ratio < 0.25;
 		r->n_quad = nq;
 		r->doublings += hi->lv.doublings;
 		if (!automatic || ad_err_meets(r, o->tol))
@@ -291,28 +293,6 @@ int ad_solve(const struct slab *s, enum optics_fresnel model, const double *thet
 			goto fail;
 		}
 		e_prev = e;
-		/* 1.5 nq instead of 2 nq where the convergence seen so far says it
-		 * is enough, with a margin of 2: under exponential convergence
-		 * (errors e_N ~ exp(-c N), the usual case: ad_err.h) the estimate
-		 * at 1.5 nq, |X - X_3nq/4|, is about e_3nq/4 = this estimate times
-		 * sqrt(q), q = e_nq / e_nq/2 from the three solves.  Its own half
-		 * and quarter solves are new; the estimate there is the usual one,
-		 * and it escalates from there as ever if it still falls short.
-		 * (Paper's 470 nm table: 16 -> 24 where it went to 32, estimated
-		 * 5.5e-5 against tol 1e-3; 0.45x the nodes^3 of 32.) */
-		double q = r->conv_ratio, x = ad_err_excess(r, o->tol);
-		if (q > 0.0 && q < 0.25 && nq % 4 == 0 && 2.0 * x * sqrt(q) <= 1.0) {
-			r->doublings += lo->lv.doublings + lo2->lv.doublings;
-			series_free(hi);
-			series_free(lo);
-			series_free(lo2);
-			hi = lo = lo2 = NULL;
-			nq = 3 * nq / 2;
-			if (level_run(&md, se, n_beams, o, nq / 2, threads, &lo, cause) ||
-			    level_run(&md, se, n_beams, o, nq / 4, threads, &lo2, cause))
-				goto fail;
-			continue;
-		}
 		series_free(lo2);
 		lo2 = lo;
 		lo = hi;

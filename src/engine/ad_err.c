@@ -66,7 +66,8 @@ static double total(const struct ad_level *l, int e, int which)
 
 /* F from the three solves (see ad_err.h). */
 static double conv_factor(const struct ad_series *hi, const struct ad_series *lo, const struct ad_series *lo2,
-    const struct tabs *th, const struct tabs *tl, const struct tabs *tl2, const struct ad_result *r, double *ratio)
+    const struct tabs *th, const struct tabs *tl, const struct tabs *tl2, const struct ad_result *r,
+    double *ratio)
 {
 	*ratio = 0.0;
 	if (!lo || !lo2)
@@ -103,9 +104,12 @@ static double conv_factor(const struct ad_series *hi, const struct ad_series *lo
 }
 
 /* The geometric tail for the table's RMS: q / (1 - q) with q at least
- * AD_ERR_Q_MIN, F where q is above 1/2; 1 without a third solve. */
-static double rms_factor(double q, double F)
+ * AD_ERR_Q_MIN, F where q is above 1/2 or the tail is not allowed; 1
+ * without a third solve. */
+static double rms_factor(double q, double F, int tail_ok)
 {
+	if (!tail_ok)
+		return F;
 	if (q <= 0.0)
 		return 1.0;
 	q = fmax(q, AD_ERR_Q_MIN);
@@ -113,10 +117,10 @@ static double rms_factor(double q, double F)
 }
 
 static void assemble_tables(const struct ad_series *hi, const struct tabs *th, const struct tabs *tl, double F,
-    struct ad_result *r)
+    int tail_ok, struct ad_result *r)
 {
 	const int E = hi->lv.E, nt = r->n_to, np = r->n_phi, nb = nt * np;
-	double tf = ad_err_tail_factor(hi), e2 = 0.0, e2s = 0.0, Fs = rms_factor(r->conv_ratio, F);
+	double tf = ad_err_tail_factor(hi), e2s = 0.0, Fs = rms_factor(r->conv_ratio, F, tail_ok);
 	for (int k = 0; k < E; k++) {
 		struct ad_beam *b = &r->beam[k];
 		double num = 0.0, nums = 0.0, den = 0.0;
@@ -140,10 +144,8 @@ static void assemble_tables(const struct ad_series *hi, const struct tabs *th, c
 			}
 		}
 		b->rms_rel_err = sqrt(num / den);
-		e2 += b->rms_rel_err * b->rms_rel_err;
 		e2s += nums / den;
 	}
-	(void)e2;
 	r->rms_rel_err = sqrt(e2s / E);
 }
 
@@ -190,7 +192,7 @@ static void assemble_totals(const struct ad_series *hi, const struct ad_series *
 }
 
 void ad_err_assemble(const struct ad_series *hi, const struct ad_series *lo, const struct ad_series *lo2,
-    struct ad_result *r)
+    int tail_ok, struct ad_result *r)
 {
 	struct tabs th, tl, tl2;
 	tabs_make(hi, r, 1, &th);
@@ -201,23 +203,12 @@ void ad_err_assemble(const struct ad_series *hi, const struct ad_series *lo, con
 	double F = conv_factor(hi, lo, lo2, &th, &tl, &tl2, r, &r->conv_ratio);
 	r->conv_factor = F;
 	assemble_totals(hi, lo, F, r);
-	assemble_tables(hi, &th, lo ? &tl : NULL, F, r);
+	assemble_tables(hi, &th, lo ? &tl : NULL, F, tail_ok, r);
 	tabs_free(&th);
 	if (lo)
 		tabs_free(&tl);
 	if (lo && lo2)
 		tabs_free(&tl2);
-}
-
-double ad_err_excess(const struct ad_result *r, double tol)
-{
-	double x = r->rms_rel_err / tol;
-	for (int k = 0; k < r->n_beams; k++) {
-		const struct ad_beam *b = &r->beam[k];
-		x = fmax(x, b->rd.err / (tol * b->rd.v + 1e-9));
-		x = fmax(x, b->tt.err / (tol * b->tt.v + 1e-9));
-	}
-	return x;
 }
 
 int ad_err_meets(const struct ad_result *r, double tol)
