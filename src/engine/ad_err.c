@@ -120,7 +120,8 @@ static void assemble_tables(const struct ad_series *hi, const struct tabs *th, c
     int tail_ok, struct ad_result *r)
 {
 	const int E = hi->lv.E, nt = r->n_to, np = r->n_phi, nb = nt * np;
-	double tf = ad_err_tail_factor(hi), e2s = 0.0, Fs = rms_factor(r->conv_ratio, F, tail_ok);
+	double tf = ad_err_tail_factor(hi), e2s = 0.0;
+	double Fs = rms_factor(r->conv_ratio, F, tail_ok);
 	for (int k = 0; k < E; k++) {
 		struct ad_beam *b = &r->beam[k];
 		double num = 0.0, nums = 0.0, den = 0.0;
@@ -136,7 +137,8 @@ static void assemble_tables(const struct ad_series *hi, const struct tabs *th, c
 				b->fr[it * np + ip] = v;
 				b->fr_err[it * np + ip] = err;
 				double rel = v > 0.0 ? err / v : (err > 0.0 ? 1.0 : 0.0);
-				double errs = tf * fabs(th->last[j]) + (tl ? Fs * fabs(v - tl->fr[j]) : 0.0);
+				double errs = tf * fabs(th->last[j]);
+				errs += tl ? Fs * fabs(v - tl->fr[j]) : 0.0;
 				double rels = v > 0.0 ? errs / v : (errs > 0.0 ? 1.0 : 0.0);
 				num += w * rel * rel;
 				nums += w * rels * rels;
