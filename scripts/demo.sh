@@ -8,7 +8,8 @@
 #   OUT/complexions.png    the same head with three complexions (the same family, other maps)
 #   OUT/human-pores.png    the cheek at 0.05 mm per pixel, scenes/showcase-closeup.scene, with
 #                          the pores and furrows of a young cheek (docs/relief.md)
-# Run after scripts/setup.sh (it uses the binary built in this tree).
+# Run after scripts/setup.sh (it uses the binary built in this tree).  scripts/closeup-compare.sh then
+# renders the close-up in Blender too (skinbake's set and a five-minute material, side by side).
 set -eu
 cd "$(dirname "$0")/.."
 B=${SKINBAKE:-./skinbake}
