@@ -8,6 +8,7 @@ site=${1:-hand}
 size=${2:-4096}
 out=$(mktemp -d "${TMPDIR:-/tmp}/skinbake-bench.XXXXXX")
 trap 'rm -rf "$out"' EXIT
+load=$(cut -d' ' -f1 /proc/loadavg 2>/dev/null || echo ?)
 t0=$(date +%s.%N)
 "$SKINBAKE" texture --site "$site" --size "$size" --out "$out" 2>"$out.log"
 t1=$(date +%s.%N)
@@ -19,7 +20,8 @@ threads=${OMP_NUM_THREADS:-$(nproc 2>/dev/null || echo ?)}
 echo "## Micro-geometry"
 echo
 echo "Command: \`skinbake texture --site $site --size $size --out DIR\` (scripts/bench-texture.sh),"
-echo "$(date -u +%Y-%m-%d), $(grep -m1 'model name' /proc/cpuinfo | cut -d: -f2 | sed 's/^ //')."
+echo "$(date -u +%Y-%m-%d), $(grep -m1 'model name' /proc/cpuinfo | cut -d: -f2 | sed 's/^ //'), load average $load"
+echo "at the start (the machine's other jobs share its cores; a load above the thread count stretches the wall time)."
 echo
 echo "| map | threads | wall time | split |"
 echo "|---|---|---|---|"

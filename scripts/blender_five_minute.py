@@ -3,7 +3,13 @@
 #
 #   blender -b --factory-startup --python scripts/blender_five_minute.py -- OUT.png \
 #       [--model /usr/share/assimp/models/Collada/human.zae] [--size 640x480] [--samples 64]
-#       [--base R,G,B]
+#       [--base R,G,B] [--closeup] [--save FILE.blend]
+#
+# --closeup: the view and light of scenes/showcase-closeup.scene instead (25 mm of the left cheek;
+# the key, a point light of colour 2.4 raking at about 65 degrees from the normal, as a sun of
+# strength pi x 2.4 and angle 0.5 degrees; no fill, as that scene has none).  --save: also save the
+# scene as FILE.blend before rendering, so that import_skin.py can put skinbake's material into the
+# same view (scripts/closeup-compare.sh).
 #
 # The material: one Principled BSDF on the whole body, base and subsurface colour R,G,B (default
 # the diffuse albedo at normal incidence of the demo's fair skin, from the export's Lambert
@@ -37,6 +43,8 @@ def main(argv):
     ap.add_argument("--size", default="640x480")
     ap.add_argument("--samples", type=int, default=64)
     ap.add_argument("--base", default="0.4322,0.2283,0.2030")
+    ap.add_argument("--closeup", action="store_true")
+    ap.add_argument("--save", default=None)
     a = ap.parse_args(argv)
     w, h = (int(x) for x in a.size.lower().split("x"))
     base = tuple(float(x) for x in a.base.split(",")) + (1.0,)
@@ -72,27 +80,29 @@ def main(argv):
 
     cd = bpy.data.cameras.new("Camera")
     cd.sensor_fit = "HORIZONTAL"
-    cd.angle = math.radians(30)
+    cd.angle = math.radians(20 if a.closeup else 30)
     cd.clip_start = 0.01
     cam = bpy.data.objects.new("Camera", cd)
     sc.collection.objects.link(cam)
     eye, target = pov((200, 1580, -620)), pov((0, 1545, -90))
+    if a.closeup:
+        eye, target = pov((-83, 1521, -187)), pov((-45, 1521, -128))
     cam.location = eye
     cam.rotation_euler = (target - eye).to_track_quat("-Z", "Y").to_euler()
     sc.camera = cam
 
     sun = bpy.data.lights.new("Key", "SUN")
-    sun.energy = math.pi * 1.15
-    sun.angle = math.radians(9.5)
+    sun.energy = math.pi * (2.4 if a.closeup else 1.15)
+    sun.angle = math.radians(0.5 if a.closeup else 9.5)
     so = bpy.data.objects.new("Key", sun)
     sc.collection.objects.link(so)
-    lp = pov((-500, 1900, -1300))
+    lp = pov((-313, 1745, -131) if a.closeup else (-500, 1900, -1300))
     so.rotation_euler = (target - lp).to_track_quat("-Z", "Y").to_euler()
 
     world = bpy.data.worlds.new("fill")
     world.use_nodes = True
     bg = world.node_tree.nodes["Background"]
-    bg.inputs["Color"].default_value = (0.15, 0.15, 0.16, 1)
+    bg.inputs["Color"].default_value = (0, 0, 0, 1) if a.closeup else (0.15, 0.15, 0.16, 1)
     bg.inputs["Strength"].default_value = 1.0
     sc.world = world
 
@@ -106,6 +116,8 @@ def main(argv):
     sc.render.film_transparent = False
     sc.render.image_settings.file_format = "PNG"
     sc.render.filepath = os.path.abspath(a.out)
+    if a.save:
+        bpy.ops.wm.save_as_mainfile(filepath=os.path.abspath(a.save))
     bpy.ops.render.render(write_still=True)
     print(f"blender_five_minute.py: wrote {a.out} ({w}x{h}, {a.samples} samples)")
 

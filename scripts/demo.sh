@@ -8,7 +8,8 @@
 #   OUT/complexions.png    the same head with three complexions (the same family, other maps)
 #   OUT/human-pores.png    the cheek at 0.05 mm per pixel, scenes/showcase-closeup.scene, with
 #                          the pores and furrows of a young cheek (docs/relief.md)
-# Run after scripts/setup.sh (it uses the binary built in this tree).
+# Run after scripts/setup.sh (it uses the binary built in this tree).  scripts/closeup-compare.sh then
+# renders the close-up in Blender too (skinbake's set and a five-minute material, side by side).
 set -eu
 cd "$(dirname "$0")/.."
 B=${SKINBAKE:-./skinbake}
@@ -64,10 +65,11 @@ maps fair 0.011 1
 maps medium 0.035 0
 maps brown 0.10 0
 echo "== a young cheek's relief (docs/relief.md), for the head and the close-up"
-# Shallower than the face site's default (primary lines 18 um, measured 25 um: the low end of
-# Hashimoto's 20-100 um), and a tile wider than the close-up's view, so that it does not repeat in it.
-[ -f "$out/cheek/manifest.json" ] ||
-	$B texture --site face --size 1024 --tile-mm 20 --furrow-depth 18 --level-gain 0.2 \
+# The cheek site (visible pores, 0.8 /mm^2 of 220 um, funnels 60 um deep), shallower lines than
+# its default (primary lines 24 um, measured 22 um: the low end of Hashimoto's 20-100 um), weak
+# secondary lines, and a tile wider than the close-up's view, so that it does not repeat in it.
+[ -f "$out/cheek/manifest.json" ] && grep -q '"site":"cheek"' "$out/cheek/manifest.json" ||
+	$B texture --site cheek --size 1024 --tile-mm 20 --furrow-depth 24 --level-gain 0.2 \
 		--out "$out/cheek" --quiet
 echo "== the head (scenes/showcase-head.scene)"
 # The relief is split (docs/relief.md section 7): the diffuse part sees it blurred by Rd(r), the

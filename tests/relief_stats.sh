@@ -43,6 +43,35 @@ for s in face forehead cheek hand forearm; do
 	done <"$tmpd/rows"
 done
 
+# Pores (issue 24: visible openings at the site's density and size), on 8 mm tiles at 512 px
+# (15.6 um pixels; 51-281 pores).  Sizes and depths are the sites' assumptions (docs/relief.md),
+# so these check the generator against its own parameters, not a measured range:
+# - every pore is found (Poisson-disk spacing keeps them apart; a merge would lose one);
+# - the mean diameter at a tenth of the depth is the funnel's, 2 (1 - sqrt(0.08)) r_median
+#   exp(sigma^2 / 2), within 10 % (the sampled mean of 51-281 log-normal radii, sigma 0.3-0.35,
+#   has a standard error of 2-5 %; pixels add under 1 %);
+# - the funnels reach below the primary lines they sit in (pore depth > furrow depth), so that a
+#   pore reads as a pit in the net, not as one more crossing.
+for s in face forehead cheek; do
+	od="$tmpd/pores-$s"
+	"$S" texture --site $s --size 512 --tile-mm 8 --stats --quiet --out "$od" >"$tmpd/pores-$s.txt" ||
+		{ fail "site $s: pore statistics run"; continue; }
+	cfg=$("$S" texture --site $s --dump-config)
+	par() { printf '%s\n' "$cfg" | awk -F'[ =]+' -v k="$1" '$1 == k { print $2 }'; }
+	val() { awk -v k="$1" '$1 == k { print $2 }' "$tmpd/pores-$s.txt"; }
+	dens=$(par pore_density) rad=$(par pore_radius) sd=$(par pore_radius_sd)
+	found=$(sed -n 's/.*"pores_found": *\([0-9]*\).*/\1/p' "$od/manifest.json")
+	want=$(awk -v d="$dens" 'BEGIN { printf "%d", d * 64 + 0.5 }')
+	check "site $s: all $want pores found ($found)" test "$found" = "$want"
+	d=$(val pore_diameter_um)
+	dw=$(awk -v r="$rad" -v s="$sd" 'BEGIN { printf "%.4g", 2 * (1 - sqrt(0.08)) * r * exp(s * s / 2) }')
+	check "site $s: pore diameter $d um = funnel's $dw um within 10 %" \
+		awk -v a="$d" -v b="$dw" 'BEGIN { exit !(a > 0.9 * b && a < 1.1 * b) }'
+	pd=$(val pore_depth_um) fd=$(val furrow_depth_um)
+	check "site $s: pores ($pd um) deeper than the primary lines ($fd um)" \
+		awk -v a="$pd" -v b="$fd" 'BEGIN { exit !(a > b) }'
+done
+
 # --stats adds to the manifest only; the maps are the same.
 "$S" texture --site face --size 64 --quiet --out "$tmpd/plain"
 "$S" texture --site face --size 64 --quiet --stats --out "$tmpd/withstats" >/dev/null

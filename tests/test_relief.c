@@ -15,6 +15,7 @@
 
 #include "geom/relief.h"
 #include "geom/relief_impl.h"
+#include "geom/relief_stats.h"
 #include "geom/sites.h"
 
 static struct relief_params params(const char *site)
@@ -323,6 +324,56 @@ static void test_components(void **state)
 	relief_free(r);
 }
 
+/* Pores alone, all of one size: each is a funnel of the set depth, its
+ * equivalent diameter at a tenth of that depth is 2 (1 - sqrt(0.08 (1 -
+ * b))) r (where (1 - s)^2 / (1 - b) = 0.1), and its steepest wall, at the
+ * rounded bottom's edge, has the slope 2 depth / r; --stats measures them. */
+static void test_pore_funnel(void **state)
+{
+	(void)state;
+	struct relief_params p = params("face");
+	p.levels = 0;
+	p.plateau_roughness = 0;
+	p.pore_radius_sd = 0;
+	p.pore_depth_sd = 0;
+	p.pore_aspect = 1;
+	p.tile = 0.1;	/* 1 mm: 2 pores of 45 um radius, 60 um deep */
+	p.pore_depth = 60e-4;
+	char *cause = NULL;
+	struct relief *r = relief_new(&p, 3, &cause);
+	assert_non_null(r);
+	int n = 512;	/* 1.95 um pixels */
+	float *pores = render(r, n, 0, 0, 0);
+	struct relief_stats st;
+	assert_int_equal(relief_stats_for(&p, n, pores, pores, pores, &st), 0);
+	double pitch = p.tile / n, b = RELIEF_PORE_BOTTOM;
+	assert_int_equal(st.pores, relief_n_pores(r));
+	/* The deepest pixel is within half a diagonal of the centre: funnel
+	 * 1 - s^2 / b there. */
+	double ds = 0.5 * sqrt(2.0) * pitch / p.pore_radius;
+	assert_true(st.pore_depth <= p.pore_depth && st.pore_depth >= p.pore_depth * (1 - ds * ds / b));
+	double d10 = 2 * (1 - sqrt(0.1 * (1 - b))) * p.pore_radius;
+	assert_true(fabs(st.pore_diameter - d10) <= sqrt(2.0) * pitch);
+	double smax = 0;
+	for (int row = 1; row < n - 1; row++)
+		for (int c = 1; c < n - 1; c++) {
+			double gx = (pores[row * n + c + 1] - pores[row * n + c - 1]) / (2 * pitch);
+			double gy = (pores[(row - 1) * n + c] - pores[(row + 1) * n + c]) / (2 * pitch);
+			smax = fmax(smax, sqrt(gx * gx + gy * gy));
+		}
+	/* A central difference averages the slope over +-1 px (h = pitch / r
+	 * of s): the slope rises at 2 / b and falls at 2 / (1 - b) from its
+	 * peak 2 (depth / r) at s = b, so the best window loses h (2/b)(2/(1-b))
+	 * / (2/b + 2/(1-b)) = 2h: the largest difference is 2 (1 - h) depth / r
+	 * for a pixel at the best place, a little less for the real pixels. */
+	double want = 2 * p.pore_depth / p.pore_radius, h = pitch / p.pore_radius;
+	if (smax > want * 1.001 || smax < want * (1 - 1.5 * h))
+		fail_msg("steepest pore wall %g, expected 2 depth / r (1 - h) = %g (h = %g)", smax,
+		    want * (1 - h), h);
+	free(pores);
+	relief_free(r);
+}
+
 static void expect_bad(struct relief_params p, const char *word)
 {
 	char *cause = NULL;
@@ -449,6 +500,7 @@ int main(void)
 		cmocka_unit_test(test_components),
 		cmocka_unit_test(test_bad_params),
 		cmocka_unit_test(test_long_lines),
+		cmocka_unit_test(test_pore_funnel),
 	};
 	return cmocka_run_group_tests(tests, NULL, NULL);
 }

@@ -26,6 +26,7 @@ enum {
 	STREAM_WAVES = 4,
 	STREAM_REGION = 5,
 	STREAM_LINES = 6,
+	STREAM_WARP = 7,
 	STREAM_LEVEL = 16
 };
 
@@ -521,11 +522,27 @@ struct relief *relief_new(const struct relief_params *p, uint64_t seed, char **c
 	r->p = *p;
 	r->n_levels = p->levels;
 	relief_region_place(r, seed, STREAM_REGION);
+	relief_warp_place(r, seed, STREAM_WARP);
 	for (int k = 0; k < p->levels; k++)
 		if (level_place(r, k, seed, cause) != 0) {
 			relief_free(r);
 			return NULL;
 		}
+	/* The meander moves the point where a pixel looks up furrows and
+	 * plateaus by at most the sum of its amplitudes: widen their boxes. */
+	double reach = 0;
+	for (int q = 0; q < r->n_warp; q++)
+		reach += fmax(fabs(r->warp[0][q].amp), fabs(r->warp[1][q].amp));
+	reach /= p->tile;
+	for (int k = 0; reach > 0 && k < p->levels; k++) {
+		struct level *l = &r->level[k];
+		for (int f = 0; f < l->n_furrows; f++)
+			l->fbox[f] = (struct bbox){ l->fbox[f].x0 - reach, l->fbox[f].x1 + reach,
+				l->fbox[f].y0 - reach, l->fbox[f].y1 + reach };
+		for (int t = 0; t < l->n_plateaus; t++)
+			l->pbox[t] = (struct bbox){ l->pbox[t].x0 - reach, l->pbox[t].x1 + reach,
+				l->pbox[t].y0 - reach, l->pbox[t].y1 + reach };
+	}
 	pore_place(r, seed);
 	relief_waves_place(r, seed, STREAM_WAVES);
 	return r;

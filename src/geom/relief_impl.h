@@ -55,9 +55,25 @@ struct wave {
 
 #define RELIEF_REGION_WAVES 8
 
+/* The meander of the furrow net (relief_waves.c, relief_render.c): furrows
+ * and plateaus are drawn at the pixel's position moved by a smooth periodic
+ * displacement of RELIEF_WARP_WAVES plane waves per component, wavelengths
+ * about half the primary cell and RMS bend x the primary width, so that
+ * edges wander and widths vary instead of running as ruled lines. */
+#define RELIEF_WARP_WAVES 8
+
+/* Profiles (relief_render.c): the rounded bottom of a pore's funnel and of
+ * a furrow's V, and the rounded rim of the V, as fractions of the radius or
+ * half width. */
+#define RELIEF_PORE_BOTTOM 0.2
+#define RELIEF_GROOVE_BOTTOM 0.25
+#define RELIEF_GROOVE_RIM 0.35
+
 struct relief {
 	struct relief_params p;
 	struct wave region[RELIEF_REGION_WAVES];	/* the regional depth field (relief.c) */
+	int n_warp;	/* RELIEF_WARP_WAVES when the net meanders, else 0 */
+	struct wave warp[2][RELIEF_WARP_WAVES];	/* its x and y displacement [cm] */
 	int n_waves;
 	struct wave *waves;
 	int n_pores;
@@ -82,6 +98,9 @@ static inline double relief_normal(struct rng *r)
  * are domed cushions rather than flat tiles cut by hairlines. */
 #define RELIEF_SHOULDER_WIDTH 3.0
 #define RELIEF_SHOULDER_DEPTH 0.25
+/* Shoulders add where lines cross, saturating smoothly at this many times
+ * one shoulder's depth of the level's median furrow. */
+#define RELIEF_SHOULDER_CAP 2.0
 
 /* relief_lines.c: depth factors of the primary net's edges as long lines:
  * factor[2e] at edge e's point i, factor[2e + 1] at its point j: the line's
@@ -93,4 +112,5 @@ void relief_lines_factors(const struct delaunay *d, const double *xy, double sd,
 void relief_region_place(struct relief *r, uint64_t seed, uint32_t stream);
 double relief_region_at(const struct relief *r, double x, double y);
 void relief_waves_place(struct relief *r, uint64_t seed, uint32_t stream);
+void relief_warp_place(struct relief *r, uint64_t seed, uint32_t stream);
 #endif

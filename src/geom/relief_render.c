@@ -3,10 +3,10 @@
  * pixels, each feature once per tile shift that reaches the window, so
  * features that cross the tile border reappear on the other side and the map
  * is periodic by construction.  Blocks are independent, so OpenMP over blocks
- * gives the same result for any thread count.  Profiles are smooth
- * polynomials with zero slope at their rim, so the height is continuous with
- * a continuous slope except at the bottom of a furrow (a V groove) and where
- * two grooves meet. */
+ * gives the same result for any thread count.  Profiles are piecewise
+ * polynomials with zero slope at their rim (a pore is a funnel, a furrow a V
+ * with a rounded bottom and rim), so the height is continuous with a
+ * continuous slope except where two grooves or pores meet. */
 #include "config.h"
 
 #include "geom/relief.h"
@@ -135,8 +135,20 @@ static int clip(const struct window *w, const struct rect *k, const struct bbox 
 	return out->c0 <= out->c1 && out->r0 <= out->r1;
 }
 
-/* Pore dimple: -depth (1 - s^2)^2 inside the ellipse (s < 1), zero slope at
- * the centre and at the rim.  Overlapping pores take the deeper value. */
+/* The funnel of a pore opening at s = distance / radius in [0, 1): (1 -
+ * s)^2 / (1 - b) outside a rounded bottom of radius b, a parabola inside it
+ * with the same value and slope at b; 1 at the centre, 0 with zero slope at
+ * the rim.  A follicle's mouth is a funnel that narrows into the canal (steep
+ * walls near the centre, a rim that rolls into the plateau), not a shallow
+ * dish: its wall slope is 2 depth / radius at the bottom's edge. */
+static double funnel(double s)
+{
+	const double b = RELIEF_PORE_BOTTOM;
+	return s < b ? 1 - s * s / b : (1 - s) * (1 - s) / (1 - b);
+}
+
+/* Pore funnel: -depth funnel(s) inside the ellipse (s < 1).  Overlapping
+ * pores take the deeper value. */
 static void draw_pores(const struct relief *r, const struct window *w, const struct bins *bn, int blk,
     const struct rect *k, float *buf)
 {
@@ -157,7 +169,7 @@ static void draw_pores(const struct relief *r, const struct window *w, const str
 				double s2 = u * u * ia2 + v * v * ib2;
 				if (s2 >= 1)
 					continue;
-				float h = (float)(-q->depth * (1 - s2) * (1 - s2));
+				float h = (float)(-q->depth * funnel(sqrt(s2)));
 				if (h < o[col - k->c0])
 					o[col - k->c0] = h;
 			}
@@ -165,16 +177,70 @@ static void draw_pores(const struct relief *r, const struct window *w, const str
 	}
 }
 
-/* Furrow groove along a segment: -depth ((1 - k) g(s)) with g(s) = (1 -
- * s^2)^2 inside, s = distance / half width, in buf, and its shoulder -depth
- * k g(s / W) in sh, k and W the shoulder's depth and width (relief_impl.h):
+/* The V of a furrow at s = distance / half width in [0, 1): straight
+ * flanks between a rounded bottom (a parabola out to b) and a rounded rim
+ * (a parabola over the last c), each joined with the same slope; 1 at the
+ * centre, 0 with zero slope at the rim.  Replicas show furrows as V-shaped
+ * grooves, not as the bell of a smooth bump. */
+static double vgroove(double s)
+{
+	const double b = RELIEF_GROOVE_BOTTOM, c = RELIEF_GROOVE_RIM;
+	double f0 = 1 - 0.5 * c - 0.5 * b, f;
+	if (s < b)
+		f = 1 - 0.5 * c - 0.5 * (s * s + b * b) / b;
+	else if (s <= 1 - c)
+		f = 1 - s - 0.5 * c;
+	else
+		f = 0.5 * (1 - s) * (1 - s) / c;
+	return f / f0;
+}
+
+/* The meander's displacement [cm] of every pixel of block k into wxy (x, y
+ * interleaved, BLOCK per row): cos(a + b) = cos a cos b - sin a sin b with a
+ * from the column and b from the row. */
+static void block_warp(const struct relief *r, const struct window *w, const struct rect *k,
+    float *wxy)
+{
+	int nw = r->n_warp, nc = k->c1 - k->c0 + 1;
+	double cc[2][RELIEF_WARP_WAVES][BLOCK], sc[2][RELIEF_WARP_WAVES][BLOCK];
+	for (int d = 0; d < 2; d++)
+		for (int q = 0; q < nw; q++)
+			for (int c = 0; c < nc; c++) {
+				double a = 2 * M_PI * r->warp[d][q].kx * px_x(w, k->c0 + c);
+				cc[d][q][c] = cos(a);
+				sc[d][q][c] = sin(a);
+			}
+	for (int row = k->r0; row <= k->r1; row++) {
+		double rc[2][RELIEF_WARP_WAVES], rs[2][RELIEF_WARP_WAVES];
+		for (int d = 0; d < 2; d++)
+			for (int q = 0; q < nw; q++) {
+				const struct wave *wv = &r->warp[d][q];
+				double b = 2 * M_PI * wv->ky * px_y(w, row) + wv->phase;
+				rc[d][q] = wv->amp * cos(b);
+				rs[d][q] = wv->amp * sin(b);
+			}
+		float *o = wxy + 2 * (row - k->r0) * BLOCK;
+		for (int c = 0; c < nc; c++)
+			for (int d = 0; d < 2; d++) {
+				double sum = 0;
+				for (int q = 0; q < nw; q++)
+					sum += cc[d][q][c] * rc[d][q] - sc[d][q][c] * rs[d][q];
+				o[2 * c + d] = (float)sum;
+			}
+	}
+}
+
+/* Furrow groove along a segment: -depth (1 - k) vgroove(s) inside, s =
+ * distance / half width (from the pixel moved by the meander wxy [cm], when
+ * not NULL), in buf, and its shoulder -depth k g(s / W), g(s) = (1 - s^2)^2,
+ * in sh, k and W the shoulder's depth and width (relief_impl.h):
  * a narrow groove in a broad shallow valley; the depth linear from one end
  * to the other along the segment.  Grooves of one level combine by their
  * minimum (a crossing is no deeper than its deeper line), shoulders by their
  * sum (smooth: a minimum of broad valleys would crease along the lines where
  * two are equal, which shows as facets). */
 static void draw_furrows(const struct level *l, double T, const struct window *w,
-    const struct bins *bn, int blk, const struct rect *k, float *buf, float *sh)
+    const struct bins *bn, int blk, const struct rect *k, const float *wxy, float *buf, float *sh)
 {
 	for (int e = bn->start[blk]; e < bn->start[blk + 1]; e++) {
 		const struct bin_entry *be = &bn->entry[e];
@@ -188,10 +254,16 @@ static void draw_furrows(const struct level *l, double T, const struct window *w
 		const double sk = RELIEF_SHOULDER_DEPTH;
 		const double iw2 = 1 / (RELIEF_SHOULDER_WIDTH * RELIEF_SHOULDER_WIDTH);
 		for (int row = c.r0; row <= c.r1; row++) {
-			double py = px_y(w, row) * T - ay;
+			double py0 = px_y(w, row) * T - ay;
 			float *o = buf + (row - k->r0) * BLOCK, *os = sh + (row - k->r0) * BLOCK;
+			const float *wr = wxy ? wxy + 2 * (row - k->r0) * BLOCK : NULL;
 			for (int col = c.c0; col <= c.c1; col++) {
-				double px = px_x(w, col) * T - ax;
+				int q = col - k->c0;
+				double px = px_x(w, col) * T - ax, py = py0;
+				if (wr) {
+					px += wr[2 * q];
+					py += wr[2 * q + 1];
+				}
 				double t = (px * ex + py * ey) * il2;
 				t = t < 0 ? 0 : t > 1 ? 1 : t;
 				double dx = px - t * ex, dy = py - t * ey;
@@ -199,12 +271,12 @@ static void draw_furrows(const struct level *l, double T, const struct window *w
 				if (w2 >= 1)
 					continue;
 				double d = f->depth + t * (f->depth1 - f->depth);
-				os[col - k->c0] -= (float)(d * sk * (1 - w2) * (1 - w2));
+				os[q] -= (float)(d * sk * (1 - w2) * (1 - w2));
 				if (s2 >= 1)
 					continue;
-				float h = (float)(-d * (1 - sk) * (1 - s2) * (1 - s2));
-				if (h < o[col - k->c0])
-					o[col - k->c0] = h;
+				float h = (float)(-d * (1 - sk) * vgroove(sqrt(s2)));
+				if (h < o[q])
+					o[q] = h;
 			}
 		}
 	}
@@ -214,8 +286,8 @@ static void draw_furrows(const struct level *l, double T, const struct window *w
  * at the centroid, 0 with zero slope on the edges, so neighbouring
  * triangles join smoothly and a bent furrow leaves no crease along the
  * straight edge. */
-static void draw_plateaus(const struct level *l, const struct window *w, const struct bins *bn,
-    int blk, const struct rect *k, float *buf)
+static void draw_plateaus(const struct level *l, double T, const struct window *w,
+    const struct bins *bn, int blk, const struct rect *k, const float *wxy, float *buf)
 {
 	for (int e = bn->start[blk]; e < bn->start[blk + 1]; e++) {
 		const struct bin_entry *be = &bn->entry[e];
@@ -227,12 +299,17 @@ static void draw_plateaus(const struct level *l, const struct window *w, const s
 		double x1 = q->x[1] + be->sx, y1 = q->y[1] + be->sy;
 		double x2 = q->x[2] + be->sx, y2 = q->y[2] + be->sy;
 		for (int row = c.r0; row <= c.r1; row++) {
-			double py = px_y(w, row);
+			double py0 = px_y(w, row);
 			float *o = buf + (row - k->r0) * BLOCK;
+			const float *wr = wxy ? wxy + 2 * (row - k->r0) * BLOCK : NULL;
 			for (int col = c.c0; col <= c.c1; col++) {
-				double px = px_x(w, col);
-				double b1 = ((px - x0) * (y2 - y0) - (py - y0) * (x2 - x0)) * q->inv2a;
-				double b2 = ((x1 - x0) * (py - y0) - (y1 - y0) * (px - x0)) * q->inv2a;
+				double px = px_x(w, col) - x0, py = py0 - y0;
+				if (wr) {
+					px += wr[2 * (col - k->c0)] / T;
+					py += wr[2 * (col - k->c0) + 1] / T;
+				}
+				double b1 = (px * (y2 - y0) - py * (x2 - x0)) * q->inv2a;
+				double b2 = ((x1 - x0) * py - (y1 - y0) * px) * q->inv2a;
 				double b0 = 1 - b1 - b2;
 				if (b0 < 0 || b1 < 0 || b2 < 0)
 					continue;
@@ -310,15 +387,28 @@ void relief_render(const struct relief *r, int n, double x0, double y0, float *p
 				    sizeof(float) * (size_t)(k.c1 - k.c0 + 1));
 		}
 		if (furrows) {
+			float wxy[2 * BLOCK * BLOCK], *wp = NULL;
+			if (r->n_warp > 0) {
+				block_warp(r, &w, &k, wxy);
+				wp = wxy;
+			}
 			memset(acc, 0, sizeof acc);
 			for (int lv = 0; lv < r->n_levels; lv++) {
 				memset(groove, 0, sizeof groove);
 				memset(dome, 0, sizeof dome);
 				memset(sh, 0, sizeof sh);
-				draw_furrows(&r->level[lv], r->p.tile, &w, &fb[lv], blk, &k, groove, sh);
-				draw_plateaus(&r->level[lv], &w, &tb[lv], blk, &k, dome);
-				for (int q = 0; q < BLOCK * BLOCK; q++)
-					acc[q] += groove[q] + sh[q] + dome[q];
+				const struct level *l = &r->level[lv];
+				draw_furrows(l, r->p.tile, &w, &fb[lv], blk, &k, wp, groove, sh);
+				draw_plateaus(l, r->p.tile, &w, &tb[lv], blk, &k, wp, dome);
+				/* Shoulders add up where lines cross; saturate the sum
+				 * smoothly at c so that a crossing of many lines is not
+				 * a deep bowl that swallows its pore. */
+				double c = RELIEF_SHOULDER_CAP * RELIEF_SHOULDER_DEPTH;
+				c *= l->info.depth;
+				for (int q = 0; q < BLOCK * BLOCK; q++) {
+					double s = c > 0 ? -c * (1 - exp(sh[q] / c)) : 0;
+					acc[q] += groove[q] + (float)s + dome[q];
+				}
 			}
 			for (int row = k.r0; row <= k.r1; row++)
 				memcpy(furrows + (size_t)row * n + k.c0, acc + (row - k.r0) * BLOCK,

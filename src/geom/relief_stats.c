@@ -136,6 +136,7 @@ static void pore_regions(int n, const float *p, double pitch, double t, struct r
 {
 	size_t npx = (size_t)n * n;
 	int *parent = xmalloc(sizeof *parent * npx), *area = xcalloc(npx, sizeof *area);
+	float *deep = xcalloc(npx, sizeof *deep);
 	for (size_t i = 0; i < npx; i++)
 		parent[i] = (int)i;
 	for (int r = 0; r < n; r++) {
@@ -154,20 +155,28 @@ static void pore_regions(int n, const float *p, double pitch, double t, struct r
 	int regions = 0;
 	double dsum = 0;
 	for (size_t i = 0; i < npx; i++) {
-		if (p[i] < -t)
-			area[uf_find(parent, (int)i)]++;
+		if (p[i] < -t) {
+			int root = uf_find(parent, (int)i);
+			area[root]++;
+			if (p[i] < deep[root])
+				deep[root] = p[i];
+		}
 	}
+	double zsum = 0;
 	for (size_t i = 0; i < npx; i++) {
 		if (area[i] > 0) {
 			regions++;
 			dsum += 2 * sqrt(area[i] * pitch * pitch / M_PI);
+			zsum -= deep[i];
 		}
 	}
 	free(parent);
 	free(area);
+	free(deep);
 	st->pores = regions;
 	st->pore_density = regions / ((double)npx * pitch * pitch);
 	st->pore_diameter = regions > 0 ? dsum / regions : 0;
+	st->pore_depth = regions > 0 ? zsum / regions : 0;
 }
 
 struct relief_stats_spec relief_stats_spec_for(const struct relief_params *p, int n)
@@ -206,8 +215,7 @@ int relief_stats_compute(int n, const float *h, const float *furrow_map, const f
 
 static const char *const keys[RELIEF_STATS_KEYS] = { "sa_um", "sz_um", "furrow_density_per_mm",
 	"furrow_depth_um", "anisotropy", "direction_deg", "pore_density_per_mm2",
-	"pore_diameter_um",
-	"sdr_pct" };
+	"pore_diameter_um", "sdr_pct", "pore_depth_um" };
 
 const char *relief_stats_key(int i)
 {
@@ -225,7 +233,8 @@ double relief_stats_value(const struct relief_stats *st, int i)
 	case 5: return st->direction * 180 / M_PI;
 	case 6: return st->pore_density / 100;
 	case 7: return st->pore_diameter * 1e4;
-	default: return st->sdr * 100;
+	case 8: return st->sdr * 100;
+	default: return st->pore_depth * 1e4;
 	}
 }
 

@@ -16,7 +16,9 @@
  *   (along which the height varies least), in [0, pi) from +x toward +y;
  * - pores: 4-connected regions (periodic) of the pore map deeper than the
  *   pore threshold; density per area and mean equivalent diameter
- *   2 sqrt(area / pi) at the threshold level;
+ *   2 sqrt(area / pi) at the threshold level, and mean depth (the deepest
+ *   point of each region of the pore map below 0: a pore's own depth, not
+ *   counting the furrows it sits in);
  * - Sdr: the developed area ratio (ISO 25178), mean of
  *   sqrt(1 + |grad h|^2) - 1 over the pixels (the same central differences),
  *   how much larger the true surface is than its projection.
@@ -38,6 +40,7 @@ struct relief_stats {
 	double pore_density;	/* pores per area [1/cm^2] */
 	double pore_diameter;	/* mean equivalent diameter, 0 without pores [cm] */
 	double sdr;	/* developed area / projected area - 1 [1] */
+	double pore_depth;	/* mean deepest point of the pore regions, 0 without pores [cm] */
 };
 
 struct relief_stats_spec {
@@ -62,7 +65,7 @@ int relief_stats_compute(int n, const float *h, const float *furrows, const floa
     const struct relief_stats_spec *spec, struct relief_stats *st, char **cause);
 /* The statistics in user units, in report order: key (with its unit) and
  * value. */
-enum { RELIEF_STATS_KEYS = 9 };
+enum { RELIEF_STATS_KEYS = 10 };
 const char *relief_stats_key(int i);
 double relief_stats_value(const struct relief_stats *st, int i);
 

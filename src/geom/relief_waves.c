@@ -63,3 +63,31 @@ void relief_waves_place(struct relief *r, uint64_t seed, uint32_t stream)
 		wv->phase = 2 * M_PI * rng_uniform(&rg);
 	}
 }
+
+/* The meander: for bend > 0 and furrows, RELIEF_WARP_WAVES plane waves per
+ * displacement component, random directions, wavelengths log-normal (sigma
+ * 0.3) about half the primary cell rounded to whole cycles per tile, random
+ * phases, RMS bend x furrow width per component. */
+void relief_warp_place(struct relief *r, uint64_t seed, uint32_t stream)
+{
+	const struct relief_params *p = &r->p;
+	r->n_warp = 0;
+	if (p->levels == 0 || p->bend <= 0)
+		return;
+	struct rng rg;
+	rng_seed(&rg, seed, stream, 0);
+	double k0 = p->tile / (0.5 * p->furrow_cell);
+	for (int c = 0; c < 2; c++)
+		for (int q = 0; q < RELIEF_WARP_WAVES; q++) {
+			double ang = 2 * M_PI * rng_uniform(&rg);
+			double kk = k0 * exp(0.3 * relief_normal(&rg));
+			struct wave *wv = &r->warp[c][q];
+			wv->kx = (int)lround(kk * cos(ang));
+			wv->ky = (int)lround(kk * sin(ang));
+			if (wv->kx == 0 && wv->ky == 0)
+				wv->kx = 1;
+			wv->amp = p->bend * p->furrow_width * sqrt(2.0 / RELIEF_WARP_WAVES);
+			wv->phase = 2 * M_PI * rng_uniform(&rg);
+		}
+	r->n_warp = RELIEF_WARP_WAVES;
+}

@@ -78,7 +78,7 @@ static const struct site sites[] = {
 		.levels = 2,
 		.furrow_cell = MM(0.35), .furrow_width = UM(60),	/* assumption */
 		/* Hashimoto 1974: 20-100 um, the shallow part. */
-		.furrow_depth = UM(25), .furrow_depth_sd = 0.35,
+		.furrow_depth = UM(28), .furrow_depth_sd = 0.35,
 		.ridge_height = UM(4),
 		.level_scale = 0.45, .level_gain = 0.25,
 		.stretch = 1.15, .orientation = DEG(0), .furrow_regularity = 0.6,
@@ -94,7 +94,7 @@ static const struct site sites[] = {
 		.pore_aspect = 1.4, .pore_junction = 1.0, .pore_regularity = 0.5,
 		.levels = 2,
 		.furrow_cell = MM(0.35), .furrow_width = UM(60),
-		.furrow_depth = UM(25), .furrow_depth_sd = 0.35,	/* as face */
+		.furrow_depth = UM(28), .furrow_depth_sd = 0.35,	/* as face */
 		.ridge_height = UM(4),
 		.level_scale = 0.45, .level_gain = 0.25,
 		.stretch = 1.15, .orientation = DEG(0), .furrow_regularity = 0.6,
@@ -105,11 +105,11 @@ static const struct site sites[] = {
 		.tile = MM(8),
 		.pore_density = PER_MM2(4.39),	/* Blume 1991 */
 		.pore_radius = UM(35), .pore_radius_sd = 0.3,	/* assumption */
-		.pore_depth = UM(25), .pore_depth_sd = 0.3,	/* assumption */
+		.pore_depth = UM(35), .pore_depth_sd = 0.3,	/* assumption */
 		.pore_aspect = 1.2, .pore_junction = 1.0, .pore_regularity = 0.5,
 		.levels = 2,
 		.furrow_cell = MM(0.4), .furrow_width = UM(60),
-		.furrow_depth = UM(25), .furrow_depth_sd = 0.35,	/* as face */
+		.furrow_depth = UM(28), .furrow_depth_sd = 0.35,	/* as face */
 		.ridge_height = UM(4),
 		.level_scale = 0.45, .level_gain = 0.25,
 		.stretch = 1.3, .orientation = DEG(0), .furrow_regularity = 0.6,
