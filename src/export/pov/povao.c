@@ -32,12 +32,14 @@ struct grid {
 	int n_tri;
 	double (*a)[3], (*e1)[3], (*e2)[3];	/* corner and edges per triangle */
 	double lo[3], h;			/* origin, cell size */
-	double eps;				/* rays start this far off the surface, nearer hits ignored */
+	double eps;				/* rays start this far off the surface; nearer hits
+						 * are ignored */
 	int n[3];				/* cells per axis */
 	int *start, *tri;			/* cell c holds tri[start[c] .. start[c + 1]) */
 };
 
-static void cell_range(const struct grid *g, const double lo[3], const double hi[3], int c0[3], int c1[3])
+static void cell_range(const struct grid *g, const double lo[3], const double hi[3], int c0[3],
+    int c1[3])
 {
 	for (int k = 0; k < 3; k++) {
 		c0[k] = (int)floor((lo[k] - g->lo[k]) / g->h);
@@ -167,7 +169,7 @@ static int occluded(const struct grid *g, const double o[3], const double d[3], 
 	for (int k = 0; k < 3; k++) {
 		double x = (o[k] - g->lo[k]) / g->h;
 		if (x < 0 || x >= g->n[k])
-			return 0;	/* vertices lie inside the bounds; a point outside sees the sky */
+			return 0;	/* vertices lie inside; a point outside sees the sky */
 		c[k] = (int)x;
 		step[k] = d[k] > 0 ? 1 : -1;
 		double next = d[k] > 0 ? c[k] + 1 : c[k];
@@ -179,7 +181,8 @@ static int occluded(const struct grid *g, const double o[3], const double d[3], 
 		for (int i = g->start[cell]; i < g->start[cell + 1]; i++)
 			if (hit(g, g->tri[i], o, d, tmin))
 				return 1;
-		int k = tmax[0] < tmax[1] ? (tmax[0] < tmax[2] ? 0 : 2) : (tmax[1] < tmax[2] ? 1 : 2);
+		int k = tmax[0] < tmax[1] ? (tmax[0] < tmax[2] ? 0 : 2)
+		    : (tmax[1] < tmax[2] ? 1 : 2);
 		c[k] += step[k];
 		if (c[k] < 0 || c[k] >= g->n[k])
 			return 0;
@@ -188,12 +191,15 @@ static int occluded(const struct grid *g, const double o[3], const double d[3], 
 }
 
 /* Cosine-weighted visibility of vertex v of m, n rays in sqrt(n) x sqrt(n) strata. */
-static double visibility(const struct grid *g, const struct mesh *m, int v, int n, double eps, uint64_t seed)
+static double visibility(const struct grid *g, const struct mesh *m, int v, int n, double eps,
+    uint64_t seed)
 {
 	const double *nv = m->normal[v];
 	double t[3], b[3], a[3] = { 1, 0, 0 };
-	if (fabs(nv[0]) > 0.9)
-		a[0] = 0, a[1] = 1;
+	if (fabs(nv[0]) > 0.9) {
+		a[0] = 0;
+		a[1] = 1;
+	}
 	vec3_cross(nv, a, t);
 	double l = sqrt(vec3_dot(t, t));
 	for (int k = 0; k < 3; k++)
@@ -225,8 +231,10 @@ static int in_view(const struct scene *s, const double p[3])
 	const struct scene_camera *c = &s->camera;
 	double f[3], r[3], u[3], d[3], up[3] = { 0, 1, 0 };
 	vec3_unit_toward(c->location, c->look_at, f);
-	if (fabs(f[1]) > 0.999)
-		up[1] = 0, up[2] = 1;
+	if (fabs(f[1]) > 0.999) {
+		up[1] = 0;
+		up[2] = 1;
+	}
 	vec3_cross(up, f, r);
 	double l = sqrt(vec3_dot(r, r));
 	for (int k = 0; k < 3; k++)
@@ -234,7 +242,8 @@ static int in_view(const struct scene *s, const double p[3])
 	vec3_cross(f, r, u);
 	for (int k = 0; k < 3; k++)
 		d[k] = p[k] - c->location[k];
-	double z = vec3_dot(d, f), x = fabs(vec3_dot(d, r)), y = fabs(vec3_dot(d, u)), aspect = (double)s->width / s->height;
+	double z = vec3_dot(d, f), x = fabs(vec3_dot(d, r)), y = fabs(vec3_dot(d, u));
+	double aspect = (double)s->width / s->height;
 	if (c->ortho)
 		return x <= 0.55 * c->width && y <= 0.55 * c->width / aspect;
 	double th = 1.1 * tan(0.5 * c->angle);
@@ -252,16 +261,19 @@ static void raster(float *img, int sz, const double uv[3][2], const double val[3
 	double den = (y[1] - y[2]) * (x[0] - x[2]) + (x[2] - x[1]) * (y[0] - y[2]);
 	if (fabs(den) < 1e-12)
 		return;
-	int x0 = (int)floor(fmin(x[0], fmin(x[1], x[2]))), x1 = (int)ceil(fmax(x[0], fmax(x[1], x[2])));
-	int y0 = (int)floor(fmin(y[0], fmin(y[1], y[2]))), y1 = (int)ceil(fmax(y[0], fmax(y[1], y[2])));
+	int x0 = (int)floor(fmin(x[0], fmin(x[1], x[2])));
+	int x1 = (int)ceil(fmax(x[0], fmax(x[1], x[2])));
+	int y0 = (int)floor(fmin(y[0], fmin(y[1], y[2])));
+	int y1 = (int)ceil(fmax(y[0], fmax(y[1], y[2])));
 	x0 = x0 < 0 ? 0 : x0;
 	y0 = y0 < 0 ? 0 : y0;
 	x1 = x1 >= sz ? sz - 1 : x1;
 	y1 = y1 >= sz ? sz - 1 : y1;
 	for (int py = y0; py <= y1; py++)
 		for (int px = x0; px <= x1; px++) {
-			double w0 = ((y[1] - y[2]) * (px - x[2]) + (x[2] - x[1]) * (py - y[2])) / den;
-			double w1 = ((y[2] - y[0]) * (px - x[2]) + (x[0] - x[2]) * (py - y[2])) / den;
+			double ex = px - x[2], ey = py - y[2];
+			double w0 = ((y[1] - y[2]) * ex + (x[2] - x[1]) * ey) / den;
+			double w1 = ((y[2] - y[0]) * ex + (x[0] - x[2]) * ey) / den;
 			double w2 = 1 - w0 - w1;
 			if (w0 < -1e-9 || w1 < -1e-9 || w2 < -1e-9)
 				continue;
@@ -288,8 +300,10 @@ static void dilate(float *img, int sz, int rings)
 						if (xx < 0 || yy < 0 || xx >= sz || yy >= sz)
 							continue;
 						float w = img[(size_t)yy * sz + xx];
-						if (w >= 0)
-							s += w, n++;
+						if (w >= 0) {
+							s += w;
+							n++;
+						}
 					}
 				if (n > 0)
 					next[(size_t)y * sz + x] = (float)(s / n);
@@ -302,7 +316,8 @@ static void dilate(float *img, int sz, int rings)
 			img[i] = 1;
 }
 
-int povao_write(const struct scene *s, const char *dir, const char *base, struct povao_stats *st, char **cause)
+int povao_write(const struct scene *s, const char *dir, const char *base, struct povao_stats *st,
+    char **cause)
 {
 	int side = (int)floor(sqrt((double)s->fill_occlusion));
 	*st = (struct povao_stats){ .n_rays = side * side };
@@ -331,7 +346,8 @@ int povao_write(const struct scene *s, const char *dir, const char *base, struct
 		for (int k = 0; k < m->n_vertices; k++) {
 			v[k] = 1;
 			if (in_view(s, m->position[k])) {
-				v[k] = visibility(&g, m, k, s->fill_occlusion, eps, 0x736b696e62616b65ull);
+				v[k] = visibility(&g, m, k, s->fill_occlusion, eps,
+				    0x736b696e62616b65ull);
 				sum += v[k];
 				n_traced++;
 			}

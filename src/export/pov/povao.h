@@ -30,5 +30,6 @@ struct povao_stats {
 };
 
 /* Trace and write every wanted object's map into DIR; 0, or -1 with *cause. */
-int povao_write(const struct scene *s, const char *dir, const char *base, struct povao_stats *st, char **cause);
+int povao_write(const struct scene *s, const char *dir, const char *base, struct povao_stats *st,
+    char **cause);
 #endif

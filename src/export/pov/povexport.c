@@ -796,8 +796,9 @@ static int write_all(const struct povexport_options *o, const struct scene *s, c
 	}
 	report(o, s, &rep, util_now() - t0, r);
 	if (ao.n_vertices > 0)
-		msg(r, "fill occlusion: %d rays at each of %d mesh vertices in view, mean visibility %.3f (%.2f s)",
-		    ao.n_rays, ao.n_vertices, ao.mean_v, ao.seconds);
+		msg(r, "fill occlusion: %d rays at each of %d mesh vertices in view, "
+		    "mean visibility %.3f (%.2f s)", ao.n_rays, ao.n_vertices, ao.mean_v,
+		    ao.seconds);
 	povfiles_report_free(&rep);
 	return 0;
 }

@@ -160,7 +160,9 @@ static void write_bump(FILE *fp, const struct scene *s, const struct scene_objec
 static char *fill_pigment(const struct scene *s, const struct scene_object *o)
 {
 	const char *sn = s->skins[o->skin].name;
-	return povao_wanted(s, o) ? xasprintf("SKIN_%s_Fill_%s", sn, o->name) : xasprintf("SKIN_%s_Fill", sn);
+	if (povao_wanted(s, o))
+		return xasprintf("SKIN_%s_Fill_%s", sn, o->name);
+	return xasprintf("SKIN_%s_Fill", sn);
 }
 
 /* The texture of a skin object; pigment/finish names depend on the pass,
@@ -188,7 +190,8 @@ static void write_skin_texture(FILE *fp, const struct scene *s, const struct sce
 		}
 		if (ps->fill) {
 			char *fpig = fill_pigment(s, o);
-			fprintf(fp, "\n    [1 pigment { %s } finish { SKIN_%s_FillFinish }]", fpig, sn);
+			fprintf(fp, "\n    [1 pigment { %s } finish { SKIN_%s_FillFinish }]", fpig,
+			    sn);
 			free(fpig);
 		}
 		fputs(" } }", fp);
@@ -234,11 +237,12 @@ int povscene_averaged(const struct pov_skin *ps)
 /* The averaged texture of povscene_averaged's skins on a mesh: normals
  * around the per-triangle matrix (pre MATRIX mid MATRIX post, or pre
  * MATRIX post without the split), plain without normals. */
-static void mesh_averaged(const struct pov_skin *ps, const char *sn, const char *pig, const char *fillpig,
-    char **pre, char **mid, char **post, char **plain)
+static void mesh_averaged(const struct pov_skin *ps, const char *sn, const char *pig,
+    const char *fillpig, char **pre, char **mid, char **post, char **plain)
 {
-	char *fill = ps->fill ? xasprintf(" [1 pigment { %s } finish { SKIN_%s_FillFinish }]", fillpig, sn)
-			      : xstrdup("");
+	char *fill = ps->fill
+	    ? xasprintf(" [1 pigment { %s } finish { SKIN_%s_FillFinish }]", fillpig, sn)
+	    : xstrdup("");
 	if (ps->diffuse_png) {
 		*pre = xasprintf("texture { average texture_map { [1 pigment { SKIN_%s_Diffuse } normal { "
 				 "SKIN_%s_NormalDiffuseMesh", sn, sn);
@@ -322,13 +326,16 @@ static void write_model_pigment(FILE *fp, const struct scene_object *o, const ch
 
 /* With an occlusion map (ao, povao.h) the fill is a second averaged entry,
  * the pigment times the map, and the lit entry's weights are doubled. */
-static void write_model_texture(FILE *fp, const struct scene_object *o, const char *base, const double *fill,
-    const char *ao)
+static void write_model_texture(FILE *fp, const struct scene_object *o, const char *base,
+    const double *fill, const char *ao)
 {
 	const struct mesh *m = o->mesh;
 	char *tex = povscene_model_texture(o, base);
 	int lit = fill != NULL && (fill[0] > 0 || fill[1] > 0 || fill[2] > 0), k = lit && ao ? 2 : 1;
-	fputs(k == 2 ? "\n  texture { average texture_map { [1 pigment { " : "\n  texture { pigment { ", fp);
+	if (k == 2)
+		fputs("\n  texture { average texture_map { [1 pigment { ", fp);
+	else
+		fputs("\n  texture { pigment { ", fp);
 	write_model_pigment(fp, o, tex);
 	if (k == 2)
 		fputs(" } finish { diffuse 2 brilliance 1 ambient 0 emission 0 specular 0", fp);
@@ -339,11 +346,12 @@ static void write_model_texture(FILE *fp, const struct scene_object *o, const ch
 		sdl_rgb(fp, fill);
 	}
 	if (m->specular > 0)
-		fprintf(fp, " phong " SDL_G " phong_size " SDL_G, k * fmin(m->specular, 1), fmin(fmax(m->shininess, 1), 1000));
+		fprintf(fp, " phong " SDL_G " phong_size " SDL_G, k * fmin(m->specular, 1),
+		    fmin(fmax(m->shininess, 1), 1000));
 	if (k == 2) {
 		double e[3] = { 2 * fill[0], 2 * fill[1], 2 * fill[2] };
-		fprintf(fp, " }]\n    [1 pigment { uv_mapping image_pattern { png \"%s\" gamma 1.0 map_type 0 interpolate 2 }"
-		    " pigment_map { [0 rgb 0] [1 ", ao);
+		fprintf(fp, " }]\n    [1 pigment { uv_mapping image_pattern { png \"%s\" gamma 1.0 "
+		    "map_type 0 interpolate 2 } pigment_map { [0 rgb 0] [1 ", ao);
 		write_model_pigment(fp, o, tex);
 		fputs("] } } finish { diffuse 0 brilliance 1 ambient 0 specular 0 emission ", fp);
 		sdl_rgb(fp, e);
@@ -470,17 +478,20 @@ static void write_layers(FILE *fp, const struct scene *s, const struct pov_skin 
 }
 
 /* The fill of skin meshes times their occlusion maps (povao.h). */
-static void write_fill_occlusion(FILE *fp, const struct scene *s, const struct pov_skin *skins, const char *base)
+static void write_fill_occlusion(FILE *fp, const struct scene *s, const struct pov_skin *skins,
+    const char *base)
 {
 	for (int i = 0; i < s->n_objects; i++) {
 		const struct scene_object *o = &s->objects[i];
 		if (o->material != SCENE_MAT_SKIN || !skins[o->skin].fill || !povao_wanted(s, o))
 			continue;
 		char *ao = povao_name(base, o);
-		fprintf(fp, "// The fill seen past the scene's meshes: %d rays per vertex (skinbake povao).\n"
-		    "#declare SKIN_%s_Fill_%s = pigment { uv_mapping image_pattern { png \"%s\" gamma 1.0 map_type 0 "
-		    "interpolate 2 } pigment_map { [0 rgb 0] [1 SKIN_%s_Fill] } }\n", s->fill_occlusion,
-		    s->skins[o->skin].name, o->name, ao, s->skins[o->skin].name);
+		const char *sn = s->skins[o->skin].name;
+		fprintf(fp, "// The fill seen past the meshes: %d rays per vertex (povao).\n",
+		    s->fill_occlusion);
+		fprintf(fp, "#declare SKIN_%s_Fill_%s = pigment { uv_mapping image_pattern { png "
+		    "\"%s\" gamma 1.0 map_type 0 interpolate 2 }\n  pigment_map { [0 rgb 0] "
+		    "[1 SKIN_%s_Fill] } }\n", sn, o->name, ao, sn);
 		free(ao);
 	}
 }
