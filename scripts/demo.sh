@@ -8,7 +8,8 @@
 #                          occluded by the head itself: fill_occlusion, docs/pov.md)
 #   OUT/complexions.png    the same head with four complexions (the same family, other maps):
 #                          fair with freckles, medium, brown, dark (epidermal melanin 0.011,
-#                          0.035, 0.10, 0.16; the last two are brown-oily's and dark-oily's)
+#                          0.035, 0.10, 0.35; brown is brown-oily's, dark within Jacques'
+#                          18-43 % for darkly pigmented skin)
 #   OUT/human-pores.png    the cheek at 0.05 mm per pixel, scenes/showcase-closeup.scene, with
 #                          the pores and furrows of a young cheek (docs/relief.md)
 # Run after scripts/setup.sh (it uses the binary built in this tree).
@@ -24,10 +25,11 @@ command -v povray >/dev/null || { echo "demo.sh: povray is missing (scripts/setu
 mkdir -p "$out"
 t0=$(date +%s)
 
-echo "== family: fair-oily skin, epidermal melanin (4 values) x dermal blood (3), adding-doubling"
+echo "== family: fair-oily skin, epidermal melanin (5 values) x dermal blood (3), adding-doubling"
 fam=$out/fam
-[ -f "$fam/family.json" ] ||
-	$B bake --preset fair-oily --vary epidermis.melanin=0.004,0.02,0.06,0.16 \
+# (a family of an earlier demo, without the dark node, is baked again)
+grep -q 'melanin=0.004,0.02,0.06,0.16,0.4 ' "$fam/family.json" 2>/dev/null ||
+	$B bake --preset fair-oily --vary epidermis.melanin=0.004,0.02,0.06,0.16,0.4 \
 		--vary dermis.blood=0.008,0.03,0.08 --out "$fam" --quiet
 
 # maps NAME MELANIN FRECKLES: a complexion's maps.  Dermal blood 0.02 (the presets'), lips 0.07,
@@ -69,7 +71,7 @@ echo "== maps: fair (with freckles), medium, brown, dark"
 maps fair 0.011 1
 maps medium 0.035 0
 maps brown 0.10 0
-maps dark 0.16 0
+maps dark 0.35 0
 echo "== a young cheek's relief (docs/relief.md), for the head and the close-up"
 # Shallower than the face site's default (primary lines 18 um, measured 25 um: the low end of
 # Hashimoto's 20-100 um), and a tile wider than the close-up's view, so that it does not repeat in it.
