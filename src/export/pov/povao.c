@@ -67,7 +67,8 @@ static void grid_make(const struct scene *s, struct grid *g)
 	g->a = xmalloc(sizeof *g->a * (size_t)g->n_tri);
 	g->e1 = xmalloc(sizeof *g->e1 * (size_t)g->n_tri);
 	g->e2 = xmalloc(sizeof *g->e2 * (size_t)g->n_tri);
-	double lo[3] = { INFINITY, INFINITY, INFINITY }, hi[3] = { -INFINITY, -INFINITY, -INFINITY };
+	double lo[3] = { INFINITY, INFINITY, INFINITY };
+	double hi[3] = { -INFINITY, -INFINITY, -INFINITY };
 	int t = 0;
 	for (int i = 0; i < s->n_objects; i++) {
 		const struct mesh *m = s->objects[i].mesh;
@@ -277,7 +278,8 @@ static void raster(float *img, int sz, const double uv[3][2], const double val[3
 			double w2 = 1 - w0 - w1;
 			if (w0 < -1e-9 || w1 < -1e-9 || w2 < -1e-9)
 				continue;
-			img[(size_t)py * sz + px] = (float)(w0 * val[0] + w1 * val[1] + w2 * val[2]);
+			double a = w0 * val[0] + w1 * val[1] + w2 * val[2];
+			img[(size_t)py * sz + px] = (float)a;
 		}
 }
 
