@@ -15,10 +15,10 @@
 # the diffuse albedo at normal incidence of the demo's fair skin, from the export's Lambert
 # stand-in), subsurface 1 with random walk, radius 3.67, 1.37, 0.68 mm, roughness 0.45, specular
 # 0.5, no maps, no relief; the eyes keep the model's material.  The light: the showcase's key (a
-# point light of colour 1.15 with a 250 mm area at 1.5 m) as a sun of strength pi x 1.15 and
-# angle 9.5 degrees (a white Lambert surface facing it gives 1.15 in both renderers), and its fill
-# (0.15 0.15 0.16) as a uniform world of that radiance (which, unlike the POV-Ray fill, is
-# occluded).  One level of subdivision, Cycles CPU, Standard view transform, sRGB 8-bit PNG.
+# point light of colour 1.3 1.17 1.0 with a 300 mm area at 1.11 m, KEY below) as a sun of strength
+# pi x 1.3 and that colour over 1.3, angle 15.4 degrees (a white Lambert surface facing it gives
+# the key's colour in both renderers), and its fill (0.12 0.14 0.19) as a uniform world of that
+# radiance (occluded, as POV-Ray's fill_occlusion makes it).  One level of subdivision, Cycles CPU, Standard view transform, sRGB 8-bit PNG.
 # Coordinates: POV-Ray's (x, y, z) mm of the scene are Blender's (x, z, y) / 1000 after the
 # Collada import (Z up, face toward -Y).
 import math
@@ -29,6 +29,12 @@ import zipfile
 
 import bpy
 from mathutils import Vector
+
+
+# scenes/showcase-head.scene's camera, key and fill (POV-Ray millimetres).
+EYE, TARGET = (200, 1580, -620), (0, 1545, -90)
+KEY, KEY_RGB, KEY_AREA = (-700, 1950, -850), (1.3, 1.17, 1.0), 300
+FILL = (0.12, 0.14, 0.19)
 
 
 def pov(v):
@@ -84,7 +90,7 @@ def main(argv):
     cd.clip_start = 0.01
     cam = bpy.data.objects.new("Camera", cd)
     sc.collection.objects.link(cam)
-    eye, target = pov((200, 1580, -620)), pov((0, 1545, -90))
+    eye, target = pov(EYE), pov(TARGET)
     if a.closeup:
         eye, target = pov((-83, 1521, -187)), pov((-45, 1521, -128))
     cam.location = eye
@@ -92,17 +98,24 @@ def main(argv):
     sc.camera = cam
 
     sun = bpy.data.lights.new("Key", "SUN")
-    sun.energy = math.pi * (2.4 if a.closeup else 1.15)
-    sun.angle = math.radians(0.5 if a.closeup else 9.5)
+    if a.closeup:
+        lp = pov((-313, 1745, -131))
+        sun.energy = math.pi * 2.4
+        sun.angle = math.radians(0.5)
+    else:
+        lp = pov(KEY)
+        peak = max(KEY_RGB)
+        sun.energy = math.pi * peak
+        sun.color = tuple(c / peak for c in KEY_RGB)
+        sun.angle = 2 * math.atan(0.5 * KEY_AREA / 1000 / (lp - target).length)
     so = bpy.data.objects.new("Key", sun)
     sc.collection.objects.link(so)
-    lp = pov((-313, 1745, -131) if a.closeup else (-500, 1900, -1300))
     so.rotation_euler = (target - lp).to_track_quat("-Z", "Y").to_euler()
 
     world = bpy.data.worlds.new("fill")
     world.use_nodes = True
     bg = world.node_tree.nodes["Background"]
-    bg.inputs["Color"].default_value = (0, 0, 0, 1) if a.closeup else (0.15, 0.15, 0.16, 1)
+    bg.inputs["Color"].default_value = (0, 0, 0, 1) if a.closeup else FILL + (1,)
     bg.inputs["Strength"].default_value = 1.0
     sc.world = world
 

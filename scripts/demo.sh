@@ -4,8 +4,12 @@
 # tip and ears and a few freckles, painted through the masks in scenes/masks/ (made by
 # scripts/showcase_masks.py); the eyes with their own colours (scripts/eye_texture.py, not the
 # skin's table); the face's pores and furrows (docs/relief.md).  Writes (OUT: out/demo):
-#   OUT/human-head.png     640x480, scenes/showcase-head.scene (one soft key light)
-#   OUT/complexions.png    the same head with three complexions (the same family, other maps)
+#   OUT/human-head.png     640x480, scenes/showcase-head.scene (a warm soft key, a cool sky fill
+#                          occluded by the head itself: fill_occlusion, docs/pov.md)
+#   OUT/complexions.png    the same head with four complexions (the same family, other maps):
+#                          fair with freckles, medium, brown, dark (epidermal melanin 0.011,
+#                          0.035, 0.10, 0.35; brown is brown-oily's, dark within Jacques'
+#                          18-43 % for darkly pigmented skin)
 #   OUT/human-pores.png    the cheek at 0.05 mm per pixel, scenes/showcase-closeup.scene, with
 #                          the pores and furrows of a young cheek (docs/relief.md)
 # Run after scripts/setup.sh (it uses the binary built in this tree).  scripts/closeup-compare.sh then
@@ -22,10 +26,11 @@ command -v povray >/dev/null || { echo "demo.sh: povray is missing (scripts/setu
 mkdir -p "$out"
 t0=$(date +%s)
 
-echo "== family: fair-oily skin, epidermal melanin (4 values) x dermal blood (3), adding-doubling"
+echo "== family: fair-oily skin, epidermal melanin (5 values) x dermal blood (3), adding-doubling"
 fam=$out/fam
-[ -f "$fam/family.json" ] ||
-	$B bake --preset fair-oily --vary epidermis.melanin=0.004,0.02,0.06,0.16 \
+# (a family of an earlier demo, without the dark node, is baked again)
+grep -q 'melanin=0.004,0.02,0.06,0.16,0.4 ' "$fam/family.json" 2>/dev/null ||
+	$B bake --preset fair-oily --vary epidermis.melanin=0.004,0.02,0.06,0.16,0.4 \
 		--vary dermis.blood=0.008,0.03,0.08 --out "$fam" --quiet
 
 # maps NAME MELANIN FRECKLES: a complexion's maps.  Dermal blood 0.02 (the presets'), lips 0.07,
@@ -47,6 +52,7 @@ maps() {
 render() {
 	sc=$1 n=$2 mp=$3
 	shift 3
+	r_t0=$(date +%s)
 	$B export pov --scene "$sc" --family "$fam" --maps "$mp" --out "$out/$n" "$@" >"$out/$n.log" 2>&1 ||
 		{ cat "$out/$n.log" >&2; exit 1; }
 	b=$(basename "$sc" .scene)
@@ -57,13 +63,16 @@ render() {
 	(cd "$out/$n" && povray "$b.ini" "+O$n.png" >povray.log 2>&1) || {
 		echo "demo.sh: povray failed, see $out/$n/povray.log" >&2; exit 1; }
 	cp "$out/$n/$n.png" "$out/$n.png"
-	echo "wrote $out/$n.png"
+	echo "wrote $out/$n.png ($(($(date +%s) - r_t0)) s wall;" \
+		"$(sed -n 's/.*fill occlusion: .*(\(.*\) s)/occlusion \1 s,/p' "$out/$n.log")" \
+		"$(sed -n 's/.*Trace Time: .*(\(.*\) seconds)/trace \1 s/p' "$out/$n/povray.log"))"
 }
 
-echo "== maps: fair (with freckles), medium, brown"
+echo "== maps: fair (with freckles), medium, brown, dark"
 maps fair 0.011 1
 maps medium 0.035 0
 maps brown 0.10 0
+maps dark 0.35 0
 echo "== a young cheek's relief (docs/relief.md), for the head and the close-up"
 # The cheek site (visible pores, 0.8 /mm^2 of 220 um, funnels 60 um deep), shallower lines than
 # its default (primary lines 24 um, measured 22 um: the low end of Hashimoto's 20-100 um), weak
@@ -75,23 +84,23 @@ echo "== the head (scenes/showcase-head.scene)"
 # The relief is split (docs/relief.md section 7): the diffuse part sees it blurred by Rd(r), the
 # specular the bump map box-filtered to half a pixel, the relief below that as a wider GGX alpha.
 render scenes/showcase-head.scene human-head "$out/maps-fair" --textures "$out/cheek"
-echo "== three complexions, 320x240 each"
-for c in fair medium brown; do
+echo "== four complexions, 320x240 each"
+for c in fair medium brown dark; do
 	render scenes/showcase-head.scene "c-$c" "$out/maps-$c" --size 320x240 --nodes 9 --gamma-nodes 3 \
 		--textures "$out/cheek"
 done
 {
 	echo "#version 3.7;"
 	echo "global_settings { assumed_gamma 1.0 }"
-	echo "camera { orthographic location <1.5,0.5,-1> look_at <1.5,0.5,0> right x*3 up y }"
+	echo "camera { orthographic location <2,0.5,-1> look_at <2,0.5,0> right x*4 up y }"
 	i=0
-	for c in fair medium brown; do
+	for c in fair medium brown dark; do
 		echo "box { <0,0,0>, <1,1,0.01> texture { pigment { image_map { png \"c-$c.png\" once interpolate 2 } }"
 		echo "  finish { emission 1 diffuse 0 ambient 0 } } translate x*$i }"
 		i=$((i + 1))
 	done
 } >"$out/complexions.pov"
-(cd "$out" && povray +Icomplexions.pov +Ocomplexions.png +W960 +H240 -D +A0.1 >complexions.log 2>&1) ||
+(cd "$out" && povray +Icomplexions.pov +Ocomplexions.png +W1280 +H240 -D +A0.1 >complexions.log 2>&1) ||
 	{ echo "demo.sh: povray failed, see $out/complexions.log" >&2; exit 1; }
 echo "wrote $out/complexions.png"
 echo "== close-up of the cheek (scenes/showcase-closeup.scene), a young cheek's relief"

@@ -8,7 +8,12 @@
 #
 #   scripts/render-gallery.sh [WORKDIR]      (default ./gallery-work)
 #
-# Environment: SKINBAKE (default ./skinbake), POVRAY (default povray).
+# With SHOWCASE=1 it makes the showcase gallery of docs/showcase.md instead: scripts/demo.sh's
+# pictures (DEMO, default out/demo; run the demo first) copied to docs/img/showcase-*.png, and the
+# demo's head side by side with the five-minute Blender material in the same view and light
+# (scripts/blender_five_minute.py, 640x480, SAMPLES default 32): docs/img/showcase-vs-blender.png.
+#
+# Environment: SKINBAKE (default ./skinbake), POVRAY (default povray), BLENDER (default blender).
 set -eu
 top=$(cd "$(dirname "$0")/.." && pwd)
 SKINBAKE=${SKINBAKE:-./skinbake}
@@ -17,6 +22,49 @@ work=${1:-gallery-work}
 mkdir -p "$work" "$top/docs/img"
 SKINBAKE=$(cd "$(dirname "$SKINBAKE")" && pwd)/$(basename "$SKINBAKE")
 work=$(cd "$work" && pwd)
+
+# montage OUT NAME...: the panels in one row, by POV-Ray (sRGB in, sRGB out); panels PW x PH.
+PW=320 PH=240
+montage() {
+	m_out=$1
+	shift
+	n=$#
+	{
+		echo "#version 3.7;"
+		echo "global_settings { assumed_gamma 1.0 }"
+		echo "camera { orthographic location <$n/2,0.5,-1> look_at <$n/2,0.5,0> right x*$n up y }"
+		i=0
+		for p in "$@"; do
+			echo "box { <0,0,0>, <1,1,0.01> texture { pigment { image_map { png \"$work/$p.png\" once interpolate 2 } }"
+			echo "  finish { emission 1 diffuse 0 ambient 0 } } translate x*$i }"
+			i=$((i + 1))
+		done
+	} >"$work/montage.pov"
+	(cd "$work" && "$POVRAY" +Imontage.pov "+O$m_out" "+W$((PW * n))" "+H$PH" -D +A0.1 >montage.log 2>&1) ||
+		{ tail -5 "$work/montage.log"; exit 1; }
+	echo "wrote $m_out"
+}
+
+if [ "${SHOWCASE:-0}" = 1 ]; then
+	demo=$(cd "${DEMO:-$top/out/demo}" && pwd)
+	for f in human-head complexions human-pores human-head-earglow; do
+		[ -f "$demo/$f.png" ] || { echo "render-gallery.sh: $demo/$f.png is missing (run scripts/demo.sh)" >&2; exit 1; }
+	done
+	cp "$demo/human-head.png" "$top/docs/img/showcase-head.png"
+	cp "$demo/complexions.png" "$top/docs/img/showcase-complexions.png"
+	cp "$demo/human-pores.png" "$top/docs/img/showcase-closeup.png"
+	cp "$demo/human-head-earglow.png" "$top/docs/img/showcase-earglow.png"
+	cp "$demo/human-head.png" "$work/pov-head.png"
+	t=$(date +%s)
+	[ -f "$work/five-minute.png" ] ||	# kept from an earlier run of the same WORKDIR
+		"${BLENDER:-blender}" -b --factory-startup --python "$top/scripts/blender_five_minute.py" -- \
+			"$work/five-minute.png" --size 640x480 --samples "${SAMPLES:-32}" >"$work/five-minute.log" 2>&1 ||
+		{ tail -5 "$work/five-minute.log"; exit 1; }
+	echo "five-minute Blender material: $(($(date +%s) - t)) s wall"
+	PW=640 PH=480
+	montage "$top/docs/img/showcase-vs-blender.png" pov-head five-minute
+	exit 0
+fi
 
 [ -f "$work/face/height.png" ] ||
 	"$SKINBAKE" texture --site face --size 512 --tile-mm 10 --out "$work/face" --quiet
@@ -34,26 +82,6 @@ panel() {
 	echo "$1: $2"
 }
 
-# montage OUT NAME...: the panels in one row, by POV-Ray (sRGB in, sRGB out).
-montage() {
-	m_out=$1
-	shift
-	n=$#
-	{
-		echo "#version 3.7;"
-		echo "global_settings { assumed_gamma 1.0 }"
-		echo "camera { orthographic location <$n/2,0.5,-1> look_at <$n/2,0.5,0> right x*$n up y }"
-		i=0
-		for p in "$@"; do
-			echo "box { <0,0,0>, <1,1,0.01> texture { pigment { image_map { png \"$work/$p.png\" once interpolate 2 } }"
-			echo "  finish { emission 1 diffuse 0 ambient 0 } } translate x*$i }"
-			i=$((i + 1))
-		done
-	} >"$work/montage.pov"
-	(cd "$work" && "$POVRAY" +Imontage.pov "+O$m_out" "+W$((320 * n))" +H240 -D +A0.1 >montage.log 2>&1) ||
-		{ tail -5 "$work/montage.log"; exit 1; }
-	echo "wrote $m_out"
-}
 
 for p in very-fair-dry fair-oily medium-oily olive-oily brown-oily dark-oily; do
 	panel "c-$p" "$p" "$top/scenes/human-head.scene"

@@ -2,11 +2,14 @@
 #
 #   blender -b --factory-startup --python exporters/blender/human_scene.py -- OUT.blend \
 #       [--model /usr/share/assimp/models/Collada/human.zae] [--size 640x480] [--samples 32]
-#       [--shot head|cheek] [--world W]
+#       [--shot head|cheek|showcase] [--world W]
 #
 # Imports the Collada model (a .zae is a zip holding the .dae and the eye texture; it is unpacked
 # next to OUT.blend), smooths the body mesh "human-base", frames a close-up of the head (or of the
-# left cheek) with a perspective camera, adds a key sun and a fill point lamp and saves OUT.blend
+# left cheek) with a perspective camera, adds a key sun and a fill point lamp and saves OUT.blend;
+# --shot showcase takes the view and light of scenes/showcase-head.scene instead (the POV-Ray demo's
+# head: a warm key sun of its key's irradiance, colour and size, and its cool fill as the world,
+# which Cycles occludes as POV-Ray's fill_occlusion does; --world is ignored)
 # (Cycles CPU, denoiser off, Standard view transform, 8-bit PNG output).  The model (assimp's test
 # data, BSD-3-clause, from MakeHuman) is metres, Z up after Blender's import, face toward -Y.
 import math
@@ -18,6 +21,17 @@ import bpy
 from mathutils import Vector
 
 
+# scenes/showcase-head.scene (POV-Ray millimetres, y up): camera, key light, fill.
+SHOWCASE_EYE, SHOWCASE_TARGET = (200, 1580, -620), (0, 1545, -90)
+SHOWCASE_KEY, SHOWCASE_KEY_RGB, SHOWCASE_KEY_AREA = (-700, 1950, -850), (1.3, 1.17, 1.0), 300
+SHOWCASE_FILL = (0.12, 0.14, 0.19)
+
+
+def pov(v):
+    """POV-Ray (x, y, z) mm of the scene -> Blender (x, z, y) m after the Collada import."""
+    return Vector((v[0] / 1000, v[2] / 1000, v[1] / 1000))
+
+
 def main(argv):
     import argparse
     ap = argparse.ArgumentParser(prog="human_scene.py")
@@ -25,7 +39,7 @@ def main(argv):
     ap.add_argument("--model", default="/usr/share/assimp/models/Collada/human.zae")
     ap.add_argument("--size", default="640x480")
     ap.add_argument("--samples", type=int, default=32)
-    ap.add_argument("--shot", choices=("head", "cheek"), default="head")
+    ap.add_argument("--shot", choices=("head", "cheek", "showcase"), default="head")
     ap.add_argument("--world", type=float, default=0.0, help="uniform world radiance (default 0)")
     a = ap.parse_args(argv)
     out = os.path.abspath(a.out)
@@ -48,7 +62,10 @@ def main(argv):
     sub.levels = sub.render_levels = 1
 
     cd = bpy.data.cameras.new("Camera")
-    if a.shot == "head":
+    if a.shot == "showcase":
+        cd.sensor_fit, cd.angle = "HORIZONTAL", math.radians(30)
+        eye, target = pov(SHOWCASE_EYE), pov(SHOWCASE_TARGET)
+    elif a.shot == "head":
         cd.lens, eye, target = 85.0, Vector((0.30, -0.80, 1.59)), Vector((0.0, -0.06, 1.535))
     else:
         target = Vector((0.035, -0.10, 1.525))               # left cheek below the eye
@@ -64,16 +81,25 @@ def main(argv):
     key.energy, key.angle = 4.0, 0.0                       # irradiance [W/m^2]
     ko = bpy.data.objects.new("Key", key)
     sc.collection.objects.link(ko)
-    ko.rotation_euler = Vector((-0.55, -0.75, 0.55)).normalized().to_track_quat("Z", "Y").to_euler()
-    fill = bpy.data.lights.new("Fill", "POINT")
-    fill.energy, fill.shadow_soft_size = 8.0, 0.0          # [W]: about 0.6 W/m^2 at the face
-    fo = bpy.data.objects.new("Fill", fill)
-    sc.collection.objects.link(fo)
-    fo.location = (0.75, -0.65, 1.45)
+    world = (a.world, a.world, a.world)
+    if a.shot == "showcase":
+        lp, peak = pov(SHOWCASE_KEY), max(SHOWCASE_KEY_RGB)
+        key.energy = math.pi * peak                        # a white Lambert facing it: the key colour
+        key.color = tuple(c / peak for c in SHOWCASE_KEY_RGB)
+        key.angle = 2 * math.atan(0.5 * SHOWCASE_KEY_AREA / 1000 / (lp - target).length)
+        ko.rotation_euler = (target - lp).to_track_quat("-Z", "Y").to_euler()
+        world = SHOWCASE_FILL
+    else:
+        ko.rotation_euler = Vector((-0.55, -0.75, 0.55)).normalized().to_track_quat("Z", "Y").to_euler()
+        fill = bpy.data.lights.new("Fill", "POINT")
+        fill.energy, fill.shadow_soft_size = 8.0, 0.0      # [W]: about 0.6 W/m^2 at the face
+        fo = bpy.data.objects.new("Fill", fill)
+        sc.collection.objects.link(fo)
+        fo.location = (0.75, -0.65, 1.45)
 
     wd = bpy.data.worlds.new("World")
     wd.use_nodes = True
-    wd.node_tree.nodes["Background"].inputs["Color"].default_value = (a.world, a.world, a.world, 1.0)
+    wd.node_tree.nodes["Background"].inputs["Color"].default_value = tuple(world) + (1.0,)
     sc.world = wd
     sc.render.engine = "CYCLES"
     cy = sc.cycles

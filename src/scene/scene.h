@@ -77,6 +77,7 @@ struct scene {
 	double background[3];	/* linear RGB */
 	double antialias;	/* POV +A threshold, 0 = off */
 	double fill[3];		/* uniform sky light, as a light's colour (POV-Ray, one light) */
+	int fill_occlusion;	/* rays per mesh vertex, the fill's occlusion (povao.h); 0: none */
 	enum scene_strategy lights_strategy;
 	struct scene_camera camera;
 	int n_lights;

@@ -182,6 +182,12 @@ static int key_scene(struct scene_parse *p, const char *k, const char *v)
 	} else if (!strcmp(k, "fill")) {
 		if (color(p, d, v, s->fill) != 0)
 			return 0;
+	} else if (!strcmp(k, "fill_occlusion")) {
+		if (num(p, d, v, &x) != 0)
+			return 0;
+		if (x != floor(x))
+			return scene_fail(p, "%s = %s is not a whole number of rays", k, v);
+		s->fill_occlusion = (int)x;
 	} else if (!strcmp(k, "lights")) {
 		size_t i;
 		for (i = 0; i < sizeof strategy_names / sizeof strategy_names[0]; i++)

@@ -30,7 +30,13 @@ const struct scene_key scene_key_table[] = {
 	{ "scene", "fill", CO, "", 0, 1e6, NULL, "0 0 0",
 	  "POV-Ray, one light (key): a uniform sky light of this colour (a light of it facing a "
 	  "white Lambert surface gives the same); skins get it as their hemispherical albedo "
-	  "a(θo) × fill, other objects as `emission` (no shadows, no occlusion)" },
+	  "a(θo) × fill, other objects as `emission` (no shadows; no occlusion unless "
+	  "`fill_occlusion`)" },
+	{ "scene", "fill_occlusion", IN, "rays", 0, 4096, NULL, "0",
+	  "rays per mesh vertex (rounded down to a square) for the fill's occlusion: skin and "
+	  "`model` meshes with UVs get the fill times V, the cosine-weighted part of the sky each "
+	  "vertex in view sees past every mesh of the scene, as a UV map `BASE_ao_NAME.png` "
+	  "(docs/pov.md); 0: none" },
 	{ "scene", "lights", CH, "", 0, 0, "auto|key|mixture|passes|separable", "auto",
 	  "how the lights are rendered (light strategies, below)" },
 	{ "camera", "type", CH, "", 0, 0, "orthographic|perspective", "",

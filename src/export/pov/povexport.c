@@ -20,6 +20,7 @@
 #include "export/pov/povfiles.h"
 #include "export/pov/pov_maps.h"
 #include "export/pov/povsplit.h"
+#include "export/pov/povao.h"
 #include "scene/placement.h"
 #include "scene/scene_load.h"
 #include "export/pov/povscene.h"
@@ -780,8 +781,10 @@ static int write_all(const struct povexport_options *o, const struct scene *s, c
 		.sss_samples = o->translucent ? o->sss_samples : 0,
 	};
 	double t0 = util_now();
+	struct povao_stats ao = { 0 };
 	if (povfiles_write(s, in->ps, &po, stage, &rep, cause) != 0 ||
 	    write_extras(s, stage, base, in, cause) != 0 ||
+	    (rep.strategy == SCENE_LIGHTS_KEY && povao_write(s, stage, base, &ao, cause) != 0) ||
 	    povfiles_write_index(stage, cause) != 0) {
 		povfiles_report_free(&rep);
 		outdir_fail(&od, cause);
@@ -792,6 +795,10 @@ static int write_all(const struct povexport_options *o, const struct scene *s, c
 		return -2;
 	}
 	report(o, s, &rep, util_now() - t0, r);
+	if (ao.n_vertices > 0)
+		msg(r, "fill occlusion: %d rays at each of %d mesh vertices in view, "
+		    "mean visibility %.3f (%.2f s)", ao.n_rays, ao.n_vertices, ao.mean_v,
+		    ao.seconds);
 	povfiles_report_free(&rep);
 	return 0;
 }

@@ -10,6 +10,7 @@
 #include <strings.h>
 
 #include "base/util.h"
+#include "export/pov/povao.h"
 #include "export/pov/sdl.h"
 #include "geom/mesh.h"
 #include "export/pov/vec3.h"
@@ -154,6 +155,16 @@ static void write_bump(FILE *fp, const struct scene *s, const struct scene_objec
 	fputs(" }", fp);
 }
 
+/* The fill's pigment of skin object o: SKIN_s_Fill, or with its occlusion
+ * map (povao.h) SKIN_s_Fill_OBJECT, declared in BASE.pov (caller frees). */
+static char *fill_pigment(const struct scene *s, const struct scene_object *o)
+{
+	const char *sn = s->skins[o->skin].name;
+	if (povao_wanted(s, o))
+		return xasprintf("SKIN_%s_Fill_%s", sn, o->name);
+	return xasprintf("SKIN_%s_Fill", sn);
+}
+
 /* The texture of a skin object; pigment/finish names depend on the pass,
  * rest > 0 averages it with `rest` parts of the clear texture (layers). */
 static void write_skin_texture(FILE *fp, const struct scene *s, const struct scene_object *o,
@@ -177,8 +188,12 @@ static void write_skin_texture(FILE *fp, const struct scene *s, const struct sce
 				write_bump(fp, s, o, e == 1 ? "Diffuse" : "");
 			fprintf(fp, "\n    finish { SKIN_%s_FinishAvg }]", sn);
 		}
-		if (ps->fill)
-			fprintf(fp, "\n    [1 pigment { SKIN_%s_Fill } finish { SKIN_%s_FillFinish }]", sn, sn);
+		if (ps->fill) {
+			char *fpig = fill_pigment(s, o);
+			fprintf(fp, "\n    [1 pigment { %s } finish { SKIN_%s_FillFinish }]", fpig,
+			    sn);
+			free(fpig);
+		}
 		fputs(" } }", fp);
 	} else if (rest > 0) {
 		fprintf(fp, "\n  texture { average texture_map { [1 pigment { %s }", pigment);
@@ -222,11 +237,12 @@ int povscene_averaged(const struct pov_skin *ps)
 /* The averaged texture of povscene_averaged's skins on a mesh: normals
  * around the per-triangle matrix (pre MATRIX mid MATRIX post, or pre
  * MATRIX post without the split), plain without normals. */
-static void mesh_averaged(const struct pov_skin *ps, const char *sn, const char *pig, char **pre, char **mid,
-    char **post, char **plain)
+static void mesh_averaged(const struct pov_skin *ps, const char *sn, const char *pig,
+    const char *fillpig, char **pre, char **mid, char **post, char **plain)
 {
-	char *fill = ps->fill ? xasprintf(" [1 pigment { SKIN_%s_Fill } finish { SKIN_%s_FillFinish }]", sn, sn)
-			      : xstrdup("");
+	char *fill = ps->fill
+	    ? xasprintf(" [1 pigment { %s } finish { SKIN_%s_FillFinish }]", fillpig, sn)
+	    : xstrdup("");
 	if (ps->diffuse_png) {
 		*pre = xasprintf("texture { average texture_map { [1 pigment { SKIN_%s_Diffuse } normal { "
 				 "SKIN_%s_NormalDiffuseMesh", sn, sn);
@@ -259,9 +275,11 @@ void povscene_mesh_texture(const struct scene *s, const struct pov_skin *skins, 
 	} else
 		skin_names(s, sn, st, 0, 0, &pig, &fin);
 	int rest = layer >= 0 ? s->n_lights - 1 - layer : 0;
-	if (layer < 0 && st == SCENE_LIGHTS_KEY && povscene_averaged(&skins[o->skin]))
-		mesh_averaged(&skins[o->skin], sn, pig, pre, mid, post, plain);
-	else if (rest > 0) {
+	if (layer < 0 && st == SCENE_LIGHTS_KEY && povscene_averaged(&skins[o->skin])) {
+		char *fp = fill_pigment(s, o);
+		mesh_averaged(&skins[o->skin], sn, pig, fp, pre, mid, post, plain);
+		free(fp);
+	} else if (rest > 0) {
 		*pre = xasprintf("texture { average texture_map { [1 pigment { %s } normal { SKIN_%s_NormalMesh", pig, sn);
 		*post = xasprintf(" } finish { %s }] [%d SKIN_Clear] } }", fin, rest);
 		*plain = xasprintf("texture { average texture_map { [1 pigment { %s } finish { %s }] [%d SKIN_Clear] } }", pig,
@@ -293,11 +311,9 @@ char *povscene_model_texture(const struct scene_object *o, const char *base)
 /* The model file's own material: its diffuse texture through the UVs (POV
  * 3.7 maps uv pigments right; only uv bumps are wrong) or colour, and its
  * specular as a Phong highlight. */
-static void write_model_texture(FILE *fp, const struct scene_object *o, const char *base, const double *fill)
+static void write_model_pigment(FILE *fp, const struct scene_object *o, const char *tex)
 {
 	const struct mesh *m = o->mesh;
-	char *tex = povscene_model_texture(o, base);
-	fputs("\n  texture { pigment { ", fp);
 	if (tex != NULL) {
 		const char *kw = "png";
 		for (size_t i = 0; i < sizeof image_types / sizeof image_types[0]; i++)
@@ -306,14 +322,42 @@ static void write_model_texture(FILE *fp, const struct scene_object *o, const ch
 		fprintf(fp, "uv_mapping image_map { %s \"%s\" interpolate 2 }", kw, tex);
 	} else
 		sdl_rgb(fp, m->diffuse_rgb);
-	fputs(" } finish { " POVSCENE_FINISH_LIT, fp);
-	if (fill != NULL && (fill[0] > 0 || fill[1] > 0 || fill[2] > 0)) {
+}
+
+/* With an occlusion map (ao, povao.h) the fill is a second averaged entry,
+ * the pigment times the map, and the lit entry's weights are doubled. */
+static void write_model_texture(FILE *fp, const struct scene_object *o, const char *base,
+    const double *fill, const char *ao)
+{
+	const struct mesh *m = o->mesh;
+	char *tex = povscene_model_texture(o, base);
+	int lit = fill != NULL && (fill[0] > 0 || fill[1] > 0 || fill[2] > 0), k = lit && ao ? 2 : 1;
+	if (k == 2)
+		fputs("\n  texture { average texture_map { [1 pigment { ", fp);
+	else
+		fputs("\n  texture { pigment { ", fp);
+	write_model_pigment(fp, o, tex);
+	if (k == 2)
+		fputs(" } finish { diffuse 2 brilliance 1 ambient 0 emission 0 specular 0", fp);
+	else
+		fputs(" } finish { " POVSCENE_FINISH_LIT, fp);
+	if (lit && k == 1) {
 		fputs(" emission ", fp);
 		sdl_rgb(fp, fill);
 	}
 	if (m->specular > 0)
-		fprintf(fp, " phong " SDL_G " phong_size " SDL_G, fmin(m->specular, 1), fmin(fmax(m->shininess, 1), 1000));
-	fputs(" } }", fp);
+		fprintf(fp, " phong " SDL_G " phong_size " SDL_G, k * fmin(m->specular, 1),
+		    fmin(fmax(m->shininess, 1), 1000));
+	if (k == 2) {
+		double e[3] = { 2 * fill[0], 2 * fill[1], 2 * fill[2] };
+		fprintf(fp, " }]\n    [1 pigment { uv_mapping image_pattern { png \"%s\" gamma 1.0 "
+		    "map_type 0 interpolate 2 } pigment_map { [0 rgb 0] [1 ", ao);
+		write_model_pigment(fp, o, tex);
+		fputs("] } } finish { diffuse 0 brilliance 1 ambient 0 specular 0 emission ", fp);
+		sdl_rgb(fp, e);
+		fputs(" }] } }", fp);
+	} else
+		fputs(" } }", fp);
 	free(tex);
 }
 
@@ -336,9 +380,11 @@ static void write_object(FILE *fp, const struct scene *s, const struct pov_skin 
 			sdl_rgb(fp, s->fill);
 		}
 		fputs(" } }", fp);
-	} else if (o->material == SCENE_MAT_MODEL)
-		write_model_texture(fp, o, base, st == SCENE_LIGHTS_KEY ? s->fill : NULL);
-	else if (o->material == SCENE_MAT_LAMBERT)
+	} else if (o->material == SCENE_MAT_MODEL) {
+		char *ao = st == SCENE_LIGHTS_KEY && povao_wanted(s, o) ? povao_name(base, o) : NULL;
+		write_model_texture(fp, o, base, st == SCENE_LIGHTS_KEY ? s->fill : NULL, ao);
+		free(ao);
+	} else if (o->material == SCENE_MAT_LAMBERT)
 		fprintf(fp, "\n  texture { SKIN_%s_Lambert }", sn);
 	else if (o->material == SCENE_MAT_PHONG)
 		fprintf(fp, "\n  texture { SKIN_%s_Phong }", sn);
@@ -431,6 +477,25 @@ static void write_layers(FILE *fp, const struct scene *s, const struct pov_skin 
 	}
 }
 
+/* The fill of skin meshes times their occlusion maps (povao.h). */
+static void write_fill_occlusion(FILE *fp, const struct scene *s, const struct pov_skin *skins,
+    const char *base)
+{
+	for (int i = 0; i < s->n_objects; i++) {
+		const struct scene_object *o = &s->objects[i];
+		if (o->material != SCENE_MAT_SKIN || !skins[o->skin].fill || !povao_wanted(s, o))
+			continue;
+		char *ao = povao_name(base, o);
+		const char *sn = s->skins[o->skin].name;
+		fprintf(fp, "// The fill seen past the meshes: %d rays per vertex (povao).\n",
+		    s->fill_occlusion);
+		fprintf(fp, "#declare SKIN_%s_Fill_%s = pigment { uv_mapping image_pattern { png "
+		    "\"%s\" gamma 1.0 map_type 0 interpolate 2 }\n  pigment_map { [0 rgb 0] "
+		    "[1 SKIN_%s_Fill] } }\n", sn, o->name, ao, sn);
+		free(ao);
+	}
+}
+
 void povscene_write(FILE *fp, const struct scene *s, const struct pov_skin *skins, const struct pov_options *o,
     enum scene_strategy st, int layered)
 {
@@ -468,6 +533,7 @@ void povscene_write(FILE *fp, const struct scene *s, const struct pov_skin *skin
 	else if (layered)
 		write_layers(fp, s, skins, o, st);
 	else {
+		write_fill_occlusion(fp, s, skins, o->base);
 		write_mesh_includes(fp, s, o);
 		for (int i = 0; i < s->n_lights; i++)
 			fprintf(fp, "light_source { SKIN_Light_%s }\n", s->lights[i].name);
