@@ -175,9 +175,9 @@ def check_thickness(th, where):
 
 
 def thickness_shader(nt, v, views, unit_scale, loc):
-    """The node weighted by the local thickness (docs/translucency.md, Back light): one walk per
-    channel (colour and radius in that channel only), each times its weight f_c(d) through a Mix
-    Shader with nothing, and a Diffuse BSDF of (1 - f) times the node's own far field, so that a
+    """The node weighted by the local thickness (docs/translucency.md, Back light): per channel
+    times its weight f_c(d) (the node times min_c f_c, and per channel a node of that channel
+    alone, colour and radius 0 elsewhere, times f_c - min f; Mix Shaders with nothing), and a Diffuse BSDF of (1 - f) times the node's own far field, so that a
     flat surface under uniform light still gets the node's far field in full.  d is the local
     thickness from the Ambient Occlusion node with Inside (within D a slab d thick leaves
     (d / D)^2 of the cosine-weighted inward rays unoccluded); f_c is linear
@@ -244,20 +244,28 @@ def thickness_shader(nt, v, views, unit_scale, loc):
     sep = _node_any(nt, "ShaderNodeSeparateColor", "ShaderNodeSeparateRGB")
     sep.location = (x0 - 450, y0)
     nt.links.new(cur.outputs["Color"], sep.inputs[0])
+    # The node in full times the smallest weight, and per channel a node of that channel alone
+    # times the rest of its weight: where every weight is 1 (thick parts, the flat box) the
+    # material is the unweighted node, sampled as before (one node per channel alone left the
+    # blue node a seventh of the picks: the flat box's blue went from +0.8 % to +1.5 %).
+    low = math("MINIMUM", math("MINIMUM", sep.outputs[0], sep.outputs[1], (x0 - 300, y0 - 100)),
+               sep.outputs[2], (x0 - 200, y0 - 100))
     out = None
-    for c in range(3):
+    for c in range(4):
         ss = nt.nodes.new("ShaderNodeSubsurfaceScattering")
-        ss.label = "skinbake: subsurface, %s channel" % "RGB"[c]
+        ss.label = "skinbake: subsurface" + (", %s channel" % "RGB"[c] if c < 3 else "")
         ss.location = (x0 - 300, y0 - 250 * (c + 1))
         ss.falloff = v["falloff"]
-        ss.inputs["Color"].default_value = tuple(v["colour"][k] if k == c else 0.0 for k in range(3)) + (1.0,)
+        ss.inputs["Color"].default_value = tuple(v["colour"][k] if c in (k, 3) else 0.0 for k in range(3)) + (1.0,)
         ss.inputs["Scale"].default_value = float(v.get("scale", 1.0))
-        ss.inputs["Radius"].default_value = [v["radius_m"][k] / unit_scale if k == c else 0.0 for k in range(3)]
+        ss.inputs["Radius"].default_value = [v["radius_m"][k] / unit_scale if c in (k, 3) else 0.0
+                                             for k in range(3)]
         if "IOR" in ss.inputs:
             ss.inputs["IOR"].default_value = float(v.get("ior", 1.4))
         mix = nt.nodes.new("ShaderNodeMixShader")
         mix.location = (x0 - 100, y0 - 250 * (c + 1))
-        nt.links.new(sep.outputs[c], mix.inputs["Fac"])
+        fac = low if c == 3 else math("SUBTRACT", sep.outputs[c], low, (x0 - 200, y0 - 250 * (c + 1)), clamp=True)
+        nt.links.new(fac, mix.inputs["Fac"])
         nt.links.new(ss.outputs[0], mix.inputs[2])
         if out is None:
             out = mix.outputs[0]
