@@ -83,14 +83,15 @@ def c_file(paths, out):
     for r in runs:
         ser = "_".join(r["version"].split(".")[:2])
         nc, nx = len(r["colours"]), len(r["thickness_mm"])
-        s.append("\nstatic const double trans_%s_colour[%d] = { %s };\n" % (ser, nc, ", ".join("%g" % c for c in r["colours"])))
+        s.append("\nstatic const double trans_%s_colour[%d] = {\n\t%s };\n" % (ser, nc, ", ".join("%g" % c for c in r["colours"])))
         s.append("static const double trans_%s_x[%d] = { %s };\n" % (ser, nx, ", ".join("%g" % x for x in r["thickness_mm"])))
-        rows = ",\n".join("\t" + ", ".join("%.6e" % max(v, 0.0) for v in row) for row in r["t"])
+        vals = ["%.6e" % max(v, 0.0) for row in r["t"] for v in row]
+        rows = ",\n".join("\t" + ", ".join(vals[i:i + 6]) for i in range(0, len(vals), 6))
         s.append("static const double trans_%s_t[%d] = {\n%s };\n" % (ser, nc * nx, rows))
-        s.append("static const struct sss_trans_table trans_%s = { \"%s\", \"%s\", %d, %d, trans_%s_colour, "
-                 "trans_%s_x, trans_%s_t };\n" % (ser, r["version"], r["falloff"], nc, nx, ser, ser, ser))
+        s.append("static const struct sss_trans_table trans_%s = { \"%s\", \"%s\", %d, %d,\n"
+                 "\ttrans_%s_colour, trans_%s_x, trans_%s_t };\n" % (ser, r["version"], r["falloff"], nc, nx, ser, ser, ser))
         names.append("&trans_%s" % ser)
-    s.append("\nconst struct sss_trans_table *const blender_sss_trans_tables[] = { %s, NULL };\n" % ", ".join(names))
+    s.append("\nconst struct sss_trans_table *const blender_sss_trans_tables[] = {\n\t%s, NULL };\n" % ", ".join(names))
     with open(out, "w") as f:
         f.write("".join(s))
 

@@ -151,7 +151,8 @@ static char *version_json(const struct blender_sss *w, int v, const char *maps)
 {
 	const struct sss_fit *f = &w->fit[v];
 	char ser[32], fo[48], col[96], rad[96], ifit[96], mf[96], rl[96], loc[96];
-	char *far = by_view(w, v, 0), *extra = by_view(w, v, 1), *th = blender_thick_json(&w->thick[v]);
+	char *far = by_view(w, v, 0), *extra = by_view(w, v, 1);
+	char *th = blender_thick_json(&w->thick[v]);
 	blender_sss_series(f->table, ser, sizeof ser);
 	falloff(f->table, fo, sizeof fo);
 	jvec(col, sizeof col, f->colour, 1.0);

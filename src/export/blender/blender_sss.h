@@ -31,8 +31,8 @@ struct blender_sss {
 	brdf_rgb_fn f_rgb;		/* the source's own BRDF */
 	void *ctx;
 	double clipped;			/* largest share of the table the remainder clipped at 0 [-] */
-	struct blender_thick thick[BLENDER_SSS_MAX];	/* per version: the thickness weight
-							 * (blender_sss_wrap only; has 0 otherwise) */
+	/* Per version: the thickness weight (blender_sss_wrap only; has 0 otherwise). */
+	struct blender_thick thick[BLENDER_SSS_MAX];
 };
 
 /* The Blender "major.minor" a table was measured on, into BUF. */

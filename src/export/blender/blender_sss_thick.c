@@ -90,7 +90,8 @@ int blender_thick_stack(const struct bake *b, double tt[BLENDER_THICK_N][3], cha
 	o.n_to = o.n_phi = 1;
 	o.max_orders = 1;
 	o.threads = 1;
-	o.error_estimate = 0;	/* the totals only (1e-3 of Tt is far below the 20 % the test asks) */
+	/* The totals only (1e-3 of Tt is far below the 20 % the test asks). */
+	o.error_estimate = 0;
 	double ti = 0.0;
 	int rc = 0;
 	memset(tt, 0, sizeof(double) * BLENDER_THICK_N * 3);
@@ -98,7 +99,8 @@ int blender_thick_stack(const struct bake *b, double tt[BLENDER_THICK_N][3], cha
 		for (int w = 0; w < p.n_wl && rc == 0; w++) {
 			struct slab s;
 			struct ad_result r;
-			if (cut_stack(&p.slab[w], blender_thick_d_mm[k] / 10, &s, cause) != 0 ||
+			double d_cm = blender_thick_d_mm[k] / 10;
+			if (cut_stack(&p.slab[w], d_cm, &s, cause) != 0 ||
 			    ad_solve(&s, p.fresnel, &ti, 1, &o, &r, cause) != 0) {
 				rc = -1;
 				break;
@@ -128,7 +130,8 @@ void blender_thick_weights(const struct sss_fit *f, const double tt[BLENDER_THIC
 			/* Where the walk lets nothing through there is nothing to correct: the
 			 * previous node's weight (a jump to 1 there would leak into thinner
 			 * slabs through the AO's noise), 1 at the AO distance. */
-			double x = wk > 1e-4 ? fmin(fmax(tt[k][c], 0.0) / wk, 1.0) : k ? out->weight[k - 1][c] : 1.0;
+			double x = wk > 1e-4 ? fmin(fmax(tt[k][c], 0.0) / wk, 1.0)
+			    : k ? out->weight[k - 1][c] : 1.0;
 			out->weight[k][c] = k == BLENDER_THICK_N - 1 ? 1.0 : x;
 		}
 }
@@ -137,7 +140,8 @@ static char *rows(const double v[BLENDER_THICK_N][3])
 {
 	char *s = xstrdup("[");
 	for (int k = 0; k < BLENDER_THICK_N; k++) {
-		char *t = xasprintf("%s%s[%.6g, %.6g, %.6g]", s, k ? ", " : "", v[k][0], v[k][1], v[k][2]);
+		char *t = xasprintf("%s%s[%.6g, %.6g, %.6g]", s, k ? ", " : "", v[k][0], v[k][1],
+		    v[k][2]);
 		free(s);
 		s = t;
 	}
@@ -157,7 +161,8 @@ char *blender_thick_json(const struct blender_thick *t)
 		d = x;
 	}
 	char *tt = rows(t->tt), *wk = rows(t->walk), *w = rows(t->weight);
-	char *j = xasprintf(", \"thickness\": {\"ao_distance_m\": %g, \"ao_near_m\": %g, \"d_m\": %s], "
+	char *j = xasprintf(", \"thickness\": {\"ao_distance_m\": %g, \"ao_near_m\": %g, "
+	    "\"d_m\": %s], "
 	    "\"tt_stack\": %s, \"t_walk\": %s, \"weight\": %s, \"how\": \"the node per channel "
 	    "times weight (linear in d between d_m; d = ao_distance_m sqrt(AO), Cycles' Ambient "
 	    "Occlusion with Inside), and a Diffuse BSDF of (1 - weight) times its far field: "

@@ -34,18 +34,20 @@ extern const struct sss_trans_table *const blender_sss_trans_tables[];
 
 #define BLENDER_THICK_N 10
 #define BLENDER_THICK_AO_MM 8.0		/* the AO distance: thicker counts as BLENDER_THICK_AO_MM */
-#define BLENDER_THICK_NEAR_MM 2.0	/* a second AO within this resolves thin parts: one AO within
-					 * 8 mm over a 1 mm slab is unoccluded for (1/8)^2 of its rays,
-					 * so 16 rays see 0 or 1 of them and the weight, not linear in
-					 * that count, came out biased (blue 0.6 of its target) */
-extern const double blender_thick_d_mm[BLENDER_THICK_N];	/* ascending, the last the AO distance */
+/* A second AO within this resolves thin parts: one AO within 8 mm over a
+ * 1 mm slab is unoccluded for (1/8)^2 of its rays, so 16 rays see 0 or 1 of
+ * them and the weight, not linear in that count, came out biased. */
+#define BLENDER_THICK_NEAR_MM 2.0
+/* The thickness nodes [mm], ascending, the last the AO distance. */
+extern const double blender_thick_d_mm[BLENDER_THICK_N];
 
 struct blender_thick {
 	int has;			/* 1 when the version has a transmission table */
 	double tt[BLENDER_THICK_N][3];	/* the stack's Tt per thickness and R, G, B [-] */
 	double walk[BLENDER_THICK_N][3];	/* the fitted walk's [-] */
-	double weight[BLENDER_THICK_N][3];	/* f = min(1, tt / walk) (1 at the last node; the
-						 * previous node's where the walk passes < 1e-4) [-] */
+	/* f = min(1, tt / walk) (1 at the last node; the previous node's where
+	 * the walk passes < 1e-4) [-] */
+	double weight[BLENDER_THICK_N][3];
 };
 
 /* The table of the Blender series of fit table T ("3.4"), or NULL. */
