@@ -19,7 +19,9 @@ incident power.  Pixels are linear (POV-Ray File_Gamma 1, Cycles EXR with the St
 a POV-Ray pixel is pi x radiance, a Cycles pixel radiance, so both are scaled to pi x radiance.
 
 --back lights the slab's bottom face instead (edges 0 only): G(0) is the transmittance of a slab
-of thickness --depth, over all exit directions.
+of thickness --depth, over all exit directions.  --entry FILE (Cycles) renders the importer's own
+nodes of a translucent set's versions[] entry with a "thickness" weight (translucent.py's
+thickness_shader: the node weighted per channel by the local thickness) instead of one node.
 
 pov:    finish { subsurface { translucency T } } with pigment COLOUR (the Rd POV-Ray aims at),
         global_settings { mm_per_unit 1 subsurface { samples N, 1 } }, interior { ior IOR }.
