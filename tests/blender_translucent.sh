@@ -17,7 +17,7 @@
 #    (major.minor), is refused by the importer; a bake without a radial profile by the export.
 # Runs on the Blender $BLENDER names (Debian's 3.4, or a bpy venv through tests/bpy-blender:
 # tests/blender_matrix.sh runs it on 4.5 and 5.0), with that version's fit from the set.
-# Paper bake (adding-doubling, Monte Carlo Rd(r)); about 1 minute per version.
+# Paper bake (adding-doubling, Monte Carlo Rd(r)); about 7 minutes per version at load 12-16.
 . "$top_srcdir/tests/tap.sh"
 . "$top_srcdir/tests/lib/translucent_fit.sh"
 imp="$top_srcdir/exporters/blender/import_skin.py"
