@@ -19,7 +19,9 @@ incident power.  Pixels are linear (POV-Ray File_Gamma 1, Cycles EXR with the St
 a POV-Ray pixel is pi x radiance, a Cycles pixel radiance, so both are scaled to pi x radiance.
 
 --back lights the slab's bottom face instead (edges 0 only): G(0) is the transmittance of a slab
-of thickness --depth, over all exit directions.
+of thickness --depth, over all exit directions.  --entry FILE (Cycles) renders the importer's own
+nodes of a translucent set's versions[] entry with a "thickness" weight (translucent.py's
+thickness_shader: the node weighted per channel by the local thickness) instead of one node.
 
 pov:    finish { subsurface { translucency T } } with pigment COLOUR (the Rd POV-Ray aims at),
         global_settings { mm_per_unit 1 subsurface { samples N, 1 } }, interior { ior IOR }.
@@ -39,6 +41,7 @@ import subprocess
 import sys
 import tempfile
 
+HERE_ROOT = os.path.dirname(os.path.dirname(os.path.abspath(__file__)))
 FAR_ANGLES = [0.0, 20.0, 40.0, 60.0, 75.0, 85.0]       # theta_i and theta_o nodes of --far [deg]
 DEFAULT_EDGES = [0.0, 0.02, 0.035, 0.05, 0.075, 0.1, 0.15, 0.2, 0.3, 0.45, 0.65, 1.0, 1.5, 2.2,
                  3.2, 4.6, 6.5, 9.0, 13.0, 20.0]
@@ -232,6 +235,15 @@ def _cycles_material(a):
     nt = mat.node_tree
     nt.nodes.clear()
     out = nt.nodes.new("ShaderNodeOutputMaterial")
+    if a.entry:                                 # the importer's thickness-weighted nodes
+        sys.path.insert(0, os.path.join(HERE_ROOT, "exporters", "blender"))
+        from skinbake_import.translucent import check_thickness, thickness_shader
+        with open(a.entry) as f:
+            v = json.load(f)
+        check_thickness(v["thickness"], a.entry)
+        sock = thickness_shader(nt, v, FAR_ANGLES, 1e-3, (0, 0))
+        nt.links.new(sock, out.inputs["Surface"])
+        return mat
     if a.method == "diffuse":
         node = nt.nodes.new("ShaderNodeBsdfDiffuse")
     else:
@@ -394,6 +406,9 @@ def parse(argv):
                    "material (a Mix Shader with nothing; sss_fit.h: scale)")
     p.add_argument("--method", default="random_walk", help="Cycles falloff (random_walk, random_walk_fixed, "
                    "random_walk_skin, burley)")
+    p.add_argument("--entry", help="Cycles: render the translucent set's node weighted by the "
+                   "thickness (a versions[] entry of the manifest with \"thickness\", as JSON; "
+                   "--colour and --radius are then only recorded)")
     p.add_argument("--ior", type=float, default=1.4)
     p.add_argument("--samples", type=int, default=None, help="POV-Ray diffuse samples / Cycles samples per pixel")
     p.add_argument("--size", type=int, default=32, help="fisheye image size [px]")

@@ -146,6 +146,158 @@ def _family_maps(mat, m, v, where, ss, unit_scale):
     return _family_extra(tr, m, extra, views, x0 - 2800, y0 - 900)
 
 
+def _node_any(nt, *names):
+    """A new node of the first type in NAMES this Blender has (3.x and 4.x names)."""
+    for n in names:
+        try:
+            return nt.nodes.new(n)
+        except RuntimeError:
+            continue
+    raise ImageSetError("this Blender has none of the nodes " + ", ".join(names))
+
+
+def check_thickness(th, where):
+    """The version entry's "thickness" section (export/blender/blender_sss_thick.h): the AO
+    distance, thickness nodes ascending in (0, ao_distance_m], one weight per node and channel in
+    [0, 1], the last 1."""
+    d, w, dist, near = th.get("d_m"), th.get("weight"), th.get("ao_distance_m"), th.get("ao_near_m")
+    if not isinstance(dist, (int, float)) or not 0 < dist < 1 or not isinstance(near, (int, float)) \
+            or not 0 < near < dist or not isinstance(d, list) or len(d) < 2 \
+            or not all(isinstance(x, (int, float)) and 0 < x <= dist for x in d) \
+            or any(b <= a for a, b in zip(d, d[1:])):
+        raise ImageSetError(f"{where}.thickness: ao_distance_m = {dist!r}, ao_near_m = {near!r} and "
+                            f"d_m = {d!r} must be distances in metres (near the shorter) and "
+                            "thicknesses ascending up to ao_distance_m")
+    if not isinstance(w, list) or len(w) != len(d) or not all(
+            isinstance(e, list) and len(e) == 3 and all(isinstance(y, (int, float)) and 0 <= y <= 1
+                                                        for y in e) for e in w):
+        raise ImageSetError(f"{where}.thickness.weight = {w!r} must be one [R, G, B] in [0, 1] per d_m")
+
+
+def thickness_shader(nt, v, views, unit_scale, loc):
+    """The node weighted by the local thickness (docs/translucency.md, Back light): per channel
+    times its weight f_c(d) (the node times min_c f_c, and per channel a node of that channel
+    alone, colour and radius 0 elsewhere, times f_c - min f; Mix Shaders with nothing), and a Diffuse BSDF of (1 - f) times the node's own far field, so that a
+    flat surface under uniform light still gets the node's far field in full.  d is the local
+    thickness from the Ambient Occlusion node with Inside (within D a slab d thick leaves
+    (d / D)^2 of the cosine-weighted inward rays unoccluded); f_c is linear
+    in d between thickness.d_m (an RGB Curves node).  The thickness comes from two AO nodes: one
+    within ao_near_m for thin parts (with one within 8 mm alone a 1 mm slab leaves 1/64 of the
+    rays unoccluded, 0 or 1 of 16, and the weight, not linear in that count, came out biased),
+    and beyond it one within ao_distance_m; the curve's coordinate is linear in each AO.
+    Returns the output socket."""
+    th = v["thickness"]
+    dist, near = th["ao_distance_m"], th["ao_near_m"]
+    q = (near / dist) ** 2
+    x0, y0 = loc
+
+    def coord(d):
+        """The curve's coordinate of thickness d: 0.5 (d / near)^2 up to near, then from 0.5
+        to 1 linear in (d / dist)^2."""
+        return 0.5 * (d / near) ** 2 if d <= near else 0.5 + 0.5 * ((d / dist) ** 2 - q) / (1 - q)
+
+    def math(op, a, b, at, clamp=False):
+        n = nt.nodes.new("ShaderNodeMath")
+        n.operation, n.location, n.use_clamp = op, at, clamp
+        for k, x in enumerate((a, b)):
+            if isinstance(x, (int, float)):
+                n.inputs[k].default_value = x
+            else:
+                nt.links.new(x, n.inputs[k])
+        return n.outputs[0]
+
+    aos = []
+    for k, dd in enumerate((near, dist)):
+        ao = nt.nodes.new("ShaderNodeAmbientOcclusion")
+        ao.location = (x0 - 1500, y0 - 200 * k)
+        ao.inside, ao.only_local, ao.samples = True, True, 16
+        ao.inputs["Distance"].default_value = dd / unit_scale
+        aos.append(ao.outputs["AO"])
+    # Beyond near (the near AO sees nothing: 1), the far AO's share, 0..1.
+    far = math("MULTIPLY", math("SUBTRACT", aos[1], q, (x0 - 1300, y0 - 200)), 1 / (1 - q),
+               (x0 - 1150, y0 - 200), clamp=True)
+    beyond = math("GREATER_THAN", aos[0], 0.9999, (x0 - 1300, y0))
+    xsock = math("MULTIPLY", math("ADD", aos[0], math("MULTIPLY", far, beyond, (x0 - 1000, y0 - 100)),
+                                  (x0 - 900, y0)), 0.5, (x0 - 800, y0))
+    cmb = _node_any(nt, "ShaderNodeCombineColor", "ShaderNodeCombineRGB")
+    cmb.location = (x0 - 850, y0)
+    for i in range(3):
+        nt.links.new(xsock, cmb.inputs[i])
+    cur = nt.nodes.new("ShaderNodeRGBCurve")
+    cur.label = "skinbake: subsurface weight per channel over the thickness coordinate"
+    cur.location = (x0 - 650, y0)
+    mp = cur.mapping
+    mp.use_clip = True
+    for c in range(4):
+        pts = [(0.0, th["weight"][0][c] if c < 3 else 0.0)] + \
+            [(coord(d), w[c] if c < 3 else 0.0) for d, w in zip(th["d_m"], th["weight"])]
+        if c == 3:
+            pts = [(0.0, 0.0), (1.0, 1.0)]
+        cv = mp.curves[c]
+        while len(cv.points) < len(pts):
+            cv.points.new(0.5, 0.5)
+        for p, (x, y) in zip(cv.points, pts):
+            p.location = (x, y)
+            p.handle_type = "VECTOR"
+    mp.update()
+    nt.links.new(cmb.outputs[0], cur.inputs["Color"])
+    sep = _node_any(nt, "ShaderNodeSeparateColor", "ShaderNodeSeparateRGB")
+    sep.location = (x0 - 450, y0)
+    nt.links.new(cur.outputs["Color"], sep.inputs[0])
+    # The node in full times the smallest weight, and per channel a node of that channel alone
+    # times the rest of its weight: where every weight is 1 (thick parts, the flat box) the
+    # material is the unweighted node, sampled as before (one node per channel alone left the
+    # blue node a seventh of the picks: the flat box's blue went from +0.8 % to +1.5 %).
+    low = math("MINIMUM", math("MINIMUM", sep.outputs[0], sep.outputs[1], (x0 - 300, y0 - 100)),
+               sep.outputs[2], (x0 - 200, y0 - 100))
+    out = None
+    for c in range(4):
+        ss = nt.nodes.new("ShaderNodeSubsurfaceScattering")
+        ss.label = "skinbake: subsurface" + (", %s channel" % "RGB"[c] if c < 3 else "")
+        ss.location = (x0 - 300, y0 - 250 * (c + 1))
+        ss.falloff = v["falloff"]
+        ss.inputs["Color"].default_value = tuple(v["colour"][k] if c in (k, 3) else 0.0 for k in range(3)) + (1.0,)
+        ss.inputs["Scale"].default_value = float(v.get("scale", 1.0))
+        ss.inputs["Radius"].default_value = [v["radius_m"][k] / unit_scale if c in (k, 3) else 0.0
+                                             for k in range(3)]
+        if "IOR" in ss.inputs:
+            ss.inputs["IOR"].default_value = float(v.get("ior", 1.4))
+        mix = nt.nodes.new("ShaderNodeMixShader")
+        mix.location = (x0 - 100, y0 - 250 * (c + 1))
+        fac = low if c == 3 else math("SUBTRACT", sep.outputs[c], low, (x0 - 200, y0 - 250 * (c + 1)), clamp=True)
+        nt.links.new(fac, mix.inputs["Fac"])
+        nt.links.new(ss.outputs[0], mix.inputs[2])
+        if out is None:
+            out = mix.outputs[0]
+        else:
+            add = nt.nodes.new("ShaderNodeAddShader")
+            add.location = (x0 + 50, y0 - 250 * (c + 1))
+            nt.links.new(out, add.inputs[0])
+            nt.links.new(mix.outputs[0], add.inputs[1])
+            out = add.outputs[0]
+    inv = nt.nodes.new("ShaderNodeVectorMath")
+    inv.operation, inv.location = "SUBTRACT", (x0 - 300, y0 + 200)
+    inv.inputs[0].default_value = (1.0, 1.0, 1.0)
+    nt.links.new(cur.outputs["Color"], inv.inputs[1])
+    mul = nt.nodes.new("ShaderNodeVectorMath")
+    mul.operation, mul.location = "MULTIPLY", (x0 - 150, y0 + 200)
+    nt.links.new(inv.outputs[0], mul.inputs[0])
+    far = v["far_pi_f"]
+    if all(e == far[0] for e in far):
+        mul.inputs[1].default_value = tuple(far[0])
+    else:
+        view_colour(nt, mul.inputs[1], views, far)
+    dif = nt.nodes.new("ShaderNodeBsdfDiffuse")
+    dif.label = "skinbake: (1 - weight) x the node's far field"
+    dif.location = (x0, y0 + 200)
+    nt.links.new(mul.outputs[0], dif.inputs["Color"])
+    add = nt.nodes.new("ShaderNodeAddShader")
+    add.location = (x0 + 200, y0)
+    nt.links.new(out, add.inputs[0])
+    nt.links.new(dif.outputs[0], add.inputs[1])
+    return add.outputs[0]
+
+
 def add_subsurface(mat, m, unit_scale=1.0):
     """Add the fitted node beside the shader that reaches MAT's output, when the manifest M has a
     "translucent" section; returns MAT.  UNIT_SCALE: metres per scene unit."""
@@ -193,7 +345,14 @@ def add_subsurface(mat, m, unit_scale=1.0):
     add.location = (out.location[0] - 100, out.location[1])
     out.location = (out.location[0] + 150, out.location[1])
     nt.links.new(src, add.inputs[0])
-    node = ss
+    sock = ss.outputs["BSSRDF"]
+    thick = v.get("thickness") if "family" not in m else None
+    if thick is not None:                   # the node weighted by the local thickness
+        if not isinstance(thick, dict):
+            raise ImageSetError(f"{where}.thickness = {thick!r} must be an object")
+        check_thickness(thick, where)
+        sock = thickness_shader(nt, v, views, unit_scale, (ss.location[0], ss.location[1] - 300))
+        nt.nodes.remove(ss)
     fam_extra = _family_maps(mat, m, v, where, ss, unit_scale) if "family" in m else None
     if fam_extra is not None or max(max(e) for e in extra) > 0:   # this version's far field below
         dif = nt.nodes.new("ShaderNodeBsdfDiffuse")                # the one the table lost
@@ -205,10 +364,10 @@ def add_subsurface(mat, m, unit_scale=1.0):
             view_colour(nt, dif.inputs["Color"], views, extra)
         add2 = nt.nodes.new("ShaderNodeAddShader")
         add2.location = (out.location[0] - 250, out.location[1] - 350)
-        nt.links.new(ss.outputs["BSSRDF"], add2.inputs[0])
+        nt.links.new(sock, add2.inputs[0])
         nt.links.new(dif.outputs["BSDF"], add2.inputs[1])
-        node = add2
-    nt.links.new(node.outputs[0], add.inputs[1])
+        sock = add2.outputs[0]
+    nt.links.new(sock, add.inputs[1])
     nt.links.new(add.outputs["Shader"], out.inputs["Surface"])
     mat["skinbake_translucent"] = 1
     if "family" in m:
@@ -219,6 +378,8 @@ def add_subsurface(mat, m, unit_scale=1.0):
     say(f"translucent: Cycles {v.get('version')} subsurface ({v['falloff']}) colour " +
         " ".join(f"{x:.4g}" for x in v["colour"]) + ", radius " +
         " ".join(f"{x * 1e3:.4g}" for x in v["radius_m"]) + " mm beside the rest of the table" +
+        (", weighted by the thickness (AO within %.4g mm)" % (thick["ao_distance_m"] * 1e3)
+         if thick is not None else "") +
         (", diffuse up to " + " ".join(f"{max(e[c] for e in extra):.4g}" for c in range(3))
          if max(max(e) for e in extra) > 0 else ""))
     return mat

@@ -90,6 +90,11 @@ int blender_sss_wrap(struct brdf_source *src, struct blender_sss *w, char **caus
 	}
 	if (blender_sss_fit(src->bake, w, cause) != 0)
 		return -1;
+	double tt[BLENDER_THICK_N][3];
+	if (blender_thick_stack(src->bake, tt, cause) != 0)
+		return -1;
+	for (int v = 0; v < w->n; v++)
+		blender_thick_weights(&w->fit[v], tt, &w->thick[v]);
 	blender_sss_wrap_fitted(src, w);
 	return 0;
 }
@@ -147,6 +152,7 @@ static char *version_json(const struct blender_sss *w, int v, const char *maps)
 	const struct sss_fit *f = &w->fit[v];
 	char ser[32], fo[48], col[96], rad[96], ifit[96], mf[96], rl[96], loc[96];
 	char *far = by_view(w, v, 0), *extra = by_view(w, v, 1);
+	char *th = blender_thick_json(&w->thick[v]);
 	blender_sss_series(f->table, ser, sizeof ser);
 	falloff(f->table, fo, sizeof fo);
 	jvec(col, sizeof col, f->colour, 1.0);
@@ -158,9 +164,10 @@ static char *version_json(const struct blender_sss *w, int v, const char *maps)
 	char *j = xasprintf("{\"blender\": \"%s\", \"version\": \"%s\", \"closure\": \"%s\", "
 	    "\"falloff\": \"%s\", \"ior\": %g, \"colour\": %s, \"radius_m\": %s, \"scale\": 1.0, "
 	    "\"power_fit\": %s, \"power_local\": %s, \"mean_radius_fit_m\": %s, "
-	    "\"rms_ln_r_predicted\": %s, \"far_pi_f\": %s, \"lambert_extra\": %s%s%s}", ser,
+	    "\"rms_ln_r_predicted\": %s, \"far_pi_f\": %s, \"lambert_extra\": %s%s%s%s}", ser,
 	    f->table->version, f->table->closure, fo, f->table->ior, col, rad, ifit, loc, mf, rl,
-	    far, extra, maps ? ", \"maps\": " : "", maps ? maps : "");
+	    far, extra, th, maps ? ", \"maps\": " : "", maps ? maps : "");
+	free(th);
 	free(far);
 	free(extra);
 	return j;

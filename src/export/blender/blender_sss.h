@@ -17,6 +17,7 @@
 #define SKINBAKE_BLENDER_SSS_H
 #include "export/source.h"
 #include "export/sss_fit.h"
+#include "export/blender/blender_sss_thick.h"
 
 #define BLENDER_SSS_MAX 8
 
@@ -30,6 +31,8 @@ struct blender_sss {
 	brdf_rgb_fn f_rgb;		/* the source's own BRDF */
 	void *ctx;
 	double clipped;			/* largest share of the table the remainder clipped at 0 [-] */
+	/* Per version: the thickness weight (blender_sss_wrap only; has 0 otherwise). */
+	struct blender_thick thick[BLENDER_SSS_MAX];
 };
 
 /* The Blender "major.minor" a table was measured on, into BUF. */
