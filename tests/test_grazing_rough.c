@@ -37,6 +37,7 @@
 #include "bake/bakefile.h"
 #include "base/util.h"
 #include "engine/ad.h"
+#include "engine/solvers.h"
 #include "skin/preset.h"
 
 #define NI 8		/* incidence angles */
@@ -79,7 +80,7 @@ static int setup(void **state)
 	s.n_r = 10;
 	s.dr = 0.01;
 	transport_opts_default(&s.opts);
-	s.method = BAKE_SOLVER_AD;
+	s.method = solvers_index("ad");
 	s.ad_tol = 0.01;
 	s.ad_quad = 128;
 	s.ad_quad_max = 256;

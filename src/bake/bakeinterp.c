@@ -254,8 +254,8 @@ static void incidence_weights(const struct bake *b, const struct bake_series *s,
  * table's grazing-exit column, linear in theta_i at to (held past the last
  * node).  0 under a smooth top; under a rough top the BRDF's finite limit
  * (grazing_row).  Its first-half series into *half. */
-static double grazing_end(const struct bake *b, const struct bake_series *s, const double *c, double to,
-    const double *bp, double *half)
+static double grazing_end(const struct bake *b, const struct bake_series *s, const double *c,
+    double to, const double *bp, double *half)
 {
 	double *bj = xcalloc((size_t)s->NI + (size_t)s->N, sizeof(double)), *b90 = bj + s->NI;
 	int a0, a1;
@@ -514,7 +514,8 @@ static double bins_interp_err(const struct bake *b, const float *plane, double t
 		if (to > tl && b->n_to > 1) {
 			const double *c = b->theta_o;
 			int n = b->n_to;
-			double d = bins_eval(b, plane, tl, c[n - 1], ph) - bins_eval(b, plane, tl, c[n - 2], ph);
+			double d = bins_eval(b, plane, tl, c[n - 1], ph)
+			    - bins_eval(b, plane, tl, c[n - 2], ph);
 			e += BINS_ERR_SAFETY * ta * fabs(d) / (c[n - 1] - c[n - 2]) * (to - tl);
 		}
 	} else {
