@@ -4,15 +4,11 @@
 # block; and a lit world is refused with exit status 2.  About 40 s, most of it EEVEE compiling
 # the node tree.
 . "$top_srcdir/tests/tap.sh"
+. "$top_srcdir/tests/lib/blender.sh"
 
 imp="$top_srcdir/exporters/blender/import_skin.py"
 scn="$top_srcdir/tests/blender_scene.py"
-if [ -z "$BLENDER" ]; then
-	fail "blender is missing (BLENDER is empty; the project's set-up installs it)"
-	tap_done
-	exit 1
-fi
-B() { timeout 600 "$BLENDER" -b --factory-startup -noaudio --python-exit-code 1 "$@"; }
+blender_require
 bake="$tmpd/bake"
 if ! "$SKINBAKE" bake --preset paper --out "$bake" --theta-nodes 6 --resolution 9x9 --batch-photons 1000 \
 	--max-photons 3e5 --target-error 0 --threads 1 --quiet >"$tmpd/bake.log" 2>&1; then

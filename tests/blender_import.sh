@@ -4,15 +4,12 @@
 # face detail maps), the general mode's albedo under uniform white light, a saved .blend rendered
 # again, and broken image sets.  About 1 minute.
 . "$top_srcdir/tests/tap.sh"
+. "$top_srcdir/tests/lib/blender.sh"
 
 imp="$top_srcdir/exporters/blender/import_skin.py"
 meas="$top_srcdir/tests/blender_measure.py"
 fixture="$top_builddir/tests/blender_fixture"
-if [ -z "$BLENDER" ]; then
-	fail "blender is missing (BLENDER is empty; the project's set-up installs it)"
-	tap_done
-	exit 1
-fi
+blender_require
 if ! command -v python3 >/dev/null 2>&1; then
 	fail "python3 is missing (it comes with Blender)"
 	tap_done

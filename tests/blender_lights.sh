@@ -5,16 +5,13 @@
 # render on a sphere, and on Blender 4+ the measured response it is built on; bad input (missing
 # object, mesh without UVs) exits 2.  About 1 minute.
 . "$top_srcdir/tests/tap.sh"
+. "$top_srcdir/tests/lib/blender.sh"
 . "$top_srcdir/tests/lib/refused.sh"
 
 imp="$top_srcdir/exporters/blender/import_skin.py"
 scn="$top_srcdir/tests/blender_scene.py"
 brdf="$top_builddir/tests/blender_brdf"
-if [ -z "$BLENDER" ]; then
-	fail "blender is missing (BLENDER is empty; the project's set-up installs it)"
-	tap_done
-	exit 1
-fi
+blender_require
 B() { timeout 300 "$BLENDER" -b -noaudio --python-exit-code 1 "$@"; }
 BF() { B --factory-startup "$@"; }
 val() { sed -n "s/^$1 //p" "$2" | tail -1; }

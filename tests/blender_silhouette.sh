@@ -15,14 +15,11 @@
 #     3.4 0.999 / 1.023 / 1.045.
 # About 1 minute.
 . "$top_srcdir/tests/tap.sh"
+. "$top_srcdir/tests/lib/blender.sh"
 imp="$top_srcdir/exporters/blender/import_skin.py"
 scn="$top_srcdir/tests/blender_scene.py"
 brdf="$top_builddir/tests/blender_brdf"
-if [ -z "$BLENDER" ]; then
-	fail "blender is missing (BLENDER is empty; the project's set-up installs it)"
-	tap_done
-	exit 1
-fi
+blender_require
 B() { timeout 600 "$BLENDER" -b -noaudio --python-exit-code 1 "$@"; }
 val() { sed -n "s/^$1 //p" "$2" | tail -1; }
 # set_up NAME MODE SAMPLES BAKE-ARGS...: bake, export, import onto the sphere, save NAME-MODE.blend

@@ -19,6 +19,7 @@
 # tests/blender_matrix.sh runs it on 4.5 and 5.0), with that version's fit from the set.
 # Paper bake (adding-doubling, Monte Carlo Rd(r)); about 7 minutes per version at load 12-16.
 . "$top_srcdir/tests/tap.sh"
+. "$top_srcdir/tests/lib/blender.sh"
 . "$top_srcdir/tests/lib/translucent_fit.sh"
 imp="$top_srcdir/exporters/blender/import_skin.py"
 PROF="$top_srcdir/scripts/sss_profile.py"
@@ -27,7 +28,6 @@ if [ -z "$BLENDER" ] || ! command -v "$BLENDER" >/dev/null 2>&1 || ! command -v 
 	tap_done
 	exit 1
 fi
-B() { timeout 600 "$BLENDER" -b --factory-startup -noaudio --python-exit-code 1 "$@"; }
 # Known limits are todo lines (tests/tap.sh).
 blver=$(B --python-expr 'import bpy; print("BLVER %d.%d" % tuple(bpy.app.version[:2]))' \
 	2>/dev/null | sed -n 's/^BLVER //p' | head -n 1)

@@ -7,25 +7,13 @@
 # mean of the near one (the spread of its normals, only as roughness) within 3 %, with less
 # pixel-to-pixel noise, and its highlight is lower than the flat relief's.  About 40 s.
 . "$top_srcdir/tests/tap.sh"
+. "$top_srcdir/tests/lib/blender.sh"
+. "$top_srcdir/tests/lib/relief.sh"
 
 imp="$top_srcdir/exporters/blender/import_skin.py"
-if [ -z "$BLENDER" ]; then
-	fail "blender is missing (BLENDER is empty; the project's set-up installs it)"
-	tap_done
-	exit 1
-fi
-B() { timeout 600 "$BLENDER" -b --factory-startup -noaudio --python-exit-code 1 "$@"; }
-bake="$tmpd/bake"
-if ! "$SKINBAKE" bake --preset paper --out "$bake" --theta-nodes 6 --resolution 9x9 --batch-photons 1000 \
-	--max-photons 3e5 --target-error 0 --threads 1 --quiet >"$tmpd/bake.log" 2>&1; then
-	fail "skinbake bake failed: $(tail -2 "$tmpd/bake.log")"
-	tap_done
-	exit 1
-fi
-"$SKINBAKE" texture --site face --size 256 --tile-mm 8 --quiet --out "$tmpd/tex-face" &&
-"$SKINBAKE" texture --site face --size 256 --tile-mm 8 --levels 0 --pore-density 0 --plateau-roughness 0 \
-	--quiet --out "$tmpd/tex-flat"
-check "face and flat textures" test $? -eq 0
+blender_require
+relief_bake
+relief_textures 256
 for t in face flat; do
 	"$SKINBAKE" export blender --bake "$bake" --textures "$tmpd/tex-$t" --out "$tmpd/set-$t" >"$tmpd/x-$t.log" 2>&1
 	check "export blender --textures $t copies roughness_far.png" test -f "$tmpd/set-$t/roughness_far.png"

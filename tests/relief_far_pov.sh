@@ -8,20 +8,12 @@
 # as the ring's tilted facets lose; at the
 # scene's own size (0.17 mm per pixel) the bump map stays.  About 15 s.
 . "$top_srcdir/tests/tap.sh"
+. "$top_srcdir/tests/lib/relief.sh"
 . "$top_srcdir/tests/lib/pov.sh"
 pov_require
 
-bake="$tmpd/bake"
-if ! "$SKINBAKE" bake --preset paper --out "$bake" --theta-nodes 6 --resolution 9x9 --batch-photons 1000 \
-	--max-photons 3e5 --target-error 0 --threads 1 --quiet >"$tmpd/bake.log" 2>&1; then
-	fail "skinbake bake failed: $(tail -2 "$tmpd/bake.log")"
-	tap_done
-	exit 1
-fi
-"$SKINBAKE" texture --site face --size 256 --tile-mm 8 --quiet --out "$tmpd/tex-face" &&
-"$SKINBAKE" texture --site face --size 256 --tile-mm 8 --levels 0 --pore-density 0 --plateau-roughness 0 \
-	--quiet --out "$tmpd/tex-flat"
-check "face and flat textures" test $? -eq 0
+relief_bake
+relief_textures 256
 sed 's/^unit_mm = 10$/unit_mm = 100/' "$top_srcdir/scenes/sphere.scene" >"$tmpd/far.scene"
 for t in face flat none; do
 	a="--textures $tmpd/tex-$t"

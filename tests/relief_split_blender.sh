@@ -13,28 +13,16 @@
 #   shading is a few % brighter, docs/relief.md measured +3 %; 16 samples' noise adds about 1 %).
 # About a minute.
 . "$top_srcdir/tests/tap.sh"
+. "$top_srcdir/tests/lib/blender.sh"
+. "$top_srcdir/tests/lib/relief.sh"
 
 imp="$top_srcdir/exporters/blender/import_skin.py"
-if [ -z "$BLENDER" ]; then
-	fail "blender is missing (BLENDER is empty; the project's set-up installs it)"
-	tap_done
-	exit 1
-fi
+blender_require
 # numpy (requirements-test.txt): python3's, else the project's venv.
 py=python3
 python3 -c 'import numpy' 2>/dev/null || py="$top_srcdir/.venv/bin/python"
-B() { timeout 600 "$BLENDER" -b --factory-startup -noaudio --python-exit-code 1 "$@"; }
-bake="$tmpd/bake"
-if ! "$SKINBAKE" bake --preset paper --out "$bake" --theta-nodes 6 --resolution 9x9 --batch-photons 1000 \
-	--max-photons 3e5 --target-error 0 --threads 1 --quiet >"$tmpd/bake.log" 2>&1; then
-	fail "skinbake bake failed: $(tail -2 "$tmpd/bake.log")"
-	tap_done
-	exit 1
-fi
-"$SKINBAKE" texture --site face --size 128 --tile-mm 8 --quiet --out "$tmpd/tex-face" &&
-"$SKINBAKE" texture --site face --size 128 --tile-mm 8 --levels 0 --pore-density 0 --plateau-roughness 0 \
-	--quiet --out "$tmpd/tex-flat"
-check "face and flat textures" test $? -eq 0
+relief_bake
+relief_textures 128
 for t in face flat; do
 	"$SKINBAKE" export blender --bake "$bake" --textures "$tmpd/tex-$t" --out "$tmpd/set-$t" >"$tmpd/x-$t.log" 2>&1
 	check "export blender --textures $t" test $? -eq 0

@@ -13,20 +13,12 @@
 #   normal incidence (the Lambert stand-in) plus the surface specular's (0.01-0.06 for a clear
 #   top of index 1.4-1.5).  About 20 s.
 . "$top_srcdir/tests/tap.sh"
+. "$top_srcdir/tests/lib/relief.sh"
 . "$top_srcdir/tests/lib/pov.sh"
 pov_require
 
-bake="$tmpd/bake"
-if ! "$SKINBAKE" bake --preset paper --out "$bake" --theta-nodes 6 --resolution 9x9 --batch-photons 1000 \
-	--max-photons 3e5 --target-error 0 --threads 1 --quiet >"$tmpd/bake.log" 2>&1; then
-	fail "skinbake bake failed: $(tail -2 "$tmpd/bake.log")"
-	tap_done
-	exit 1
-fi
-"$SKINBAKE" texture --site face --size 256 --tile-mm 8 --quiet --out "$tmpd/tex-face" &&
-"$SKINBAKE" texture --site face --size 256 --tile-mm 8 --levels 0 --pore-density 0 --plateau-roughness 0 \
-	--quiet --out "$tmpd/tex-flat"
-check "face and flat textures" test $? -eq 0
+relief_bake
+relief_textures 256
 scene() { # scene FILE LIGHT_Z FILL
 	cat >"$1" <<EOF
 [scene]
