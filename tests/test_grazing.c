@@ -38,6 +38,7 @@
 #include "engine/ad.h"
 #include "engine/ad_quad.h"
 #include "skin/preset.h"
+#include "lib/small_bake.h"
 
 #define NT 90		/* theta nodes of the dense grid */
 #define NP 19		/* delta_phi nodes */
@@ -72,20 +73,7 @@ static int setup(void **state)
 {
 	(void)state;
 	struct bake_spec s;
-	memset(&s, 0, sizeof s);
-	double wl = 550.0;
-	s.n_to = s.n_phi = 18;
-	bake_spec_axes(&s, &wl, 1, NULL, 0, 0);
-	s.n_r = 10;
-	s.dr = 0.01;
-	transport_opts_default(&s.opts);
-	s.method = solvers_index("ad");
-	s.radial_error = 0.5;
-	s.radial_photons = 2000;
-	s.seed = 1;
-	s.min_batches = 8;
-	s.max_photons = 1000000;
-	s.n_ranks = 1;
+	small_bake_spec(&s, 550.0);
 	char *cause = NULL;
 	struct skin_params *p = bake_spec_preset(&s, "fair-oily", NULL, &cause);
 	if (p == NULL)

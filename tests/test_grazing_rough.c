@@ -39,6 +39,7 @@
 #include "engine/ad.h"
 #include "engine/solvers.h"
 #include "skin/preset.h"
+#include "lib/small_bake.h"
 
 #define NI 8		/* incidence angles */
 #define NO 31		/* exit angles: 60 .. 89, 89.9 deg */
@@ -73,23 +74,11 @@ static int setup(void **state)
 	if (fp == NULL || fputs(medium_ini, fp) == EOF || fclose(fp) != 0)
 		fail_msg("cannot write %s", ini);
 	struct bake_spec s;
-	memset(&s, 0, sizeof s);
 	double wl = 656.0;
-	s.n_to = s.n_phi = 18;
-	bake_spec_axes(&s, &wl, 1, NULL, 0, 0);
-	s.n_r = 10;
-	s.dr = 0.01;
-	transport_opts_default(&s.opts);
-	s.method = solvers_index("ad");
+	small_bake_spec(&s, wl);
 	s.ad_tol = 0.01;
 	s.ad_quad = 128;
 	s.ad_quad_max = 256;
-	s.radial_error = 0.5;
-	s.radial_photons = 2000;
-	s.seed = 1;
-	s.min_batches = 8;
-	s.max_photons = 1000000;
-	s.n_ranks = 1;
 	char *cause = NULL;
 	struct skin_params *p = bake_spec_preset(&s, NULL, ini, &cause);
 	if (p == NULL)
