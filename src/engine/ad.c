@@ -271,12 +271,10 @@ int ad_solve(const struct slab *s, enum optics_fresnel model, const double *thet
 	if (est && (level_run(&md, se, n_beams, o, nq / 2, threads, &lo, cause) ||
 	    (nq / 4 >= 4 && level_run(&md, se, n_beams, o, nq / 4, threads, &lo2, cause))))
 		goto fail;
-	int tail_ok = 1;	/* every level so far fast (q < 1/4): ad_err.h */
 	for (;;) {
 		if (level_run(&md, se, n_beams, o, nq, threads, &hi, cause))
 			goto fail;
-		ad_err_assemble(hi, lo, lo2, tail_ok, r);
-		tail_ok = tail_ok && r->conv_ratio > 0.0 && r->conv_ratio < 0.25;
+		ad_err_assemble(hi, lo, lo2, r);
 		r->n_quad = nq;
 		r->doublings += hi->lv.doublings;
 		if (!automatic || ad_err_meets(r, o->tol))

@@ -33,12 +33,10 @@
  * solve at a quarter where it does not), plus the size of the Fourier
  * orders beyond those kept where the series was cut.  rms_rel_err is the table's
  * solid-angle-weighted RMS relative error, defined as the Monte Carlo
- * bake's (its estimate for the stopping rule takes the geometric tail of
- * fast convergence, ad_err.h).  Asked for a tolerance, the solver doubles
- * its nodes until the estimate meets it, up to n_quad_max (slow falls at
- * few nodes often speed up once peaks are resolved: g = 0.99 meets 1e-3
- * at 256), and fails (-1 and *cause, with the error reached there) where
- * it cannot.
+ * bake's.  Asked for a tolerance, the solver doubles its nodes until the
+ * estimate meets it, up to n_quad_max (slow falls at few nodes often speed
+ * up once peaks are resolved: g = 0.99 meets 1e-3 at 256), and fails (-1
+ * and *cause, with the error reached there) where it cannot.
  *
  * The solver sets OpenBLAS to one thread (process-wide: its matrices are
  * small) and runs Fourier orders on `threads` OpenMP threads instead.

@@ -11,8 +11,6 @@
 
 /* Relative size of differences that are rounding, not convergence. */
 #define AD_ERR_ROUNDING 1e-10
-/* The smallest q the table's RMS estimate assumes (ad_err.h). */
-#define AD_ERR_Q_MIN 0.25
 
 int ad_err_kept_orders(const struct ad_series *sr)
 {
@@ -66,10 +64,8 @@ static double total(const struct ad_level *l, int e, int which)
 
 /* F from the three solves (see ad_err.h). */
 static double conv_factor(const struct ad_series *hi, const struct ad_series *lo, const struct ad_series *lo2,
-    const struct tabs *th, const struct tabs *tl, const struct tabs *tl2, const struct ad_result *r,
-    double *ratio)
+    const struct tabs *th, const struct tabs *tl, const struct tabs *tl2, const struct ad_result *r)
 {
-	*ratio = 0.0;
 	if (!lo || !lo2)
 		return 1.0;
 	const int E = hi->lv.E, nt = r->n_to, np = r->n_phi;
@@ -99,32 +95,17 @@ static double conv_factor(const struct ad_series *hi, const struct ad_series *lo
 	 * say nothing about the rate: their ratio is noise. */
 	if (s1 > AD_ERR_ROUNDING * sum)
 		q = fmax(q, s2 > 0.0 ? s1 / s2 : 1.0);
-	*ratio = q;
 	return q <= 0.5 ? 1.0 : (q >= 0.9 ? 9.0 : q / (1.0 - q));
 }
 
-/* The geometric tail for the table's RMS: q / (1 - q) with q at least
- * AD_ERR_Q_MIN, F where q is above 1/2 or the tail is not allowed; 1
- * without a third solve. */
-static double rms_factor(double q, double F, int tail_ok)
-{
-	if (!tail_ok)
-		return F;
-	if (q <= 0.0)
-		return 1.0;
-	q = fmax(q, AD_ERR_Q_MIN);
-	return q > 0.5 ? F : q / (1.0 - q);
-}
-
 static void assemble_tables(const struct ad_series *hi, const struct tabs *th, const struct tabs *tl, double F,
-    int tail_ok, struct ad_result *r)
+    struct ad_result *r)
 {
 	const int E = hi->lv.E, nt = r->n_to, np = r->n_phi, nb = nt * np;
-	double tf = ad_err_tail_factor(hi), e2s = 0.0;
-	double Fs = rms_factor(r->conv_ratio, F, tail_ok);
+	double tf = ad_err_tail_factor(hi), e2 = 0.0;
 	for (int k = 0; k < E; k++) {
 		struct ad_beam *b = &r->beam[k];
-		double num = 0.0, nums = 0.0, den = 0.0;
+		double num = 0.0, den = 0.0;
 		for (int it = 0; it < nt; it++) {
 			double w = cos(it * 0.5 * M_PI / nt) - cos((it + 1) * 0.5 * M_PI / nt);
 			size_t ja = (size_t)k * nt + it;
@@ -137,18 +118,14 @@ static void assemble_tables(const struct ad_series *hi, const struct tabs *th, c
 				b->fr[it * np + ip] = v;
 				b->fr_err[it * np + ip] = err;
 				double rel = v > 0.0 ? err / v : (err > 0.0 ? 1.0 : 0.0);
-				double errs = tf * fabs(th->last[j]);
-				errs += tl ? Fs * fabs(v - tl->fr[j]) : 0.0;
-				double rels = v > 0.0 ? errs / v : (errs > 0.0 ? 1.0 : 0.0);
 				num += w * rel * rel;
-				nums += w * rels * rels;
 				den += w;
 			}
 		}
 		b->rms_rel_err = sqrt(num / den);
-		e2s += nums / den;
+		e2 += b->rms_rel_err * b->rms_rel_err;
 	}
-	r->rms_rel_err = sqrt(e2s / E);
+	r->rms_rel_err = sqrt(e2 / E);
 }
 
 static void assemble_totals(const struct ad_series *hi, const struct ad_series *lo, double F, struct ad_result *r)
@@ -194,7 +171,7 @@ static void assemble_totals(const struct ad_series *hi, const struct ad_series *
 }
 
 void ad_err_assemble(const struct ad_series *hi, const struct ad_series *lo, const struct ad_series *lo2,
-    int tail_ok, struct ad_result *r)
+    struct ad_result *r)
 {
 	struct tabs th, tl, tl2;
 	tabs_make(hi, r, 1, &th);
@@ -202,10 +179,10 @@ void ad_err_assemble(const struct ad_series *hi, const struct ad_series *lo, con
 		tabs_make(lo, r, 0, &tl);
 	if (lo && lo2)
 		tabs_make(lo2, r, 0, &tl2);
-	double F = conv_factor(hi, lo, lo2, &th, &tl, &tl2, r, &r->conv_ratio);
+	double F = conv_factor(hi, lo, lo2, &th, &tl, &tl2, r);
 	r->conv_factor = F;
 	assemble_totals(hi, lo, F, r);
-	assemble_tables(hi, &th, lo ? &tl : NULL, F, tail_ok, r);
+	assemble_tables(hi, &th, lo ? &tl : NULL, F, r);
 	tabs_free(&th);
 	if (lo)
 		tabs_free(&tl);

@@ -42,8 +42,7 @@ struct ad_result {
 	int n_beams;
 	struct ad_beam *beam;		/* [n_beams] */
 	int n_to, n_phi;
-	double rms_rel_err;		/* the whole table's (all angles), with the RMS's tail
-					 * factor (ad_err.h): what decides the node count */
+	double rms_rel_err;		/* the whole table's (all angles) */
 	int n_quad;			/* nodes per unit cosine used */
 	int n_nodes;			/* quadrature nodes per hemisphere */
 	int n_orders;			/* Fourier orders kept */
@@ -55,8 +54,6 @@ struct ad_result {
 	double norm_max;		/* largest correction of the phase function's discrete
 					 * normalization */
 	double conv_factor;		/* factor on |X_N - X_N/2| in the errors, >= 1 (ad_err.h) */
-	double conv_ratio;		/* q = |X_N - X_N/2| / |X_N/2 - X_N/4| behind it (0: no
-					 * third solve) */
 	double seconds;			/* wall time [s] */
 	struct ad_series *series, *series_lo;	/* for ad_brdf */
 };
