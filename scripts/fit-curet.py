@@ -421,6 +421,8 @@ def residuals(rows, sim, ang, sat):
                     lambda r: kind[r[0]] == "held"):
             v = [res[r[0]] for r in rows if ang[r[0]] == g and sel(r)]
             cells.append("%d, %+.1f, %.1f" % (len(v), mean(v), rms(v)) if v else "-")
+        if cells == ["-", "-", "-"]:
+            continue        # only saturated points there
         print("| %.1f° | %s |" % (g, " | ".join(cells)))
     print("")
     # Asperity scattering as an added term, the skin part as evaluated (scaled by s).

@@ -843,8 +843,9 @@ Two signatures, both in geometries the 20 training points barely reach. (1) *Tow
 light*: at small angles the model is low where camera and light are close (22.5° and 45° apart)
 and high where they are 90-112° apart, on the training points too; the measured skin
 back-scatters more than a flat layered slab with microfacet boundaries does (shadow hiding on
-the relief, as rough diffuse surfaces show it; the mm-scale relief of round 4 makes that bump but
-costs the mirror side at grazing, so its fit keeps it small). (2) *Both angles grazing*, at every
+the relief, as rough diffuse surfaces show it, is one candidate, not measured here; the mm-scale
+relief of round 4 brightens the back side but costs the mirror side at grazing, so its fit keeps it
+small). (2) *Both angles grazing*, at every
 azimuth and most on the mirror side: the readings rise as both cosines fall, the signature of
 single scattering by sparse scatterers above the surface (vellus hair, loose corneocytes:
 "asperity scattering", Koenderink & Pont 2003, f ∝ p(γ) / (μi + μo) for a thin layer). As an
