@@ -823,7 +823,7 @@ the mirror side; the worst held-out point of \`$p\` is $(hs "$p" 9).
 
 \`scripts/fit-curet.py --evaluate docs/validation/$p.ini --nodes 64 --residuals\` (adding-doubling at
 all 205 points). The CUReT table used here carries no per-value error, so its uncertainty is
-measured from the data itself: $(sed -n 's/^reciprocal pairs: \([0-9]*\).*/\1/p' "$resid") of the 205 geometries are
+measured from the data itself: the 205 geometries hold $(sed -n 's/^reciprocal pairs: \([0-9]*\).*/\1/p' "$resid")
 reciprocal pairs (light and camera swapped, the same azimuth difference), which any BRDF must
 read alike (Helmholtz); their two readings differ by $(sed -n 's/.*RMS: \([0-9.]*\) %.*/\1/p' "$resid") % RMS, so a single reading carries
 about $(sed -n 's/.*(per reading \([0-9.]*\) %.*/\1/p' "$resid") % (the difference over √2), most on the mirror side at grazing. Reciprocity sees only
