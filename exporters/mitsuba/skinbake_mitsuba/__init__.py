@@ -23,3 +23,17 @@ def json_finite(o):
 def json_dump(o, f, **kw):
     """json.dump of O under the policy (non-finite numbers as null, never NaN or Infinity)."""
     _json.dump(json_finite(o), f, allow_nan=False, **kw)
+
+
+def _refuse_constant(name):
+    raise ValueError(f"{name} is not JSON (docs/json.md: a number that is not finite is null)")
+
+
+def json_load(f):
+    """json.load of F, refusing NaN and Infinity as a strict JSON parser would."""
+    return _json.load(f, parse_constant=_refuse_constant)
+
+
+def json_loads(s):
+    """json.loads of S under the same rule as json_load."""
+    return _json.loads(s, parse_constant=_refuse_constant)
