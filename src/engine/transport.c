@@ -425,7 +425,9 @@ void transport_run(const struct slab *s, const struct launch *ln, const struct t
 			}
 			spin(&ph, &hg[ph.l], &r, t);
 			DCHECK(unit(&ph));
-			if (roulette(&ph, w_th * ph.ws, chance, inv_chance, &r, t) || guard(&ph, o, t))
+			if (roulette(&ph, w_th * ph.ws, chance, inv_chance, &r, t))
+				break;
+			if (guard(&ph, o, t))
 				break;
 			if (far && far_roulette(&ph, ln->z, far2, &r, t))
 				break;
