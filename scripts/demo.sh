@@ -65,12 +65,12 @@ render() {
 		"$py" scripts/eye_texture.py "$out/$n/${b}_eyes_texture.png" "$out/$n/eyes.png" &&
 			mv "$out/$n/eyes.png" "$out/$n/${b}_eyes_texture.png"
 	fi
-	(cd "$out/$n" && povray "$b.ini" "+O$n.png" >povray.log 2>&1) || {
-		echo "demo.sh: povray failed, see $out/$n/povray.log" >&2; exit 1; }
-	cp "$out/$n/$n.png" "$out/$n.png"
+	# (the picture and POV-Ray's log outside the export directory, which a rerun replaces)
+	(cd "$out/$n" && povray "$b.ini" "+O../$n.png" >"../$n.povray.log" 2>&1) || {
+		echo "demo.sh: povray failed, see $out/$n.povray.log" >&2; exit 1; }
 	echo "wrote $out/$n.png ($(($(date +%s) - r_t0)) s wall;" \
 		"$(sed -n 's/.*fill occlusion: .*(\(.*\) s)/occlusion \1 s,/p' "$out/$n.log")" \
-		"$(sed -n 's/.*Trace Time: .*(\(.*\) seconds)/trace \1 s/p' "$out/$n/povray.log"))"
+		"$(sed -n 's/.*Trace Time: .*(\(.*\) seconds)/trace \1 s/p' "$out/$n.povray.log"))"
 }
 
 echo "== maps: fair (with freckles), medium, brown, dark"
