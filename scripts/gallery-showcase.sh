@@ -26,10 +26,12 @@ cp "$demo/human-pores.png" "$img/showcase-closeup.png"
 cp "$demo/human-head-earglow.png" "$img/showcase-earglow.png"
 cp "$demo/blender-head.png" "$img/showcase-blender-head.png"
 t=$(date +%s)
-"${BLENDER:-blender}" -b --factory-startup --python "$top/scripts/blender_five_minute.py" -- \
+# (kept from an earlier run into the same WORK_DIR, unless blender_five_minute.py is newer)
+[ "$work/five-minute.png" -nt "$top/scripts/blender_five_minute.py" ] ||
+	"${BLENDER:-blender}" -b --factory-startup --python "$top/scripts/blender_five_minute.py" -- \
 	"$work/five-minute.png" --size 640x480 --samples "${SAMPLES:-32}" >"$work/five-minute.log" 2>&1 ||
 	{ tail -5 "$work/five-minute.log" >&2; exit 1; }
-echo "gallery-showcase.sh: five-minute material rendered in $(($(date +%s) - t)) s wall"
+echo "gallery-showcase.sh: five-minute material: $(($(date +%s) - t)) s wall"
 cp "$work/five-minute.png" "$img/showcase-five-minute.png"
 
 # The three heads in one row, 480x360 each (sRGB in, sRGB out).
