@@ -9,7 +9,8 @@
 # and light, 640x480, SAMPLES (default 32) samples; docs/img/showcase-vs-blender.png is the three
 # heads side by side at 480x360 each: POV-Ray (exact mode), Blender (translucent mode), the
 # five-minute material.  Nothing is cropped or retouched; POV-Ray lays the panels side by side.
-# Environment: POVRAY (default povray), BLENDER (default blender).
+# Environment: POVRAY (default povray), BLENDER (default blender); PARTIAL=1: a picture the demo
+# did not (yet) make leaves the old copy in docs/img, with a message naming it.
 set -eu
 top=$(cd "$(dirname "$0")/.." && pwd)
 demo=$(cd "${1:-$top/out/demo}" && pwd)
@@ -17,14 +18,26 @@ work=${2:-$top/out/gallery}
 img=$top/docs/img
 mkdir -p "$work" "$img"
 work=$(cd "$work" && pwd)
-for f in human-head complexions human-pores human-head-earglow blender-head; do
+# copy DEMO_NAME GALLERY_NAME: one picture; with PARTIAL=1 a missing one leaves the old copy.
+copy() {
+	if [ -f "$demo/$1.png" ]; then
+		cp "$demo/$1.png" "$img/showcase-$2.png"
+	elif [ "${PARTIAL:-0}" = 1 ]; then
+		echo "gallery-showcase.sh: $demo/$1.png is missing: docs/img/showcase-$2.png NOT regenerated" >&2
+	else
+		echo "gallery-showcase.sh: $demo/$1.png is missing (run scripts/demo.sh; PARTIAL=1 keeps the" \
+			"old copy)" >&2
+		exit 1
+	fi
+}
+for f in human-head blender-head; do
 	[ -f "$demo/$f.png" ] || { echo "gallery-showcase.sh: $demo/$f.png is missing (run scripts/demo.sh)" >&2; exit 1; }
 done
-cp "$demo/human-head.png" "$img/showcase-head.png"
-cp "$demo/complexions.png" "$img/showcase-complexions.png"
-cp "$demo/human-pores.png" "$img/showcase-closeup.png"
-cp "$demo/human-head-earglow.png" "$img/showcase-earglow.png"
-cp "$demo/blender-head.png" "$img/showcase-blender-head.png"
+copy human-head head
+copy complexions complexions
+copy human-pores closeup
+copy human-head-earglow earglow
+copy blender-head blender-head
 t=$(date +%s)
 # (kept from an earlier run into the same WORK_DIR, unless blender_five_minute.py is newer)
 [ "$work/five-minute.png" -nt "$top/scripts/blender_five_minute.py" ] ||
