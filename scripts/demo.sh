@@ -14,7 +14,9 @@
 #                          the pores and furrows of a young cheek (docs/relief.md)
 #   OUT/blender-head.png   the fair head in Blender's Cycles in the same view and light, translucent
 #                          mode (Cycles' subsurface fitted per texel to the maps' Rd(r), beside the
-#                          exact table; docs/translucency.md), 640x480, 32 samples (BLENDER=0: skip)
+#                          exact table; docs/translucency.md), 640x480, 32 samples; only with
+#                          BLENDER_HEAD=1: the per-texel fit alone took over 8 min of CPU for
+#                          the fair maps with brows and was stopped (docs/showcase.md)
 # Run after scripts/setup.sh (it uses the binary built in this tree).  scripts/closeup-compare.sh then
 # renders the close-up in Blender too (skinbake's set and a five-minute material, side by side).
 set -eu
@@ -116,7 +118,7 @@ sh scripts/demo-translucent.sh "$out"
 
 # The fair head in Blender, translucent mode: the red terminator, the bounce light in the nostrils
 # and ears and the occluded fill that POV-Ray's exact mode lacks (Cycles traces them).
-if [ "${BLENDER:-blender}" != 0 ] && command -v "${BLENDER:-blender}" >/dev/null; then
+if [ "${BLENDER_HEAD:-0}" = 1 ] && command -v "${BLENDER:-blender}" >/dev/null; then
 	echo "== the fair head in Blender (Cycles), translucent mode"
 	BL() { "${BLENDER:-blender}" -b -noaudio --python-exit-code 1 "$@"; }
 	r_t0=$(date +%s)

@@ -6,9 +6,9 @@
 # Copies the demo's pictures to docs/img/showcase-*.png (head, complexions, close-up, ear glow,
 # the Blender head) and renders the five-minute Blender material (scripts/blender_five_minute.py:
 # one Principled BSDF, random-walk subsurface, radius 3.67/1.37/0.68 mm, no maps) in the same view
-# and light, 640x480, SAMPLES (default 32) samples; docs/img/showcase-vs-blender.png is the three
-# heads side by side at 480x360 each: POV-Ray (exact mode), Blender (translucent mode), the
-# five-minute material.  Nothing is cropped or retouched; POV-Ray lays the panels side by side.
+# and light, 640x480, SAMPLES (default 32) samples; docs/img/showcase-vs-blender.png is the heads
+# side by side at 480x360 each: POV-Ray (exact mode), Blender (translucent mode, if the demo ran
+# with BLENDER_HEAD=1), the five-minute material.  Nothing is cropped or retouched; POV-Ray lays the panels side by side.
 # Environment: POVRAY (default povray), BLENDER (default blender); PARTIAL=1: a picture the demo
 # did not (yet) make leaves the old copy in docs/img, with a message naming it.
 set -eu
@@ -30,14 +30,14 @@ copy() {
 		exit 1
 	fi
 }
-for f in human-head blender-head; do
+for f in human-head; do
 	[ -f "$demo/$f.png" ] || { echo "gallery-showcase.sh: $demo/$f.png is missing (run scripts/demo.sh)" >&2; exit 1; }
 done
 copy human-head head
 copy complexions complexions
 copy human-pores closeup
 copy human-head-earglow earglow
-copy blender-head blender-head
+[ -f "$demo/blender-head.png" ] && cp "$demo/blender-head.png" "$img/showcase-blender-head.png"
 t=$(date +%s)
 # (kept from an earlier run into the same WORK_DIR, unless blender_five_minute.py is newer)
 [ "$work/five-minute.png" -nt "$top/scripts/blender_five_minute.py" ] ||
@@ -45,20 +45,25 @@ t=$(date +%s)
 	"$work/five-minute.png" --size 640x480 --samples "${SAMPLES:-32}" >"$work/five-minute.log" 2>&1 ||
 	{ tail -5 "$work/five-minute.log" >&2; exit 1; }
 echo "gallery-showcase.sh: five-minute material: $(($(date +%s) - t)) s wall"
-cp "$work/five-minute.png" "$img/showcase-five-minute.png"
 
-# The three heads in one row, 480x360 each (sRGB in, sRGB out).
+# The heads in one row, 480x360 each (sRGB in, sRGB out): POV-Ray, Blender's translucent head
+# (when the demo made it: BLENDER_HEAD=1), the five-minute material.
+panels="$demo/human-head.png"
+[ -f "$demo/blender-head.png" ] && panels="$panels $demo/blender-head.png"
+panels="$panels $work/five-minute.png"
+set -- $panels
+w=$((480 * $#))
 n=0
 {
 	echo "#version 3.7;"
 	echo "global_settings { assumed_gamma 1.0 }"
-	echo "camera { orthographic location <1.5,0.5,-1> look_at <1.5,0.5,0> right x*3 up y }"
-	for p in "$demo/human-head.png" "$demo/blender-head.png" "$work/five-minute.png"; do
+	echo "camera { orthographic location <$#/2,0.5,-1> look_at <$#/2,0.5,0> right x*$# up y }"
+	for p in "$@"; do
 		echo "box { <0,0,0>, <1,1,0.01> texture { pigment { image_map { png \"$p\" once interpolate 2 } }"
 		echo "  finish { emission 1 diffuse 0 ambient 0 } } translate x*$n }"
 		n=$((n + 1))
 	done
 } >"$work/vs.pov"
-(cd "$work" && "${POVRAY:-povray}" +Ivs.pov "+O$img/showcase-vs-blender.png" +W1440 +H360 -D +A0.1 \
+(cd "$work" && "${POVRAY:-povray}" +Ivs.pov "+O$img/showcase-vs-blender.png" +W$w +H360 -D +A0.1 \
 	>vs.log 2>&1) || { tail -5 "$work/vs.log" >&2; exit 1; }
 echo "gallery-showcase.sh: wrote $img/showcase-*.png ($(du -ch "$img"/showcase-*.png | tail -1 | cut -f1) in all)"
