@@ -28,6 +28,8 @@ import subprocess
 
 import numpy as np
 
+from . import json_dump
+
 PHOTONS = 100000
 R_STEP_MFP = 0.02       # radial bin at mu_t = 1 / cm [cm]
 R_BINS = 4000           # to 80 mean free paths
@@ -171,5 +173,5 @@ def fit(bake, out, skinbake="skinbake", photons=PHOTONS, log=None):
            "alpha": alpha, "photons": photons, "channels": channels, "chan_wl": chan_wl,
            "medium_bake": "medium"}
     with open(os.path.join(out, "fit.json"), "w") as f:
-        json.dump(res, f, indent=1)
+        json_dump(res, f, indent=1)
     return res
