@@ -83,7 +83,7 @@ def brows(p):  # eyes: x 0.0135..0.0444, z 1.539..1.569 (their mesh); brows from
     t = (abs(x) - 0.010) / 0.046
     if t <= 0 or t >= 1 or y > -0.08:
         return 0.0
-    zc = 1.571 + 0.008 * math.sin(math.pi * (0.15 + 0.75 * t))  # arched, highest 2/5 outward
+    zc = 1.562 + 0.008 * math.sin(math.pi * (0.15 + 0.75 * t))  # arched, highest 2/5 outward
     h = 0.0040 * (1 - 0.55 * t)
     return ramp(t / 0.12) * ramp((1 - t) / 0.25) * ramp((1 - abs(z - zc) / h) / 0.5) * ramp((-0.085 - y) / 0.01)
 
