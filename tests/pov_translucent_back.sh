@@ -9,7 +9,8 @@
 # 20 %).  Then the same slab 20 mm thick lit from the front at 46.7 degrees:
 # the back-light copy is empty there, and the mean within 1 % of pi f
 # cos(theta_i) from `skinbake eval` (flat skin under uniform light).
-# Paper bake (adding-doubling), 4 renders of 16 x 16 pixels.
+# Last, the default --mode auto: translucent on the mesh, exact with a fill.
+# Paper bake (adding-doubling), 4 renders of 16 x 16 pixels, 6 exports.
 . "$top_srcdir/tests/tap.sh"
 . "$top_srcdir/tests/lib/pov.sh"
 B="$SKINBAKE"
@@ -119,4 +120,12 @@ err = [a / b - 1 for a, b in zip(m, e)]
 print(" ".join("%.4f" % x for x in err), int(max(abs(x) for x in err) <= 0.01))' "$m" "$exp")
 echo "# front light: mean / (pi f cos theta_i from eval) - 1 per R, G, B: ${r% *}"
 check "flat mesh under uniform light within 1 % of eval per channel" test "${r##* }" = 1
+# The default, --mode auto: translucent on this mesh; exact with a fill, saying why.
+"$B" export pov --scene "$tmpd/back1.scene" --bake "$bake" --out "$tmpd/auto" >"$tmpd/auto.log" 2>&1
+check "--mode auto (the default) on a mesh: translucent, with the back-light copy" \
+    sh -c "grep -q \"translucent (--mode auto\" '$tmpd/auto.log' && grep -q 'lit through' '$tmpd/auto/back1.pov'"
+sed 's/^unit_mm = 1$/unit_mm = 1\nfill = 0.1 0.1 0.1/' "$tmpd/back1.scene" >"$tmpd/fill.scene"
+"$B" export pov --scene "$tmpd/fill.scene" --bake "$bake" --out "$tmpd/fill" >"$tmpd/fill.log" 2>&1
+check "--mode auto with a fill: exact, and the export says why" \
+    sh -c "grep -q 'exact (--mode auto: the scene has a fill)' '$tmpd/fill.log' && ! grep -q 'lit through' '$tmpd/fill/fill.pov'"
 tap_done
