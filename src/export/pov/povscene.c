@@ -449,6 +449,21 @@ static void write_fill_occlusion(FILE *fp, const struct scene *s, const struct p
 	}
 }
 
+/* Translucent skin meshes: the back light through their thin parts. */
+static void write_back_light(FILE *fp, const struct scene *s, const struct pov_skin *skins)
+{
+	for (int i = 0; i < s->n_objects; i++) {
+		const struct scene_object *o = &s->objects[i];
+		if (o->shape != SCENE_MESH || o->material != SCENE_MAT_SKIN)
+			continue;
+		const struct pov_skin *ps = &skins[o->skin];
+		if (!ps->sss.on || ps->maps)
+			continue;
+		struct povback_stats st;
+		povback_write(fp, s, o, &ps->sss.back, povscene_inset(s, 1), &st);
+	}
+}
+
 void povscene_write(FILE *fp, const struct scene *s, const struct pov_skin *skins,
     const struct pov_options *o, enum scene_strategy st, int layered)
 {
@@ -493,6 +508,7 @@ void povscene_write(FILE *fp, const struct scene *s, const struct pov_skin *skin
 		for (int i = 0; i < s->n_lights; i++)
 			fprintf(fp, "light_source { SKIN_Light_%s }\n", s->lights[i].name);
 		write_objects(fp, s, skins, o, st, 0);
+		write_back_light(fp, s, skins);
 	}
 }
 
