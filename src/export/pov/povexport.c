@@ -700,7 +700,7 @@ static int write_extras(const struct scene *s, const char *out, const char *base
 		}
 	for (int i = 0; i < s->n_objects; i++) {
 		const struct scene_object *ob = &s->objects[i];
-		char *name = ob->material == SCENE_MAT_MODEL ? povscene_model_texture(ob, base)
+		char *name = ob->material == SCENE_MAT_MODEL ? povmodel_texture_file(ob, base)
 		    : NULL;
 		if (name == NULL)
 			continue;
