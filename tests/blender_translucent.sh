@@ -77,7 +77,8 @@ echo "# flat box, translucent set in exact mode: render / eval - 1 per R, G, B: 
 # The node's far field is the table's at the walk's albedo measured densely in the colour
 # (blender_sss_albedo.h): with the profile table's G(0), linear between 15 colours (and 3.4.1's
 # rendered at 64 samples, 0.6 % low), 3.4.1 blue (colour 0.029) read +1.23 % and 4.5 green
-# (0.046) -1.32 %; with it 3.4.1 +0.67, -0.01, +0.09 %.
+# (0.046) -1.32 %; with it 3.4.1 +0.67, -0.01, +0.09 %, 4.5.15 +0.01, +0.30, +0.10 %, 5.0.1
+# -0.13, -0.74, -0.47 % (256 samples).
 check "flat skin within 1 % of eval per channel ($errs)" \
 	test "$(echo "$r" | cut -d' ' -f4)" = 1
 
