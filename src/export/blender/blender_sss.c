@@ -11,6 +11,7 @@
 
 #include "base/check.h"
 #include "base/util.h"
+#include "export/blender/blender_sss_albedo.h"
 
 void blender_sss_series(const struct sss_table *t, char *buf, size_t n)
 {
@@ -20,10 +21,47 @@ void blender_sss_series(const struct sss_table *t, char *buf, size_t n)
 	snprintf(buf, n, "%d.%d", major, minor);
 }
 
-/* The far field pi f [-] of version v's node, channel c. */
+/* The same major.minor? */
+static int same_series(const char *a, const char *b)
+{
+	int a1 = -1, a2 = -1, b1 = -2, b2 = -2;
+	return sscanf(a, "%d.%d", &a1, &a2) == 2 && sscanf(b, "%d.%d", &b1, &b2) == 2 && a1 == b1 &&
+	    a2 == b2;
+}
+
+/* The node below V in the ascending X[n] and the weight of the one above (clamped). */
+static int cell(const double *x, int n, double v, double *u)
+{
+	int i = 0;
+	while (i < n - 2 && v > x[i + 1])
+		i++;
+	*u = fmin(fmax((v - x[i]) / (x[i + 1] - x[i]), 0.0), 1.0);
+	return i;
+}
+
+double blender_sss_albedo_factor(const struct sss_table *t, int c, double colour)
+{
+	const struct sss_albedo_table *a = NULL;
+	for (int k = 0; blender_sss_albedo_tables[k] != NULL; k++)
+		if (same_series(t->version, blender_sss_albedo_tables[k]->version))
+			a = blender_sss_albedo_tables[k];
+	if (a == NULL || a->n_colour < 2 || t->n_colour < 2)
+		return 1.0;
+	double u, v;
+	int i = cell(a->colour, a->n_colour, colour, &u);
+	int k = cell(t->colour, t->n_colour, colour, &v);
+	const double *g = t->g + ((size_t)c * (size_t)t->n_colour + (size_t)k) * (size_t)t->n_edge;
+	double tab = (1 - v) * g[0] + v * g[t->n_edge];
+	return tab > 0 ? ((1 - u) * a->g0[i] + u * a->g0[i + 1]) / tab : 1.0;
+}
+
+/* The far field pi f [-] of version v's node, channel c: the table's, at the
+ * measured albedo (blender_sss_albedo.h). */
 static double far_v(const struct blender_sss *w, int v, int c, double ti, double to)
 {
-	return sss_far_pi_f(w->fit[v].table, c, w->fit[v].colour[c], ti, to);
+	const struct sss_fit *f = &w->fit[v];
+	return sss_far_pi_f(f->table, c, f->colour[c], ti, to) *
+	    blender_sss_albedo_factor(f->table, c, f->colour[c]);
 }
 
 /* The far field the remainder takes off: the largest of the versions'. */
