@@ -28,8 +28,8 @@ for mode in exact translucent; do
 	echo "== $mode: export and render $scene at $size"
 	$B export pov --scene "$scene" --bake "$out/paper-translucent" --out "$d" --mode $mode \
 		--size "$size" >"$d.log" 2>&1 || { cat "$d.log" >&2; exit 1; }
-	(cd "$d" && povray human-head-earglow.ini >povray.log 2>&1) || {
-		echo "demo-translucent.sh: povray failed, see $d/povray.log" >&2; exit 1; }
+	(cd "$d" && povray human-head-earglow.ini >"../$(basename "$d").povray.log" 2>&1) || {
+		echo "demo-translucent.sh: povray failed, see $d.povray.log" >&2; exit 1; }
 	png="$out/human-head-earglow-$mode.png"
 	[ $mode = translucent ] && png="$out/human-head-earglow.png"
 	cp "$d/human-head-earglow.png" "$png"

@@ -322,9 +322,133 @@ def evaluate(a, ini):
              rms([h for h in held if h[0][1] < 60]), rms([h for h in held if h[0][1] >= 60]),
              b1[0] / b0[0], b1[1] / b0[1], f1[0] / f0[0], f1[1] / f0[1], worst[0][0], worst[0][1],
              worst[0][2], worst[0][3], 100 * (worst[1] - worst[0][4]) / worst[0][4]))
+    if a.residuals:
+        ang = {}
+        with open(a.curet) as f:
+            for line in f:
+                if not (line.startswith("#") or line.startswith("idx")):
+                    c = line.split("\t")
+                    ang[int(c[0])] = float(c[5])
+        residuals(rows, sim, ang, sat)
+        return
     for r, v in zip(rows, sim):
         print("%d\t%g\t%g\t%g\t%g\t%.5g\t%s" % (r[0], r[1], r[2], r[3], r[4], v,
               "train" if r[1] in TRAIN_THETA_I else "sat" if r[0] in sat else "held"))
+
+
+def reciprocal_pairs(rows):
+    """CUReT's reciprocal pairs: (a, b) with theta_i and theta_v swapped and the
+    same azimuth difference (within the table's rounding, 0.6 and 1.5 deg)."""
+    out = []
+    for a in rows:
+        for b in rows:
+            if a[0] < b[0] and abs(a[1] - b[2]) < 0.6 and abs(a[2] - b[1]) < 0.6 and abs(a[3] - b[3]) < 1.5:
+                out.append((a, b))
+    return out
+
+
+def region(r):
+    """low: both angles under 60 deg; else back (dphi < 90) or mirror side."""
+    if max(r[1], r[2]) < 60:
+        return "low"
+    return "back" if r[3] < 90 else "mirror"
+
+
+def asperity(ti, tv, dphi, g, tau):
+    """Single scattering in an optically thin layer of sparse scatterers above
+    the skin (Koenderink & Pont 2003, "The secret of velvety skin", Machine
+    Vision and Applications 14: 260-268), albedo 1, Henyey-Greenstein phase g,
+    optical depth tau, unnormalised: p(cos) (1 - exp(-tau (1/mi + 1/mo))) / (mi + mo)."""
+    mi, mo = math.cos(math.radians(ti)), math.cos(math.radians(tv))
+    si, so = math.sin(math.radians(ti)), math.sin(math.radians(tv))
+    c = -(mi * mo + si * so * math.cos(math.radians(dphi)))     # cosine of the scattering angle
+    p = (1 - g * g) / (4 * math.pi * (1 + g * g - 2 * g * c) ** 1.5)
+    return p * (1 - math.exp(-tau * (1 / mi + 1 / mo))) / (mi + mo)
+
+
+def residuals(rows, sim, ang, sat):
+    """--residuals: the data's own uncertainty and where the misses sit (markdown)."""
+    res = {r[0]: (v - r[4]) / r[4] for r, v in zip(rows, sim)}
+    kind = {r[0]: ("train" if r[1] in TRAIN_THETA_I else "sat" if r[0] in sat else "held") for r in rows}
+    held = [r for r in rows if kind[r[0]] == "held"]
+
+    def rms(v):
+        return 100 * math.sqrt(sum(x * x for x in v) / len(v)) if v else float("nan")
+
+    def mean(v):
+        return 100 * sum(v) / len(v) if v else float("nan")
+    pairs = reciprocal_pairs(rows)
+    d = {"low": [], "back": [], "mirror": []}
+    for a, b in pairs:
+        d[region(a)].append((a[4] - b[4]) / (0.5 * (a[4] + b[4])))
+    alld = [x for v in d.values() for x in v]
+    # A reciprocal model cannot do better on a pair than its mean: half the difference each.
+    floor = [(0.5 * (a[4] - b[4])) / r[4] for a, b in pairs for r in (a, b) if kind[r[0]] == "held"]
+    pm = {}
+    for a, b in pairs:
+        pm[a[0]] = pm[b[0]] = 0.5 * (a[4] + b[4])
+    simd = {r[0]: v for r, v in zip(rows, sim)}
+    vs_mean = [(simd[r[0]] - pm.get(r[0], r[4])) / pm.get(r[0], r[4]) for r in held]
+    quant = [0.0005 / math.sqrt(3) / r[4] for r in held]     # 3 decimals: uniform rounding error
+    print("## residuals")
+    print("reciprocal pairs: %d (%s); the relative difference between the two readings of a pair, RMS: "
+          "%.1f %% (per reading %.1f %%, the difference over sqrt 2)" % (
+              len(pairs), ", ".join("%d %s" % (len(v), k) for k, v in d.items()), rms(alld), rms(alld) / math.sqrt(2)))
+    print("")
+    print("| where | pairs | RMS difference within a pair [%] | per reading [%] | largest [%] |")
+    print("|---|---|---|---|---|")
+    for k, v in d.items():
+        print("| %s | %d | %.1f | %.1f | %.1f |" % (k, len(v), rms(v), rms(v) / math.sqrt(2),
+                                                   100 * max(abs(x) for x in v) if v else float("nan")))
+    print("")
+    print("floor: a reciprocal model's RMS over the %d held-out points from the %d of them in pairs: %.1f %%; "
+          "the table's 3 decimals: %.2f %%; held out against the pair means instead of the readings: %.1f %% "
+          "(against the readings %.1f %%)" % (len(held), len(floor), rms(floor + [0.0] * (len(held) - len(floor))),
+                                             rms(quant), rms(vs_mean), rms([res[r[0]] for r in held])))
+    print("")
+    print("| held-out points | n | mean relative error [%] | RMS [%] |")
+    print("|---|---|---|---|")
+    for k in ("low", "back", "mirror"):
+        v = [res[r[0]] for r in held if region(r) == k]
+        print("| %s | %d | %+.1f | %.1f |" % ({"low": "both angles < 60°", "back": "≥ 60°, back side (Δφ < 90°)",
+                                              "mirror": "≥ 60°, mirror side"}[k], len(v), mean(v), rms(v)))
+    print("")
+    print("| angle between light and camera | training: n, mean, RMS [%] | held out, both angles < 60°: n, mean, RMS [%] | held out, all: n, mean, RMS [%] |")
+    print("|---|---|---|---|")
+    for g in sorted(set(ang.values())):
+        cells = []
+        for sel in (lambda r: kind[r[0]] == "train", lambda r: kind[r[0]] == "held" and region(r) == "low",
+                    lambda r: kind[r[0]] == "held"):
+            v = [res[r[0]] for r in rows if ang[r[0]] == g and sel(r)]
+            cells.append("%d, %+.1f, %.1f" % (len(v), mean(v), rms(v)) if v else "-")
+        if cells == ["-", "-", "-"]:
+            continue        # only saturated points there
+        print("| %.1f° | %s |" % (g, " | ".join(cells)))
+    print("")
+    # Asperity scattering as an added term, the skin part as evaluated (scaled by s).
+    grid = [(g, tau, k, sc) for g in (0.0, 0.3, 0.6, 0.8, 0.9, 0.95) for tau in (0.01, 0.05, 0.2, 1.0)
+            for k in (0.0, 0.25, 0.5, 1, 2, 4, 8) for sc in (0.85, 0.9, 0.95, 1.0)]
+
+    def fit(sel):
+        best = None
+        for g, tau, k, sc in grid:
+            v = [((simd[r[0]] * sc + k * asperity(r[1], r[2], r[3], g, tau)) - r[4]) / r[4] for r in rows if sel(r)]
+            j = rms(v)
+            if best is None or j < best[0]:
+                best = (j, g, tau, k, sc)
+        return best
+
+    def held_with(b):
+        _, g, tau, k, sc = b
+        return (rms([((simd[r[0]] * sc + k * asperity(r[1], r[2], r[3], g, tau)) - r[4]) / r[4] for r in held]),
+                rms([((simd[r[0]] * sc + k * asperity(r[1], r[2], r[3], g, tau)) - r[4]) / r[4] for r in rows
+                     if kind[r[0]] == "train"]))
+    bt = fit(lambda r: kind[r[0]] == "train")
+    ba = fit(lambda r: kind[r[0]] != "sat")
+    print("asperity: fitted on the training points: amplitude %g, g %g, tau %g, scale %g: training %.1f %%, held out %.1f %%; "
+          "fitted on every point but the saturated ones (a diagnostic): amplitude %g, g %g, tau %g, scale %g: training "
+          "%.1f %%, held out %.1f %%" % (bt[3], bt[1], bt[2], bt[4], held_with(bt)[1], held_with(bt)[0],
+                                          ba[3], ba[1], ba[2], ba[4], held_with(ba)[1], held_with(ba)[0]))
 
 
 def main():
@@ -364,6 +488,9 @@ def main():
     ap.add_argument("--train", default="low", choices=("low", "all"),
                     help="low: the 20 points at 11.25/33.75 deg (the fit); all: every point but the 4 "
                     "saturated ones (a diagnostic of the model's best, not a fit to report as held out)")
+    ap.add_argument("--residuals", action="store_true",
+                    help="with --evaluate: instead of the points, the data's own uncertainty (CUReT's reciprocal "
+                    "pairs) and the residuals by region and by the angle between light and camera (markdown)")
     ap.add_argument("--evaluate", default=None, metavar="INI",
                     help="no fit: the preset file at all 205 points (adding-doubling), its errors, fall and rise")
     a = ap.parse_args()

@@ -5,13 +5,17 @@
 # lips.png (an ellipse around the mouth, fading over its outer half and in depth: no outline),
 # cheeks.png (two flushes fading over their radius), nose.png (the tip and the wings), ears.png
 # (both ears), freckles.png (160 spots of 1-2 mm radius, strengths 0.45-1, over the nose and upper
-# cheeks, from vertices picked by a fixed seed).  scripts/demo.sh reads the copies in
+# cheeks, from vertices picked by a fixed seed). A fourth argument lists the masks to paint (default the five above);
+# `brows` paints brows.png, which only then is made: two arched bands above the eyes, 8 mm tall at
+# the inner end and 3.6 mm at the outer, fading at both ends and over half their height (scripts/demo.sh
+# tints the skin's melanin through it: no hair).  scripts/demo.sh reads the copies in
 # scenes/masks/ (made with SIZE 2048).  Landmarks were measured on the model in Blender's frame (z up, face toward -y): nose tip
 # (0, -0.160, 1.516) m, upper lip at z 1.495, lower lip at z 1.480, mouth 5 cm wide.
 import bpy, math, os, random, struct, sys, zipfile, zlib, tempfile
 
 argv = sys.argv[sys.argv.index('--') + 1:]
 model, out, size = argv[0], argv[1], int(argv[2])
+only = argv[3].split(',') if len(argv) > 3 else None
 if model.endswith('.zae'):
     tmp = tempfile.mkdtemp()
     with zipfile.ZipFile(model) as z:
@@ -74,7 +78,18 @@ def freckles(p):
             best = max(best, a * (0.5 + 0.5 * math.cos(math.pi * d)))
     return best
 
+def brows(p):  # eyes: x 0.0135..0.0444, z 1.539..1.569 (their mesh); brows from x 10 to 56 mm
+    x, y, z = p
+    t = (abs(x) - 0.010) / 0.046
+    if t <= 0 or t >= 1 or y > -0.08:
+        return 0.0
+    zc = 1.562 + 0.008 * math.sin(math.pi * (0.15 + 0.75 * t))  # arched, highest 2/5 outward
+    h = 0.0040 * (1 - 0.55 * t)
+    return ramp(t / 0.12) * ramp((1 - t) / 0.25) * ramp((1 - abs(z - zc) / h) / 0.5) * ramp((-0.085 - y) / 0.01)
+
 masks = {'lips': lips, 'cheeks': cheeks, 'nose': nose, 'ears': ears, 'freckles': freckles}
+if only:
+    masks = {k: f for k, f in dict(masks, brows=brows).items() if k in only}
 img = {k: bytearray(size * size) for k in masks}
 for t in me.loop_triangles:
     ps = [P[i] for i in t.vertices]

@@ -750,6 +750,9 @@ ms_section() {
 			on && /deg: loss/ { gsub(/[(),]/, ""); printf "%s%s° %s lost, %s returned", (n++ ? "; " : ""), $2, $5, $15 }')
 	fi
 	cv() { awk -F'\t' -v r="$1" -v c="$2" '$1 == r { print $c }' "$cand"; }
+	resid=$br/residuals-$p.md
+	python3 "$top_srcdir/scripts/fit-curet.py" --evaluate "$ini" --residuals --nodes 64 --brdf-model "$BRDF_MODEL" \
+		--curet "$curet205" --out "$work/residuals" >"$resid" || : >"$resid"
 	cat <<EOF
 
 #### The facets' later reflections in the lobe, and the other candidates (round 5)
@@ -767,8 +770,12 @@ rule over the facet normals, the later bounces by 40000 walks per cosine on fixe
 E = 2 ∫ dR μ dμ; reciprocal, its albedo exactly dR, 0 as α → 0 (\`tests/test_microfacet_ms\`,
 which also checks the separable lobe plus dR against independent walks within 3 standard errors).
 \`eval\` adds it when the manifest's \`specular.multiple_scattering\` is 1, and so does
-\`tests/brdf_model\`; the tables and the transport are unchanged, so both solvers get it alike
-(the POV-Ray and Blender exporters' own lobes do not have it yet). Of the separable lobe's loss at
+\`tests/brdf_model\`; the tables and the transport are unchanged, so both solvers get it alike.
+The exporters: POV-Ray's split (\`src/export/pov/povsplit.c\`) takes the bake's own lobe, this
+one included, and since round 6 adds it also where a relief widens the single-scattering lobe's
+α (Toksvig); Blender's general mode fits its closures to eval's whole BRDF minus a plain GGX
+closure, so the subsurface and glossy closures carry this lobe (Cycles' Principled GGX is set
+to the single-scattering distribution). Of the separable lobe's loss at
 α = 0.413 from air into the film (n = 1.5) most goes into the skin, where the transport's walk
 has it already; what the new lobe returns to the reflection, by incidence angle:
 ${booking:-(tests/test_microfacet_ms not built)}.
@@ -811,6 +818,48 @@ $(awk -F'\t' 'NR > 1 { printf "| %s | %s | %s | %s | %s | %s | %s | %s |\n", $1,
 What remains is the round-3 finding, smaller: the grazing geometries (θi ≈ 65-79°, θv ≈ 60-84°)
 where the measured skin grows brighter at every azimuth as both angles approach grazing, most on
 the mirror side; the worst held-out point of \`$p\` is $(hs "$p" 9).
+
+#### What the data can tell, and where the rest sits (round 6)
+
+\`scripts/fit-curet.py --evaluate docs/validation/$p.ini --nodes 64 --residuals\` (adding-doubling at
+all 205 points). The CUReT table used here carries no per-value error, so its uncertainty is
+measured from the data itself: the 205 geometries hold $(sed -n 's/^reciprocal pairs: \([0-9]*\).*/\1/p' "$resid")
+reciprocal pairs (light and camera swapped, the same azimuth difference), which any BRDF must
+read alike (Helmholtz); their two readings differ by $(sed -n 's/.*RMS: \([0-9.]*\) %.*/\1/p' "$resid") % RMS, so a single reading carries
+about $(sed -n 's/.*(per reading \([0-9.]*\) %.*/\1/p' "$resid") % (the difference over √2), most on the mirror side at grazing. Reciprocity sees only
+the errors that differ between the two readings; what both share (the grey-card calibration, the
+sample's shape and mounting, saturation near the mirror direction) is not in this number:
+
+$(awk '/^\| where/ { on = 1 } on && /^\|/ { print } on && /^$/ { exit }' "$resid")
+
+$(sed -n 's/^floor: \(.*\)/Measured: \1./p' "$resid") So
+**the 8 % goal is not below the data's noise**: the readings' own scatter (about
+$(sed -n 's/.*(per reading \([0-9.]*\) %.*/\1/p' "$resid") %) explains little of the $(hs "$p" 3) % held out; what is left is the model's.
+Where it sits (residual = simulated / measured − 1):
+
+$(awk '/^\| held-out points/ { on = 1 } on && /^\|/ { print } on && /^$/ { exit }' "$resid")
+
+$(awk '/^\| angle between light/ { on = 1 } on && /^\|/ { print } on && /^$/ { exit }' "$resid")
+
+Two signatures, both in geometries the 20 training points barely reach. (1) *Toward the
+light*: at small angles the model is low where camera and light are close (22.5° and 45° apart)
+and high where they are 90-112° apart, on the training points too; the measured skin
+back-scatters more than a flat layered slab with microfacet boundaries does (shadow hiding on
+the relief, as rough diffuse surfaces show it, is one candidate, not measured here; the mm-scale
+relief of round 4 brightens the back side but costs the mirror side at grazing, so its fit keeps it
+small). (2) *Both angles grazing*, at every
+azimuth and most on the mirror side: the readings rise as both cosines fall, the signature of
+single scattering by sparse scatterers above the surface (vellus hair, loose corneocytes:
+"asperity scattering", Koenderink & Pont 2003, f ∝ p(γ) / (μi + μo) for a thin layer). As an
+added term (skin part as evaluated, Henyey-Greenstein phase; a diagnostic in fit-curet.py, not a
+preset key): $(sed -n 's/^asperity: //p' "$resid"). So the training points (θi ≤ 33.75°) cannot
+see it (their fit sets it to 0), and even fitted to the held-out points it leaves more than 8 %:
+with these 20 training points, no candidate measured so far (Beckmann, two rough interfaces, the
+facets' later reflections in the lobe and in the fit, two lobes, two film roughnesses, the
+mm-scale relief, asperity scattering) brings the held-out error under 8 %. An anisotropic
+surface (furrows along one direction, anisotropic Smith terms) cannot be tested against this
+table: none of its 205 geometries repeats at another azimuth of the sample (checked: 0 pairs
+with the same θi, θv and Δφ).
 EOF
 }
 

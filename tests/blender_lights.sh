@@ -14,7 +14,6 @@ brdf="$top_builddir/tests/blender_brdf"
 blender_require
 B() { timeout 300 "$BLENDER" -b -noaudio --python-exit-code 1 "$@"; }
 BF() { B --factory-startup "$@"; }
-val() { sed -n "s/^$1 //p" "$2" | tail -1; }
 
 bake="$tmpd/bake"
 if ! "$SKINBAKE" bake --preset paper --out "$bake" --theta-nodes 6 --resolution 9x9 --batch-photons 1000 \

@@ -17,6 +17,7 @@
 imp="$top_srcdir/exporters/blender/import_skin.py"
 scn="$top_srcdir/tests/blender_scene.py"
 . "$top_srcdir/tests/lib/pov.sh"
+. "$top_srcdir/tests/lib/blender.sh"
 pov_require
 if [ -z "$BLENDER" ] || ! command -v "$BLENDER" >/dev/null 2>&1; then
 	fail "blender is missing (BLENDER='$BLENDER'; the project's set-up installs it)"
@@ -24,7 +25,6 @@ if [ -z "$BLENDER" ] || ! command -v "$BLENDER" >/dev/null 2>&1; then
 	exit 1
 fi
 B() { timeout 300 "$BLENDER" -b -noaudio --python-exit-code 1 "$@"; }
-val() { sed -n "s/^$1 //p" "$2" | tail -1; }
 
 # The importer needs an image set (its material is made, on no object).
 "$SKINBAKE" bake --preset paper --out "$tmpd/bake" --theta-nodes 3 --resolution 5x5 --r-bins 10 \

@@ -21,7 +21,6 @@ scn="$top_srcdir/tests/blender_scene.py"
 brdf="$top_builddir/tests/blender_brdf"
 blender_require
 B() { timeout 600 "$BLENDER" -b -noaudio --python-exit-code 1 "$@"; }
-val() { sed -n "s/^$1 //p" "$2" | tail -1; }
 # set_up NAME MODE SAMPLES BAKE-ARGS...: bake, export, import onto the sphere, save NAME-MODE.blend
 set_up() {
 	s_n=$1 s_mode=$2 s_spp=$3

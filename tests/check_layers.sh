@@ -1,13 +1,15 @@
 #!/bin/sh
 # The layer rule: a file under src/ includes only headers of its own folder or
 # of folders of a lower layer (the table below, lowest first), and names every
-# project header by its folder ("engine/slab.h").  One TAP line per file;
+# project header by its folder ("engine/slab.h"); every exporter's folder
+# (export/NAME) is one layer, so a new exporter needs no line here and
+# exporters do not include each other.  One TAP line per file;
 # then no include cycles between the files' modules, inside folders too.
 . "$top_srcdir/tests/tap.sh"
 rank() {
 	case $1 in
 	base) echo 0 ;; io) echo 1 ;; engine) echo 2 ;; skin | geom) echo 3 ;; bake) echo 4 ;; family) echo 5 ;;
-	export | maps | scene) echo 6 ;; export/pov | export/blender | export/mitsuba) echo 7 ;; cli) echo 8 ;;
+	export | maps | scene) echo 6 ;; export/*) echo 7 ;; cli) echo 8 ;;
 	*) echo -1 ;;
 	esac
 }
@@ -65,6 +67,10 @@ check "the same without y.c (y.h only types) is no cycle" test -z "$(cycles "$tm
 printf '#include "cli/cli.h"\n' > "$tmpd/up.c"
 printf '#include "geom/relief.h"\n' > "$tmpd/side.c"
 printf '#include "slab.h"\n' > "$tmpd/flat.c"
+printf '#include "export/blender/blender.h"\n' > "$tmpd/sidex.c"
+check "a probe with an exporter including another exporter is caught" \
+	test -n "$(violations "$tmpd/sidex.c" export/pov)"
+check "a new exporter's folder (export/new) is in the exporters' layer" test "$(rank export/new)" -eq 7
 for t in up side flat; do
 	check "a probe with a wrong include ($t) is caught" test -n "$(violations "$tmpd/$t.c" skin)"
 done

@@ -2,7 +2,8 @@
 # Every JSON the program writes parses with a strict parser (Python's json
 # with NaN, Infinity and -Infinity refused): the bake manifests of both
 # solvers, a family's family.json, maps.json (new and fitted), the texture
-# manifest, the Blender image sets' manifests (a bake and a family),
+# manifest, the Blender image sets' manifests (a bake and a family), the
+# POV-Ray and Mitsuba exports' manifests (Mitsuba's scene.json too),
 # scene.json, and the --json outputs of simulate (both solvers), eval and
 # verify.  src/io/json.h has the policy (non-finite numbers are null).
 # Tiny runs: about 5 s.
@@ -35,6 +36,9 @@ run texture texture --size 16 --out "$T/tex" --quiet
 run blender export blender --bake "$T/bmc" --textures "$T/tex" --lut-cos 8 --lut-phi 3 --out "$T/blend"
 run blender_fam export blender --family "$T/fam" --maps "$T/maps" --lut-cos 8 --lut-phi 3 --out "$T/blendfam"
 run scene scene --scene "$top_srcdir/scenes/two-lights.scene" --out "$T/scene.json"
+run pov export pov --bake "$T/bmc" --textures "$T/tex" --scene "$top_srcdir/scenes/sphere.scene" \
+	--data-dir "$top_srcdir/exporters/pov" --out "$T/pov"
+run mitsuba export mitsuba --scene "$top_srcdir/scenes/sphere.scene" --bake "$T/bad" --mode table --out "$T/mts"
 # Each --json output and each *.json file the runs wrote, parsed strictly.
 for f in sim_mc sim_ad sim_clear eval eval_ad verify; do
 	[ -s "$T/$f.out" ] && cp "$T/$f.out" "$T/stdout_$f.json"
@@ -54,7 +58,8 @@ json.load(open(sys.argv[1]), parse_constant=refuse)' "$f" 2>"$T/why"; then
 done
 # The list above is not empty by accident: each kind was written.
 for k in bmc/manifest.json bad/manifest.json fam/family.json maps/maps.json mapsfit/maps.json tex/manifest.json \
-	blend/manifest.json scene.json stdout_verify.json; do
+	blend/manifest.json blendfam/manifest.json pov/manifest.json mts/manifest.json mts/scene.json scene.json \
+	stdout_verify.json; do
 	check "$k was written" test -s "$T/$k"
 done
 tap_done

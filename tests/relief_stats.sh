@@ -72,6 +72,11 @@ for s in face forehead cheek; do
 		awk -v a="$pd" -v b="$fd" 'BEGIN { exit !(a > b) }'
 done
 
+# Without the range table nothing is compared, and the report says so (not "0 outside").
+SKINBAKE_DATADIR="$tmpd/none" "$S" texture --site face --size 64 --quiet --stats --out "$tmpd/notable" >"$tmpd/notable.txt"
+check "no range table: report says not compared" sh -c \
+	"grep -q '^# no range table' '$tmpd/notable.txt' && grep -q '^# not compared' '$tmpd/notable.txt' && ! grep -q 'outside their' '$tmpd/notable.txt'"
+
 # --stats adds to the manifest only; the maps are the same.
 "$S" texture --site face --size 64 --quiet --out "$tmpd/plain"
 "$S" texture --site face --size 64 --quiet --stats --out "$tmpd/withstats" >/dev/null

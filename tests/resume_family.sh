@@ -10,47 +10,10 @@
 . "$top_srcdir/tests/tap.sh"
 B="$SKINBAKE"
 cd "$tmpd" || exit 1
-
-# same REF DIR: every file of REF and its member directories equal in DIR
-# (*.json: but the command and seconds lines), and no file more or less
-same() {
-	for f in "$1"/* "$1"/*/*; do
-		[ -d "$f" ] && continue
-		g="$2/${f#"$1"/}"
-		case $f in
-		*.json) grep -v -e '"command":' -e '"seconds":' -e '"checksums":' "$f" > a.json
-			grep -v -e '"command":' -e '"seconds":' -e '"checksums":' "$g" > b.json
-			cmp -s a.json b.json || { echo "# $g differs"; return 1; } ;;
-		*) cmp -s "$f" "$g" || { echo "# $g differs"; return 1; } ;;
-		esac
-	done
-	[ "$(cd "$1" && find . | sort)" = "$(cd "$2" && find . | sort)" ]
-}
+. "$top_srcdir/tests/lib/resume.sh"
 
 # differ A B: files A and B are not equal
 differ() { ! cmp -s "$1" "$2"; }
-
-# members DIR: the members saved in DIR.checkpoint (its uint32 after the
-# 23-byte header line and the 8-byte identity), 0 without one
-members() {
-	n=$(od -An -tu4 -j31 -N4 "$1.checkpoint" 2>/dev/null | tr -d ' ')
-	echo "${n:-0}"
-}
-
-# killat DIR N CMD...: start CMD, SIGKILL it once DIR.checkpoint holds N
-# members; 0 when it was killed that way, 1 when it ended first
-killat() {
-	kdir=$1 kn=$2
-	shift 2
-	"$@" & pid=$!
-	while kill -0 $pid 2>/dev/null; do
-		[ "$(members "$kdir")" -ge "$kn" ] && break
-		sleep 0.02
-	done
-	kill -9 $pid 2>/dev/null
-	wait $pid
-	[ $? -eq 137 ]
-}
 
 F="--preset fair-oily --solver ad --theta-nodes 2 --resolution 6x4 --radial-photons 10000 --r-bins 10 --threads 1
 	--checkpoint-seconds 0 --quiet"
@@ -58,7 +21,7 @@ V="--vary dermis.blood=0.01:0.05:3:lin"
 check "family: uninterrupted bake" "$B" bake $F $V --out ref
 check "family: killed after its first member was saved" killat fam 1 "$B" bake $F $V --out fam
 check "family: the killed bake left a checkpoint of 1 member and no output" \
-	[ "$(members fam)" -eq 1 -a ! -e fam ]
+	[ "$(ckpt_count fam)" -eq 1 -a ! -e fam ]
 "$B" bake $F $V --out fam 2> err.txt
 check "family: a stale checkpoint without --resume: exit 2" [ $? -eq 2 ]
 check "family: ... and the message says to pass --resume or remove it" grep -q "fam.checkpoint.*--resume.*remove" err.txt
@@ -69,7 +32,7 @@ check "family: ... naming the checkpoint" grep -q "fam.checkpoint was written by
 "$B" bake $F $V --out fam --resume 2> err.txt
 check "family: --resume" [ $? -eq 0 ]
 check "family: ... says what it restored" grep -q "resuming from fam.checkpoint: 1 member finished" err.txt
-check "family: resumed directory equals the uninterrupted one" same ref fam
+check "family: resumed directory equals the uninterrupted one" resume_same ref fam checksums
 check "family: ... whose members differ (the comparison can fail)" differ ref/m0000/brdf.exr ref/m0002/brdf.exr
 check "family: the checkpoint is gone after the bake" [ ! -e fam.checkpoint ]
 

@@ -12,42 +12,7 @@
 . "$top_srcdir/tests/tap.sh"
 B="$SKINBAKE"
 cd "$tmpd" || exit 1
-
-# same REF DIR: every file of REF equal in DIR (manifest: but command and seconds)
-same() {
-	for f in "$1"/*; do
-		g="$2/$(basename "$f")"
-		case $f in
-		*.json) grep -v -e '"command":' -e '"seconds":' "$f" > a.json
-			grep -v -e '"command":' -e '"seconds":' "$g" > b.json
-			cmp -s a.json b.json || { echo "# $g differs"; return 1; } ;;
-		*) cmp -s "$f" "$g" || { echo "# $g differs"; return 1; } ;;
-		esac
-	done
-	[ "$(ls "$1" | wc -l)" -eq "$(ls "$2" | wc -l)" ]
-}
-
-# runs DIR: the solver runs saved in DIR.checkpoint (its uint32 after the
-# 23-byte header line and the 8-byte identity), 0 without one
-runs() {
-	n=$(od -An -tu4 -j31 -N4 "$1.checkpoint" 2>/dev/null | tr -d ' ')
-	echo "${n:-0}"
-}
-
-# killat DIR N CMD...: start CMD, SIGKILL it once DIR.checkpoint holds N
-# solver runs; 0 when it was killed that way, 1 when it ended first
-killat() {
-	kdir=$1 kn=$2
-	shift 2
-	"$@" & pid=$!
-	while kill -0 $pid 2>/dev/null; do
-		[ "$(runs "$kdir")" -ge "$kn" ] && break
-		sleep 0.02
-	done
-	kill -9 $pid 2>/dev/null
-	wait $pid
-	[ $? -eq 137 ]
-}
+. "$top_srcdir/tests/lib/resume.sh"
 
 MC="--preset paper --solver mc --theta-nodes 3 --resolution 9x6 --target-error 0 --max-photons 100000
 	--batch-photons 100 --r-bins 20 --quiet --checkpoint-seconds 0"
@@ -61,7 +26,7 @@ check "mc: ... and the message says to pass --resume or remove it" grep -q "mc.c
 check "mc: --resume with another seed: exit 2 (another bake)" [ $? -eq 2 ]
 check "mc: ... naming the checkpoint" grep -q "mc.checkpoint was written by a different bake" err.txt
 check "mc: --resume" "$B" bake $MC --out mc --resume
-check "mc: resumed tables and manifest equal the uninterrupted ones" same ref mc
+check "mc: resumed tables and manifest equal the uninterrupted ones" resume_same ref mc
 check "mc: the checkpoint is gone after the bake" [ ! -e mc.checkpoint ]
 
 # Rounds sized from a pilot (mc.h): killed after the pilot's checkpoint.
@@ -70,7 +35,7 @@ MR="--preset paper --solver mc --theta-nodes 3 --resolution 9x6 --target-error 0
 check "mc rounds: uninterrupted bake" "$B" bake $MR --out refr
 check "mc rounds: killed after the pilot's checkpoint" killat rounds 1 "$B" bake $MR --out rounds
 check "mc rounds: --resume" "$B" bake $MR --out rounds --resume
-check "mc rounds: resumed tables and manifest equal the uninterrupted ones" same refr rounds
+check "mc rounds: resumed tables and manifest equal the uninterrupted ones" resume_same refr rounds
 
 AD="--preset fair-oily --spectral 400:700:25 --theta-nodes 3 --resolution 9x6 --radial-photons 20000 --r-bins 20
 	--quiet --threads 1 --checkpoint-seconds 0"
@@ -82,10 +47,13 @@ else
 	skip "ad: the resumed bake ended before the second kill (a slower machine kills it)"
 fi
 check "ad: --resume" "$B" bake $AD --out ad --resume
-check "ad: resumed tables and manifest equal the uninterrupted ones" same refad ad
+check "ad: resumed tables and manifest equal the uninterrupted ones" resume_same refad ad
 
 check "--resume without a checkpoint bakes from the start" "$B" bake $AD --out fresh --resume
-check "... the same tables" same refad fresh
+check "... the same tables" resume_same refad fresh
+# The comparison can fail: one byte of a table changed is caught.
+cp -r ref probe && printf x | dd of=probe/brdf.exr bs=1 seek=100 conv=notrunc 2>/dev/null
+if resume_same ref probe >/dev/null; then fail "probe: a table changed in one byte passes"; else ok "probe: a table changed in one byte is caught"; fi
 printf 'skinbake checkpoint 1\ngarbage' > bad.checkpoint
 "$B" bake $AD --out bad --resume 2> err.txt
 check "a damaged checkpoint: exit 2" [ $? -eq 2 ]

@@ -249,8 +249,8 @@ static void test_filter_height(void **state)
 			assert_int_equal(f[y * (N / 4) + x], x == 1 ? 65535 : 0);
 	free(f);
 	assert_int_equal(bumpmap_filter_factor(512, 0.01, 0.005), 1);
-	assert_int_equal(bumpmap_filter_factor(512, 0.01, 0.04), 2);
-	assert_int_equal(bumpmap_filter_factor(512, 0.01, 0.5), 16);	/* texel 0.16 <= half a pixel */
+	assert_int_equal(bumpmap_filter_factor(512, 0.01, 0.04), 4);	/* texel 0.04 = one pixel */
+	assert_int_equal(bumpmap_filter_factor(512, 0.01, 0.5), 32);	/* 0.32 <= a pixel; stops at 16 px */
 	assert_int_equal(bumpmap_filter_factor(64, 0.01, 10), 4);	/* stops at 16 px */
 	assert_int_equal(bumpmap_filter_factor(48, 0.01, 0.5), 2);		/* 48 = 3 * 16 */
 }

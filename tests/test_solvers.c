@@ -46,7 +46,7 @@ static void paper_spec(struct bake_spec *s, int method)
 	s->min_batches = 8;
 	s->max_photons = 6L * 32 * 1000;	/* 32 batches per job */
 	s->nee = 1;
-	s->radial_error = 0.2;	/* the pilot's 2000 photons per wavelength do */
+	s->radial_error = 0.2;	/* the pilot's 1024 photons per wavelength do */
 	s->n_ranks = 1;
 	char *cause = NULL;
 	struct skin_params *p = bake_spec_preset(s, "paper", NULL, &cause);
@@ -128,7 +128,7 @@ static void test_ad_agrees_with_mc(void **state)
 	assert_true(rq < 0.3);
 	/* Rd(r) of the ad bake comes from its own Monte Carlo run; the radius
 	 * agrees with the Monte Carlo bake's within the errors. */
-	assert_int_equal(ra.radial_photons, 3 * 2000);
+	assert_int_equal(ra.radial_photons, 3 * BAKE_RADIAL_PILOT);
 	for (int w = 0; w < 3; w++) {
 		double d = ra.mean_radius_cm[w] - rm.mean_radius_cm[w];
 		double e = hypot(ra.mean_radius_err_cm[w], rm.mean_radius_err_cm[w]);

@@ -39,7 +39,7 @@
 
 #define BAKE_MAX_WL 128
 #define BAKE_MAX_TI 90
-#define BAKE_RADIAL_PILOT 2000		/* photons per wavelength of the Rd(r) pilot */
+#define BAKE_RADIAL_PILOT 1024		/* photons per wavelength of the Rd(r) pilot (64 batches) */
 #define BAKE_RADIAL_ERROR 0.02		/* default radial_error */
 #define BAKE_RADIAL_PHOTONS 1000000	/* default radial_photons */
 #define BAKE_RADIAL_ROUNDS 4		/* Rd(r) runs added to the pilot at most */

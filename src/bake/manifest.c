@@ -204,7 +204,7 @@ static json_object *radial_info(const struct bake_spec *s, const struct bake_res
 		    "method gives no Rd(r)), each escape also scored as exp(-2/cm x its path "
 		    "length in the turbid layers): profile and mean radius regressed on that and "
 		    "on the escape weight, whose means adding-doubling gives (control variates; "
-		    "src/bake/radial.h); a pilot of 2000 photons per wavelength, then more (up to "
+		    "src/bake/radial.h); a pilot of 1024 photons per wavelength, then more (up to "
 		    "4 rounds) where the mean radius's relative error is above target_rel_err" :
 		    "Monte Carlo, the table's jobs at theta_i_deg"));
 	add(rad, "photons", json_object_new_int64(r->radial_photons > 0 ? r->radial_photons

@@ -204,6 +204,10 @@ void radial_solve(const struct radial_spec *sp, struct radial_out *out)
 		for (int l = 1; l <= sp->slab->n_layers; l++)
 			if (!slab_layer_clear(sp->slab, l))
 				dmua[j * NS + l] = cv_shift[j];
+	/* Far roulette beyond the bins (engine/transport.h): the profile and
+	 * the mean radius count nothing that leaves beyond them. */
+	struct transport_opts o = *sp->opts;
+	o.far_cm = sp->n_r * sp->dr;
 	const long bp = RADIAL_BATCH;
 	const int nc = sp->n_r + 2, chunk = 1024;
 	/* Whole batches, at least 2 (the photon cap rounded up); the pilot at
@@ -224,7 +228,7 @@ void radial_solve(const struct radial_spec *sp, struct radial_out *out)
 		for (long done = 0; done < nb; done += chunk) {
 			int c = nb - done < chunk ? (int)(nb - done) : chunk;
 			int b0 = (int)(have + done);
-			wmc_batches(sp->slab, dmua, KMAX, sp->theta_in, sp->opts, sp->n_r, sp->dr,
+			wmc_batches(sp->slab, dmua, KMAX, sp->theta_in, &o, sp->n_r, sp->dr,
 			    bp, b0, c, sp->seed, sp->stream, sp->threads, prof, tot);
 			moments_add(&mo, sp->n_r, sp->dr, prof, tot, c);
 		}

@@ -24,7 +24,7 @@ int bake_opts_transport(struct opt *o, struct bake_opts *b)
 		  "before refusing (its cost bound)" },
 		{ "radial-error", OPT_DOUBLE, &s->radial_error, "E", "0.02", .lo = 1e-4, .hi = 1,
 		  .help = "ad: relative error of each mean exit radius (Rd(r) by Monte Carlo: "
-		  "2000 photons per wavelength, more as E asks, up to --radial-photons)" },
+		  "1024 photons per wavelength, more as E asks, up to --radial-photons)" },
 		{ "radial-photons", OPT_LONG, &s->radial_photons, "N", "1e6", .lo = 100, .hi = 1e10,
 		  .help = "ad: Rd(r) photons cap" },
 		{ "target-error", OPT_DOUBLE, &s->target_error, "E", "0.02", .lo = 0, .hi = 1,

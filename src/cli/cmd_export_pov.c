@@ -70,7 +70,9 @@ int cmd_export_pov(int argc, char **argv)
 		  "a family (bake --vary) blended per texel by the maps, one light (docs/maps.md)" },
 		{ "maps", OPT_PATH_IN, &po.maps, "DIR", .flags = OPT_DIR, .help = "with --family: `skinbake maps` output" },
 		{ "plan", OPT_FLAG, &po.plan, .help = "print the incidence angles the scene needs from a bake, write nothing" },
-		{ "mode", OPT_ENUM, &po.translucent, .choices = "exact|translucent", .def = "exact", .help = "docs/translucency.md" },
+		{ "mode", OPT_ENUM, &po.translucent, .choices = "exact|translucent|auto", .def = "auto",
+		  .help = "auto: translucent for skin meshes where it applies, else exact "
+		  "(docs/translucency.md)" },
 		{ "sss-samples", OPT_INT, &po.sss_samples, "N", "64", .lo = 1, .hi = 100000, .help = "translucent: samples" },
 		OPT_END
 	};

@@ -48,7 +48,9 @@ static int run(const struct texture_config *cfg, const char *out, int quiet)
 		    s.n_pores, s.h_min * 1e4, s.h_max * 1e4, s.t_place, s.t_render, s.t_write, out);
 	int outside = 0;
 	char *text = s.have_stats ? relief_ranges_report(&s.stats, cfg->site, &outside) : NULL;
-	if (text != NULL)
+	if (text != NULL && outside < 0)
+		printf("%s# not compared with measured ranges\n", text);
+	else if (text != NULL)
 		printf("%s# %d outside their measured range\n", text, outside);
 	free(text);
 	return CLI_EXIT_OK;

@@ -32,6 +32,7 @@ void transport_opts_default(struct transport_opts *o)
 	o->roulette_w = 0.2;
 	o->roulette_chance = 0.3;
 	o->max_steps = 1000000;
+	o->far_cm = 0.0;
 }
 
 void transport_launch(const struct slab *s, double theta_in, enum optics_fresnel model, struct launch *ln)
@@ -123,6 +124,8 @@ struct photon {
 	int direct;	/* flying straight on since the last scattering (what nee scores) */
 	int entered;	/* has reached the first turbid layer (else a return is specular) */
 	long steps;	/* interactions so far */
+	int far;	/* far roulettes played (transport.h) */
+	double ws;	/* 2^far: the weight roulette's threshold scale */
 	double path[SLAB_MAX_LAYERS + 2];	/* path length per layer so far [cm] (wmc.h) */
 };
 
@@ -143,6 +146,8 @@ static inline void launch(struct photon *ph, const struct launch *ln)
 	ph->direct = 0;
 	ph->entered = ln->layer > 0;
 	ph->steps = 0;
+	ph->far = 0;
+	ph->ws = 1.0;
 	memset(ph->path, 0, sizeof ph->path);
 }
 
@@ -330,6 +335,27 @@ static inline int roulette(struct photon *ph, double w_th, double chance, double
 	return 0;
 }
 
+enum { FAR_MAX = 64 };	/* far roulettes per photon at most */
+
+/* Far roulette (transport.h) at an interaction, z0 the entry depth and
+ * far2[k] the squared k-th distance: 1 when the photon dies. */
+static inline int far_roulette(struct photon *ph, double z0, const double *far2, struct rng *r,
+    struct tally *t)
+{
+	double dz = ph->z - z0, d2 = ph->x * ph->x + ph->y * ph->y + dz * dz;
+	if (ph->far >= FAR_MAX || d2 <= far2[ph->far])
+		return 0;
+	ph->far++;
+	if (rng_uniform(r) < 0.5) {
+		t->a[ph->l] -= ph->w;
+		ph->w *= 2.0;
+		ph->ws *= 2.0;
+		return 0;
+	}
+	t->a[ph->l] += ph->w;
+	return 1;
+}
+
 #ifdef SKINBAKE_DEBUG
 /* Debug builds: all the weight the tally has booked, and whether a
  * direction is a unit vector. */
@@ -366,6 +392,12 @@ void transport_run(const struct slab *s, const struct launch *ln, const struct t
 	/* Weights stay in [0, 1], or up to w_th / chance after roulette. */
 	const double w_max = fmax(1.0, w_th * inv_chance);
 	(void)w_max;
+	const int far = nee == NULL && o->far_cm > 0.0;
+	double far2[FAR_MAX];
+	for (int k = 0; k < FAR_MAX; k++) {
+		double d = o->far_cm * (1.0 + (double)k / TRANSPORT_FAR_LEVELS);
+		far2[k] = d * d;
+	}
 	for (uint64_t p = first; p < first + count; p++) {
 		struct rng r;
 		rng_seed(&r, seed, stream, p);
@@ -393,9 +425,13 @@ void transport_run(const struct slab *s, const struct launch *ln, const struct t
 			}
 			spin(&ph, &hg[ph.l], &r, t);
 			DCHECK(unit(&ph));
-			if (roulette(&ph, w_th, chance, inv_chance, &r, t) || guard(&ph, o, t))
+			if (roulette(&ph, w_th * ph.ws, chance, inv_chance, &r, t))
 				break;
-			DCHECK(ph.w >= 0.0 && ph.w <= w_max);
+			if (guard(&ph, o, t))
+				break;
+			if (far && far_roulette(&ph, ln->z, far2, &r, t))
+				break;
+			DCHECK(ph.w >= 0.0 && ph.w <= w_max * ph.ws);
 		}
 		/* Every photon's launch weight ends in a tally (energy booked). */
 		DCHECK(fabs(booked(s, t) - booked0 - ln->w0) <= 1e-9 * (1.0 + fabs(booked0)));

@@ -15,6 +15,10 @@ struct transport_opts {
 	double roulette_w;		/* weight below which roulette plays [-], >= 0 */
 	double roulette_chance;		/* survival probability in roulette [-], (0, 1] */
 	long max_steps;			/* interactions per photon before the guard ends it */
+	double far_cm;			/* 0, or the distance from the entry point
+					 * beyond which photons play far roulette (below),
+					 * for tallies that ignore what leaves beyond it
+					 * (Rd(r) of n_r dr); only without nee */
 };
 
 /* Where and how photons enter the first turbid layer. */
@@ -27,6 +31,18 @@ struct launch {
 	double z;	/* entry depth [cm] */
 	double ux, uz;	/* direction cosines in that layer (uy = 0: incidence plane is xz) */
 };
+
+/* Far roulette (far_cm > 0): each time a photon, at an interaction, is
+ * further from where it entered (the 3-D distance, so depth counts too)
+ * than far_cm + k far_cm / TRANSPORT_FAR_LEVELS for the first time (k = 0,
+ * 1, ...), it survives with chance 1/2 at twice its weight (the change
+ * booked against absorption, as the weight roulette's), and the weight
+ * roulette then plays at roulette_w times its weight's growth.  Unbiased
+ * for every tally; it spends less time on the photons that would have to
+ * come a long way back to count.  On fair-oily at 700 nm (mean radius
+ * 0.117 cm, far_cm 0.5) the walk took 1.2x less CPU at the same
+ * variance of the mean radius (bake/radial.h). */
+#define TRANSPORT_FAR_LEVELS 4
 
 /* Defaults: roulette below weight 0.2 with survival chance 0.3 (tuned on the
  * skin stack: about 3x the efficiency of MCML's 1e-4 / 0.1, see BENCHMARKS.md),

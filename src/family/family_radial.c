@@ -43,8 +43,11 @@ static void share_group(const struct bake_spec *s, const struct slab *vs, const 
 		sub[k] = vs[idx[k]];
 	wmc_reference(sub, n, &ref, dmua);
 	struct wmc_radial w;
+	/* Far roulette beyond the bins (engine/transport.h), as bake/radial.c. */
+	struct transport_opts o = s->opts;
+	o.far_cm = s->n_r * s->dr;
 	uint32_t stream = (uint32_t)(wl * 2 * FAMILY_RADIAL_GROUPS + 2 * grp);
-	wmc_radial_run(&ref, dmua, n, s->theta_i[0], &s->opts, s->n_r, s->dr, pilot, BATCHES,
+	wmc_radial_run(&ref, dmua, n, s->theta_i[0], &o, s->n_r, s->dr, pilot, BATCHES,
 	    s->seed, stream, s->threads, &w);
 	fr->photons += w.photons;
 	fr->seconds += w.seconds;
@@ -72,7 +75,7 @@ static void share_group(const struct bake_spec *s, const struct slab *vs, const 
 		wmc_radial_free(&w);
 		wmc_reference(sub, kept, &ref, dmua);
 		long photons = need > pilot ? need : pilot;
-		wmc_radial_run(&ref, dmua, kept, s->theta_i[0], &s->opts, s->n_r, s->dr, photons,
+		wmc_radial_run(&ref, dmua, kept, s->theta_i[0], &o, s->n_r, s->dr, photons,
 		    BATCHES, s->seed, stream + 1, s->threads, &w);
 		fr->photons += w.photons;
 		fr->seconds += w.seconds;

@@ -8,7 +8,8 @@
  * then repeated with the largest need of the rest (other random streams),
  * which replaces the pilot.  Under MPI (spec's n_ranks and allreduce) the
  * ranks share the wavelengths and sum the profiles: every rank ends with
- * the same numbers as one process. */
+ * the same numbers as one process.  The walks play far roulette beyond
+ * the bins (engine/transport.h), as bake/radial.h. */
 #ifndef SKINBAKE_FAMILY_RADIAL_H
 #define SKINBAKE_FAMILY_RADIAL_H
 #include "bake/bake.h"

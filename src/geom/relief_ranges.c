@@ -107,9 +107,10 @@ char *relief_ranges_report(const struct relief_stats *st, const char *site, int 
 	char *cause = NULL;
 	struct relief_ranges *rr = relief_ranges_load(&cause);
 	char *s = rr ? xasprintf("# %s: statistic, value, measured range\n", site)
-		     : xasprintf("# no range table: %s\n", cause);
+		     : xasprintf("# no range table: %s (SKINBAKE_DATADIR names its directory, "
+			 "e.g. the source tree's data/)\n", cause);
 	free(cause);
-	*outside = 0;
+	*outside = rr ? 0 : -1;
 	for (int i = 0; i < RELIEF_STATS_KEYS; i++) {
 		double v = relief_stats_value(st, i);
 		const struct relief_range *r = relief_ranges_find(rr, site, relief_stats_key(i));
@@ -119,7 +120,7 @@ char *relief_ranges_report(const struct relief_stats *st, const char *site, int 
 			    v);
 		} else {
 			int in = v >= r->lo && v <= r->hi;
-			*outside += !in;
+			*outside += !in;	/* r != NULL only with a table */
 			t = xasprintf("%s%-22s %10.4g  %s [%g, %g] (%s)\n", s, relief_stats_key(i),
 			    v, in ? "in" : "OUT OF", r->lo, r->hi, r->source);
 		}

@@ -34,6 +34,6 @@ const struct relief_range *relief_ranges_find(const struct relief_ranges *rr, co
  * value, and "in [lo, hi] (source)", "OUT OF [lo, hi] (source)" or "no
  * sourced range"; a first line "# no range table: CAUSE" when the table
  * cannot be read.  *outside receives the number of values outside their
- * range.  Caller frees. */
+ * range, or -1 without a table (nothing was compared).  Caller frees. */
 char *relief_ranges_report(const struct relief_stats *st, const char *site, int *outside);
 #endif

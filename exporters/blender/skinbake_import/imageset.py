@@ -1,14 +1,13 @@
 """Reading an image set: manifest.json checked against the schema (schema.py), every file's
 structure checked (imagefiles.py), then the images loaded into Blender at the stated sizes."""
 import hashlib
-import json
 import math
 import os
 
 import bpy
 
 from . import schema
-from .common import ImageSetError
+from .common import ImageSetError, json_load
 from .imagefiles import check_exr, check_png
 from .schema import CHANNELS, PNG_TYPES
 
@@ -35,7 +34,7 @@ def read_manifest(directory):
                             "`skinbake export blender`)")
     try:
         with open(path, encoding="utf-8") as f:
-            m = json.load(f)
+            m = json_load(f)
     except (OSError, UnicodeDecodeError, ValueError) as e:
         raise ImageSetError(f"{path}: unreadable or not JSON ({e})") from None
     if not isinstance(m, dict) or m.get("format") != schema.FORMAT:

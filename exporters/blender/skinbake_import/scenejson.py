@@ -13,13 +13,12 @@ An area light (area_size, a disc facing each shaded point in POV-Ray) becomes a 
 diameter (a sphere, which every point also sees as a disc) or a sun of the angle the disc
 subtends from the look_at.  The background is not a light in POV-Ray (no radiosity), so the world
 is left as it is."""
-import json
 import math
 import os
 
 import bpy
 
-from .common import PREFIX, SkinbakeError, say
+from .common import PREFIX, SkinbakeError, json_load, say
 
 FORMAT = "skinbake-scene"
 VERSIONS = (1,)
@@ -46,7 +45,7 @@ def read_scene_json(path):
         path = os.path.join(path, "scene.json")
     try:
         with open(path) as f:
-            sc = json.load(f)
+            sc = json_load(f)
     except OSError as e:
         raise SkinbakeError(f"scene.json: cannot read {path}: {e.strerror}")
     except ValueError as e:

@@ -1,11 +1,11 @@
 """Command line of skinbake_mitsuba. Bad input: a message naming the option, the
 value and the allowed range on stderr, exit status 2, no output."""
 import argparse
-import json
 import math
 import sys
 import time
 
+from . import json_dump
 from . import stack as stk
 from . import variant
 
@@ -101,7 +101,7 @@ def cmd_slab(a):
         out["brdf"].append({"theta_view_deg": tv, "theta_lo_deg": lo, "theta_hi_deg": hi,
                             "fr": v, "fr_err": err})
     out["seconds"] = time.time() - t0
-    json.dump(out, sys.stdout)
+    json_dump(out, sys.stdout)
     sys.stdout.write("\n")
     return 0
 

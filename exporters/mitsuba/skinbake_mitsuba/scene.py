@@ -28,7 +28,6 @@ a point light's intensity is its irradiance times d^2, d its distance to the
 camera's look_at, exact there and within (d/(d +- r))^2 over an object of
 radius r.
 """
-import json
 import math
 import os
 import shutil
@@ -36,6 +35,8 @@ import sys
 import tempfile
 
 import numpy as np
+
+from . import json_load
 
 RAY_EPS = 8.9e-5   # Mitsuba's RayEpsilon for float32 (1500 ulp of 1)
 
@@ -89,7 +90,7 @@ def write_ply(path, pos, nrm, faces):
 
 def _bake_layers(bake):
     with open(os.path.join(bake, "manifest.json")) as f:
-        man = json.load(f)
+        man = json_load(f)
     return man
 
 
@@ -226,7 +227,7 @@ def _translucent(name, ply, centre, bake, fitdir, unit_mm, channel):
     """Scene-dict shape of a translucent skin (transbsdf.py, transfit.py) on mesh PLY."""
     import mitsuba as mi
     with open(os.path.join(fitdir, "fit.json")) as f:
-        fit = json.load(f)
+        fit = json_load(f)
     if os.path.realpath(fit["bake"]) != os.path.realpath(bake):
         raise ValueError("object '%s': --fit %s was fitted to the bake %s, not to its bake %s"
                          % (name, fitdir, fit["bake"], bake))
@@ -250,9 +251,9 @@ def build(export_dir, mode, width=None, spp=64, tmp=None, channel=None, estimato
     largest weight in that channel."""
     import mitsuba as mi
     with open(os.path.join(export_dir, "manifest.json")) as f:
-        man = json.load(f)
+        man = json_load(f)
     with open(os.path.join(export_dir, "scene.json")) as f:
-        sc = json.load(f)
+        sc = json_load(f)
     if man.get("format") != "skinbake-mitsuba":
         raise ValueError("%s is not a skinbake export mitsuba directory" % export_dir)
     # the translucent mode needs closed meshes, as the volumetric one

@@ -17,7 +17,6 @@ direct light is sampled from the emitters).
 
 Parameters: bake (directory written by skinbake bake).
 """
-import json
 import math
 import os
 import sys
@@ -27,6 +26,7 @@ import numpy as np
 import drjit as dr
 import mitsuba as mi
 
+from . import json_load
 from . import tablegrid
 
 
@@ -67,7 +67,7 @@ class TableBSDF(mi.BSDF):
         mi.BSDF.__init__(self, props)
         bake = props["bake"]
         with open(os.path.join(bake, "manifest.json")) as f:
-            man = json.load(f)
+            man = json_load(f)
         self.wl = list(man["wavelengths_nm"])
         self.alpha = float(man["specular"]["alpha"])
         if float(man["specular"].get("macro_slope", 0.0)) > 0.0:

@@ -33,13 +33,13 @@ Sampling from outside: the remainder cosine-weighted with probability P_TABLE,
 else the dielectric's transmission; directions the dielectric would reflect are
 never drawn there, so each branch's density is its own (pdf() says the same).
 """
-import json
 import os
 
 import drjit as dr
 import mitsuba as mi
 import numpy as np
 
+from . import json_load
 from . import tablebsdf
 from . import tablegrid
 
@@ -73,7 +73,7 @@ def remainder_grid(bake, medium_bake, k, weights=True):
     grids = []
     for d in (bake, medium_bake):
         with open(os.path.join(d, "manifest.json")) as f:
-            man = json.load(f)
+            man = json_load(f)
         _, planes = tablebsdf._load_planes(os.path.join(d, "brdf.exr"), "fr.")
         grids.append(tablegrid.resample(man, planes)[k])
     c = exit_weights(grids[0], grids[1]) if weights else np.ones(tablegrid.N_THETA)
@@ -98,9 +98,9 @@ class TranslucentBSDF(tablebsdf.TableBSDF):
         fitdir = props["fit"]
         c = int(props["channel"])
         with open(os.path.join(bake, "manifest.json")) as f:
-            man = json.load(f)
+            man = json_load(f)
         with open(os.path.join(fitdir, "fit.json")) as f:
-            fit = json.load(f)
+            fit = json_load(f)
         k = int(fit["chan_wl"][c])
         self.wl = list(man["wavelengths_nm"])
         self.alpha = float(man["specular"]["alpha"])

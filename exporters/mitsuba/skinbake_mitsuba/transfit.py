@@ -21,12 +21,13 @@ mode) two numbers: the single-scattering albedo a and the extinction mu_t.
     that BRDF, so a flat surface under a distant light shows the bake's BRDF.
 fit.json holds the fit; medium/ the medium's bake.
 """
-import json
 import math
 import os
 import subprocess
 
 import numpy as np
+
+from . import json_dump, json_load, json_loads
 
 PHOTONS = 100000
 R_STEP_MFP = 0.02       # radial bin at mu_t = 1 / cm [cm]
@@ -51,7 +52,7 @@ def _simulate(skinbake, albedo, n, alpha, photons, seed=1):
            "--photons", str(photons), "--seed", str(seed), "--r-step", "%g" % R_STEP_MFP,
            "--r-bins", str(R_BINS), "--json"]
     out = subprocess.run(cmd, check=True, capture_output=True, text=True).stdout
-    js = json.loads(out)
+    js = json_loads(out)
     vals = np.array(js["Rd_r"]["rd_per_cm2"], dtype=float)
     edges = np.array(js["Rd_r"]["r_edges_cm"], dtype=float)
     ring = vals * math.pi * (edges[1:] ** 2 - edges[:-1] ** 2)
@@ -121,7 +122,7 @@ def fit(bake, out, skinbake="skinbake", photons=PHOTONS, log=None):
     """Fit the medium per channel of BAKE, bake its BRDF; write OUT/fit.json and
     OUT/medium/ (a bake directory). Returns the fit as a dict."""
     with open(os.path.join(bake, "manifest.json")) as f:
-        man = json.load(f)
+        man = json_load(f)
     if "radial" not in man or not man["radial"].get("rd_r"):
         raise ValueError("%s: the bake has no radial profile (radial.rd_r), which the translucent "
                          "mode is fitted to" % bake)
@@ -171,5 +172,5 @@ def fit(bake, out, skinbake="skinbake", photons=PHOTONS, log=None):
            "alpha": alpha, "photons": photons, "channels": channels, "chan_wl": chan_wl,
            "medium_bake": "medium"}
     with open(os.path.join(out, "fit.json"), "w") as f:
-        json.dump(res, f, indent=1)
+        json_dump(res, f, indent=1)
     return res

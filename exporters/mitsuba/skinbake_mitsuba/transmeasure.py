@@ -10,12 +10,12 @@ wide and 10 cm deep over a black bottom (scene unit cm) with the translucent sur
            Rd excludes it; the first ring includes the remainder's light, which
            leaves where it enters).
 Values come with standard errors from independent batches."""
-import json
 import math
 import os
 
 import numpy as np
 
+from . import json_load
 from . import measure
 
 HALF_WIDTH_CM = 10.0
@@ -25,7 +25,7 @@ DEPTH_CM = 10.0
 def _base(bake, fitdir, channel, profile=False):
     import mitsuba as mi
     with open(os.path.join(fitdir, "fit.json")) as f:
-        fit = json.load(f)
+        fit = json_load(f)
     ch = fit["channels"][channel]
     from . import stack as stk
     medium = {"type": "homogeneous", "sigma_t": float(ch["mu_t_per_cm"]),
@@ -82,7 +82,7 @@ def bake_rings(bake, k, edges):
     """The bake's ring powers between edges [cm] at wavelength index k (its
     profile's bins split by area)."""
     with open(os.path.join(bake, "manifest.json")) as f:
-        rad = json.load(f)["radial"]
+        rad = json_load(f)["radial"]
     dr = float(rad["dr_cm"])
     rd = np.array(rad["rd_r"][k], dtype=float)
     e = dr * np.arange(len(rd) + 1)

@@ -18,6 +18,7 @@
 #include <stdlib.h>
 #include <string.h>
 
+#include "bake/bakefile.h"
 #include "io/exrio.h"
 #include "io/pngio.h"
 #include "geom/texdir.h"
@@ -75,18 +76,48 @@ float *blender_lut(const struct brdf_source *m, int n_cos, int n_phi)
 	return lut;
 }
 
+/* a(90 deg) per channel: 0 for a smooth top (nothing enters at grazing); for
+ * a rough top (the bake's rough_top) the diffuse table's own value there,
+ * 2 int f(90, o) cos(theta_o) domega over the exits, from bake_eval_diffuse_rgb's
+ * grazing completion (f(90, theta_o) = f(theta_o, 90) by reciprocity,
+ * bakeinterp.h), so the curve goes to what the table holds instead of to 0. */
+static void albedo_grazing(const struct brdf_source *m, double a90[3])
+{
+	enum { NU = 64, NP = 48 };
+	for (int c = 0; c < 3; c++)
+		a90[c] = 0.0;
+	if (m->bake == NULL || !m->bake->rough_top)
+		return;
+	for (int u = 0; u < NU; u++) {
+		double co = (u + 0.5) / NU, to = acos(co);
+		for (int p = 0; p < NP; p++) {
+			double rgb[3];
+			bake_eval_diffuse_rgb(m->bake, M_PI / 2, to, M_PI * (p + 0.5) / NP, rgb);
+			for (int c = 0; c < 3; c++)
+				a90[c] += rgb[c] * co;
+		}
+	}
+	/* d omega = d(cos) d(phi), phi over [0, 2 pi): twice [0, pi]. */
+	for (int c = 0; c < 3; c++)
+		a90[c] *= (1.0 / NU) * (2 * M_PI / NP);
+}
+
 /* a(theta) of channel c, linear between nodes, held below the first, and
- * past the last linear to 0 at 90 deg (nothing enters a smooth surface at
- * grazing; a bake's albedo curve was held there before issue 26). */
-static double albedo_at(const struct brdf_source *m, int c, double theta)
+ * past the last linear to a90 at 90 deg (albedo_grazing: 0 for a smooth top,
+ * nothing enters a smooth surface at grazing; a bake's albedo curve was held
+ * there before issue 26). */
+static double albedo_at(const struct brdf_source *m, int c, double theta, double a90)
 {
 	const double *t = m->theta_albedo, *a = m->albedo_rgb + (size_t)c * (size_t)m->n_albedo;
 	int n = m->n_albedo;
 	if (theta <= t[0] && (n > 1 || t[0] >= M_PI / 2))
 		return a[0];
-	if (theta >= t[n - 1])
-		return t[n - 1] < M_PI / 2 ? a[n - 1] * fmax(0.0,
-		    (M_PI / 2 - theta) / (M_PI / 2 - t[n - 1])) : a[n - 1];
+	if (theta >= t[n - 1]) {
+		if (t[n - 1] >= M_PI / 2)
+			return a[n - 1];
+		double f = fmin(1.0, (theta - t[n - 1]) / (M_PI / 2 - t[n - 1]));
+		return (1 - f) * a[n - 1] + f * a90;
+	}
 	int i = 0;
 	while (i < n - 2 && theta > t[i + 1])
 		i++;
@@ -98,11 +129,13 @@ void blender_albedo_mean(const struct brdf_source *m, double rgb[3])
 {
 	/* Midpoint rule in mu = cos(theta): 2 int_0^1 a(mu) mu dmu. */
 	enum { STEPS = 4096 };
+	double a90[3];
+	albedo_grazing(m, a90);
 	for (int c = 0; c < 3; c++) {
 		double s = 0.0;
 		for (int i = 0; i < STEPS; i++) {
 			double mu = (i + 0.5) / STEPS;
-			s += albedo_at(m, c, acos(mu)) * mu;
+			s += albedo_at(m, c, acos(mu), a90[c]) * mu;
 		}
 		rgb[c] = 2.0 * s / STEPS;
 	}

@@ -105,7 +105,7 @@ uint16_t *bumpmap_filter(const uint16_t *px, int n, double h_min, double h_max, 
 int bumpmap_filter_factor(int n, double texel_units, double pixel_units)
 {
 	int f = 1;
-	while (texel_units * f * 4 <= pixel_units && n % (f * 2) == 0 && n / (f * 2) >= 16)
+	while (texel_units * f * 2 <= pixel_units && n % (f * 2) == 0 && n / (f * 2) >= 16)
 		f *= 2;
 	return f;
 }

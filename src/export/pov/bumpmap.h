@@ -40,6 +40,9 @@ double bumpmap_size(double h_range_um, int n_px, double tile_mm);
 uint16_t *bumpmap_filter(const uint16_t *px, int n, double h_min, double h_max, int f, double *o_min,
     double *o_max);
 /* The filter factor (a power of two dividing n, result >= 16 px) that
- * brings texels of texel_units to at most half a pixel_units footprint. */
+ * brings texels of texel_units to at most one pixel_units footprint (the
+ * mip level a renderer would pick: POV-Ray traces one ray per pixel, so
+ * texels under a pixel alias into glints; the relief they lose goes to the
+ * specular's roughness, povexport.c). */
 int bumpmap_filter_factor(int n, double texel_units, double pixel_units);
 #endif

@@ -483,17 +483,60 @@ static int load_far(const struct scene *s, const char *base, int k, const char *
 	return 0;
 }
 
+/* --mode auto: why skin k stays exact (NULL: it goes translucent).  It needs
+ * a mesh of that skin, lights key or mixture, a bake (not --analytic or a
+ * family), no fill (the fill is not layered over the closure) and no bump map
+ * asked for (a translucent mesh cannot carry its per-triangle bump maps). */
+static const char *auto_exact(const struct povexport_options *o, const struct scene *s, int k)
+{
+	const struct scene_skin *sk = &s->skins[k];
+	enum scene_strategy st = strategy_resolve(s, NULL, NULL);
+	int mesh = 0;
+	for (int i = 0; i < s->n_objects; i++) {
+		const struct scene_object *ob = &s->objects[i];
+		mesh |= ob->shape == SCENE_MESH && ob->material == SCENE_MAT_SKIN && ob->skin == k;
+	}
+	if (!mesh)
+		return "no mesh of this skin";
+	if (o->analytic || o->family)
+		return "--analytic or --family";
+	if (st != SCENE_LIGHTS_KEY && st != SCENE_LIGHTS_MIXTURE)
+		return "lights neither key nor mixture";
+	if (s->fill[0] > 0 || s->fill[1] > 0 || s->fill[2] > 0)
+		return "the scene has a fill";
+	const char *tdir = bind_find(o->texs, o->n_texs, sk->name);
+	if ((tdir != NULL || sk->textures != NULL) && sk->bumps)
+		return "its bump map is asked for";
+	return NULL;
+}
+
 /* --mode translucent: POV-Ray's subsurface closure under the remainder of
  * the table (povsss.h).  The subsurface layer goes under one lit table per
- * skin, so the lights are key or mixture; the fit needs the bake's Rd(r). */
+ * skin, so the lights are key or mixture; the fit needs the bake's Rd(r).
+ * --mode auto: the same where auto_exact allows it and the fit succeeds,
+ * else exact, saying why. */
 static int load_sss(const struct povexport_options *o, struct scene *s, int k, struct inputs *in,
     struct povexport_result *r, char **cause)
 {
 	const char *sn = s->skins[k].name;
 	struct pov_skin *ps = &in->ps[k];
 	enum scene_strategy st = strategy_resolve(s, NULL, NULL);
-	if (!o->translucent)
+	if (o->translucent == POVEXPORT_EXACT)
 		return 0;
+	if (o->translucent == POVEXPORT_AUTO) {
+		const char *why = auto_exact(o, s, k);
+		char *err = NULL;
+		if (why == NULL && povsss_setup(&ps->sss, &ps->brdf, &ps->ior, in->src[k]->bake,
+		    &err) != 0)
+			why = err;
+		if (why != NULL) {
+			msg(r, "skin '%s': exact (--mode auto: %s)", sn, why);
+			free(err);
+			return 0;
+		}
+		msg(r, "skin '%s': translucent (--mode auto: a mesh lit by key or mixture)", sn);
+		return 0;
+	}
 	if (o->analytic)
 		return *cause = xstrdup("--mode translucent needs a bake and its radial profile, "
 					"not --analytic"), -1;
@@ -523,6 +566,15 @@ static int load_sss(const struct povexport_options *o, struct scene *s, int k, s
 	    f->integral_fit[0], f->integral_fit[1], f->integral_fit[2],
 	    f->mean_fit_mm[0], f->mean_fit_mm[1], f->mean_fit_mm[2],
 	    f->rms_log[0], f->rms_log[1], f->rms_log[2], 100 * ps->sss.clipped);
+	return 0;
+}
+
+/* Whether a skin of S is translucent. */
+static int any_sss(const struct scene *s, const struct inputs *in)
+{
+	for (int k = 0; k < s->n_skins; k++)
+		if (in->ps[k].sss.on)
+			return 1;
 	return 0;
 }
 
@@ -700,7 +752,7 @@ static int write_extras(const struct scene *s, const char *out, const char *base
 		}
 	for (int i = 0; i < s->n_objects; i++) {
 		const struct scene_object *ob = &s->objects[i];
-		char *name = ob->material == SCENE_MAT_MODEL ? povscene_model_texture(ob, base)
+		char *name = ob->material == SCENE_MAT_MODEL ? povmodel_texture_file(ob, base)
 		    : NULL;
 		if (name == NULL)
 			continue;
@@ -778,7 +830,7 @@ static int write_all(const struct povexport_options *o, const struct scene *s, c
 		.n_mix = o->n_mix,
 		.write_scene = o->scene_path != NULL,
 		.shapes_inc = in->shapes ? "skinbake_shapes.inc" : NULL,
-		.sss_samples = o->translucent ? o->sss_samples : 0,
+		.sss_samples = any_sss(s, in) ? o->sss_samples : 0,
 	};
 	double t0 = util_now();
 	struct povao_stats ao = { 0 };

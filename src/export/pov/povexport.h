@@ -11,6 +11,10 @@
 
 #define POVEXPORT_MAX_BIND (SCENE_MAX_SKINS + 1)
 
+/* --mode: auto is translucent for a skin on meshes where that applies
+ * (povexport.c, auto_exact), else exact. */
+enum { POVEXPORT_EXACT, POVEXPORT_TRANSLUCENT, POVEXPORT_AUTO };
+
 struct povexport_options {
 	const char *scene_path;		/* scene file, or NULL: lights and camera below */
 	struct scene *cmdline;		/* --light/--camera: lights and camera (scene_path NULL) */
@@ -30,7 +34,7 @@ struct povexport_options {
 	int sharp_diffuse;		/* --diffuse-relief sharp: no split (povsplit.h) */
 	int width, height;		/* image size [px], 0 = the scene's (320x240 without one) */
 	double unit_mm;			/* one scene unit [mm], 0 = the scene's (10 without one) */
-	int translucent;		/* --mode translucent (export/pov/povsss.h) */
+	int translucent;		/* --mode: POVEXPORT_EXACT, _TRANSLUCENT or _AUTO */
 	int sss_samples;		/* POV-Ray's subsurface samples for it */
 	FILE *plan_out;
 };

@@ -7,7 +7,6 @@
 #include <math.h>
 #include <stdlib.h>
 #include <string.h>
-#include <strings.h>
 
 #include "base/util.h"
 #include "export/pov/povao.h"
@@ -17,7 +16,9 @@
 
 static int bumped(const struct scene *s, const struct pov_skin *skins, const struct scene_object *o)
 {
-	return o->material == SCENE_MAT_SKIN && skins[o->skin].height_png != NULL && s->skins[o->skin].bumps;
+	if (o->material != SCENE_MAT_SKIN)
+		return 0;
+	return skins[o->skin].height_png != NULL && s->skins[o->skin].bumps;
 }
 
 int povscene_layers_ok(const struct scene *s)
@@ -37,8 +38,11 @@ double povscene_inset(const struct scene *s, int k)
 	 * showed the inner layer through the outer one, 0.12 mm did not).
 	 * Scenes in millimetres keep this far below a pixel. */
 	const struct scene_camera *c = &s->camera;
-	double d[3] = { c->location[0] - c->look_at[0], c->location[1] - c->look_at[1], c->location[2] - c->look_at[2] };
-	double px = (c->ortho ? c->width : 2 * tan(0.5 * c->angle) * sqrt(vec3_dot(d, d))) / s->width;
+	double d[3];
+	for (int i = 0; i < 3; i++)
+		d[i] = c->location[i] - c->look_at[i];
+	double span = c->ortho ? c->width : 2 * tan(0.5 * c->angle) * sqrt(vec3_dot(d, d));
+	double px = span / s->width;
 	return k * fmax(0.05 * px, 2e-4);
 }
 
@@ -74,7 +78,8 @@ static void write_camera(FILE *fp, const struct scene *s)
 	if (c->ortho)
 		fprintf(fp, " right x*" SDL_G " up y*" SDL_G " }\n", c->width, c->width / aspect);
 	else
-		fprintf(fp, " right x*" SDL_G " up y angle " SDL_G " }\n", aspect, c->angle * 180 / M_PI);
+		fprintf(fp, " right x*" SDL_G " up y angle " SDL_G " }\n", aspect,
+		    c->angle * 180 / M_PI);
 }
 
 static void write_xform(FILE *fp, const struct scene_object *o)
@@ -82,19 +87,23 @@ static void write_xform(FILE *fp, const struct scene_object *o)
 	if (o->scale != 1)
 		fprintf(fp, " scale " SDL_G, o->scale);
 	if (o->rotate[0] != 0 || o->rotate[1] != 0 || o->rotate[2] != 0)
-		fprintf(fp, " rotate <" SDL_G "," SDL_G "," SDL_G ">", o->rotate[0] * 180 / M_PI, o->rotate[1] * 180 / M_PI,
-		    o->rotate[2] * 180 / M_PI);
+		fprintf(fp, " rotate <" SDL_G "," SDL_G "," SDL_G ">", o->rotate[0] * 180 / M_PI,
+		    o->rotate[1] * 180 / M_PI, o->rotate[2] * 180 / M_PI);
 	if (o->translate[0] != 0 || o->translate[1] != 0 || o->translate[2] != 0) {
 		fputs(" translate ", fp);
 		sdl_vec(fp, o->translate);
 	}
 }
 
+/* Two corners of a box in SDL. */
+#define BOX_CORNERS "<" SDL_G "," SDL_G "," SDL_G ">, <" SDL_G "," SDL_G "," SDL_G ">"
+
 /* The shape, moved inward by `inset` world units (layer copies); a mesh is
  * the mesh2 declared for layer `layer` (-1: the only one), already placed. */
 static void write_shape(FILE *fp, const struct scene_object *o, double inset, int layer)
 {
-	double h[3] = { 0.5 * o->size[0], 0.5 * o->size[1], 0.5 * o->size[2] }, e = inset / o->scale;
+	double h[3] = { 0.5 * o->size[0], 0.5 * o->size[1], 0.5 * o->size[2] };
+	double e = inset / o->scale;
 	switch (o->shape) {
 	case SCENE_SPHERE:
 		fputs("sphere { ", fp);
@@ -102,18 +111,18 @@ static void write_shape(FILE *fp, const struct scene_object *o, double inset, in
 		fprintf(fp, ", " SDL_G, o->radius - e);
 		break;
 	case SCENE_BOX:
-		fprintf(fp, "box { <" SDL_G "," SDL_G "," SDL_G ">, <" SDL_G "," SDL_G "," SDL_G "> translate ", -h[0] + e,
-		    -h[1] + e, -h[2] + e, h[0] - e, h[1] - e, h[2] - e);
+		fprintf(fp, "box { " BOX_CORNERS " translate ", -h[0] + e, -h[1] + e, -h[2] + e,
+		    h[0] - e, h[1] - e, h[2] - e);
 		sdl_vec(fp, o->center);
 		break;
 	case SCENE_PATCH:
 		/* Front face at z = 0 facing -z (toward a default camera). */
 		if (e > 0)
-			fprintf(fp, "box { <" SDL_G "," SDL_G "," SDL_G ">, <" SDL_G "," SDL_G "," SDL_G "> translate ", -h[0] + e,
-			    -h[1] + e, e, h[0] - e, h[1] - e, fmin(h[0], h[1]) * 0.02 - e);
+			fprintf(fp, "box { " BOX_CORNERS " translate ", -h[0] + e, -h[1] + e, e,
+			    h[0] - e, h[1] - e, fmin(h[0], h[1]) * 0.02 - e);
 		else
-			fprintf(fp, "box { <" SDL_G "," SDL_G ",0>, <" SDL_G "," SDL_G "," SDL_G "> translate ", -h[0], -h[1],
-			    h[0], h[1], fmin(h[0], h[1]) * 0.02);
+			fprintf(fp, "box { <" SDL_G "," SDL_G ",0>, <" SDL_G "," SDL_G "," SDL_G "> translate ",
+			    -h[0], -h[1], h[0], h[1], fmin(h[0], h[1]) * 0.02);
 		sdl_vec(fp, o->center);
 		break;
 	case SCENE_PLANE:
@@ -140,7 +149,8 @@ static void write_shape(FILE *fp, const struct scene_object *o, double inset, in
 
 /* The bump map of a non-mesh skin object: patches and boxes carry it with
  * their own orientation, curved shapes get it projected along the view. */
-static void write_bump(FILE *fp, const struct scene *s, const struct scene_object *o, const char *which)
+static void write_bump(FILE *fp, const struct scene *s, const struct scene_object *o,
+    const char *which)
 {
 	fprintf(fp, "\n    normal { SKIN_%s_Normal%s", s->skins[o->skin].name, which);
 	if (o->shape == SCENE_PATCH || o->shape == SCENE_BOX) {
@@ -177,7 +187,8 @@ static void write_skin_texture(FILE *fp, const struct scene *s, const struct sce
 	} else if (o->shape == SCENE_MESH && bumped(s, skins, o)) {
 		/* The per-triangle textures are in the mesh2. */
 	} else if (rest == 0 && povscene_averaged(&skins[o->skin])) {
-		/* The split and the fill (povsplit.h, povinc.c): entries averaged, finish diffuse N. */
+		/* The split and the fill (povsplit.h, povinc.c): entries averaged,
+		 * finish diffuse N. */
 		const struct pov_skin *ps = &skins[o->skin];
 		const char *sn = sk->name;
 		fputs("\n  texture { average texture_map {", fp);
@@ -214,8 +225,8 @@ static void write_skin_texture(FILE *fp, const struct scene *s, const struct sce
 
 /* Pigment and finish of skin SN for pass `pass` (0: the frame without
  * animation, k: light k) or layer. */
-static void skin_names(const struct scene *s, const char *sn, enum scene_strategy st, int pass, int layered, char **pig,
-    char **fin)
+static void skin_names(const struct scene *s, const char *sn, enum scene_strategy st, int pass,
+    int layered, char **pig, char **fin)
 {
 	if (st == SCENE_LIGHTS_PASSES && pass > 0) {
 		*pig = xasprintf("SKIN_%s_Pigment_%s", sn, s->lights[pass - 1].name);
@@ -225,7 +236,10 @@ static void skin_names(const struct scene *s, const char *sn, enum scene_strateg
 		*fin = xasprintf("SKIN_%s_Finish_Separable", sn);
 	} else {
 		*pig = xasprintf("SKIN_%s_Pigment", sn);
-		*fin = xasprintf(st == SCENE_LIGHTS_SEPARABLE ? "SKIN_%s_Finish_Separable" : "SKIN_%s_Finish", sn);
+		if (st == SCENE_LIGHTS_SEPARABLE)
+			*fin = xasprintf("SKIN_%s_Finish_Separable", sn);
+		else
+			*fin = xasprintf("SKIN_%s_Finish", sn);
 	}
 }
 
@@ -261,8 +275,9 @@ static void mesh_averaged(const struct pov_skin *ps, const char *sn, const char 
 	free(fill);
 }
 
-void povscene_mesh_texture(const struct scene *s, const struct pov_skin *skins, const struct scene_object *o,
-    enum scene_strategy st, int layer, char **pre, char **mid, char **post, char **plain)
+void povscene_mesh_texture(const struct scene *s, const struct pov_skin *skins,
+    const struct scene_object *o, enum scene_strategy st, int layer, char **pre, char **mid,
+    char **post, char **plain)
 {
 	const char *sn = s->skins[o->skin].name;
 	char *pig, *fin;
@@ -293,96 +308,32 @@ void povscene_mesh_texture(const struct scene *s, const struct pov_skin *skins, 
 	free(fin);
 }
 
-/* Image types POV-Ray reads: file type, SDL keyword. */
-static const char *image_types[][2] = { { "png", "png" }, { "jpg", "jpeg" }, { "jpeg", "jpeg" }, { "tga", "tga" },
-	{ "tif", "tiff" }, { "tiff", "tiff" }, { "ppm", "ppm" }, { "exr", "exr" }, { "hdr", "hdr" } };
-
-char *povscene_model_texture(const struct scene_object *o, const char *base)
-{
-	const struct mesh *m = o->mesh;
-	if (m == NULL || m->uv == NULL || (m->texture == NULL && m->texture_file == NULL))
-		return NULL;
-	for (size_t i = 0; i < sizeof image_types / sizeof image_types[0]; i++)
-		if (!strcasecmp(m->texture_type, image_types[i][0]))
-			return xasprintf("%s_%s_texture.%s", base, o->name, image_types[i][0]);
-	return NULL;
-}
-
-/* The model file's own material: its diffuse texture through the UVs (POV
- * 3.7 maps uv pigments right; only uv bumps are wrong) or colour, and its
- * specular as a Phong highlight. */
-static void write_model_pigment(FILE *fp, const struct scene_object *o, const char *tex)
-{
-	const struct mesh *m = o->mesh;
-	if (tex != NULL) {
-		const char *kw = "png";
-		for (size_t i = 0; i < sizeof image_types / sizeof image_types[0]; i++)
-			if (!strcasecmp(m->texture_type, image_types[i][0]))
-				kw = image_types[i][1];
-		fprintf(fp, "uv_mapping image_map { %s \"%s\" interpolate 2 }", kw, tex);
-	} else
-		sdl_rgb(fp, m->diffuse_rgb);
-}
-
-/* With an occlusion map (ao, povao.h) the fill is a second averaged entry,
- * the pigment times the map, and the lit entry's weights are doubled. */
-static void write_model_texture(FILE *fp, const struct scene_object *o, const char *base,
-    const double *fill, const char *ao)
-{
-	const struct mesh *m = o->mesh;
-	char *tex = povscene_model_texture(o, base);
-	int lit = fill != NULL && (fill[0] > 0 || fill[1] > 0 || fill[2] > 0), k = lit && ao ? 2 : 1;
-	if (k == 2)
-		fputs("\n  texture { average texture_map { [1 pigment { ", fp);
-	else
-		fputs("\n  texture { pigment { ", fp);
-	write_model_pigment(fp, o, tex);
-	if (k == 2)
-		fputs(" } finish { diffuse 2 brilliance 1 ambient 0 emission 0 specular 0", fp);
-	else
-		fputs(" } finish { " POVSCENE_FINISH_LIT, fp);
-	if (lit && k == 1) {
-		fputs(" emission ", fp);
-		sdl_rgb(fp, fill);
-	}
-	if (m->specular > 0)
-		fprintf(fp, " phong " SDL_G " phong_size " SDL_G, k * fmin(m->specular, 1),
-		    fmin(fmax(m->shininess, 1), 1000));
-	if (k == 2) {
-		double e[3] = { 2 * fill[0], 2 * fill[1], 2 * fill[2] };
-		fprintf(fp, " }]\n    [1 pigment { uv_mapping image_pattern { png \"%s\" gamma 1.0 "
-		    "map_type 0 interpolate 2 } pigment_map { [0 rgb 0] [1 ", ao);
-		write_model_pigment(fp, o, tex);
-		fputs("] } } finish { diffuse 0 brilliance 1 ambient 0 specular 0 emission ", fp);
-		sdl_rgb(fp, e);
-		fputs(" }] } }", fp);
-	} else
-		fputs(" } }", fp);
-	free(tex);
-}
-
 /* One object; for a skin object pass/layer select the table. */
-static void write_object(FILE *fp, const struct scene *s, const struct pov_skin *skins, const struct scene_object *o,
-    enum scene_strategy st, int pass, int layer, const char *base)
+static void write_object(FILE *fp, const struct scene *s, const struct pov_skin *skins,
+    const struct scene_object *o, enum scene_strategy st, int pass, int layer, const char *base)
 {
 	const char *sn = o->skin >= 0 ? s->skins[o->skin].name : "";
 	int layered = layer >= 0;
 	fprintf(fp, "// object %s\n", o->name);
-	write_shape(fp, o, layered ? povscene_inset(s, layer) : 0, layered && o->material == SCENE_MAT_SKIN ? layer : -1);
+	double inset = layered ? povscene_inset(s, layer) : 0;
+	write_shape(fp, o, inset, layered && o->material == SCENE_MAT_SKIN ? layer : -1);
 	/* Textures attach after the object's transforms, so texture space is
 	 * world space (the gamma function uses x, y, z). */
 	if (o->material == SCENE_MAT_PLAIN) {
 		fputs("\n  texture { pigment { ", fp);
 		sdl_rgb(fp, o->color);
 		fputs(" } finish { " POVSCENE_FINISH_LIT, fp);
-		if (st == SCENE_LIGHTS_KEY && (s->fill[0] > 0 || s->fill[1] > 0 || s->fill[2] > 0)) {
+		int filled = s->fill[0] > 0 || s->fill[1] > 0 || s->fill[2] > 0;
+		if (st == SCENE_LIGHTS_KEY && filled) {
 			fputs(" emission ", fp);
 			sdl_rgb(fp, s->fill);
 		}
 		fputs(" } }", fp);
 	} else if (o->material == SCENE_MAT_MODEL) {
-		char *ao = st == SCENE_LIGHTS_KEY && povao_wanted(s, o) ? povao_name(base, o) : NULL;
-		write_model_texture(fp, o, base, st == SCENE_LIGHTS_KEY ? s->fill : NULL, ao);
+		char *ao = NULL;
+		if (st == SCENE_LIGHTS_KEY && povao_wanted(s, o))
+			ao = povao_name(base, o);
+		povmodel_write_texture(fp, o, base, st == SCENE_LIGHTS_KEY ? s->fill : NULL, ao);
 		free(ao);
 	} else if (o->material == SCENE_MAT_LAMBERT)
 		fprintf(fp, "\n  texture { SKIN_%s_Lambert }", sn);
@@ -390,7 +341,8 @@ static void write_object(FILE *fp, const struct scene *s, const struct pov_skin 
 		fprintf(fp, "\n  texture { SKIN_%s_Phong }", sn);
 	else {
 		char *pig, *fin;
-		skin_names(s, sn, st, layered ? povscene_layer_light(s, layer) + 1 : pass, layered, &pig, &fin);
+		int p = layered ? povscene_layer_light(s, layer) + 1 : pass;
+		skin_names(s, sn, st, p, layered, &pig, &fin);
 		write_skin_texture(fp, s, o, skins, pig, fin, layered ? s->n_lights - 1 - layer : 0);
 		free(pig);
 		free(fin);
@@ -400,8 +352,8 @@ static void write_object(FILE *fp, const struct scene *s, const struct pov_skin 
 	fputs(" }\n", fp);
 }
 
-static void write_objects(FILE *fp, const struct scene *s, const struct pov_skin *skins, const struct pov_options *o,
-    enum scene_strategy st, int pass)
+static void write_objects(FILE *fp, const struct scene *s, const struct pov_skin *skins,
+    const struct pov_options *o, enum scene_strategy st, int pass)
 {
 	for (int i = 0; i < s->n_objects; i++)
 		write_object(fp, s, skins, &s->objects[i], st, pass, -1, o->base);
@@ -424,12 +376,13 @@ static void write_mesh_includes(FILE *fp, const struct scene *s, const struct po
 
 /* Frames: light k and its tables in frame k, all lights with the separable
  * fit without animation. */
-static void write_frames(FILE *fp, const struct scene *s, const struct pov_skin *skins, const struct pov_options *o,
-    enum scene_strategy st)
+static void write_frames(FILE *fp, const struct scene *s, const struct pov_skin *skins,
+    const struct pov_options *o, enum scene_strategy st)
 {
 	fputs("#switch (frame_number)\n", fp);
 	for (int i = 0; i < s->n_lights; i++) {
-		fprintf(fp, "#case (%d)\nlight_source { SKIN_Light_%s }\n", i + 1, s->lights[i].name);
+		const char *ln = s->lights[i].name;
+		fprintf(fp, "#case (%d)\nlight_source { SKIN_Light_%s }\n", i + 1, ln);
 		for (int k = 0; k < s->n_skins; k++)
 			if (n_meshes(s) > 0)
 				fprintf(fp, "#declare SKIN_%s_PassPigment = SKIN_%s_Pigment_%s;\n"
@@ -454,11 +407,11 @@ static void write_frames(FILE *fp, const struct scene *s, const struct pov_skin 
 
 /* Layers: every light for the other objects; one light group per light
  * with its copy of the skin objects. */
-static void write_layers(FILE *fp, const struct scene *s, const struct pov_skin *skins, const struct pov_options *o,
-    enum scene_strategy st)
+static void write_layers(FILE *fp, const struct scene *s, const struct pov_skin *skins,
+    const struct pov_options *o, enum scene_strategy st)
 {
-	fputs("#declare SKIN_Clear = texture { pigment { rgbt 1 } finish { diffuse 0 ambient 0 emission 0 specular 0 } }\n",
-	    fp);
+	fputs("#declare SKIN_Clear = texture { pigment { rgbt 1 } "
+	    "finish { diffuse 0 ambient 0 emission 0 specular 0 } }\n", fp);
 	write_mesh_includes(fp, s, o);
 	for (int i = 0; i < s->n_lights; i++)
 		fprintf(fp, "light_source { SKIN_Light_%s }\n", s->lights[i].name);
@@ -496,11 +449,27 @@ static void write_fill_occlusion(FILE *fp, const struct scene *s, const struct p
 	}
 }
 
-void povscene_write(FILE *fp, const struct scene *s, const struct pov_skin *skins, const struct pov_options *o,
-    enum scene_strategy st, int layered)
+/* Translucent skin meshes: the back light through their thin parts. */
+static void write_back_light(FILE *fp, const struct scene *s, const struct pov_skin *skins)
 {
-	fprintf(fp, "#version 3.7;\n// %s\n// Generated by skinbake " PACKAGE_VERSION " from %s.\n", s->title ? s->title : o->base,
-	    s->path);
+	for (int i = 0; i < s->n_objects; i++) {
+		const struct scene_object *o = &s->objects[i];
+		if (o->shape != SCENE_MESH || o->material != SCENE_MAT_SKIN)
+			continue;
+		const struct pov_skin *ps = &skins[o->skin];
+		if (!ps->sss.on || ps->maps)
+			continue;
+		struct povback_stats st;
+		povback_write(fp, s, o, &ps->sss.back, povscene_inset(s, 1), &st);
+	}
+}
+
+void povscene_write(FILE *fp, const struct scene *s, const struct pov_skin *skins,
+    const struct pov_options *o, enum scene_strategy st, int layered)
+{
+	const char *title = s->title ? s->title : o->base;
+	fprintf(fp, "#version 3.7;\n// %s\n// Generated by skinbake " PACKAGE_VERSION " from %s.\n",
+	    title, s->path);
 	if (st == SCENE_LIGHTS_PASSES && layered)
 		fprintf(fp, "// Per-light passes summed in one run (one light group and skin layer per light):\n"
 		    "// povray %s.ini  ->  %s.png\n", o->base, o->base);
@@ -510,9 +479,10 @@ void povscene_write(FILE *fp, const struct scene *s, const struct pov_skin *skin
 		    "// Rendered without animation (frame 0) it shows all lights with the separable fit.\n",
 		    o->base, o->base, o->base, o->base);
 	else
-		fprintf(fp, "// Render: povray %s.ini   (or povray +I%s.pov +W%d +H%d)\n", o->base, o->base, s->width,
-		    s->height);
-	fprintf(fp, "global_settings { assumed_gamma 1.0 ambient_light 0 max_trace_level %d", layered ? 5 + s->n_lights : 5);
+		fprintf(fp, "// Render: povray %s.ini   (or povray +I%s.pov +W%d +H%d)\n", o->base,
+		    o->base, s->width, s->height);
+	int depth = layered ? 5 + s->n_lights : 5;
+	fprintf(fp, "global_settings { assumed_gamma 1.0 ambient_light 0 max_trace_level %d", depth);
 	if (o->sss_samples > 0)
 		povsss_write_global(fp, s->unit_mm, o->sss_samples);
 	fputs(" }\n", fp);
@@ -538,6 +508,7 @@ void povscene_write(FILE *fp, const struct scene *s, const struct pov_skin *skin
 		for (int i = 0; i < s->n_lights; i++)
 			fprintf(fp, "light_source { SKIN_Light_%s }\n", s->lights[i].name);
 		write_objects(fp, s, skins, o, st, 0);
+		write_back_light(fp, s, skins);
 	}
 }
 
@@ -547,7 +518,8 @@ char *povscene_pass_name(const char *base, int k, int n)
 	return xasprintf("%s_pass%0*d.hdr", base, digits, k);
 }
 
-void povscene_write_combine(FILE *fp, const struct scene *s, const char *base, const char *scene_name)
+void povscene_write_combine(FILE *fp, const struct scene *s, const char *base,
+    const char *scene_name)
 {
 	fprintf(fp, "#version 3.7;\n// Sum of the per-light passes of %s (POV-Ray does the sum: each .hdr is\n"
 	    "// shown 1:1 on a unit square, averaged, times the number of passes).\n"
@@ -556,11 +528,13 @@ void povscene_write_combine(FILE *fp, const struct scene *s, const char *base, c
 	    "camera { orthographic location <0.5,0.5,-1> look_at <0.5,0.5,0> right x up y }\n", fp);
 	for (int i = 0; i < s->n_lights; i++) {
 		char *p = povscene_pass_name(base, i + 1, s->n_lights);
-		fprintf(fp, "#declare Skinbake_Pass%d = pigment { image_map { hdr \"%s\" } }\n", i + 1, p);
+		fprintf(fp, "#declare Skinbake_Pass%d = pigment { image_map { hdr \"%s\" } }\n",
+		    i + 1, p);
 		free(p);
 	}
 	fputs("plane { z, 0 texture { pigment { average pigment_map {", fp);
 	for (int i = 0; i < s->n_lights; i++)
 		fprintf(fp, " [1 Skinbake_Pass%d]", i + 1);
-	fprintf(fp, " } }\n  finish { emission %d diffuse 0 ambient 0 specular 0 } } }\n", s->n_lights);
+	fprintf(fp, " } }\n  finish { emission %d diffuse 0 ambient 0 specular 0 } } }\n",
+	    s->n_lights);
 }

@@ -17,9 +17,10 @@
 #define SKINBAKE_POVSCENE_H
 #include <stdio.h>
 
+#include "export/pov/povmodel.h"
 #include "export/pov/povtypes.h"
 
-#define POVSCENE_FINISH_LIT "diffuse 1 brilliance 1 ambient 0 emission 0 specular 0"
+#define POVSCENE_FINISH_LIT POVMODEL_FINISH_LIT
 
 /* Whether passes can be layers (every skin object can be inset). */
 int povscene_layers_ok(const struct scene *s);
@@ -34,21 +35,19 @@ double povscene_inset(const struct scene *s, int k);
 /* The skin textures a mesh object's triangles carry (bump maps follow the
  * UVs, so they live in the mesh2): pigment, finish and the layer wrapping of
  * pass or layer `layer` (-1: not layered). */
-void povscene_mesh_texture(const struct scene *s, const struct pov_skin *skins, const struct scene_object *o,
-    enum scene_strategy st, int layer, char **pre, char **mid, char **post, char **plain);
+void povscene_mesh_texture(const struct scene *s, const struct pov_skin *skins,
+    const struct scene_object *o, enum scene_strategy st, int layer, char **pre, char **mid,
+    char **post, char **plain);
 /* Whether skin ps is written as an average of entries (the split of
  * povsplit.h or the fill; lights key only). */
 int povscene_averaged(const struct pov_skin *ps);
 
-/* The file name of a model-material mesh's texture in the output (the
- * exporter writes it there), or NULL when it has none POV-Ray reads. */
-char *povscene_model_texture(const struct scene_object *o, const char *base);
-
-void povscene_write(FILE *fp, const struct scene *s, const struct pov_skin *skins, const struct pov_options *o,
-    enum scene_strategy st, int layered);
+void povscene_write(FILE *fp, const struct scene *s, const struct pov_skin *skins,
+    const struct pov_options *o, enum scene_strategy st, int layered);
 /* Name of POV-Ray's frame k output of n: BASE_passK.hdr, K padded to the
  * digits of n. */
 char *povscene_pass_name(const char *base, int k, int n);
 /* BASE_combine.pov: the sum of the .hdr passes. */
-void povscene_write_combine(FILE *fp, const struct scene *s, const char *base, const char *scene_name);
+void povscene_write_combine(FILE *fp, const struct scene *s, const char *base,
+    const char *scene_name);
 #endif

@@ -10,6 +10,7 @@
 
 #include "bake/bakefile.h"
 #include "base/util.h"
+#include "engine/microfacet_ms.h"
 #include "engine/specular.h"
 
 void povsplit_specular(void *ctx, double theta_i, double theta_o, double dphi, double rgb[3])
@@ -26,6 +27,11 @@ void povsplit_specular(void *ctx, double theta_i, double theta_o, double dphi, d
 		rgb[c] = 0.0;
 	for (int w = 0; w < b->n_wl; w++) {
 		double f = specular_ggx(&b->stack[w], sp->alpha, theta_i, theta_o, ph);
+		/* The facets' later reflections (multiple scattering on the rough top,
+		 * engine/microfacet_ms.h) at the bake's alpha, as eval adds them: the
+		 * widened alpha shapes only the single-scattering lobe. */
+		if (b->ms)
+			f += microfacet_ms_eval(&b->ms[w], cos(theta_i), cos(theta_o));
 		for (int c = 0; c < 3; c++)
 			rgb[c] += b->rgb_from_wl[c * b->n_wl + w] * f;
 	}

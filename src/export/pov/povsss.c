@@ -46,6 +46,7 @@ int povsss_setup(struct pov_sss *sss, struct pov_brdf *brdf, double *ior, const 
 	brdf->f_rgb = povsss_remainder;
 	brdf->ctx = sss;
 	sss->clipped = clipped_share(sss);
+	povback_setup(&sss->back, b, &sss->fit);
 	return 0;
 }
 

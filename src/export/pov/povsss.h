@@ -19,6 +19,7 @@
 #include <stdio.h>
 
 #include "export/pov/littable.h"
+#include "export/pov/povback.h"
 #include "export/sss_fit.h"
 
 #define POVSSS_CLEAR 999		/* parts of clear in the top layer's pigment */
@@ -29,7 +30,8 @@ struct pov_sss {
 	int on;				/* the skin is written translucent */
 	struct sss_fit fit;		/* the closure's parameters and residuals */
 	struct pov_brdf table;		/* the whole baked BRDF the remainder is taken from */
-	double clipped;			/* largest share of the table the remainder clipped at 0 [-] */
+	double clipped;			/* largest share of the table the remainder clipped at 0 */
+	struct pov_back back;		/* the back light through thin meshes (povback.h) */
 };
 
 /* Fit POV-Ray's closure to bake B and make *brdf the remainder (it keeps
@@ -37,7 +39,8 @@ struct pov_sss {
  * calibration's index (the object's interior, which POV-Ray's dipole reads:
  * at 1.43 instead of 1.4 the far field is 0.7 % lower).  -1 and *cause when
  * B has no radial profile or POV-Ray no calibration. */
-int povsss_setup(struct pov_sss *sss, struct pov_brdf *brdf, double *ior, const struct bake *b, char **cause);
+int povsss_setup(struct pov_sss *sss, struct pov_brdf *brdf, double *ior, const struct bake *b,
+    char **cause);
 
 /* The remainder pi f: max(0, table - weight x closure far field) [1/sr]. */
 void povsss_remainder(void *ctx, double theta_i, double theta_o, double dphi, double rgb[3]);

@@ -1,0 +1,69 @@
+#!/bin/sh
+# The showcase gallery of docs/showcase.md, regenerated from one run of scripts/demo.sh (issue 24):
+#
+#   scripts/demo.sh && scripts/gallery-showcase.sh [DEMO_DIR [WORK_DIR]]   (out/demo, out/gallery)
+#
+# Copies the demo's pictures to docs/img/showcase-*.png (head, complexions, close-up, ear glow,
+# the Blender head) and renders the five-minute Blender material (scripts/blender_five_minute.py:
+# one Principled BSDF, random-walk subsurface, radius 3.67/1.37/0.68 mm, no maps) in the same view
+# and light, 640x480, SAMPLES (default 32) samples; docs/img/showcase-vs-blender.png is the heads
+# side by side at 480x360 each: POV-Ray (exact mode), Blender (translucent mode, if the demo ran
+# with BLENDER_HEAD=1), the five-minute material.  Nothing is cropped or retouched; POV-Ray lays the panels side by side.
+# Environment: POVRAY (default povray), BLENDER (default blender); PARTIAL=1: a picture the demo
+# did not (yet) make leaves the old copy in docs/img, with a message naming it.
+set -eu
+top=$(cd "$(dirname "$0")/.." && pwd)
+demo=$(cd "${1:-$top/out/demo}" && pwd)
+work=${2:-$top/out/gallery}
+img=$top/docs/img
+mkdir -p "$work" "$img"
+work=$(cd "$work" && pwd)
+# copy DEMO_NAME GALLERY_NAME: one picture; with PARTIAL=1 a missing one leaves the old copy.
+copy() {
+	if [ -f "$demo/$1.png" ]; then
+		cp "$demo/$1.png" "$img/showcase-$2.png"
+	elif [ "${PARTIAL:-0}" = 1 ]; then
+		echo "gallery-showcase.sh: $demo/$1.png is missing: docs/img/showcase-$2.png NOT regenerated" >&2
+	else
+		echo "gallery-showcase.sh: $demo/$1.png is missing (run scripts/demo.sh; PARTIAL=1 keeps the" \
+			"old copy)" >&2
+		exit 1
+	fi
+}
+for f in human-head; do
+	[ -f "$demo/$f.png" ] || { echo "gallery-showcase.sh: $demo/$f.png is missing (run scripts/demo.sh)" >&2; exit 1; }
+done
+copy human-head head
+copy complexions complexions
+copy human-pores closeup
+copy human-head-earglow earglow
+[ -f "$demo/blender-head.png" ] && cp "$demo/blender-head.png" "$img/showcase-blender-head.png"
+t=$(date +%s)
+# (kept from an earlier run into the same WORK_DIR, unless blender_five_minute.py is newer)
+[ "$work/five-minute.png" -nt "$top/scripts/blender_five_minute.py" ] ||
+	"${BLENDER:-blender}" -b --factory-startup --python "$top/scripts/blender_five_minute.py" -- \
+	"$work/five-minute.png" --size 640x480 --samples "${SAMPLES:-32}" >"$work/five-minute.log" 2>&1 ||
+	{ tail -5 "$work/five-minute.log" >&2; exit 1; }
+echo "gallery-showcase.sh: five-minute material: $(($(date +%s) - t)) s wall"
+
+# The heads in one row, 480x360 each (sRGB in, sRGB out): POV-Ray, Blender's translucent head
+# (when the demo made it: BLENDER_HEAD=1), the five-minute material.
+panels="$demo/human-head.png"
+[ -f "$demo/blender-head.png" ] && panels="$panels $demo/blender-head.png"
+panels="$panels $work/five-minute.png"
+set -- $panels
+w=$((480 * $#))
+n=0
+{
+	echo "#version 3.7;"
+	echo "global_settings { assumed_gamma 1.0 }"
+	echo "camera { orthographic location <$#/2,0.5,-1> look_at <$#/2,0.5,0> right x*$# up y }"
+	for p in "$@"; do
+		echo "box { <0,0,0>, <1,1,0.01> texture { pigment { image_map { png \"$p\" once interpolate 2 } }"
+		echo "  finish { emission 1 diffuse 0 ambient 0 } } translate x*$n }"
+		n=$((n + 1))
+	done
+} >"$work/vs.pov"
+(cd "$work" && "${POVRAY:-povray}" +Ivs.pov "+O$img/showcase-vs-blender.png" +W$w +H360 -D +A0.1 \
+	>vs.log 2>&1) || { tail -5 "$work/vs.log" >&2; exit 1; }
+echo "gallery-showcase.sh: wrote $img/showcase-*.png ($(du -ch "$img"/showcase-*.png | tail -1 | cut -f1) in all)"

@@ -1,0 +1,297 @@
+/* povback: the back light through thin parts of translucent meshes: the
+ * thickness per vertex, the stack's transmittance, the emitting copy (see
+ * povback.h). */
+#include "config.h"
+#include "export/pov/povback.h"
+
+#include <math.h>
+#include <stdlib.h>
+#include <string.h>
+
+#include "bake/manifest.h"
+#include "base/util.h"
+#include "engine/ad.h"
+#include "export/pov/meshray.h"
+#include "export/pov/sdl.h"
+#include "export/pov/vec3.h"
+#include "geom/mesh.h"
+
+const double povback_d_mm[POVBACK_N] = { 0.25, 0.5, 0.75, 1, 1.5, 2, 3, 4, 6, 8, 12, 16 };
+
+/* Stack S cut to D_CM (the deeper layers shortened, the last extended to
+ * fill) and turned over, so that light enters the deepest layer. */
+static int cut_stack(const struct slab *s, double d_cm, struct slab *out, char **cause)
+{
+	struct layer l[SLAB_MAX_LAYERS];
+	int n = 0;
+	double left = d_cm;
+	for (int i = 1; i <= s->n_layers && left > 0; i++) {
+		l[n] = s->layer[i];
+		l[n].d = fmin(l[n].d, left);
+		l[n].rough = 0.0;
+		left -= l[n].d;
+		n++;
+	}
+	l[n - 1].d += fmax(left, 0.0);
+	slab_init(out, 1.0, 1.0);
+	for (int i = n - 1; i >= 0; i--)
+		if (slab_add(out, &l[i], cause) != 0)
+			return -1;
+	if (slab_check(out, cause) != 0)
+		return -1;
+	slab_prepare(out);
+	return 0;
+}
+
+/* Tt per node of B's stack; -1 and *cause when it has none. */
+static int stack_tt(const struct bake *b, double tt[POVBACK_N][3], char **cause)
+{
+	struct bake_provenance p;
+	if (b->dir == NULL || bake_provenance_read(b->dir, &p, cause) != 0)
+		return -1;
+	struct ad_opts o;
+	ad_opts_default(&o);
+	o.tol = 1e-3;
+	o.n_to = 1;
+	o.n_phi = 1;
+	o.max_orders = 1;
+	o.threads = 1;
+	o.error_estimate = 0;	/* the totals only: 1e-3 of Tt */
+	double ti = 0.0;
+	int rc = 0;
+	memset(tt, 0, sizeof(double) * POVBACK_N * 3);
+	for (int k = 0; k < POVBACK_N && rc == 0; k++)
+		for (int w = 0; w < p.n_wl && rc == 0; w++) {
+			struct slab s;
+			struct ad_result r;
+			if (cut_stack(&p.slab[w], povback_d_mm[k] / 10, &s, cause) != 0
+			    || ad_solve(&s, p.fresnel, &ti, 1, &o, &r, cause) != 0) {
+				rc = -1;
+				break;
+			}
+			for (int c = 0; c < 3; c++)
+				tt[k][c] += b->rgb_from_wl[c * b->n_wl + w] * r.beam[0].tt.v;
+			ad_result_free(&r);
+		}
+	bake_provenance_free(&p);
+	return rc;
+}
+
+void povback_setup(struct pov_back *pb, const struct bake *b, const struct sss_fit *f)
+{
+	char *cause = NULL;
+	memset(pb, 0, sizeof *pb);
+	if (stack_tt(b, pb->tt, &cause) != 0) {
+		snprintf(pb->why, sizeof pb->why, "no transmittance: %s", cause ? cause : "?");
+		free(cause);
+		return;
+	}
+	for (int k = 0; k < POVBACK_N; k++)
+		for (int c = 0; c < 3; c++)
+			pb->closure[k][c] = POVBACK_KAPPA
+			    * sss_fit_ring(f, c, povback_d_mm[k], 1e4);
+	pb->on = 1;
+}
+
+static double extra_at(const struct pov_back *pb, int c, int k)
+{
+	return fmax(pb->tt[k][c] - pb->closure[k][c], 0.0);
+}
+
+double povback_extra(const struct pov_back *pb, int c, double d_mm)
+{
+	if (!pb->on || d_mm > povback_d_mm[POVBACK_N - 1])
+		return 0.0;
+	if (d_mm <= povback_d_mm[0])
+		return extra_at(pb, c, 0);
+	int k = 1;
+	while (povback_d_mm[k] < d_mm)
+		k++;
+	double a = extra_at(pb, c, k - 1), b = extra_at(pb, c, k);
+	double x = (d_mm - povback_d_mm[k - 1]) / (povback_d_mm[k] - povback_d_mm[k - 1]);
+	if (a <= 0 || b <= 0)
+		return a + x * (b - a);
+	return exp(log(a) + x * (log(b) - log(a)));
+}
+
+/* The irradiance of the scene's lights at Q (unit outward normal N) past
+ * the mesh (POV-Ray light colour: irradiance at normal incidence). */
+static void irradiance(const struct scene *s, const struct meshray *g, const double q[3],
+    const double n[3], double eps, double e[3])
+{
+	e[0] = e[1] = e[2] = 0;
+	for (int i = 0; i < s->n_lights; i++) {
+		const struct scene_light *l = &s->lights[i];
+		double dir[3], far = INFINITY;
+		if (l->type == SCENE_LIGHT_PARALLEL)
+			vec3_unit_toward(l->point_at, l->position, dir);
+		else {
+			vec3_unit_toward(q, l->position, dir);
+			double v[3];
+			for (int j = 0; j < 3; j++)
+				v[j] = l->position[j] - q[j];
+			far = sqrt(vec3_dot(v, v));
+		}
+		double cosi = vec3_dot(n, dir);
+		if (cosi <= 0)
+			continue;
+		double o[3] = { q[0] + eps * n[0], q[1] + eps * n[1], q[2] + eps * n[2] };
+		struct meshray_hit h;
+		if (meshray_cast(g, o, dir, eps, far, 1, &h))
+			continue;
+		for (int c = 0; c < 3; c++)
+			e[c] += l->color[c] * cosi;
+	}
+}
+
+/* The hit triangle's normal at the hit, unit. */
+static void hit_normal(const struct mesh *m, const struct meshray_hit *h, double n[3])
+{
+	const int *t = m->triangle[h->tri];
+	double b0 = 1 - h->b1 - h->b2;
+	for (int i = 0; i < 3; i++)
+		n[i] = b0 * m->normal[t[0]][i] + h->b1 * m->normal[t[1]][i]
+		    + h->b2 * m->normal[t[2]][i];
+	double len = sqrt(vec3_dot(n, n));
+	for (int i = 0; i < 3; i++)
+		n[i] = len > 0 ? n[i] / len : 0;
+}
+
+static int cmp_double(const void *a, const void *b)
+{
+	double x = *(const double *)a, y = *(const double *)b;
+	return x < y ? -1 : x > y;
+}
+
+/* T E per vertex into out[3 v] (0 where nothing comes through); the
+ * thicknesses of the hit vertices into *st. */
+static void transmitted(const struct scene *s, const struct mesh *m, const struct pov_back *pb,
+    float *out, struct povback_stats *st)
+{
+	struct meshray g;
+	meshray_make(&g, m);
+	double diag[3];
+	for (int i = 0; i < 3; i++)
+		diag[i] = g.hi[i] - g.lo[i];
+	double eps = 1e-5 * sqrt(vec3_dot(diag, diag));
+	double dmax = povback_d_mm[POVBACK_N - 1] / s->unit_mm;
+	double *ds = xmalloc(sizeof(double) * ((size_t)m->n_vertices + 1));
+	for (int v = 0; v < m->n_vertices; v++) {
+		const double *p = m->position[v], *nv = m->normal[v];
+		double in[3] = { -nv[0], -nv[1], -nv[2] }, nq[3], e[3];
+		struct meshray_hit h;
+		out[3 * v] = out[3 * v + 1] = out[3 * v + 2] = 0;
+		if (!meshray_cast(&g, p, in, eps, dmax, 0, &h))
+			continue;
+		hit_normal(m, &h, nq);
+		if (vec3_dot(nq, in) <= 0)	/* not the mesh's other side */
+			continue;
+		double d_mm = h.t * s->unit_mm, q[3];
+		ds[st->n_vertices++] = d_mm;
+		for (int i = 0; i < 3; i++)
+			q[i] = p[i] + h.t * in[i];
+		irradiance(s, &g, q, nq, eps, e);
+		for (int c = 0; c < 3; c++)
+			out[3 * v + c] = (float)(povback_extra(pb, c, d_mm) * e[c]);
+		st->n_lit += out[3 * v] > 0 || out[3 * v + 1] > 0 || out[3 * v + 2] > 0;
+	}
+	if (st->n_vertices > 0) {
+		qsort(ds, (size_t)st->n_vertices, sizeof(double), cmp_double);
+		st->d_min_mm = ds[0];
+		st->d_median_mm = ds[st->n_vertices / 2];
+	}
+	free(ds);
+	meshray_free(&g);
+}
+
+static int lit(const float *te, int v)
+{
+	return te[3 * v] > 0 || te[3 * v + 1] > 0 || te[3 * v + 2] > 0;
+}
+
+/* The copy's mesh2: the vertices of triangles with a lit vertex (new index
+ * in idx), one texture per lit vertex after the clear one. */
+static void write_copy(FILE *fp, const struct mesh *m, const float *te, const int *keep, int *idx,
+    double lift)
+{
+	int nv = 0, nt = 0, ntex = 1;
+	for (int v = 0; v < m->n_vertices; v++)
+		idx[v] = -1;
+	for (int t = 0; t < m->n_triangles; t++)
+		for (int j = 0; j < 3 && keep[t]; j++)
+			if (idx[m->triangle[t][j]] < 0)
+				idx[m->triangle[t][j]] = nv++;
+	for (int t = 0; t < m->n_triangles; t++)
+		nt += keep[t];
+	fprintf(fp, "mesh2 {\n  vertex_vectors { %d", nv);
+	for (int v = 0; v < m->n_vertices; v++)
+		if (idx[v] >= 0) {
+			double p[3];
+			for (int i = 0; i < 3; i++)
+				p[i] = m->position[v][i] + lift * m->normal[v][i];
+			fputs(",\n    ", fp);
+			sdl_vec(fp, p);
+		}
+	fprintf(fp, " }\n  normal_vectors { %d", nv);
+	for (int v = 0; v < m->n_vertices; v++)
+		if (idx[v] >= 0) {
+			fputs(",\n    ", fp);
+			sdl_vec(fp, m->normal[v]);
+		}
+	int n_tex = 1;
+	for (int v = 0; v < m->n_vertices; v++)
+		n_tex += idx[v] >= 0 && lit(te, v);
+	fprintf(fp, " }\n  texture_list { %d,\n    texture { pigment { rgbt <0,0,0,1> } "
+	    "finish { diffuse 0 ambient 0 emission 0 specular 0 } }", n_tex);
+	int *tex = xmalloc(sizeof(int) * (size_t)m->n_vertices);
+	for (int v = 0; v < m->n_vertices; v++) {
+		tex[v] = 0;
+		if (idx[v] < 0 || !lit(te, v))
+			continue;
+		double k = 1 / (1 - POVBACK_CLEAR);
+		fprintf(fp, ",\n    texture { pigment { rgbt <" SDL_G "," SDL_G "," SDL_G ","
+		    SDL_G "> } "
+		    "finish { diffuse 0 ambient 0 emission 1 specular 0 } }", k * te[3 * v],
+		    k * te[3 * v + 1], k * te[3 * v + 2], POVBACK_CLEAR);
+		tex[v] = ntex++;
+	}
+	fprintf(fp, " }\n  face_indices { %d", nt);
+	for (int t = 0; t < m->n_triangles; t++)
+		if (keep[t]) {
+			const int *tr = m->triangle[t];
+			fprintf(fp, ",\n    <%d,%d,%d>, %d, %d, %d", idx[tr[0]], idx[tr[1]],
+			    idx[tr[2]], tex[tr[0]], tex[tr[1]], tex[tr[2]]);
+		}
+	fputs(" }\n  no_shadow\n}\n", fp);
+	free(tex);
+}
+
+void povback_write(FILE *fp, const struct scene *s, const struct scene_object *o,
+    const struct pov_back *pb, double lift, struct povback_stats *st)
+{
+	const struct mesh *m = o->mesh;
+	memset(st, 0, sizeof *st);
+	if (!pb->on) {
+		fprintf(fp, "// object %s: no back light through it (%s)\n", o->name, pb->why);
+		return;
+	}
+	float *te = xmalloc(sizeof(float) * 3 * ((size_t)m->n_vertices + 1));
+	transmitted(s, m, pb, te, st);
+	int *keep = xcalloc((size_t)m->n_triangles + 1, sizeof(int));
+	for (int t = 0; t < m->n_triangles; t++) {
+		const int *tr = m->triangle[t];
+		keep[t] = lit(te, tr[0]) || lit(te, tr[1]) || lit(te, tr[2]);
+		st->n_triangles += keep[t];
+	}
+	fprintf(fp, "// object %s: the back light through its thin parts (povback.h): "
+	    "%d of %d vertices lit through,\n// thickness from %.3g mm (median %.3g mm) "
+	    "over the %d whose inward ray meets its other side\n", o->name, st->n_lit,
+	    m->n_vertices, st->d_min_mm, st->d_median_mm, st->n_vertices);
+	if (st->n_triangles > 0) {
+		int *idx = xmalloc(sizeof(int) * (size_t)m->n_vertices);
+		write_copy(fp, m, te, keep, idx, lift);
+		free(idx);
+	}
+	free(keep);
+	free(te);
+}
