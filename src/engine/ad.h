@@ -66,6 +66,8 @@ struct ad_opts {
 	int max_orders;		/* Fourier orders at most, >= 1 */
 	int n_to, n_phi;	/* table bins over theta_o and dphi, >= 1 each */
 	int threads;		/* OpenMP threads over Fourier orders; 0 = all */
+	int doubling_only;	/* 1: every layer by a diamond start and doubling (ad_layer.h), none
+				 * by its eigenvectors; for comparisons */
 };
 
 void ad_opts_default(struct ad_opts *o);

@@ -21,6 +21,9 @@ void dgesv_(const int *n, const int *nrhs, double *a, const int *lda, int *ipiv,
 void dpotrf_(const char *uplo, const int *n, double *a, const int *lda, int *info, size_t uplo_len);
 void dstev_(const char *jobz, const int *n, double *d, double *e, double *z, const int *ldz,
     double *work, int *info, size_t jobz_len);
+void dsyevd_(const char *jobz, const char *uplo, const int *n, double *a, const int *lda, double *w,
+    double *work, const int *lwork, int *iwork, const int *liwork, int *info, size_t jobz_len,
+    size_t uplo_len);
 
 /* Solve A X = B (LU with partial pivoting), A n x n, B n x nrhs. */
 static inline int ad_dgesv(int n, int nrhs, double *a, int lda, int *ipiv, double *b, int ldb)
@@ -56,6 +59,57 @@ static inline int ad_dpotrf_lower(int n, double *a, int lda)
 {
 	int info = 0;
 	dpotrf_("L", &n, a, &lda, &info, 1);
+	return info;
+}
+
+void dsyevr_(const char *jobz, const char *range, const char *uplo, const int *n, double *a,
+    const int *lda, const double *vl, const double *vu, const int *il, const int *iu,
+    const double *abstol, int *m, double *w, double *z, const int *ldz, int *isuppz, double *work,
+    const int *lwork, int *iwork, const int *liwork, int *info, size_t jobz_len, size_t range_len,
+    size_t uplo_len);
+
+/* Doubles and ints of workspace ad_dsyevr needs for order n. */
+static inline size_t ad_dsyevr_work(int n)
+{
+	return 26 * (size_t)n + 1;
+}
+static inline size_t ad_dsyevr_iwork(int n)
+{
+	return 10 * (size_t)n + 2 * (size_t)n + 1;
+}
+
+/* Eigenvalues (ascending, into w) and orthonormal eigenvectors (into z,
+ * column j for w[j]) of the symmetric n x n matrix whose lower triangle a
+ * holds (destroyed; relatively robust representations). */
+static inline int ad_dsyevr(int n, double *a, int lda, double *w, double *z, int ldz, double *work,
+    int *iwork)
+{
+	int info = 0, m = 0, lwork = (int)ad_dsyevr_work(n), liwork = 10 * n + 1, il = 1, iu = n;
+	double vl = 0.0, vu = 0.0, abstol = 0.0;
+	int *isuppz = iwork + 10 * n + 1;
+	dsyevr_("V", "A", "L", &n, a, &lda, &vl, &vu, &il, &iu, &abstol, &m, w, z, &ldz, isuppz,
+	    work, &lwork, iwork, &liwork, &info, 1, 1, 1);
+	return info != 0 ? info : (m == n ? 0 : -1);
+}
+
+/* Doubles and ints of workspace ad_dsyevd needs for order n. */
+static inline size_t ad_dsyevd_work(int n)
+{
+	return 1 + 6 * (size_t)n + 2 * (size_t)n * (size_t)n;
+}
+static inline size_t ad_dsyevd_iwork(int n)
+{
+	return 3 + 5 * (size_t)n;
+}
+
+/* Eigenvalues (ascending, into w) and orthonormal eigenvectors (into a,
+ * column j for w[j]) of the symmetric n x n matrix whose lower triangle a
+ * holds (divide and conquer); work and iwork as ad_dsyevd_work and
+ * ad_dsyevd_iwork say. */
+static inline int ad_dsyevd(int n, double *a, int lda, double *w, double *work, int *iwork)
+{
+	int info = 0, lwork = (int)ad_dsyevd_work(n), liwork = (int)ad_dsyevd_iwork(n);
+	dsyevd_("V", "L", &n, a, &lda, w, work, &lwork, iwork, &liwork, &info, 1, 1);
 	return info;
 }
 

@@ -17,11 +17,35 @@
 /* Transmittance below which a layer counts as opaque: its T is set to 0. */
 #define AD_T_NEGLIGIBLE 1e-14
 #define AD_MAX_DOUBLINGS 200
+/* Doublings from which the eigenvector solution replaces them. */
+#ifndef AD_EIGEN_MIN_STEPS
+#define AD_EIGEN_MIN_STEPS 1
+#endif
+
+/* Doubles and ints of LAPACK workspace for either eigensolver. */
+static size_t eig_work(int n)
+{
+	return ad_dsyevd_work(n) > ad_dsyevr_work(n) ? ad_dsyevd_work(n) : ad_dsyevr_work(n);
+}
+static size_t eig_iwork(int n)
+{
+	return ad_dsyevd_iwork(n) > ad_dsyevr_iwork(n) ? ad_dsyevd_iwork(n) : ad_dsyevr_iwork(n);
+}
+
+/* Doubles of scratch eigen_layer needs. */
+static size_t eigen_work(int n, int ne)
+{
+	size_t nn = (size_t)n * (size_t)n;
+	size_t w = eig_work(n), iw = eig_iwork(n);
+	return 8 * nn + 3 * (size_t)n * (size_t)ne + 4 * (size_t)n + w + iw + (size_t)ne;
+}
 
 size_t ad_layer_work(int n, int ne)
 {
 	size_t nn = (size_t)n * (size_t)(n + ne);
-	return (size_t)n * (size_t)n + 4 * nn + 3 * (size_t)n + (size_t)ne;
+	size_t dbl = (size_t)n * (size_t)n + 4 * nn + 3 * (size_t)n + (size_t)ne;
+	size_t eig = eigen_work(n, ne);
+	return (dbl > eig ? dbl : eig) + (size_t)n;
 }
 
 /* The last n doubles of the workspace: sqrt(mu_i w_i), the flux weights of
@@ -88,6 +112,250 @@ static int diamond(const struct ad_layer_in *in, double dt, double *R, double *T
 			}
 		}
 	return 0;
+}
+
+/* Short names for the BLAS calls of eigen_layer (column-major). */
+#define TRMM(...) cblas_dtrmm(CblasColMajor, __VA_ARGS__)
+#define TRSM(...) cblas_dtrsm(CblasColMajor, __VA_ARGS__)
+#define SYRK(...) cblas_dsyrk(CblasColMajor, __VA_ARGS__)
+#define SYMM(...) cblas_dsymm(CblasColMajor, __VA_ARGS__)
+#define GEMM(...) cblas_dgemm(CblasColMajor, __VA_ARGS__)
+#define L_ CblasLeft
+#define R_ CblasRight
+#define LO CblasLower
+#define NT CblasNoTrans
+#define TR CblasTrans
+#define NU CblasNonUnit
+
+/* eigen_layer's scratch. */
+struct eig_ws {
+	double *C, *U, *B, *G, *A1, *A2, *X1, *X2;	/* [n x n] */
+	double *Zp, *Zm, *Zs;				/* [n x ne] */
+	double *lam, *q, *tk, *ck, *ew, *kap;
+	int *iw;
+};
+
+static void eig_bind(int n, int ne, double *work, struct eig_ws *w)
+{
+	const size_t nn = (size_t)n * n;
+	double **m[] = { &w->C, &w->U, &w->B, &w->G, &w->A1, &w->A2, &w->X1, &w->X2 };
+	for (int j = 0; j < 8; j++)
+		*m[j] = work + nn * j;
+	w->Zp = work + 8 * nn;
+	w->Zm = w->Zp + (size_t)n * ne;
+	w->Zs = w->Zm + (size_t)n * ne;
+	w->lam = w->Zs + (size_t)n * ne;
+	w->q = w->lam + n;
+	w->tk = w->q + n;
+	w->ck = w->tk + n;
+	w->ew = w->ck + n;
+	w->iw = (int *)(w->ew + eig_work(n));
+	w->kap = w->ew + eig_work(n) + eig_iwork(n);
+}
+
+/* eigen_layer's beam columns (R and T's node matrices done). */
+static int eigen_beams(const struct ad_layer_in *in, double *R, double *T, double *d,
+    const struct eig_ws *ws)
+{
+	const int n = in->n, ne = in->ne, semi = isinf(in->tau);
+	const size_t nn = (size_t)n * n;
+	const double om = in->omega, tau = in->tau;
+	double *C = ws->C, *U = ws->U, *Zp = ws->Zp, *Zm = ws->Zm, *Zs = ws->Zs;
+	double *lam = ws->lam, *q = ws->q, *kap = ws->kap;
+	/* Beams: sources s+ + s- into Zp, s+ - s- into Zm (per unit tau, the
+	 * collimated flux 1 at the top). */
+	for (int e = 0; e < ne; e++) {
+		double me = in->mu_e[e];
+		double *sp = Zp + (size_t)n * e, *sm = Zm + (size_t)n * e;
+		if (me <= 0.0) {
+			kap[e] = 0.0;
+			memset(sp, 0, sizeof(double) * n);
+			memset(sm, 0, sizeof(double) * n);
+			continue;
+		}
+		kap[e] = in->ext_e[e] / me;
+		for (int k = 0; k < n; k++) {
+			double r = fabs(lam[k] - kap[e] * kap[e]);
+			if (r < 1e-6 * fmax(lam[k], kap[e] * kap[e]))
+				return 1;
+		}
+		for (int i = 0; i < n; i++) {
+			size_t k = (size_t)i + (size_t)n * (n + e);
+			double f = om * q[i] / me;
+			sp[i] = f * (in->Hpp[k] + in->Hpm[k]);
+			sm[i] = f * (in->Hpp[k] - in->Hpm[k]);
+		}
+	}
+	/* p = C^-1 s- (Zm), C^T s+ (Zp); Zs = U^T (C^T s+ + kappa p) / (l^2 - kappa^2). */
+	TRSM(L_, LO, NT, NU, n, ne, 1.0, C, n, Zm, n);
+	TRMM(L_, LO, TR, NU, n, ne, 1.0, C, n, Zp, n);
+	for (int e = 0; e < ne; e++)
+		cblas_daxpy(n, kap[e], Zm + (size_t)n * e, 1, Zp + (size_t)n * e, 1);
+	GEMM(TR, NT, n, ne, n, 1.0, U, n, Zp, n, 0.0, Zs, n);
+	for (int e = 0; e < ne; e++)
+		for (int k = 0; k < n; k++) {
+			double *z = Zs + k + (size_t)n * e;
+			*z = kap[e] > 0.0 ? *z / (lam[k] - kap[e] * kap[e]) : 0.0;
+		}
+	/* s = U Zs into Zp; t = kappa s + p into Zm; S = C s, D = C^-T t. */
+	GEMM(NT, NT, n, ne, n, 1.0, U, n, Zs, n, 0.0, Zp, n);
+	for (int e = 0; e < ne; e++)
+		cblas_daxpy(n, kap[e], Zp + (size_t)n * e, 1, Zm + (size_t)n * e, 1);
+	TRMM(L_, LO, NT, NU, n, ne, 1.0, C, n, Zp, n);
+	TRSM(L_, LO, TR, NU, n, ne, 1.0, C, n, Zm, n);
+	/* Z+ = (S + D) / 2 into Zp, Z- = (S - D) / 2 into Zm; then d Z- in Zs. */
+	for (size_t k = 0; k < (size_t)n * ne; k++) {
+		double S = Zp[k], D = Zm[k];
+		Zp[k] = 0.5 * (S + D);
+		Zm[k] = 0.5 * (S - D);
+	}
+	for (int e = 0; e < ne; e++) {
+		d[e] = semi || kap[e] == 0.0 ? 0.0 : exp(-kap[e] * tau);
+		for (int i = 0; i < n; i++)
+			Zs[i + (size_t)n * e] = d[e] * Zm[i + (size_t)n * e];
+	}
+	/* R_e = Z- - R Z+ - T d Z-, T_e = d Z+ - T Z+ - R d Z-. */
+	double *Re = R + nn, *Te = T + nn;
+	for (int e = 0; e < ne; e++)
+		for (int i = 0; i < n; i++) {
+			size_t k = i + (size_t)n * e;
+			Re[k] = Zm[k];
+			Te[k] = d[e] * Zp[k];
+		}
+	GEMM(NT, NT, n, ne, n, -1.0, R, n, Zp, n, 1.0, Re, n);
+	GEMM(NT, NT, n, ne, n, -1.0, R, n, Zs, n, 1.0, Te, n);
+	if (!semi) {
+		GEMM(NT, NT, n, ne, n, -1.0, T, n, Zs, n, 1.0, Re, n);
+		GEMM(NT, NT, n, ne, n, -1.0, T, n, Zp, n, 1.0, Te, n);
+	}
+	return 0;
+}
+
+
+/* The layer at its full thickness from the eigenvectors of the
+ * discrete-ordinate equations (ad_layer.h).  With a and b as in diamond,
+ * S = I+ + I- and D = I+ - I- obey S' = -(a + b) D, D' = -(a - b) S.  With
+ * a + b = C C^T (Cholesky) and C^T (a - b) C = U diag(l^2) U^T, B = C U
+ * turns them into independent modes, cosh and sinh of l tau.  A layer lit
+ * equally from both sides has D = 0 at its middle, one lit oppositely S = 0;
+ * with h = tau / 2 that gives in closed form
+ *   R + T = 2 B (B^T B + diag(l tanh(l h)))^-1 B^T - I,
+ *   R - T = 2 B (B^T B + diag(l coth(l h)))^-1 B^T - I,
+ *   T = B (B^T B + diag(l tanh))^-1 diag(2 l / sinh(l tau)) (B^T B + diag(l coth))^-1 B^T,
+ * the last free of the cancellation R + T - (R - T) has in thick layers;
+ * all finite at l = 0 (conservative scattering: l coth(l h) -> 1/h) and for
+ * a half space (tanh = coth = 1, T = 0).  A beam (source e^{-kappa tau})
+ * has the particular solution S = C s, D = C^-T (kappa s + p) with
+ * p = C^-1 s-, (U diag(l^2) U^T - kappa^2) s = C^T s+ + kappa p (s+- the
+ * sum and difference of its downward and upward sources); the layer's
+ * R and T then take away what that solution sends into it at the faces.
+ * Exact in the thickness (no starting layer, the beam's attenuation
+ * e^{-kappa tau} exactly); declined (1: the caller doubles) where a
+ * factorization fails or a beam's kappa is within 1e-6 of an eigenvalue
+ * l (the particular solution's resonance). */
+static int eigen_layer(const struct ad_layer_in *in, double *R, double *T, double *d, double *work)
+{
+	const int n = in->n, ne = in->ne;
+	const size_t nn = (size_t)n * n;
+	const double om = in->omega, tau = in->tau, h = 0.5 * tau;
+	const int semi = isinf(tau);
+	struct eig_ws ws;
+	eig_bind(n, ne, work, &ws);
+	double *C = ws.C, *U = ws.U, *B = ws.B, *G = ws.G, *A1 = ws.A1, *A2 = ws.A2, *X1 = ws.X1;
+	double *X2 = ws.X2, *lam = ws.lam, *q = ws.q, *tk = ws.tk, *ck = ws.ck;
+	for (int i = 0; i < n; i++)
+		q[i] = sqrt(in->w[i] / in->mu[i]);
+	/* a + b into C, a - b into U (lower triangles; H is symmetric: the mean
+	 * of both triangles). */
+	for (int j = 0; j < n; j++)
+		for (int i = j; i < n; i++) {
+			size_t k = (size_t)i + (size_t)n * j, kt = (size_t)j + (size_t)n * i;
+			double hp = 0.5 * (in->Hpp[k] + in->Hpp[kt]);
+			double hm = 0.5 * (in->Hpm[k] + in->Hpm[kt]);
+			double base = i == j ? 1.0 / in->mu[i] : 0.0, f = om * q[i] * q[j];
+			C[k] = base - f * (hp - hm);
+			U[k] = base - f * (hp + hm);
+			if (i > j) {
+				C[kt] = 0.0;
+				U[kt] = U[k];
+			}
+		}
+	memcpy(G, U, sizeof(double) * nn);
+	if (ad_dpotrf_lower(n, C, n) != 0)
+		return 1;
+	/* U = C^T (a - b) C, then its eigenvectors. */
+	TRMM(R_, LO, NT, NU, n, n, 1.0, C, n, U, n);
+	TRMM(L_, LO, TR, NU, n, n, 1.0, C, n, U, n);
+#ifdef AD_EIG_DSYEVD
+	if (ad_dsyevd(n, U, n, lam, ws.ew, ws.iw) != 0)
+		return 1;
+#else
+	memcpy(X1, U, sizeof(double) * nn);
+	if (ad_dsyevr(n, X1, n, lam, U, n, ws.ew, ws.iw) != 0)
+		return 1;
+#endif
+	/* a - b is positive semidefinite (0 only for conservative scattering):
+	 * a clearly negative eigenvalue is not rounding. */
+	if (lam[0] < -1e-10 * fabs(lam[n - 1]))
+		return 1;
+	/* B = C U.  The eigenvalues' absolute error is eps times the largest,
+	 * 1 / mu_min^2: for the smallest (the slow modes that carry a thick
+	 * layer's transmittance, e^{-l tau}) that is 1e-9 relative and more.
+	 * Their Rayleigh quotients b^T (a - b) b with b = C u are exact to
+	 * first order in the eigenvectors' error and rounded relative to the
+	 * mode's own terms: 1e-13 (test_ad test_start_thickness). */
+	memcpy(B, U, sizeof(double) * nn);
+	TRMM(L_, LO, NT, NU, n, n, 1.0, C, n, B, n);
+	SYMM(L_, LO, n, n, 1.0, G, n, B, n, 0.0, X1, n);
+	for (int k = 0; k < n; k++)
+		lam[k] = cblas_ddot(n, B + (size_t)n * k, 1, X1 + (size_t)n * k, 1);
+	for (int k = 0; k < n; k++) {
+		double l = sqrt(fmax(lam[k], 0.0)), x = l * h;
+		lam[k] = fmax(lam[k], 0.0);
+		if (semi)
+			tk[k] = ck[k] = l;
+		else {
+			double th = tanh(x);
+			tk[k] = l * th;
+			ck[k] = x > 1e-8 ? l / th : 1.0 / h;
+		}
+	}
+	/* G = B^T B; A1 = G + diag(tk), A2 = G + diag(ck). */
+	SYRK(LO, TR, n, n, 1.0, B, n, 0.0, G, n);
+	memcpy(A1, G, sizeof(double) * nn);
+	memcpy(A2, G, sizeof(double) * nn);
+	for (int k = 0; k < n; k++) {
+		A1[k + (size_t)n * k] += tk[k];
+		A2[k + (size_t)n * k] += ck[k];
+	}
+	if (ad_dpotrf_lower(n, A1, n) != 0 || ad_dpotrf_lower(n, A2, n) != 0)
+		return 1;
+	/* X = B L^-T: R + T = 2 X1 X1^T - I, R - T = 2 X2 X2^T - I. */
+	memcpy(X1, B, sizeof(double) * nn);
+	memcpy(X2, B, sizeof(double) * nn);
+	TRSM(R_, LO, TR, NU, n, n, 1.0, A1, n, X1, n);
+	TRSM(R_, LO, TR, NU, n, n, 1.0, A2, n, X2, n);
+	SYRK(LO, NT, n, n, 1.0, X1, n, 0.0, R, n);
+	SYRK(LO, NT, n, n, 1.0, X2, n, 1.0, R, n);
+	for (int j = 0; j < n; j++) {
+		R[j + (size_t)n * j] -= 1.0;
+		for (int i = j + 1; i < n; i++)
+			R[j + (size_t)n * i] = R[i + (size_t)n * j];
+	}
+	if (semi)
+		memset(T, 0, sizeof(double) * nn);
+	else {
+		/* F = X L^-1 = B A^-1; T = F1 diag(2 l / sinh(l tau)) F2^T. */
+		TRSM(R_, LO, NT, NU, n, n, 1.0, A1, n, X1, n);
+		TRSM(R_, LO, NT, NU, n, n, 1.0, A2, n, X2, n);
+		for (int k = 0; k < n; k++) {
+			double l = sqrt(lam[k]), x = l * tau;
+			double dk = x > 1e-8 ? (x < 700.0 ? 2.0 * l / sinh(x) : 0.0) : 2.0 / tau;
+			cblas_dscal(n, dk, X1 + (size_t)n * k, 1);
+		}
+		GEMM(NT, TR, n, n, n, 1.0, X1, n, X2, n, 0.0, T, n);
+	}
+	return ne > 0 ? eigen_beams(in, R, T, d, &ws) : 0;
 }
 
 /* out = base + sign * T (I -+ R)^-1 [T | v]: Cholesky of A = I -+ R, an LU
@@ -181,9 +449,22 @@ int ad_layer_solve(const struct ad_layer_in *in, struct ad_layer_out *out, doubl
 	}
 	out->doublings = 0;
 	out->t_drop = 0.0;
+	out->eigen = 0;
 	double *a = flux_weights(n, ne, work);
 	for (int i = 0; i < n; i++)
 		a[i] = sqrt(in->mu[i] * in->w[i]);
+	int try_eigen = !in->doubling_only && (semi || steps >= AD_EIGEN_MIN_STEPS);
+	if (try_eigen && eigen_layer(in, R, T, d, work) == 0) {
+		out->eigen = 1;
+		double tmax = semi ? 0.0 : max_transmittance(in, a, T, d);
+		if (!semi && tmax < AD_T_NEGLIGIBLE) {
+			/* Opaque, as the doubling would have found it. */
+			out->t_drop = tmax;
+			memset(T, 0, sizeof(double) * (size_t)n * (size_t)(n + ne));
+			memset(d, 0, sizeof(double) * (size_t)ne);
+		}
+		goto beams;
+	}
 	if (diamond(in, dt, R, T, d, work)) {
 		*cause = xasprintf("adding-doubling: the starting layer's matrix is singular (LAPACK dgesv)");
 		return -1;
@@ -208,6 +489,7 @@ int ad_layer_solve(const struct ad_layer_in *in, struct ad_layer_out *out, doubl
 		}
 		out->doublings++;
 	}
+beams:
 	/* Beams' columns: symmetric form -> the solver's form. */
 	for (int e = 0; e < ne; e++)
 		for (int i = 0; i < n; i++) {

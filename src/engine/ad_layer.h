@@ -24,7 +24,14 @@
  * Doubling (van de Hulst 1980): with S = R + T and D = R - T,
  *   S' = R + T (I - R)^-1 T,  D' = R - T (I + R)^-1 T,
  * each by a Cholesky factorization (I -+ R are symmetric positive definite
- * for a reflecting layer), an LU factorization where that fails. */
+ * for a reflecting layer), an LU factorization where that fails.
+ *
+ * By default a layer thicker than its starting layer is solved instead at
+ * its full thickness from the eigenvectors of the same discrete-ordinate
+ * equations (exact in the thickness, the beams' attenuation e^{-tau/mu}
+ * exactly; formulas at eigen_layer in ad_layer.c; issue 28); the diamond
+ * start and doubling remain for thin layers, for layers the eigenvectors
+ * decline and when doubling_only is set. */
 #ifndef SKINBAKE_AD_LAYER_H
 #define SKINBAKE_AD_LAYER_H
 #include <stddef.h>
@@ -41,6 +48,7 @@ struct ad_layer_in {
 	double omega;		/* single-scattering albedo [-] */
 	double dtau_max;	/* thickest starting layer [-] */
 	double n_index;		/* refractive index of the medium [-] */
+	int doubling_only;	/* 1: diamond start and doubling always (no eigenvectors) */
 };
 
 struct ad_layer_out {
@@ -48,6 +56,7 @@ struct ad_layer_out {
 	double *dT;		/* [ne] collimated transmission (Pade); caller-owned */
 	int doublings;		/* doubling steps taken */
 	double t_drop;		/* largest transmittance set to 0 when it became negligible */
+	int eigen;		/* 1 if solved by eigenvectors (no doubling) */
 };
 
 /* Doubles of workspace ad_layer_solve needs. */

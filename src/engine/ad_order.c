@@ -202,6 +202,7 @@ static int layer_order(struct ctx *c, int k, int mo, struct ws *w, char **cause)
 		.n = n, .ne = E, .mu = m->x, .w = m->w, .mu_e = m->x + n, .ext_e = m->ext,
 		.Hpp = w->Hpp, .Hpm = w->Hpm, .tau = m->tau, .omega = m->omega,
 		.dtau_max = m->dtau_max, .n_index = c->md->n[k],
+		.doubling_only = c->o->doubling_only,
 	};
 	struct ad_layer_out out = { .R = w->lR, .T = w->lT, .dT = w->ldT };
 	if (ad_layer_solve(&in, &out, w->lwork, cause))

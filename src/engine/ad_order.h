@@ -46,6 +46,7 @@ struct ad_level_opts {
 	int max_orders;		/* Fourier orders at most (>= 1) */
 	double tol_f;		/* stop when two orders in a row add less than this, relative */
 	int threads;		/* OpenMP threads over orders (>= 1) */
+	int doubling_only;	/* 1: no layer by eigenvectors (ad_layer.h) */
 };
 
 /* The result of one solve. */
