@@ -21,7 +21,7 @@
  *
  * It is the emission of a copy of the mesh POVBACK_LIFT_PX pixels outside
  * it (at least 2e-4 units), only its triangles with a lit vertex, clear but
- * for that: per-vertex textures of a mesh2 (interpolated by POV-Ray),
+ * for that: a mesh2 texture per triangle (its vertices' mean: write_copy),
  * pigment rgbt <1000 T E, 0.999>, finish emission 1, so that the skin
  * under it shows at 0.999 and the copy adds T E; it casts no shadow. */
 #ifndef SKINBAKE_POVBACK_H
