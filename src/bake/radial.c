@@ -204,10 +204,11 @@ void radial_solve(const struct radial_spec *sp, struct radial_out *out)
 		for (int l = 1; l <= sp->slab->n_layers; l++)
 			if (!slab_layer_clear(sp->slab, l))
 				dmua[j * NS + l] = cv_shift[j];
-	/* Far roulette beyond the bins (engine/transport.h): the profile and
-	 * the mean radius count nothing that leaves beyond them. */
+	/* Far roulette beyond the bins, never nearer than TRANSPORT_FAR_MIN_CM
+	 * (engine/transport.h): the profile and the mean radius count nothing
+	 * that leaves beyond the bins. */
 	struct transport_opts o = *sp->opts;
-	o.far_cm = sp->n_r * sp->dr;
+	o.far_cm = fmax(sp->n_r * sp->dr, TRANSPORT_FAR_MIN_CM);
 	const long bp = RADIAL_BATCH;
 	const int nc = sp->n_r + 2, chunk = 1024;
 	/* Whole batches, at least 2 (the photon cap rounded up); the pilot at

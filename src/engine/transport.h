@@ -43,6 +43,11 @@ struct launch {
  * 0.117 cm, far_cm 0.5) the walk took 1.2x less CPU at the same
  * variance of the mean radius (bake/radial.h). */
 #define TRANSPORT_FAR_LEVELS 4
+/* The nearest far_cm the radial runs use: a profile of 10 bins of 20 um
+ * (0.02 cm) put the roulette levels 50 um apart, a photon 1 mm out had
+ * doubled its weight 16 times, and paper's 656 nm mean radius came out 0
+ * with a stated error of 0 (blender_scene_json.sh's bake). */
+#define TRANSPORT_FAR_MIN_CM 0.5
 
 /* Defaults: roulette below weight 0.2 with survival chance 0.3 (tuned on the
  * skin stack: about 3x the efficiency of MCML's 1e-4 / 0.1, see BENCHMARKS.md),

@@ -45,7 +45,7 @@ static void share_group(const struct bake_spec *s, const struct slab *vs, const 
 	struct wmc_radial w;
 	/* Far roulette beyond the bins (engine/transport.h), as bake/radial.c. */
 	struct transport_opts o = s->opts;
-	o.far_cm = s->n_r * s->dr;
+	o.far_cm = fmax(s->n_r * s->dr, TRANSPORT_FAR_MIN_CM);
 	uint32_t stream = (uint32_t)(wl * 2 * FAMILY_RADIAL_GROUPS + 2 * grp);
 	wmc_radial_run(&ref, dmua, n, s->theta_i[0], &o, s->n_r, s->dr, pilot, BATCHES,
 	    s->seed, stream, s->threads, &w);
