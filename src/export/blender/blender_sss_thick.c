@@ -9,9 +9,8 @@
 #include <string.h>
 
 #include "bake/bakedir.h"
-#include "bake/manifest.h"
 #include "base/util.h"
-#include "engine/ad.h"
+#include "export/sss_tt.h"
 
 const double blender_thick_d_mm[BLENDER_THICK_N] = { 0.25, 0.5, 0.75, 1, 1.5, 2, 3, 4, 6,
 	BLENDER_THICK_AO_MM };
@@ -54,63 +53,9 @@ double blender_thick_walk(const struct sss_trans_table *t, double colour, double
 	return fmin(v, 1.0);
 }
 
-/* Stack S cut to D_CM (the deeper layers shortened, the last extended to
- * fill) and turned over, so that light enters the deepest layer. */
-static int cut_stack(const struct slab *s, double d_cm, struct slab *out, char **cause)
-{
-	struct layer l[SLAB_MAX_LAYERS];
-	int n = 0;
-	double left = d_cm;
-	for (int i = 1; i <= s->n_layers && left > 0; i++) {
-		l[n] = s->layer[i];
-		l[n].d = fmin(l[n].d, left);
-		l[n].rough = 0.0;
-		left -= l[n].d;
-		n++;
-	}
-	l[n - 1].d += fmax(left, 0.0);
-	slab_init(out, 1.0, 1.0);
-	for (int i = n - 1; i >= 0; i--)
-		if (slab_add(out, &l[i], cause) != 0)
-			return -1;
-	if (slab_check(out, cause) != 0)
-		return -1;
-	slab_prepare(out);
-	return 0;
-}
-
 int blender_thick_stack(const struct bake *b, double tt[BLENDER_THICK_N][3], char **cause)
 {
-	struct bake_provenance p;
-	if (b->dir == NULL || bake_provenance_read(b->dir, &p, cause) != 0)
-		return -1;
-	struct ad_opts o;
-	ad_opts_default(&o);
-	o.tol = 1e-3;
-	o.n_to = o.n_phi = 1;
-	o.max_orders = 1;
-	o.threads = 1;
-	/* The totals only (1e-3 of Tt is far below the 20 % the test asks). */
-	o.error_estimate = 0;
-	double ti = 0.0;
-	int rc = 0;
-	memset(tt, 0, sizeof(double) * BLENDER_THICK_N * 3);
-	for (int k = 0; k < BLENDER_THICK_N && rc == 0; k++)
-		for (int w = 0; w < p.n_wl && rc == 0; w++) {
-			struct slab s;
-			struct ad_result r;
-			double d_cm = blender_thick_d_mm[k] / 10;
-			if (cut_stack(&p.slab[w], d_cm, &s, cause) != 0 ||
-			    ad_solve(&s, p.fresnel, &ti, 1, &o, &r, cause) != 0) {
-				rc = -1;
-				break;
-			}
-			for (int c = 0; c < 3; c++)
-				tt[k][c] += b->rgb_from_wl[c * b->n_wl + w] * r.beam[0].tt.v;
-			ad_result_free(&r);
-		}
-	bake_provenance_free(&p);
-	return rc;
+	return sss_stack_tt(b, blender_thick_d_mm, BLENDER_THICK_N, tt, cause);
 }
 
 void blender_thick_weights(const struct sss_fit *f, const double tt[BLENDER_THICK_N][3],

@@ -8,80 +8,20 @@
 #include <stdlib.h>
 #include <string.h>
 
-#include "bake/manifest.h"
 #include "base/util.h"
-#include "engine/ad.h"
 #include "export/pov/meshray.h"
 #include "export/pov/sdl.h"
 #include "export/pov/vec3.h"
+#include "export/sss_tt.h"
 #include "geom/mesh.h"
 
 const double povback_d_mm[POVBACK_N] = { 0.25, 0.5, 0.75, 1, 1.5, 2, 3, 4, 6, 8, 12, 16 };
-
-/* Stack S cut to D_CM (the deeper layers shortened, the last extended to
- * fill) and turned over, so that light enters the deepest layer. */
-static int cut_stack(const struct slab *s, double d_cm, struct slab *out, char **cause)
-{
-	struct layer l[SLAB_MAX_LAYERS];
-	int n = 0;
-	double left = d_cm;
-	for (int i = 1; i <= s->n_layers && left > 0; i++) {
-		l[n] = s->layer[i];
-		l[n].d = fmin(l[n].d, left);
-		l[n].rough = 0.0;
-		left -= l[n].d;
-		n++;
-	}
-	l[n - 1].d += fmax(left, 0.0);
-	slab_init(out, 1.0, 1.0);
-	for (int i = n - 1; i >= 0; i--)
-		if (slab_add(out, &l[i], cause) != 0)
-			return -1;
-	if (slab_check(out, cause) != 0)
-		return -1;
-	slab_prepare(out);
-	return 0;
-}
-
-/* Tt per node of B's stack; -1 and *cause when it has none. */
-static int stack_tt(const struct bake *b, double tt[POVBACK_N][3], char **cause)
-{
-	struct bake_provenance p;
-	if (b->dir == NULL || bake_provenance_read(b->dir, &p, cause) != 0)
-		return -1;
-	struct ad_opts o;
-	ad_opts_default(&o);
-	o.tol = 1e-3;
-	o.n_to = 1;
-	o.n_phi = 1;
-	o.max_orders = 1;
-	o.threads = 1;
-	o.error_estimate = 0;	/* the totals only: 1e-3 of Tt */
-	double ti = 0.0;
-	int rc = 0;
-	memset(tt, 0, sizeof(double) * POVBACK_N * 3);
-	for (int k = 0; k < POVBACK_N && rc == 0; k++)
-		for (int w = 0; w < p.n_wl && rc == 0; w++) {
-			struct slab s;
-			struct ad_result r;
-			if (cut_stack(&p.slab[w], povback_d_mm[k] / 10, &s, cause) != 0
-			    || ad_solve(&s, p.fresnel, &ti, 1, &o, &r, cause) != 0) {
-				rc = -1;
-				break;
-			}
-			for (int c = 0; c < 3; c++)
-				tt[k][c] += b->rgb_from_wl[c * b->n_wl + w] * r.beam[0].tt.v;
-			ad_result_free(&r);
-		}
-	bake_provenance_free(&p);
-	return rc;
-}
 
 void povback_setup(struct pov_back *pb, const struct bake *b, const struct sss_fit *f)
 {
 	char *cause = NULL;
 	memset(pb, 0, sizeof *pb);
-	if (stack_tt(b, pb->tt, &cause) != 0) {
+	if (sss_stack_tt(b, povback_d_mm, POVBACK_N, pb->tt, &cause) != 0) {
 		snprintf(pb->why, sizeof pb->why, "no transmittance: %s", cause ? cause : "?");
 		free(cause);
 		return;
