@@ -18,38 +18,7 @@
 
 static const char *CMD = "export blender";
 
-/* --mode, in the order of its choices. */
-enum { MODE_EXACT, MODE_TRANSLUCENT, MODE_AUTO };
-
-/* --mode auto on a bake: translucent where the fit can be made, else exact,
- * saying which and why on stderr (as export pov's auto).  Exact with
- * --textures: the fitted node is not given the detail normal map (the
- * importer bumps the table's closures only), so it would flatten the relief
- * of most of the red light (the node is about 94 % of it on a flat box). */
-static int auto_mode(struct brdf_source *src, const char *tex_dir, struct blender_sss *w)
-{
-	char *err = NULL;
-	const char *why = NULL;
-	if (tex_dir != NULL)
-		why = "--textures: the fitted node carries no detail normal map";
-	else if (blender_sss_wrap(src, w, &err) != 0)
-		why = err;
-	if (why != NULL) {
-		fprintf(stderr, "skinbake %s: exact (--mode auto: %s)\n", CMD, why);
-		free(err);
-		return MODE_EXACT;
-	}
-	char vers[128] = "";
-	for (int v = 0; v < w->n; v++) {
-		char ser[32];
-		blender_sss_series(w->fit[v].table, ser, sizeof ser);
-		size_t at = strlen(vers);
-		snprintf(vers + at, sizeof vers - at, "%s%s", v ? ", " : "", ser);
-	}
-	fprintf(stderr, "skinbake %s: translucent (--mode auto: a bake with Rd(r), Cycles' node "
-	    "fitted for Blender %s; --mode exact for the exact set)\n", CMD, vers);
-	return MODE_TRANSLUCENT;
-}
+enum { MODE_EXACT, MODE_TRANSLUCENT, MODE_AUTO };	/* --mode, in its choices' order */
 
 /* After the options: the bake (and textures) as a BRDF source, the image set;
  * translucent: Cycles' subsurface node fitted to Rd(r), the table the rest. */
@@ -66,12 +35,13 @@ static int run(const char *bake_dir, const char *tex_dir, const char *out, const
 	struct blender_set *s = NULL;
 	struct blender_sss w;
 	int rc = CLI_EXIT_OK, translucent = mode == MODE_TRANSLUCENT;
-	if (blender_check(src, o, &cause) != 0 || (tex_dir && brdf_source_add_textures(src, tex_dir, &cause) != 0))
+	char *note = NULL;
+	if (blender_check(src, o, &cause) != 0 ||
+	    (tex_dir && brdf_source_add_textures(src, tex_dir, &cause) != 0) ||
+	    (translucent && blender_sss_wrap(src, &w, &cause) != 0))
 		rc = cli_usage_error(CMD, "%s", cause);
-	else if (mode == MODE_AUTO)
-		translucent = auto_mode(src, tex_dir, &w) == MODE_TRANSLUCENT;
-	else if (translucent && blender_sss_wrap(src, &w, &cause) != 0)
-		rc = cli_usage_error(CMD, "%s", cause);
+	else if (mode == MODE_AUTO && (translucent = blender_sss_auto(src, tex_dir != NULL, &w, &note)) >= 0)
+		fprintf(stderr, "skinbake %s: %s\n", CMD, note);
 	if (rc == CLI_EXIT_OK && (s = blender_prepare(src, o, &cause)) == NULL)
 		rc = cli_usage_error(CMD, "%s", cause);
 	else if (rc == CLI_EXIT_OK) {
@@ -84,6 +54,7 @@ static int run(const char *bake_dir, const char *tex_dir, const char *out, const
 			rc = rc == -1 ? cli_usage_error(CMD, "%s", cause) : cli_fail(CMD, "%s", cause);
 	}
 	free(cause);
+	free(note);
 	blender_set_free(s);
 	brdf_source_free(src);
 	return rc;
@@ -143,9 +114,9 @@ int cmd_export_blender(int argc, char **argv)
 		{ "map-size", OPT_INT, &o.map_size, "PX", "16", .lo = BLENDER_MAP_MIN, .hi = BLENDER_MAP_MAX, .unit = "px",
 		  .help = "side of albedo.exr, roughness.png and the flat detail maps," },
 		{ "mode", OPT_ENUM, &mode, .choices = "exact|translucent|auto", .def = "auto",
-		  .help = "translucent: Cycles' subsurface fitted to Rd(r) beside the rest of the table (docs/translucency.md; "
-		  "with --family: per texel, docs/maps.md); auto: translucent for a --bake without --textures, "
-		  "else exact, saying why" },
+		  .help = "translucent: Cycles' subsurface fitted to Rd(r) beside the rest of the table "
+		  "(docs/translucency.md; with --family: per texel, docs/maps.md); auto: translucent "
+		  "for a --bake without --textures, else exact, saying why" },
 		OPT_END
 	};
 	const struct opt_cmd cmd = { "export blender", "--bake DIR --out DIR [options]",
@@ -170,9 +141,9 @@ int cmd_export_blender(int argc, char **argv)
 	if (opt_out_check(&x, out, &blender_outdir_kind, in, 4) != 0)
 		return CLI_EXIT_USAGE;
 	if (fam_dir && mode == MODE_AUTO)
-		fprintf(stderr, "skinbake %s: exact (--mode auto: --family; --mode translucent fits per "
-		    "texel)\n", CMD);
+		fprintf(stderr, "skinbake %s: exact (--mode auto: a --family)\n", CMD);
 	if (fam_dir)
-		return run_family(fam_dir, maps_dir, tex_dir, out, sub, &o, mode == MODE_TRANSLUCENT);
+		return run_family(fam_dir, maps_dir, tex_dir, out, sub, &o,
+		    mode == MODE_TRANSLUCENT);
 	return run(bake_dir, tex_dir, out, &o, mode);
 }

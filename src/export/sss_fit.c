@@ -113,7 +113,8 @@ static void inside_node(const struct ring_area *ra, int c, int k, double s, doub
 
 /* Power and first moment [mm] within r_mm in channel ch for colour c at
  * length L [mm]. */
-static void inside(const struct ring_area *ra, int ch, double c, double len, double r_mm, double *p0, double *p1)
+static void inside(const struct ring_area *ra, int ch, double c, double len, double r_mm,
+    double *p0, double *p1)
 {
 	double w, a0, a1, b0, b1;
 	int k = colour_cell(ra->t, c, &w);
@@ -157,7 +158,8 @@ double sss_bake_ring(const struct bake *b, int c, double r1_mm, double r2_mm)
 	return sum;
 }
 
-static double fit_ring(const struct ring_area *ra, const struct sss_fit *f, int c, double r1_mm, double r2_mm)
+static double fit_ring(const struct ring_area *ra, const struct sss_fit *f, int c, double r1_mm,
+    double r2_mm)
 {
 	double a0, a1, b0, b1;
 	inside(ra, c, f->colour[c], f->length_mm[c], r1_mm, &a0, &a1);
@@ -187,7 +189,8 @@ static void bake_moments(const struct bake *b, int c, double *p0, double *mean)
 
 /* RMS of ln(fit / bake) over the comparison rings inside the radius that
  * holds 95 % of the bake's power. */
-static double rms_log(const struct ring_area *ra, const struct sss_fit *f, const struct bake *b, int c)
+static double rms_log(const struct ring_area *ra, const struct sss_fit *f, const struct bake *b,
+    int c)
 {
 	double total = f->integral_bake[c], cum = 0.0, sum = 0.0;
 	int n = 0;
@@ -208,7 +211,8 @@ static double rms_log(const struct ring_area *ra, const struct sss_fit *f, const
 /* The closure (colour, length) with power TARGET and mean radius M within
  * r_max, channel c: bisection on the colour (the power within r_max grows
  * with it), for each colour the length that gives the mean. */
-static void fit_closure(const struct ring_area *ra, struct sss_fit *f, int c, double target, double m)
+static void fit_closure(const struct ring_area *ra, struct sss_fit *f, int c, double target,
+    double m)
 {
 	const struct sss_table *t = f->table;
 	double lo = t->colour[0], hi = t->colour[t->n_colour - 1], p0 = 0, p1 = 0;
@@ -244,7 +248,8 @@ static void fit_channel(const struct ring_area *ra, struct sss_fit *f, const str
 	double best = -1.0, best_local = 0.0;
 	for (int j = 0; j <= steps; j++) {
 		f->local[c] = ring0 * j / steps;
-		fit_closure(ra, f, c, target - f->local[c], target > 0 ? m * target / (target - f->local[c]) : m);
+		double keep = target - f->local[c];
+		fit_closure(ra, f, c, keep, target > 0 ? m * target / keep : m);
 		double rms = rms_log(ra, f, b, c);
 		if (best < 0 || rms < best - 1e-4) {
 			best = rms;
@@ -252,7 +257,8 @@ static void fit_channel(const struct ring_area *ra, struct sss_fit *f, const str
 		}
 	}
 	f->local[c] = best_local;
-	fit_closure(ra, f, c, target - best_local, target > 0 ? m * target / (target - best_local) : m);
+	double keep = target - best_local;
+	fit_closure(ra, f, c, keep, target > 0 ? m * target / keep : m);
 	f->rms_log[c] = rms_log(ra, f, b, c);
 }
 

@@ -149,6 +149,27 @@ int blender_sss_wrap(struct brdf_source *src, struct blender_sss *w, char **caus
 	return 0;
 }
 
+int blender_sss_auto(struct brdf_source *src, int textures, struct blender_sss *w, char **note)
+{
+	char *err = NULL;
+	if (textures || blender_sss_wrap(src, w, &err) != 0) {
+		const char *why = textures ? "--textures: the fitted node carries no detail normal map" : err;
+		*note = xasprintf("exact (--mode auto: %s)", why);
+		free(err);
+		return 0;
+	}
+	char vers[128] = "";
+	for (int v = 0; v < w->n; v++) {
+		char ser[32];
+		blender_sss_series(w->fit[v].table, ser, sizeof ser);
+		size_t at = strlen(vers);
+		snprintf(vers + at, sizeof vers - at, "%s%s", v ? ", " : "", ser);
+	}
+	*note = xasprintf("translucent (--mode auto: a bake with Rd(r), Cycles' node fitted for "
+	    "Blender %s; --mode exact for the exact set)", vers);
+	return 1;
+}
+
 void blender_sss_extra(const struct blender_sss *w, int v, double theta_o, double rgb[3])
 {
 	for (int c = 0; c < 3; c++)
