@@ -19,6 +19,11 @@
  *       difference of the tables, and the family's own error.
  *   maps_check swatch FILE.exr R G B [R G B ...]
  *       a 1-pixel-high linear EXR of the given colours.
+ *   maps_check noise IN.png OUT.png AMP [SEED]
+ *       IN (a 16-bit RGB PNG) with uniform noise of +-AMP 16-bit levels
+ *       added to each channel (clamped), as a 16-bit PNG: with AMP of a
+ *       few dozen nearly every texel is a distinct colour, the fit's
+ *       worst case (scripts/bench-maps.sh).
  *   maps_check values MAPS
  *       per texel of a 1-pixel-high maps directory: its index, each map's
  *       value and the fit's CIEDE2000 ("i v0 v1 ... de").
@@ -317,6 +322,29 @@ static int spectra(int argc, char **argv)
 	return 0;
 }
 
+static int noise(int argc, char **argv)
+{
+	if (argc < 5)
+		fatalx("usage: maps_check noise IN.png OUT.png AMP [SEED]");
+	char *cause = NULL;
+	struct image *im = image_read(argv[2], &cause);
+	if (im == NULL)
+		fatalx("%s", cause);
+	int amp = atoi(argv[4]);
+	unsigned long seed = argc > 5 ? strtoul(argv[5], NULL, 10) : 1;
+	size_t n = (size_t)im->w * im->h * im->nch;
+	for (size_t i = 0; i < n; i++) {
+		seed = seed * 6364136223846793005UL + 1442695040888963407UL;
+		int d = (int)((seed >> 33) % (unsigned long)(2 * amp + 1)) - amp;
+		long q = lround(im->v[i] * 65535.0) + d;
+		im->v[i] = (float)((q < 0 ? 0 : q > 65535 ? 65535 : q) / 65535.0);
+	}
+	if (image_write_png(argv[3], im, 16, 0, 0, NULL, &cause) != 0)
+		fatalx("%s", cause);
+	image_free(im);
+	return 0;
+}
+
 static int values(int argc, char **argv)
 {
 	if (argc != 3)
@@ -349,6 +377,8 @@ int main(int argc, char **argv)
 		return offnode(argc, argv);
 	if (argc >= 2 && strcmp(argv[1], "swatch") == 0)
 		return swatch(argc, argv);
-	fprintf(stderr, "usage: maps_check synth|compare|offnode|swatch|spectra|values ...\n");
+	if (argc >= 2 && strcmp(argv[1], "noise") == 0)
+		return noise(argc, argv);
+	fprintf(stderr, "usage: maps_check synth|compare|offnode|swatch|spectra|noise|values ...\n");
 	return 2;
 }
