@@ -58,6 +58,17 @@ struct maps_fit_summary {
  * the sizes differ. */
 int maps_fit(struct family *f, const struct image *albedo, const struct image *mask, const struct maps_fit_opts *o,
     struct mapset **out, struct maps_fit_summary *sum, char **cause);
+/* The same fit from files to a maps directory without holding the images:
+ * the albedo (and mask) read in bands of rows twice, first for the
+ * distinct colours, then for the maps, which are written band by band
+ * (mapset_writer) with the fit's summary and COMMAND as their history.
+ * Memory is the distinct colours' (about 40 bytes each) and a few bands.
+ * The files are byte for byte maps_fit's written by mapset_write (but for
+ * the seconds in maps.json).  -1 and *cause on failure, with
+ * *input_error set when an input (unreadable, corrupt, sizes that differ)
+ * is the cause; OUT is then as it was. */
+int maps_fit_files(struct family *f, const char *albedo, const char *mask, const struct maps_fit_opts *o,
+    const char *out, int exr, const char *command, struct maps_fit_summary *sum, int *input_error, char **cause);
 /* The summary as a JSON object (caller frees), for maps.json. */
 char *maps_fit_summary_json(const struct maps_fit_summary *s, const struct maps_fit_opts *o, const char *albedo);
 /* Linear sRGB of texel i of an image read as the fit reads it. */

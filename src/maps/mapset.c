@@ -238,6 +238,16 @@ static int file_open(struct map_file *mf, const char *stage, const char *name, c
 	return mf->png ? 0 : -1;
 }
 
+/* lround(top * fmin(1, fmax(0, x))) as image_write_png computes it
+ * (a NaN gives 0), without the library calls: y - trunc(y) is exact for
+ * y in [0, 65535], so rounding half up from it is lround's. */
+static inline uint16_t quantise(double top, float x)
+{
+	double c = x > 0.0f ? (x < 1.0f ? (double)x : 1.0) : 0.0, y = top * c;
+	long r = (long)y;
+	return (uint16_t)(r + (y - (double)r >= 0.5));
+}
+
 /* nrows rows of the file from v (floats) or st (status); the values
  * image_write_png and image_write_exr would write for the whole map. */
 static int file_rows(struct map_file *mf, int w, int nrows, const float *v, const unsigned char *st)
@@ -248,12 +258,12 @@ static int file_rows(struct map_file *mf, int w, int nrows, const float *v, cons
 	if (mf->status)
 		for (size_t i = 0; i < n; i++) {
 			float x = (float)(st[i] / 255.0);
-			mf->px[i] = (uint16_t)lround(255.0 * fmin(1.0, fmax(0.0, x)));
+			mf->px[i] = quantise(255.0, x);
 		}
 	else
 		for (size_t i = 0; i < n; i++) {
 			float x = (float)((v[i] - mf->lo) / (mf->hi - mf->lo));
-			mf->px[i] = (uint16_t)lround(65535.0 * fmin(1.0, fmax(0.0, x)));
+			mf->px[i] = quantise(65535.0, x);
 		}
 	return pngio_writer_rows(mf->png, mf->px, nrows, &mf->cause) == 0 ? 0 : (mf->png = NULL, -1);
 }
