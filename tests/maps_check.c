@@ -24,6 +24,10 @@
  *       added to each channel (clamped), as a 16-bit PNG: with AMP of a
  *       few dozen nearly every texel is a distinct colour, the fit's
  *       worst case (scripts/bench-maps.sh).
+ *   maps_check fit-memory FAM ALBEDO OUT png|exr [MASK]
+ *       maps fit's defaults (max-de 2.5, input by the file's kind) by the
+ *       in-memory path: the images read whole, maps_fit, mapset_write;
+ *       for tests/maps_stream.sh, which holds the streamed files to it.
  *   maps_check values MAPS
  *       per texel of a 1-pixel-high maps directory: its index, each map's
  *       value and the fit's CIEDE2000 ("i v0 v1 ... de").
@@ -345,6 +349,32 @@ static int noise(int argc, char **argv)
 	return 0;
 }
 
+static int fit_memory(int argc, char **argv)
+{
+	if (argc < 6)
+		fatalx("usage: maps_check fit-memory FAM ALBEDO OUT png|exr [MASK]");
+	struct family *f = fam(argv[2]);
+	char *cause = NULL;
+	struct image *a = image_read(argv[3], &cause), *mk = NULL;
+	if (a == NULL || (argc > 6 && (mk = image_read(argv[6], &cause)) == NULL))
+		fatalx("%s", cause);
+	struct maps_fit_opts o = { .input_linear = a->bits == 32, .max_de = 2.5, .threads = 0 };
+	struct maps_fit_summary s;
+	struct mapset *m;
+	if (maps_fit(f, a, mk, &o, &m, &s, &cause) != 0)
+		fatalx("%s", cause);
+	m->fit = maps_fit_summary_json(&s, &o, argv[3]);
+	m->exr = strcmp(argv[5], "exr") == 0;
+	mapset_add_history(m, "maps_check fit-memory");
+	if (mapset_write(argv[4], m, &cause) != 0)
+		fatalx("%s", cause);
+	mapset_free(m);
+	image_free(a);
+	image_free(mk);
+	family_free(f);
+	return 0;
+}
+
 static int values(int argc, char **argv)
 {
 	if (argc != 3)
@@ -379,6 +409,8 @@ int main(int argc, char **argv)
 		return swatch(argc, argv);
 	if (argc >= 2 && strcmp(argv[1], "noise") == 0)
 		return noise(argc, argv);
-	fprintf(stderr, "usage: maps_check synth|compare|offnode|swatch|spectra|noise|values ...\n");
+	if (argc >= 2 && strcmp(argv[1], "fit-memory") == 0)
+		return fit_memory(argc, argv);
+	fprintf(stderr, "usage: maps_check synth|compare|offnode|swatch|spectra|noise|fit-memory|values ...\n");
 	return 2;
 }
