@@ -395,7 +395,8 @@ struct colours {
 	uint32_t (*key)[3];	/* [n] the bits of the texel's three float values */
 	size_t kcap;		/* keys allocated */
 	int32_t *slot;		/* [cap] colour id or -1 */
-	size_t cap;		/* a power of 2, at least 2 n */
+	size_t cap;		/* 2^bits, at least 2 n */
+	int bits;
 };
 
 static void texel_bits(const struct image *im, size_t i, uint32_t k[3])
@@ -406,17 +407,20 @@ static void texel_bits(const struct image *im, size_t i, uint32_t k[3])
 	}
 }
 
-static size_t key_hash(const uint32_t k[3], size_t cap)
+/* Multiplicative hashing: the top bits of a product mix every key bit
+ * (the low bits of a product see only the key's low bits). */
+static size_t key_hash(const uint32_t k[3], int bits)
 {
-	uint64_t h = ((uint64_t)k[0] * 0x9E3779B97F4A7C15ULL) ^ ((uint64_t)k[1] * 0xC2B2AE3D27D4EB4FULL) ^
-	    ((uint64_t)k[2] * 0x165667B19E3779F9ULL);
-	return (size_t)(h ^ (h >> 29)) & (cap - 1);
+	uint64_t h = ((((uint64_t)k[0] * 0x9E3779B97F4A7C15ULL) ^ k[1]) * 0xC2B2AE3D27D4EB4FULL ^ k[2]) *
+	    0x165667B19E3779F9ULL;
+	return (size_t)(h >> (64 - bits));
 }
 
 static void colours_init(struct colours *cl)
 {
 	memset(cl, 0, sizeof *cl);
 	cl->cap = 1024;
+	cl->bits = 10;
 	cl->slot = xmalloc(sizeof(int32_t) * cl->cap);
 	for (size_t i = 0; i < cl->cap; i++)
 		cl->slot[i] = -1;
@@ -425,10 +429,16 @@ static void colours_init(struct colours *cl)
 /* The slot of key k: its colour's, or the empty one where it goes. */
 static size_t colours_slot(const struct colours *cl, const uint32_t k[3])
 {
-	size_t j = key_hash(k, cl->cap);
-	while (cl->slot[j] >= 0 && memcmp(cl->key[cl->slot[j]], k, sizeof(uint32_t) * 3) != 0)
+	size_t j = key_hash(k, cl->bits);
+	for (;;) {
+		int32_t id = cl->slot[j];
+		if (id < 0)
+			return j;
+		const uint32_t *q = cl->key[id];
+		if (q[0] == k[0] && q[1] == k[1] && q[2] == k[2])
+			return j;
 		j = (j + 1) & (cl->cap - 1);
-	return j;
+	}
 }
 
 /* The id of colour k, added if new. */
@@ -448,6 +458,7 @@ static int32_t colours_add(struct colours *cl, const uint32_t k[3])
 		/* grow: the ids stay, only their slots move */
 		free(cl->slot);
 		cl->cap *= 2;
+		cl->bits++;
 		cl->slot = xmalloc(sizeof(int32_t) * cl->cap);
 		for (size_t i = 0; i < cl->cap; i++)
 			cl->slot[i] = -1;
