@@ -28,6 +28,9 @@
  *       maps fit's defaults (max-de 2.5, input by the file's kind) by the
  *       in-memory path: the images read whole, maps_fit, mapset_write;
  *       for tests/maps_stream.sh, which holds the streamed files to it.
+ *   maps_check fit-reread FAM ALBEDO OUT png|exr [MASK]
+ *       the same by maps_fit_files with the albedo read a second time for
+ *       the maps (o.reread, as for albedos beyond MAPS_FIT_IDS_MAX).
  *   maps_check values MAPS
  *       per texel of a 1-pixel-high maps directory: its index, each map's
  *       value and the fit's CIEDE2000 ("i v0 v1 ... de").
@@ -375,6 +378,23 @@ static int fit_memory(int argc, char **argv)
 	return 0;
 }
 
+static int fit_reread(int argc, char **argv)
+{
+	if (argc < 6)
+		fatalx("usage: maps_check fit-reread FAM ALBEDO OUT png|exr [MASK]");
+	struct family *f = fam(argv[2]);
+	char *cause = NULL;
+	struct maps_fit_opts o = { .input_linear = image_kind(argv[3], &cause) == IMAGE_EXR, .max_de = 2.5,
+		.threads = 0, .reread = 1 };
+	struct maps_fit_summary s;
+	int input_error;
+	if (maps_fit_files(f, argv[3], argc > 6 ? argv[6] : NULL, &o, argv[4], strcmp(argv[5], "exr") == 0,
+	    "maps_check fit-reread", &s, &input_error, &cause) != 0)
+		fatalx("%s", cause);
+	family_free(f);
+	return 0;
+}
+
 static int values(int argc, char **argv)
 {
 	if (argc != 3)
@@ -411,6 +431,8 @@ int main(int argc, char **argv)
 		return noise(argc, argv);
 	if (argc >= 2 && strcmp(argv[1], "fit-memory") == 0)
 		return fit_memory(argc, argv);
-	fprintf(stderr, "usage: maps_check synth|compare|offnode|swatch|spectra|noise|fit-memory|values ...\n");
+	if (argc >= 2 && strcmp(argv[1], "fit-reread") == 0)
+		return fit_reread(argc, argv);
+	fprintf(stderr, "usage: maps_check synth|compare|offnode|swatch|spectra|noise|fit-memory|fit-reread|values ...\n");
 	return 2;
 }

@@ -1,11 +1,13 @@
 #!/bin/sh
 # maps fit streams its files (maps_fit_files: the albedo and mask read in
-# bands of 64 rows, the maps written band by band): the same files, byte
-# for byte, as the in-memory path (maps_check fit-memory: image_read,
-# maps_fit, mapset_write) for 16-bit PNG and linear EXR albedos, PNG and
-# EXR maps, transparent texels and a mask, on 150 rows (two whole bands
-# and a part); a truncated or corrupt albedo is refused with exit 2 and
-# leaves the maps it would replace as they were.
+# bands of 64 rows, the maps written band by band, from the colour ids
+# kept by the first reading or, for large albedos, from a second reading):
+# the same files, byte for byte, as the in-memory path (maps_check
+# fit-memory: image_read, maps_fit, mapset_write) for 16-bit PNG and
+# linear EXR albedos, PNG and EXR maps, transparent texels and a mask, on
+# 150 rows (two whole bands and a part), both ways (maps_check fit-reread
+# forces the second reading); a truncated or corrupt albedo is refused
+# with exit 2 and leaves the maps it would replace as they were.
 . "$top_srcdir/tests/tap.sh"
 B="$SKINBAKE"
 M="$top_builddir/tests/maps_check"
@@ -67,6 +69,9 @@ for case in "a.png png" "a.png exr" "a.exr png" "a.exr exr" "n.png png" "alpha.p
 	check "  ... and with one thread" sh -c "'$B' maps fit --family '$fam' --albedo '$tmpd/$alb' --format $fmt \
 		${mask:+--mask '$tmpd/$mask'} --threads 1 --out '$tmpd/one_$name' --quiet"
 	check "  ... byte for byte" same "$tmpd/mem_$name" "$tmpd/one_$name"
+	check "  ... reading the albedo twice" "$M" fit-reread "$fam" "$tmpd/$alb" "$tmpd/two_$name" "$fmt" \
+		${mask:+"$tmpd/$mask"}
+	check "  ... byte for byte" same "$tmpd/mem_$name" "$tmpd/two_$name"
 done
 # A corrupt albedo: its header is fine (the size check passes), its rows are
 # not; the fit finds it while reading and leaves the maps it would replace.

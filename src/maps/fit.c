@@ -578,24 +578,28 @@ static int texel_in(const struct image *albedo, const struct image *mask, size_t
 	return image_get(albedo, i, 3) >= 0.5f && (mask == NULL || image_get(mask, i, 0) >= 0.5f);
 }
 
-/* Pass 1 over a band: its fitted texels' colours, in raster order. */
+/* Pass 1 over a band: its fitted texels' colours, in raster order; ids
+ * (NULL or one per texel of the band) gets each texel's colour, -1 when
+ * it is not fitted. */
 static void fitter_scan(struct fitter *F, const struct image *albedo, const struct image *mask, int nrows,
-    struct maps_fit_summary *sum)
+    int32_t *ids, struct maps_fit_summary *sum)
 {
 	size_t n = (size_t)albedo->w * (size_t)nrows;
 	uint32_t prev[3] = { 0 };
-	int have = 0;	/* prev holds the last fitted texel's colour, added */
+	int32_t prev_id = -1;	/* the id of colour prev, -1 none yet */
 	for (size_t i = 0; i < n; i++) {
-		if (!texel_in(albedo, mask, i))
-			continue;
-		sum->fitted++;
-		uint32_t k[3];
-		texel_bits(albedo, i, k);
-		if (have && memcmp(k, prev, sizeof k) == 0)
-			continue;	/* runs of one colour: no hash */
-		colours_add(&F->cl, k);
-		memcpy(prev, k, sizeof k);
-		have = 1;
+		int32_t id = -1;
+		if (texel_in(albedo, mask, i)) {
+			sum->fitted++;
+			uint32_t k[3];
+			texel_bits(albedo, i, k);
+			/* runs of one colour: no hash */
+			id = prev_id >= 0 && memcmp(k, prev, sizeof k) == 0 ? prev_id : colours_add(&F->cl, k);
+			memcpy(prev, k, sizeof k);
+			prev_id = id;
+		}
+		if (ids)
+			ids[i] = id;
 	}
 	sum->texels += (long)n;
 }
@@ -635,13 +639,14 @@ static void fitter_solve(struct fitter *F)
 	}
 }
 
-/* Pass 2 over a band: each texel's maps from its colour's result; not
- * fitted texels keep the values v[a] and de2000 hold, and status 128.
- * -1 when a colour was not seen by pass 1 (the file changed). */
-static int fitter_apply(struct fitter *F, const struct image *albedo, const struct image *mask, int nrows,
-    float *const *v, float *de2000, unsigned char *status, struct maps_fit_summary *sum)
+/* Pass 2 over a band: each texel's maps from its colour's result, the
+ * colour from ids (pass 1's) or else from the albedo and mask; not fitted
+ * texels keep the values v[a] and de2000 hold, and status 128.  -1 when a
+ * colour was not seen by pass 1 (the file changed). */
+static int fitter_apply(struct fitter *F, const int32_t *ids, const struct image *albedo, const struct image *mask,
+    long n, float *const *v, float *de2000, unsigned char *status, struct maps_fit_summary *sum)
 {
-	long n = (long)albedo->w * nrows, unmatched = 0, unseen = 0;
+	long unmatched = 0, unseen = 0;
 	const int k = F->t.k, nr = F->nr;
 	const double max_de = F->o->max_de;
 #pragma omp parallel num_threads(F->threads) reduction(+ : unmatched, unseen)
@@ -650,17 +655,20 @@ static int fitter_apply(struct fitter *F, const struct image *albedo, const stru
 	int32_t prev_id = -1;	/* the id of colour prev, -1 none yet */
 #pragma omp for schedule(static)
 	for (long i = 0; i < n; i++) {
-		if (!texel_in(albedo, mask, (size_t)i)) {
-			status[i] = MAPS_NOT_FITTED;
-			continue;
+		int32_t id;
+		if (ids)
+			id = ids[i];
+		else if (!texel_in(albedo, mask, (size_t)i))
+			id = -1;
+		else {
+			uint32_t key[3];
+			texel_bits(albedo, (size_t)i, key);
+			id = prev_id >= 0 && memcmp(key, prev, sizeof key) == 0 ? prev_id : colours_id(&F->cl, key);
+			memcpy(prev, key, sizeof key);
+			prev_id = id;
+			unseen += id < 0;
 		}
-		uint32_t key[3];
-		texel_bits(albedo, (size_t)i, key);
-		int32_t id = prev_id >= 0 && memcmp(key, prev, sizeof key) == 0 ? prev_id : colours_id(&F->cl, key);
-		memcpy(prev, key, sizeof key);
-		prev_id = id;
 		if (id < 0) {
-			unseen++;
 			status[i] = MAPS_NOT_FITTED;
 			continue;
 		}
@@ -690,7 +698,7 @@ int maps_fit(struct family *f, const struct image *albedo, const struct image *m
 	struct fitter F;
 	fitter_init(&F, f, o);
 	memset(sum, 0, sizeof *sum);
-	fitter_scan(&F, albedo, mask, albedo->h, sum);
+	fitter_scan(&F, albedo, mask, albedo->h, NULL, sum);
 	sum->unique = F.cl.n;
 	fitter_solve(&F);
 	struct mapset *m = mapset_new(f, albedo->w, albedo->h, NULL);
@@ -700,7 +708,7 @@ int maps_fit(struct family *f, const struct image *albedo, const struct image *m
 	float *v[FAMILY_MAX_AXES];
 	for (int a = 0; a < m->n; a++)
 		v[a] = m->p[a].v;
-	CHECK(fitter_apply(&F, albedo, mask, albedo->h, v, m->de2000, m->status, sum) == 0);
+	CHECK(fitter_apply(&F, NULL, albedo, mask, (long)n, v, m->de2000, m->status, sum) == 0);
 	sum->matched = sum->fitted - sum->unmatched;
 	hist_stats(&F.dh, sum);
 	fitter_free(&F);
@@ -752,19 +760,23 @@ int maps_fit_files(struct family *f, const char *albedo, const char *mask, const
 	struct mapset *m = NULL;
 	float *v[FAMILY_MAX_AXES] = { NULL }, *de = NULL;
 	unsigned char *st = NULL;
+	int32_t *ids = NULL;	/* pass 1's colour per texel, or NULL: read again */
 	int w, h, rc = -1;
 	struct fitter F;
 	fitter_init(&F, f, o);
 	memset(sum, 0, sizeof *sum);
 	*input_error = 1;
-	/* Pass 1: the distinct colours. */
+	/* Pass 1: the distinct colours, and each texel's when they fit in
+	 * MAPS_FIT_IDS_MAX (pass 2 then needs no second reading). */
 	if (open_inputs(albedo, mask, &sa, &sm, &ba, &bm, BAND, &w, &h, cause) != 0)
 		goto out;
+	if (!o->reread && (double)w * h * sizeof(int32_t) <= MAPS_FIT_IDS_MAX)
+		ids = xmalloc(sizeof(int32_t) * (size_t)w * (size_t)h);
 	for (int y = 0; y < h; y += BAND) {
 		int nr = h - y < BAND ? h - y : BAND;
 		if (image_stream_rows(sa, ba, nr, cause) != 0 || (sm && image_stream_rows(sm, bm, nr, cause) != 0))
 			goto out;
-		fitter_scan(&F, ba, bm, nr, sum);
+		fitter_scan(&F, ba, bm, nr, ids ? ids + (size_t)y * (size_t)w : NULL, sum);
 	}
 	close_inputs(&sa, &sm, &ba, &bm);
 	sum->unique = F.cl.n;
@@ -782,7 +794,7 @@ int maps_fit_files(struct family *f, const char *albedo, const char *mask, const
 	}
 	de = xcalloc(nb, sizeof(float));
 	st = xmalloc(nb);
-	if (open_inputs(albedo, mask, &sa, &sm, &ba, &bm, BAND, &w, &h, cause) != 0)
+	if (ids == NULL && open_inputs(albedo, mask, &sa, &sm, &ba, &bm, BAND, &w, &h, cause) != 0)
 		goto out;
 	if (w != m->w || h != m->h) {
 		*cause = xasprintf("%s: changed while it was read", albedo);
@@ -794,9 +806,10 @@ int maps_fit_files(struct family *f, const char *albedo, const char *mask, const
 	for (int y = 0; y < h; y += BAND) {
 		int nr = h - y < BAND ? h - y : BAND;
 		*input_error = 1;
-		if (image_stream_rows(sa, ba, nr, cause) != 0 || (sm && image_stream_rows(sm, bm, nr, cause) != 0))
+		if (ids == NULL && (image_stream_rows(sa, ba, nr, cause) != 0 ||
+		    (sm && image_stream_rows(sm, bm, nr, cause) != 0)))
 			goto out;
-		if (fitter_apply(&F, ba, bm, nr, v, de, st, sum) != 0) {
+		if (fitter_apply(&F, ids ? ids + (size_t)y * (size_t)w : NULL, ba, bm, (long)w * nr, v, de, st, sum) != 0) {
 			*cause = xasprintf("%s: changed while it was read (a colour the first reading did not have)", albedo);
 			goto out;
 		}
@@ -827,6 +840,7 @@ out:
 		free(v[a]);
 	free(de);
 	free(st);
+	free(ids);
 	mapset_free(m);
 	fitter_free(&F);
 	return rc;
