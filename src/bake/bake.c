@@ -449,10 +449,11 @@ static int bake_solve_p(const struct bake_spec *s, const struct solver_problem *
 		double err = r->mean_radius_err_cm[w];
 		const struct brdf_entry *e = &r->table.entry[w * s->n_ti];
 		if (e->albedo.v > 0.0 && !(err > 0.0 && isfinite(err))) {
-			*cause = xasprintf("Rd(r) at %g nm: the mean radius %g cm has a stated error of %g (diffuse albedo "
-			    "%g): a Monte Carlo estimate without spread, so no photon was scored in the %d bins of %g cm or "
-			    "the estimator failed; bake refused", s->wl_nm[w], r->mean_radius_cm[w], err, e->albedo.v,
-			    s->n_r, s->dr);
+			*cause = xasprintf("Rd(r) at %g nm: the mean radius %g cm has a stated "
+			    "error of %g (diffuse albedo %g): a Monte Carlo estimate without "
+			    "spread, so no photon was scored in the %d bins of %g cm or the "
+			    "estimator failed; bake refused", s->wl_nm[w], r->mean_radius_cm[w],
+			    err, e->albedo.v, s->n_r, s->dr);
 			bake_result_free(r);
 			return -1;
 		}

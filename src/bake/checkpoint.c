@@ -125,8 +125,8 @@ static int load_units(struct checkpoint *c, unsigned char *b, size_t len, char *
 	solver_buf_get(&in, &n, sizeof n);
 	if (in.bad || memcmp(magic, MAGIC_UNITS, sizeof MAGIC_UNITS) != 0) {
 		free(b);
-		*cause = xasprintf("%s is not a complete skinbake checkpoint (damaged, or of another version); remove it "
-		    "to bake from the start", c->path);
+		*cause = xasprintf("%s is not a complete skinbake checkpoint (damaged, or of "
+		    "another version); remove it to bake from the start", c->path);
 		return -1;
 	}
 	if (id != c->id) {
@@ -163,13 +163,15 @@ static int load_units(struct checkpoint *c, unsigned char *b, size_t len, char *
 	}
 	free(b);
 	if (in.bad) {
-		*cause = xasprintf("%s: its records are inconsistent; remove it to bake from the start", c->path);
+		*cause = xasprintf("%s: its records are inconsistent; remove it to bake from the "
+		    "start", c->path);
 		return -1;
 	}
 	c->n_loaded = c->n_saved = c->n;
 	c->end = (off_t)in.pos;
 	c->chain = h;
-	c->note = xasprintf("resuming from %s: %d member%s finished\n", c->path, c->n, c->n == 1 ? "" : "s");
+	c->note = xasprintf("resuming from %s: %d member%s finished\n", c->path, c->n,
+	    c->n == 1 ? "" : "s");
 	return 0;
 }
 
@@ -346,7 +348,8 @@ static int save_units(struct checkpoint *c, char **cause)
 		solver_buf_put(&b, &h, sizeof h);
 	}
 	int rc = fd < 0 || ftruncate(fd, c->end) != 0 || pwrite_all(fd, b.p, b.len, c->end) != 0 ||
-	    fdatasync(fd) != 0 || pwrite_all(fd, &n, sizeof n, COUNT_AT) != 0 || fdatasync(fd) != 0 ? -1 : 0;
+	    fdatasync(fd) != 0 || pwrite_all(fd, &n, sizeof n, COUNT_AT) != 0 || fdatasync(fd) != 0 ?
+	    -1 : 0;
 	int err = errno;
 	if (fd >= 0 && close(fd) != 0 && rc == 0) {
 		rc = -1;
