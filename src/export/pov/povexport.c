@@ -338,6 +338,8 @@ struct inputs {
 						 * pixel (povfar.h), or NULL */
 	int far_m[SCENE_MAX_SKINS];	/* its edge [px] */
 	char *fars[SCENE_MAX_SKINS];	/* its name in the output directory */
+	char *cav_src[SCENE_MAX_SKINS];	/* the texture directory's cavity.png, or NULL */
+	char *cavs[SCENE_MAX_SKINS];	/* its name in the output directory */
 	struct bumpmap blur[SCENE_MAX_SKINS];	/* the height map blurred by Rd(r) */
 	char *blurs[SCENE_MAX_SKINS];	/* its name in the output directory, or NULL */
 	double *fill_curve[SCENE_MAX_SKINS];	/* the fill's whole albedo, or NULL */
@@ -353,6 +355,8 @@ static void inputs_free(struct inputs *in)
 		free(in->heights[k]);
 		free(in->far_px[k]);
 		free(in->fars[k]);
+		free(in->cav_src[k]);
+		free(in->cavs[k]);
 		bumpmap_free(&in->blur[k]);
 		free(in->blurs[k]);
 		free(in->fill_curve[k]);
@@ -717,6 +721,18 @@ static int load_bumps(const struct povexport_options *o, const struct scene *s, 
 	/* --bump-filter off keeps the bump map as it is, also below a pixel. */
 	if (o->bump_filter && load_far(s, base, k, tdir, in, r, cause) != 0)
 		return -1;
+	/* The cavity map (texture directories of issue 24's relief7 round on)
+	 * darkens furrows and pores where the bump map is drawn, on meshes
+	 * (mesh2.h); SKINBAKE_CAVITY=off leaves it out. */
+	char *cp = xasprintf("%s/cavity.png", tdir);
+	const char *env = getenv("SKINBAKE_CAVITY");
+	if (in->ps[k].height_png != NULL && access(cp, R_OK) == 0
+	    && !(env != NULL && strcmp(env, "off") == 0)) {
+		in->cav_src[k] = cp;
+		in->cavs[k] = xasprintf("%s_%s_cavity.png", base, sk->name);
+		in->ps[k].cavity_png = in->cavs[k];
+	} else
+		free(cp);
 	return load_split(o, s, base, k, in, alpha_sub, r, cause);
 }
 
@@ -737,6 +753,14 @@ static int write_extras(const struct scene *s, const char *out, const char *base
 		if (in->blurs[k]) {
 			char *dst = xasprintf("%s/%s", out, in->blurs[k]);
 			int e = bumpmap_write_png(&in->blur[k], dst, cause);
+			free(dst);
+			if (e != 0)
+				return -1;
+		}
+	for (int k = 0; k < s->n_skins; k++)
+		if (in->cavs[k]) {
+			char *dst = xasprintf("%s/%s", out, in->cavs[k]);
+			int e = povfiles_copy(in->cav_src[k], dst, cause);
 			free(dst);
 			if (e != 0)
 				return -1;
