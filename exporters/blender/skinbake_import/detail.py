@@ -220,11 +220,19 @@ def cavity(tr, m, shader, loc=(1300, 200)):
     x, y = loc
     img = load_image(m, "cavity")
     t = tr.tex(img, co, (x - 600, y - 300), label="cavity.png (ambient occlusion of the relief)")
+    fac = t.outputs["Color"]
+    far = getattr(tr, "far", None)
+    if far is not None:
+        # Where the relief is below a pixel the map fades to its mean with the normal map (f = 1:
+        # the mean alone), as the far roughness replaces the slopes: no sample noise far away.
+        mean = float(m["files"]["cavity"].get("mean", 1.0))
+        fac = tr.math("MULTIPLY_ADD", tr.math("SUBTRACT", mean, fac, loc=(x - 450, y - 450)), far[0], fac,
+                      loc=(x - 300, y - 400))
     black = tr.node("ShaderNodeEmission", (x - 300, y - 150), label="nothing")
     black.inputs["Color"].default_value = (0.0, 0.0, 0.0, 1.0)
     black.inputs["Strength"].default_value = 0.0
     mix = tr.node("ShaderNodeMixShader", (x, y), label="skin x cavity")
-    tr.link(t.outputs["Color"], mix.inputs["Fac"])
+    tr.link(fac, mix.inputs["Fac"])
     tr.link(black.outputs["Emission"], mix.inputs[1])
     tr.link(shader, mix.inputs[2])
     return mix.outputs["Shader"]

@@ -736,6 +736,28 @@ static int load_bumps(const struct povexport_options *o, const struct scene *s, 
 	return load_split(o, s, base, k, in, alpha_sub, r, cause);
 }
 
+/* The cavity map box-filtered by f like the height map (the mean of its
+ * blocks: a pixel's average darkening, without aliasing). */
+static int write_cavity(const char *src, int f, const char *dst, char **cause)
+{
+	int n, h, ch, bits;
+	uint16_t *px = pngio_read(src, &n, &h, &ch, &bits, cause);
+	if (px == NULL)
+		return -1;
+	if (n != h || ch != 1 || bits != 16 || n % f != 0) {
+		free(px);
+		return povfiles_copy(src, dst, cause);
+	}
+	double lo, hi;
+	uint16_t *q = bumpmap_filter(px, n, 0, 1, f, &lo, &hi);
+	for (size_t i = 0; i < (size_t)(n / f) * (size_t)(n / f); i++)
+		q[i] = (uint16_t)nearbyint((lo + q[i] / 65535.0 * (hi - lo)) * 65535);
+	int e = pngio_write(dst, n / f, n / f, 1, 16, q, 0, 0, NULL, cause);
+	free(px);
+	free(q);
+	return e;
+}
+
 /* The height maps, far roughness maps and the shape macros next to the written scene. */
 static int write_extras(const struct scene *s, const char *out, const char *base,
     const struct inputs *in, char **cause)
@@ -760,7 +782,9 @@ static int write_extras(const struct scene *s, const char *out, const char *base
 	for (int k = 0; k < s->n_skins; k++)
 		if (in->cavs[k]) {
 			char *dst = xasprintf("%s/%s", out, in->cavs[k]);
-			int e = povfiles_copy(in->cav_src[k], dst, cause);
+			int f = in->hm[k].filter;
+			int e = f > 1 ? write_cavity(in->cav_src[k], f, dst, cause)
+				      : povfiles_copy(in->cav_src[k], dst, cause);
 			free(dst);
 			if (e != 0)
 				return -1;
