@@ -3,7 +3,7 @@
 #
 #   blender -b --factory-startup --python scripts/blender_five_minute.py -- OUT.png \
 #       [--model /usr/share/assimp/models/Collada/human.zae] [--size 640x480] [--samples 64]
-#       [--base R,G,B] [--closeup] [--save FILE.blend]
+#       [--base R,G,B] [--closeup] [--save FILE.blend] [--eyes EYES.png]
 #
 # --closeup: the view and light of scenes/showcase-closeup.scene instead (25 mm of the left cheek;
 # the key, a point light of colour 2.4 raking at about 65 degrees from the normal, as a sun of
@@ -14,7 +14,13 @@
 # The material: one Principled BSDF on the whole body, base and subsurface colour R,G,B (default
 # the diffuse albedo at normal incidence of the demo's fair skin, from the export's Lambert
 # stand-in), subsurface 1 with random walk, radius 3.67, 1.37, 0.68 mm, roughness 0.45, specular
-# 0.5, no maps, no relief; the eyes keep the model's material.  The light: the showcase's key (a
+# 0.5, no maps, no relief.  The eyes get the POV-Ray demo's eye material (eye_material below):
+# --eyes EYES.png, the model's brown_eye.png recoloured by scripts/eye_texture.py (hazel irises,
+# near-white sclerae; Blender's Python has no numpy, so the caller makes it, as
+# scripts/gallery-showcase.sh does; without it the model's texture), its alpha linked to the
+# Principled BSDF's (the model's material leaves it unlinked, so the corneas, which map to texels
+# of alpha 0 and colour black, rendered the eyes black), roughness 0.15 for a wet highlight.
+# The light: the showcase's key (a
 # point light of colour 1.3 1.17 1.0 with a 300 mm area at 1.11 m, KEY below) as a sun of strength
 # pi x 1.3 and that colour over 1.3, angle 15.4 degrees (a white Lambert surface facing it gives
 # the key's colour in both renderers), and its fill (0.12 0.14 0.19) as a uniform world of that
@@ -41,6 +47,23 @@ def pov(v):
     return Vector((v[0] / 1000, v[2] / 1000, v[1] / 1000))
 
 
+def eye_material(png):
+    """The demo's eyes: png (made by scripts/eye_texture.py), alpha used, wet surface."""
+    m = bpy.data.materials.new("demo eyes")
+    m.use_nodes = True
+    nt = m.node_tree
+    b = nt.nodes["Principled BSDF"]
+    t = nt.nodes.new("ShaderNodeTexImage")
+    t.image = bpy.data.images.load(os.path.abspath(png))
+    t.interpolation = "Linear"
+    nt.links.new(t.outputs["Color"], b.inputs["Base Color"])
+    nt.links.new(t.outputs["Alpha"], b.inputs["Alpha"])
+    b.inputs["Roughness"].default_value = 0.15
+    b.inputs["Specular"].default_value = 0.5
+    m.blend_method = "HASHED"
+    return m
+
+
 def main(argv):
     import argparse
     ap = argparse.ArgumentParser(prog="blender_five_minute.py")
@@ -51,6 +74,7 @@ def main(argv):
     ap.add_argument("--base", default="0.4322,0.2283,0.2030")
     ap.add_argument("--closeup", action="store_true")
     ap.add_argument("--save", default=None)
+    ap.add_argument("--eyes", default=None)
     a = ap.parse_args(argv)
     w, h = (int(x) for x in a.size.lower().split("x"))
     base = tuple(float(x) for x in a.base.split(",")) + (1.0,)
@@ -83,6 +107,14 @@ def main(argv):
     b.inputs["Specular"].default_value = 0.5
     body.data.materials.clear()
     body.data.materials.append(m)
+    eyes = next((o for o in sc.objects if o.type == "MESH" and "eyes" in o.name), None)
+    eye_png = a.eyes or os.path.join(os.path.dirname(dae), "textures", "brown_eye.png")
+    if not os.path.exists(eye_png):
+        eye_png = None
+    if eyes is not None and eye_png is not None:
+        em = eye_material(eye_png)
+        eyes.data.materials.clear()
+        eyes.data.materials.append(em)
 
     cd = bpy.data.cameras.new("Camera")
     cd.sensor_fit = "HORIZONTAL"
