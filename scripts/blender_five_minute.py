@@ -3,8 +3,14 @@
 #
 #   blender -b --factory-startup --python scripts/blender_five_minute.py -- OUT.png \
 #       [--model /usr/share/assimp/models/Collada/human.zae] [--size 640x480] [--samples 64]
-#       [--base R,G,B] [--closeup] [--save FILE.blend] [--eyes EYES.png]
+#       [--base R,G,B] [--closeup] [--shot showcase|key|back] [--save FILE.blend] [--eyes EYES.png]
 #
+# --shot key: the showcase's view and key alone (a black world), as POV-Ray renders
+# scenes/showcase-key.scene; --shot back: the view and the one light of
+# scenes/human-head-earglow.scene (behind the right ear), a black world.  That light is a POV-Ray
+# point light of colour 4 without falloff; here a point light of zero size whose power, 4 pi^2 r^2
+# x 4 W, gives the same irradiance at the ear (r = 207 mm; a white Lambert plane 1 m from a 4 pi^2 W
+# point light renders 0.9994 in Cycles 3.4), falling off as 1/r^2 elsewhere.
 # --closeup: the view and light of scenes/showcase-closeup.scene instead (25 mm of the left cheek;
 # the key, a point light of colour 2.4 raking at about 65 degrees from the normal, as a sun of
 # strength pi x 2.4 and angle 0.5 degrees; no fill, as that scene has none).  --save: also save the
@@ -41,6 +47,9 @@ from mathutils import Vector
 EYE, TARGET = (200, 1580, -620), (0, 1545, -90)
 KEY, KEY_RGB, KEY_AREA = (-700, 1950, -850), (1.3, 1.17, 1.0), 300
 FILL = (0.12, 0.14, 0.19)
+# scenes/human-head-earglow.scene's camera and light, and the right ear (scripts/showcase_masks.py).
+BACK_EYE, BACK_TARGET = (650, 1600, -330), (20, 1565, 0)
+BACK_LIGHT, BACK_RGB, BACK_EAR = (90, 1560, 200), 4.0, (80, 1535, -5)
 
 
 def pov(v):
@@ -73,6 +82,7 @@ def main(argv):
     ap.add_argument("--samples", type=int, default=64)
     ap.add_argument("--base", default="0.4322,0.2283,0.2030")
     ap.add_argument("--closeup", action="store_true")
+    ap.add_argument("--shot", choices=("showcase", "key", "back"), default="showcase")
     ap.add_argument("--save", default=None)
     ap.add_argument("--eyes", default=None)
     a = ap.parse_args(argv)
@@ -125,12 +135,19 @@ def main(argv):
     eye, target = pov(EYE), pov(TARGET)
     if a.closeup:
         eye, target = pov((-83, 1521, -187)), pov((-45, 1521, -128))
+    elif a.shot == "back":
+        eye, target = pov(BACK_EYE), pov(BACK_TARGET)
     cam.location = eye
     cam.rotation_euler = (target - eye).to_track_quat("-Z", "Y").to_euler()
     sc.camera = cam
 
-    sun = bpy.data.lights.new("Key", "SUN")
-    if a.closeup:
+    sun = bpy.data.lights.new("Key", "POINT" if a.shot == "back" else "SUN")
+    if a.shot == "back":
+        lp = pov(BACK_LIGHT)
+        r = (lp - pov(BACK_EAR)).length
+        sun.energy = 4 * math.pi ** 2 * r * r * BACK_RGB
+        sun.shadow_soft_size = 0
+    elif a.closeup:
         lp = pov((-313, 1745, -131))
         sun.energy = math.pi * 2.4
         sun.angle = math.radians(0.5)
@@ -143,11 +160,13 @@ def main(argv):
     so = bpy.data.objects.new("Key", sun)
     sc.collection.objects.link(so)
     so.rotation_euler = (target - lp).to_track_quat("-Z", "Y").to_euler()
+    so.location = lp
 
     world = bpy.data.worlds.new("fill")
     world.use_nodes = True
     bg = world.node_tree.nodes["Background"]
-    bg.inputs["Color"].default_value = (0, 0, 0, 1) if a.closeup else FILL + (1,)
+    dark = a.closeup or a.shot != "showcase"
+    bg.inputs["Color"].default_value = (0, 0, 0, 1) if dark else FILL + (1,)
     bg.inputs["Strength"].default_value = 1.0
     sc.world = world
 
