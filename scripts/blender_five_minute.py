@@ -5,8 +5,8 @@
 #       [--model /usr/share/assimp/models/Collada/human.zae] [--size 640x480] [--samples 64]
 #       [--base R,G,B] [--closeup] [--shot showcase|key|back] [--save FILE.blend] [--eyes EYES.png]
 #
-# --shot key: the showcase's view and key alone (a black world), as POV-Ray renders
-# scenes/showcase-key.scene; --shot back: the view and the one light of
+# --shot key: the showcase's view and key alone (a black world, the key a sun of 0.5 degrees: the
+# scene's key is a point), as POV-Ray renders scenes/showcase-key.scene; --shot back: the view and the one light of
 # scenes/human-head-earglow.scene (behind the right ear), a black world.  That light is a POV-Ray
 # point light of colour 4 without falloff; here a point light of zero size whose power, 4 pi^2 r^2
 # x 4 W, gives the same irradiance at the ear (r = 207 mm; a white Lambert plane 1 m from a 4 pi^2 W
@@ -156,7 +156,8 @@ def main(argv):
         peak = max(KEY_RGB)
         sun.energy = math.pi * peak
         sun.color = tuple(c / peak for c in KEY_RGB)
-        sun.angle = 2 * math.atan(0.5 * KEY_AREA / 1000 / (lp - target).length)
+        area = 0 if a.shot == "key" else KEY_AREA  # showcase-key.scene's key is a point
+        sun.angle = max(2 * math.atan(0.5 * area / 1000 / (lp - target).length), math.radians(0.5))
     so = bpy.data.objects.new("Key", sun)
     sc.collection.objects.link(so)
     so.rotation_euler = (target - lp).to_track_quat("-Z", "Y").to_euler()
