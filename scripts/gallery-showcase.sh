@@ -105,6 +105,8 @@ for mode in exact translucent; do
 done
 base=$(sed -n 's/.*SKIN_skin_Lambert = texture { pigment { rgb <\([^>]*\)>.*/\1/p' "$work/front-exact/showcase-key.inc")
 for shot in key back; do
+	# (kept from an earlier run into WORK_DIR, unless blender_five_minute.py is newer)
+	[ "$work/five-$shot.png" -nt "$top/scripts/blender_five_minute.py" ] && continue
 	timed "five-minute-$shot" nice "${BLENDER:-blender}" -b --factory-startup --python "$top/scripts/blender_five_minute.py" -- \
 		"$work/five-$shot.png" --shot $shot --size 320x240 --samples "${SAMPLES:-32}" --base "$base" \
 		--eyes "$work/eyes.png" >"$work/five-$shot.log" 2>&1 || { tail -5 "$work/five-$shot.log" >&2; exit 1; }
