@@ -5,7 +5,8 @@
 #       [--model /usr/share/assimp/models/Collada/human.zae] [--size 640x480] [--samples 64]
 #       [--base R,G,B] [--closeup] [--shot showcase|key|back] [--save FILE.blend] [--eyes EYES.png]
 #
-# --shot key: the showcase's view and key alone (a black world, the key a sun of 0.5 degrees: the
+# --shot key: the showcase's view and key alone (a black world, the camera seeing the scene's
+# background colour, the key a sun of 0.5 degrees: the
 # scene's key is a point), as POV-Ray renders scenes/showcase-key.scene; --shot back: the view and the one light of
 # scenes/human-head-earglow.scene (behind the right ear), a black world.  That light is a POV-Ray
 # point light of colour 4 without falloff; here a point light of zero size whose power, 4 pi^2 r^2
@@ -50,6 +51,7 @@ FILL = (0.12, 0.14, 0.19)
 # scenes/human-head-earglow.scene's camera and light, and the right ear (scripts/showcase_masks.py).
 BACK_EYE, BACK_TARGET = (650, 1600, -330), (20, 1565, 0)
 BACK_LIGHT, BACK_RGB, BACK_EAR = (90, 1560, 200), 4.0, (80, 1535, -5)
+KEY_BG, BACK_BG = (0.05, 0.05, 0.06), (0.02, 0.02, 0.025)   # the scenes' backgrounds
 
 
 def pov(v):
@@ -169,6 +171,17 @@ def main(argv):
     dark = a.closeup or a.shot != "showcase"
     bg.inputs["Color"].default_value = (0, 0, 0, 1) if dark else FILL + (1,)
     bg.inputs["Strength"].default_value = 1.0
+    if a.shot != "showcase" and not a.closeup:
+        # The scene's background seen by the camera only (POV-Ray's background lights nothing).
+        nt = world.node_tree
+        bgc = nt.nodes.new("ShaderNodeBackground")
+        bgc.inputs["Color"].default_value = (BACK_BG if a.shot == "back" else KEY_BG) + (1,)
+        lp_node = nt.nodes.new("ShaderNodeLightPath")
+        mix = nt.nodes.new("ShaderNodeMixShader")
+        nt.links.new(lp_node.outputs["Is Camera Ray"], mix.inputs["Fac"])
+        nt.links.new(bg.outputs["Background"], mix.inputs[1])
+        nt.links.new(bgc.outputs["Background"], mix.inputs[2])
+        nt.links.new(mix.outputs["Shader"], nt.nodes["World Output"].inputs["Surface"])
     sc.world = world
 
     sc.render.engine = "CYCLES"
