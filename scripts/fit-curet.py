@@ -55,6 +55,11 @@ With --multiple the lobe also carries the facets' later reflections
 and by eval of a bake), so the fitted preset reflects what its transport's
 rough top reflects.
 
+--objective log (issue 21, round 7) minimises the mean of ln(f/y)^2 instead
+of the squared relative error (which weighs a model too high by a factor more
+than one too low by the same factor); --step-scale shrinks the simplex's first
+steps to refine near --start.
+
 Monte Carlo noise (with --solver ad the errors are the solver's estimates,
 about 1e-4 relative, and the same formulas hold): the objective is the mean over the points of
 r_i^2 - e_i^2, with r_i = (f_i - y_i) / y_i the relative error and e_i the
