@@ -19,6 +19,18 @@
  *       difference of the tables, and the family's own error.
  *   maps_check swatch FILE.exr R G B [R G B ...]
  *       a 1-pixel-high linear EXR of the given colours.
+ *   maps_check noise IN.png OUT.png AMP [SEED]
+ *       IN (a 16-bit RGB PNG) with uniform noise of +-AMP 16-bit levels
+ *       added to each channel (clamped), as a 16-bit PNG: with AMP of a
+ *       few dozen nearly every texel is a distinct colour, the fit's
+ *       worst case (scripts/bench-maps.sh).
+ *   maps_check fit-memory FAM ALBEDO OUT png|exr [MASK]
+ *       maps fit's defaults (max-de 2.5, input by the file's kind) by the
+ *       in-memory path: the images read whole, maps_fit, mapset_write;
+ *       for tests/maps_stream.sh, which holds the streamed files to it.
+ *   maps_check fit-reread FAM ALBEDO OUT png|exr [MASK]
+ *       the same by maps_fit_files with the albedo read a second time for
+ *       the maps (o.reread, as for albedos beyond MAPS_FIT_IDS_MAX).
  *   maps_check values MAPS
  *       per texel of a 1-pixel-high maps directory: its index, each map's
  *       value and the fit's CIEDE2000 ("i v0 v1 ... de").
@@ -317,6 +329,72 @@ static int spectra(int argc, char **argv)
 	return 0;
 }
 
+static int noise(int argc, char **argv)
+{
+	if (argc < 5)
+		fatalx("usage: maps_check noise IN.png OUT.png AMP [SEED]");
+	char *cause = NULL;
+	struct image *im = image_read(argv[2], &cause);
+	if (im == NULL)
+		fatalx("%s", cause);
+	int amp = atoi(argv[4]);
+	unsigned long seed = argc > 5 ? strtoul(argv[5], NULL, 10) : 1;
+	size_t n = (size_t)im->w * im->h * im->nch;
+	for (size_t i = 0; i < n; i++) {
+		seed = seed * 6364136223846793005UL + 1442695040888963407UL;
+		int d = (int)((seed >> 33) % (unsigned long)(2 * amp + 1)) - amp;
+		long q = lround(im->v[i] * 65535.0) + d;
+		im->v[i] = (float)((q < 0 ? 0 : q > 65535 ? 65535 : q) / 65535.0);
+	}
+	if (image_write_png(argv[3], im, 16, 0, 0, NULL, &cause) != 0)
+		fatalx("%s", cause);
+	image_free(im);
+	return 0;
+}
+
+static int fit_memory(int argc, char **argv)
+{
+	if (argc < 6)
+		fatalx("usage: maps_check fit-memory FAM ALBEDO OUT png|exr [MASK]");
+	struct family *f = fam(argv[2]);
+	char *cause = NULL;
+	struct image *a = image_read(argv[3], &cause), *mk = NULL;
+	if (a == NULL || (argc > 6 && (mk = image_read(argv[6], &cause)) == NULL))
+		fatalx("%s", cause);
+	struct maps_fit_opts o = { .input_linear = a->bits == 32, .max_de = 2.5, .threads = 0 };
+	struct maps_fit_summary s;
+	struct mapset *m;
+	if (maps_fit(f, a, mk, &o, &m, &s, &cause) != 0)
+		fatalx("%s", cause);
+	m->fit = maps_fit_summary_json(&s, &o, argv[3]);
+	m->exr = strcmp(argv[5], "exr") == 0;
+	mapset_add_history(m, "maps_check fit-memory");
+	if (mapset_write(argv[4], m, &cause) != 0)
+		fatalx("%s", cause);
+	mapset_free(m);
+	image_free(a);
+	image_free(mk);
+	family_free(f);
+	return 0;
+}
+
+static int fit_reread(int argc, char **argv)
+{
+	if (argc < 6)
+		fatalx("usage: maps_check fit-reread FAM ALBEDO OUT png|exr [MASK]");
+	struct family *f = fam(argv[2]);
+	char *cause = NULL;
+	struct maps_fit_opts o = { .input_linear = image_kind(argv[3], &cause) == IMAGE_EXR, .max_de = 2.5,
+		.threads = 0, .reread = 1 };
+	struct maps_fit_summary s;
+	int input_error;
+	if (maps_fit_files(f, argv[3], argc > 6 ? argv[6] : NULL, &o, argv[4], strcmp(argv[5], "exr") == 0,
+	    "maps_check fit-reread", &s, &input_error, &cause) != 0)
+		fatalx("%s", cause);
+	family_free(f);
+	return 0;
+}
+
 static int values(int argc, char **argv)
 {
 	if (argc != 3)
@@ -349,6 +427,12 @@ int main(int argc, char **argv)
 		return offnode(argc, argv);
 	if (argc >= 2 && strcmp(argv[1], "swatch") == 0)
 		return swatch(argc, argv);
-	fprintf(stderr, "usage: maps_check synth|compare|offnode|swatch|spectra|values ...\n");
+	if (argc >= 2 && strcmp(argv[1], "noise") == 0)
+		return noise(argc, argv);
+	if (argc >= 2 && strcmp(argv[1], "fit-memory") == 0)
+		return fit_memory(argc, argv);
+	if (argc >= 2 && strcmp(argv[1], "fit-reread") == 0)
+		return fit_reread(argc, argv);
+	fprintf(stderr, "usage: maps_check synth|compare|offnode|swatch|spectra|noise|fit-memory|fit-reread|values ...\n");
 	return 2;
 }

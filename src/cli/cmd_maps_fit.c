@@ -56,41 +56,26 @@ int cmd_maps_fit(int argc, char **argv)
 		family_free(f);
 		return CLI_EXIT_USAGE;
 	}
-	struct image *a = image_read(alb, &cause), *mk = NULL;
-	if (a && mask)
-		mk = image_read(mask, &cause);
-	int rc = CLI_EXIT_OK;
-	if (a == NULL || (mask && mk == NULL)) {
-		rc = opt_error(&x, "%s", cause);
-		free(cause);
-		family_free(f);
-		image_free(a);
-		return rc;
-	}
-	fo.input_linear = input == 2 || (input == 0 && a->bits == 32);
-	struct mapset *m = NULL;
+	fo.input_linear = input == 2 || (input == 0 && image_kind(alb, &cause) == IMAGE_EXR);
 	struct maps_fit_summary s;
-	if (maps_fit(f, a, mk, &fo, &m, &s, &cause) != 0) {
-		rc = opt_error(&x, "%s", cause);
+	char *cl = mapset_command_line("fit", argc, argv);
+	int input_error = 0, rc = CLI_EXIT_OK;
+	if (maps_fit_files(f, alb, mask, &fo, out, exr, cl, &s, &input_error, &cause) != 0) {
+		if (input_error)
+			rc = opt_error(&x, "%s", cause);
+		else {
+			fprintf(stderr, "skinbake %s: %s\n", x.cmd->name, cause);
+			rc = CLI_EXIT_FAIL;
+		}
 		free(cause);
-	} else {
-		char *cl = mapset_command_line("fit", argc, argv);
-		m->fit = maps_fit_summary_json(&s, &fo, alb);
-		m->exr = exr;
-		mapset_add_history(m, cl);
-		free(cl);
-		rc = cmd_maps_write(&x, out, m);
-		if (rc == CLI_EXIT_OK && !quiet)
-			printf("skinbake maps fit: %s (%d x %d, %s) with %s -> %s\n"
-			    "  %ld texels fitted (%ld distinct colours), %ld not fitted; %ld matched, %ld unmatched "
-			    "(CIEDE2000 > %g, %.2f %%)\n  CIEDE2000 median %.3f, 95th percentile %.3f, max %.3f; %.2f s\n", alb, w,
-			    h, fo.input_linear ? "linear" : "sRGB", fam, out, s.fitted, s.unique, s.texels - s.fitted, s.matched,
-			    s.unmatched, fo.max_de, s.fitted ? 100.0 * s.unmatched / s.fitted : 0.0, s.de_median, s.de_p95,
-			    s.de_max, s.seconds);
-	}
-	mapset_free(m);
-	image_free(a);
-	image_free(mk);
+	} else if (!quiet)
+		printf("skinbake maps fit: %s (%d x %d, %s) with %s -> %s\n"
+		    "  %ld texels fitted (%ld distinct colours), %ld not fitted; %ld matched, %ld unmatched "
+		    "(CIEDE2000 > %g, %.2f %%)\n  CIEDE2000 median %.3f, 95th percentile %.3f, max %.3f; %.2f s\n", alb, w,
+		    h, fo.input_linear ? "linear" : "sRGB", fam, out, s.fitted, s.unique, s.texels - s.fitted, s.matched,
+		    s.unmatched, fo.max_de, s.fitted ? 100.0 * s.unmatched / s.fitted : 0.0, s.de_median, s.de_p95,
+		    s.de_max, s.seconds);
+	free(cl);
 	family_free(f);
 	return rc;
 }

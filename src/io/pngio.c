@@ -72,49 +72,78 @@ static png_structp create_reader(struct png_msg *m)
 	return png;
 }
 
-int pngio_write(const char *path, int w, int h, int channels, int bits, const uint16_t *px,
-    int srgb, int ntext, const struct png_text_kv *text, char **cause)
+struct pngio_writer {
+	char *path, *tmp;
+	FILE *fp;
+	png_structp png;
+	png_infop info;
+	int w, channels, bits;
+	unsigned char *row;	/* one row in the file's byte layout */
+};
+
+/* The writer's failure: remove the temporary file, free everything, *cause
+ * from errno (libpng's write stops at the failed fwrite: its cause). */
+static int writer_fail(struct pngio_writer *wr, int e, char **cause)
+{
+	*cause = xasprintf("%s: writing the PNG failed%s%s", wr->path, e ? ": " : "", e ? strerror(e) : "");
+	pngio_writer_abort(wr);
+	return -1;
+}
+
+void pngio_writer_abort(struct pngio_writer *wr)
+{
+	if (wr == NULL)
+		return;
+	png_destroy_write_struct(&wr->png, &wr->info);
+	if (wr->fp)
+		fclose(wr->fp);
+	unlink(wr->tmp);
+	free(wr->tmp);
+	free(wr->path);
+	free(wr->row);
+	free(wr);
+}
+
+struct pngio_writer *pngio_writer_open(const char *path, int w, int h, int channels, int bits, int srgb,
+    int ntext, const struct png_text_kv *text, char **cause)
 {
 	static const int types[] = { 0, PNG_COLOR_TYPE_GRAY, PNG_COLOR_TYPE_GRAY_ALPHA,
 		PNG_COLOR_TYPE_RGB, PNG_COLOR_TYPE_RGB_ALPHA };
 	if (channels < 1 || channels > 4 || (bits != 8 && bits != 16) || w < 1 || h < 1) {
 		*cause = xasprintf("%s: unsupported PNG layout (%d channels, %d bits)", path,
 		    channels, bits);
-		return -1;
+		return NULL;
 	}
-	char *tmp = util_tmp_name(path);
-	FILE *fp = fopen(tmp, "wb");
-	if (!fp) {
+	struct pngio_writer *wr = xcalloc(1, sizeof *wr);
+	wr->path = xstrdup(path);
+	wr->tmp = util_tmp_name(path);
+	wr->w = w;
+	wr->channels = channels;
+	wr->bits = bits;
+	wr->fp = fopen(wr->tmp, "wb");
+	if (!wr->fp) {
 		*cause = xasprintf("%s: cannot write: %s", path, strerror(errno));
-		free(tmp);
-		return -1;
+		pngio_writer_abort(wr);
+		return NULL;
 	}
-	size_t rowlen = (size_t)w * (size_t)channels * (size_t)(bits / 8);
-	unsigned char *volatile row = xmalloc(rowlen);
-	png_structp png = png_create_write_struct(PNG_LIBPNG_VER_STRING, NULL, on_error,
+	wr->row = xmalloc((size_t)w * (size_t)channels * (size_t)(bits / 8));
+	wr->png = png_create_write_struct(PNG_LIBPNG_VER_STRING, NULL, on_error,
 	    on_warning);
-	png_infop info = png ? png_create_info_struct(png) : NULL;
+	wr->info = wr->png ? png_create_info_struct(wr->png) : NULL;
 	errno = 0;
-	if (!info || setjmp(png_jmpbuf(png))) {
-		int e = errno;	/* libpng's write stops at the failed fwrite: its cause */
-		png_destroy_write_struct(&png, &info);
-		fclose(fp);
-		unlink(tmp);
-		free(tmp);
-		free(row);
-		*cause = xasprintf("%s: writing the PNG failed%s%s", path, e ? ": " : "",
-		    e ? strerror(e) : "");
-		return -1;
+	if (!wr->info || setjmp(png_jmpbuf(wr->png))) {
+		writer_fail(wr, errno, cause);
+		return NULL;
 	}
-	png_init_io(png, fp);
+	png_init_io(wr->png, wr->fp);
 	/* Data maps are large and noisy: fast zlib and one fixed filter cost a
 	 * little size and save most of the write time. */
-	png_set_compression_level(png, 2);
-	png_set_filter(png, 0, PNG_FILTER_UP);
-	png_set_IHDR(png, info, (png_uint_32)w, (png_uint_32)h, bits, types[channels],
+	png_set_compression_level(wr->png, 2);
+	png_set_filter(wr->png, 0, PNG_FILTER_UP);
+	png_set_IHDR(wr->png, wr->info, (png_uint_32)w, (png_uint_32)h, bits, types[channels],
 	    PNG_INTERLACE_NONE, PNG_COMPRESSION_TYPE_DEFAULT, PNG_FILTER_TYPE_DEFAULT);
 	if (srgb)
-		png_set_sRGB_gAMA_and_cHRM(png, info, PNG_sRGB_INTENT_PERCEPTUAL);
+		png_set_sRGB_gAMA_and_cHRM(wr->png, wr->info, PNG_sRGB_INTENT_PERCEPTUAL);
 	if (ntext > 0) {
 		png_text *t = xcalloc((size_t)ntext, sizeof *t);
 		for (int i = 0; i < ntext; i++) {
@@ -122,14 +151,23 @@ int pngio_write(const char *path, int w, int h, int channels, int bits, const ui
 			t[i].key = (char *)text[i].key;
 			t[i].text = (char *)text[i].value;
 		}
-		png_set_text(png, info, t, ntext);
+		png_set_text(wr->png, wr->info, t, ntext);
 		free(t);
 	}
-	png_write_info(png, info);
-	size_t n = (size_t)w * (size_t)channels;
-	for (int y = 0; y < h; y++) {
+	png_write_info(wr->png, wr->info);
+	return wr;
+}
+
+int pngio_writer_rows(struct pngio_writer *wr, const uint16_t *px, int nrows, char **cause)
+{
+	errno = 0;
+	if (setjmp(png_jmpbuf(wr->png)))
+		return writer_fail(wr, errno, cause);
+	size_t n = (size_t)wr->w * (size_t)wr->channels;
+	unsigned char *row = wr->row;
+	for (int y = 0; y < nrows; y++) {
 		const uint16_t *src = px + (size_t)y * n;
-		if (bits == 16)
+		if (wr->bits == 16)
 			for (size_t i = 0; i < n; i++) {
 				/* PNG is big-endian */
 				row[2 * i] = (unsigned char)(src[i] >> 8);
@@ -138,20 +176,40 @@ int pngio_write(const char *path, int w, int h, int channels, int bits, const ui
 		else
 			for (size_t i = 0; i < n; i++)
 				row[i] = (unsigned char)(src[i] > 255 ? 255 : src[i]);
-		png_write_row(png, row);
+		png_write_row(wr->png, row);
 	}
-	png_write_end(png, NULL);
-	png_destroy_write_struct(&png, &info);
-	free(row);
+	return 0;
+}
+
+int pngio_writer_close(struct pngio_writer *wr, char **cause)
+{
+	errno = 0;
+	if (setjmp(png_jmpbuf(wr->png)))
+		return writer_fail(wr, errno, cause);
+	png_write_end(wr->png, NULL);
+	png_destroy_write_struct(&wr->png, &wr->info);
+	FILE *fp = wr->fp;
+	wr->fp = NULL;
 	if (fclose(fp) != 0) {
-		*cause = xasprintf("%s: write failed: %s", path, strerror(errno));
-		unlink(tmp);
-		free(tmp);
+		*cause = xasprintf("%s: write failed: %s", wr->path, strerror(errno));
+		pngio_writer_abort(wr);
 		return -1;
 	}
-	int rc = util_commit_tmp(tmp, path, cause);
-	free(tmp);
+	int rc = util_commit_tmp(wr->tmp, wr->path, cause);
+	free(wr->tmp);
+	free(wr->path);
+	free(wr->row);
+	free(wr);
 	return rc;
+}
+
+int pngio_write(const char *path, int w, int h, int channels, int bits, const uint16_t *px,
+    int srgb, int ntext, const struct png_text_kv *text, char **cause)
+{
+	struct pngio_writer *wr = pngio_writer_open(path, w, h, channels, bits, srgb, ntext, text, cause);
+	if (wr == NULL || pngio_writer_rows(wr, px, h, cause) != 0)
+		return -1;
+	return pngio_writer_close(wr, cause);
 }
 
 /* Deflate expands at most 1032-fold (258-byte matches in 2 bits), so a file
@@ -228,6 +286,148 @@ uint16_t *pngio_read(const char *path, int *w, int *h, int *channels, int *bits,
 		for (size_t i = total; i-- > 0;)
 			px[i] = (uint16_t)(raw[i] * 257);
 	return px;
+}
+
+struct pngio_reader {
+	char *path;
+	FILE *fp;
+	png_structp png;
+	png_infop info;
+	struct png_msg msg;
+	int h, y;		/* rows, rows read */
+	size_t n;		/* samples per row */
+	int b;			/* bits per sample after the transforms: 8 or 16 */
+	unsigned char *row;	/* one row of the file's bytes */
+	uint16_t *whole;	/* an interlaced image, read at open */
+};
+
+void pngio_reader_close(struct pngio_reader *rd)
+{
+	if (rd == NULL)
+		return;
+	png_destroy_read_struct(&rd->png, &rd->info, NULL);
+	if (rd->fp)
+		fclose(rd->fp);
+	free(rd->path);
+	free(rd->row);
+	free(rd->whole);
+	free(rd);
+}
+
+static void *reader_fail(struct pngio_reader *rd, char **cause)
+{
+	*cause = rd->msg.text[0] ? xasprintf("%s: not a readable PNG file (%s)", rd->path, rd->msg.text)
+				 : xasprintf("%s: not a readable PNG file", rd->path);
+	pngio_reader_close(rd);
+	return NULL;
+}
+
+struct pngio_reader *pngio_reader_open(const char *path, int *w, int *h, int *channels, int *bits, char **cause)
+{
+	FILE *fp = fopen(path, "rb");
+	if (!fp) {
+		*cause = xasprintf("%s: cannot read: %s", path, strerror(errno));
+		return NULL;
+	}
+	struct pngio_reader *rd = xcalloc(1, sizeof *rd);
+	rd->fp = fp;
+	rd->path = xstrdup(path);
+	struct stat st;
+	double file_bytes = fstat(fileno(fp), &st) == 0 ? (double)st.st_size : 0.0;
+	rd->png = create_reader(&rd->msg);
+	rd->info = rd->png ? png_create_info_struct(rd->png) : NULL;
+	if (!rd->info || setjmp(png_jmpbuf(rd->png)))
+		return reader_fail(rd, cause);
+	png_structp png = rd->png;
+	png_infop info = rd->info;
+	png_init_io(png, fp);
+	png_read_info(png, info);
+	png_uint_32 pw = png_get_image_width(png, info), ph = png_get_image_height(png, info);
+	double need = (double)png_get_rowbytes(png, info) * (double)ph;
+	if (need > PNG_MAX_INFLATE * file_bytes + 65536.0) {
+		snprintf(rd->msg.text, sizeof rd->msg.text, "%lu x %lu pixels cannot be held in %.0f bytes",
+		    (unsigned long)pw, (unsigned long)ph, file_bytes);
+		png_longjmp(png, 1);
+	}
+	int bd = png_get_bit_depth(png, info), ct = png_get_color_type(png, info);
+	if (ct == PNG_COLOR_TYPE_PALETTE)
+		png_set_palette_to_rgb(png);
+	if (bd < 8)
+		png_set_expand(png);
+	int passes = png_set_interlace_handling(png);
+	png_read_update_info(png, info);
+	*w = (int)pw;
+	*h = (int)ph;
+	*channels = png_get_channels(png, info);
+	*bits = bd < 8 ? 8 : bd;
+	rd->h = *h;
+	rd->b = png_get_bit_depth(png, info);
+	rd->n = (size_t)*w * (size_t)*channels;
+	size_t rowbytes = png_get_rowbytes(png, info);
+	if (rowbytes != rd->n * (size_t)(rd->b / 8)) {
+		snprintf(rd->msg.text, sizeof rd->msg.text, "unexpected row layout");
+		png_longjmp(png, 1);
+	}
+	if (passes > 1) {
+		/* Adam7: the image is read whole here, as pngio_read does. */
+		uint16_t *px;
+		int w2, h2, c2, b2;
+		png_destroy_read_struct(&rd->png, &rd->info, NULL);
+		fclose(rd->fp);
+		rd->fp = NULL;
+		free(rd->path);
+		free(rd);
+		px = pngio_read(path, &w2, &h2, &c2, &b2, cause);
+		if (px == NULL)
+			return NULL;
+		rd = xcalloc(1, sizeof *rd);
+		rd->path = xstrdup(path);
+		rd->h = h2;
+		rd->n = (size_t)w2 * (size_t)c2;
+		rd->whole = px;
+		return rd;
+	}
+	rd->row = xmalloc(rowbytes);
+	return rd;
+}
+
+int pngio_reader_rows(struct pngio_reader *rd, uint16_t *px, int nrows, char **cause)
+{
+	if (nrows > rd->h - rd->y) {
+		*cause = xasprintf("%s: rows %d to %d asked of %d", rd->path, rd->y, rd->y + nrows - 1, rd->h);
+		return -1;
+	}
+	if (rd->whole) {
+		memcpy(px, rd->whole + (size_t)rd->y * rd->n, sizeof(uint16_t) * rd->n * (size_t)nrows);
+		rd->y += nrows;
+		return 0;
+	}
+	if (setjmp(png_jmpbuf(rd->png))) {
+		*cause = rd->msg.text[0] ? xasprintf("%s: not a readable PNG file (%s)", rd->path, rd->msg.text)
+					 : xasprintf("%s: not a readable PNG file", rd->path);
+		return -1;
+	}
+	for (int y = 0; y < nrows; y++) {
+		png_read_row(rd->png, rd->row, NULL);
+		uint16_t *dst = px + (size_t)y * rd->n;
+		const unsigned char *raw = rd->row;
+		if (rd->b == 16)	/* PNG is big-endian */
+			for (size_t i = 0; i < rd->n; i++)
+				dst[i] = (uint16_t)((raw[2 * i] << 8) | raw[2 * i + 1]);
+		else
+			for (size_t i = 0; i < rd->n; i++)
+				dst[i] = (uint16_t)(raw[i] * 257);
+	}
+	rd->y += nrows;
+	if (rd->y == rd->h) {
+		if (setjmp(png_jmpbuf(rd->png))) {
+			*cause = rd->msg.text[0] ? xasprintf("%s: not a readable PNG file (%s)", rd->path, rd->msg.text)
+						 : xasprintf("%s: not a readable PNG file", rd->path);
+			return -1;
+		}
+		png_read_end(rd->png, NULL);
+	}
+	return 0;
 }
 
 char *pngio_read_text(const char *path, const char *key)

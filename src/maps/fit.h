@@ -32,7 +32,14 @@ struct maps_fit_opts {
 	int input_linear;	/* 1: the albedo's values are linear sRGB; 0: sRGB-encoded */
 	double max_de;		/* CIEDE2000 above which a texel is unmatched */
 	int threads;		/* OpenMP threads, 0 = all */
+	int reread;		/* maps_fit_files: read the albedo again for the maps even when its colour ids
+				 * would fit in MAPS_FIT_IDS_MAX (tests; the same files) */
 };
+
+/* maps_fit_files keeps each texel's colour id (4 bytes) from its first
+ * reading of the albedo when they take at most this many bytes (up to
+ * 5792^2 texels); larger albedos are read twice. */
+#define MAPS_FIT_IDS_MAX 128e6
 
 struct maps_fit_summary {
 	long texels;		/* in the image */
@@ -58,6 +65,19 @@ struct maps_fit_summary {
  * the sizes differ. */
 int maps_fit(struct family *f, const struct image *albedo, const struct image *mask, const struct maps_fit_opts *o,
     struct mapset **out, struct maps_fit_summary *sum, char **cause);
+/* The same fit from files to a maps directory without holding the images:
+ * the albedo (and mask) read in bands of rows for the distinct colours
+ * and each texel's colour id, then the maps written band by band
+ * (mapset_writer) with the fit's summary and COMMAND as their history;
+ * beyond MAPS_FIT_IDS_MAX (or with o->reread) the albedo is read a second
+ * time instead of keeping the ids.  Memory is the distinct colours' (about
+ * 40 bytes each), the ids and a few bands.
+ * The files are byte for byte maps_fit's written by mapset_write (but for
+ * the seconds in maps.json).  -1 and *cause on failure, with
+ * *input_error set when an input (unreadable, corrupt, sizes that differ)
+ * is the cause; OUT is then as it was. */
+int maps_fit_files(struct family *f, const char *albedo, const char *mask, const struct maps_fit_opts *o,
+    const char *out, int exr, const char *command, struct maps_fit_summary *sum, int *input_error, char **cause);
 /* The summary as a JSON object (caller frees), for maps.json. */
 char *maps_fit_summary_json(const struct maps_fit_summary *s, const struct maps_fit_opts *o, const char *albedo);
 /* Linear sRGB of texel i of an image read as the fit reads it. */

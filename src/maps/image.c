@@ -10,6 +10,7 @@
 #include <sys/stat.h>
 #include <unistd.h>
 
+#include "base/check.h"
 #include "base/util.h"
 #include "io/exrio.h"
 
@@ -145,6 +146,107 @@ struct image *image_read(const char *path, char **cause)
 				return NULL;
 			}
 	return im;
+}
+
+struct image_stream {
+	char *path;
+	int w, h, nch, bits, y;		/* size, channels, bits, rows read */
+	struct pngio_reader *png;	/* or NULL: EXR */
+	uint16_t *px;			/* PNG band samples */
+	float *plane;			/* EXR band of one channel */
+	int band;			/* rows px and plane hold */
+};
+
+void image_stream_close(struct image_stream *s)
+{
+	if (s == NULL)
+		return;
+	pngio_reader_close(s->png);
+	free(s->px);
+	free(s->plane);
+	free(s->path);
+	free(s);
+}
+
+struct image_stream *image_stream_open(const char *path, int *w, int *h, int *nch, int *bits, char **cause)
+{
+	enum image_kind k = image_kind(path, cause);
+	if (k == IMAGE_NONE)
+		return NULL;
+	struct image_stream *s = xcalloc(1, sizeof *s);
+	s->path = xstrdup(path);
+	if (k == IMAGE_PNG) {
+		s->png = pngio_reader_open(path, &s->w, &s->h, &s->nch, &s->bits, cause);
+		if (s->png == NULL) {
+			image_stream_close(s);
+			return NULL;
+		}
+	} else {
+		/* R, G, B (A optional) or Y, found as read_exr finds them */
+		if (exrio_size(path, &s->w, &s->h, cause) != 0) {
+			image_stream_close(s);
+			return NULL;
+		}
+		float *row = xmalloc(sizeof(float) * (size_t)s->w);
+		char *why = NULL;
+		s->bits = 32;
+		if (exrio_read_channel_rows(path, "R", s->w, s->h, 0, 1, row, &why) == 0) {
+			free(why);
+			why = NULL;
+			s->nch = exrio_read_channel_rows(path, "A", s->w, s->h, 0, 1, row, &why) == 0 ? 4 : 3;
+		} else if (free(why), why = NULL, exrio_read_channel_rows(path, "Y", s->w, s->h, 0, 1, row, &why) == 0)
+			s->nch = 1;
+		else
+			*cause = xasprintf("%s: an OpenEXR image without R, G, B or Y channels", path);
+		free(why);
+		free(row);
+		if (s->nch == 0) {
+			image_stream_close(s);
+			return NULL;
+		}
+	}
+	*w = s->w;
+	*h = s->h;
+	*nch = s->nch;
+	*bits = s->bits;
+	return s;
+}
+
+int image_stream_rows(struct image_stream *s, struct image *band, int nrows, char **cause)
+{
+	CHECK(band->w == s->w && band->nch == s->nch && nrows <= band->h && s->y + nrows <= s->h);
+	size_t n = (size_t)s->w * (size_t)nrows * (size_t)s->nch;
+	if (nrows > s->band) {
+		s->band = nrows;
+		if (s->png)
+			s->px = xreallocarray(s->px, (size_t)s->w * (size_t)nrows * (size_t)s->nch, sizeof(uint16_t));
+		else
+			s->plane = xreallocarray(s->plane, (size_t)s->w * (size_t)nrows, sizeof(float));
+	}
+	if (s->png) {
+		if (pngio_reader_rows(s->png, s->px, nrows, cause) != 0)
+			return -1;
+		for (size_t i = 0; i < n; i++)
+			band->v[i] = (float)(s->px[i] / 65535.0);
+	} else {
+		static const char *names[] = { "R", "G", "B", "A" };
+		size_t np = (size_t)s->w * (size_t)nrows;
+		for (int c = 0; c < s->nch; c++) {
+			if (exrio_read_channel_rows(s->path, s->nch == 1 ? "Y" : names[c], s->w, s->h, s->y, nrows, s->plane,
+			    cause) != 0)
+				return -1;
+			for (size_t i = 0; i < np; i++)
+				band->v[i * s->nch + c] = s->plane[i];
+		}
+		for (size_t i = 0; i < n; i++)
+			if (!isfinite(band->v[i])) {
+				*cause = xasprintf("%s: texel %zu holds a value that is not finite", s->path,
+				    (size_t)s->y * (size_t)s->w + i / (size_t)s->nch);
+				return -1;
+			}
+	}
+	s->y += nrows;
+	return 0;
 }
 
 int image_write_png(const char *path, const struct image *im, int bits, int srgb, int ntext,

@@ -27,6 +27,15 @@ enum image_kind image_kind(const char *path, char **cause);
 int image_size(const char *path, int *w, int *h, char **cause);
 /* Read PATH; NULL and *cause.  Caller frees with image_free. */
 struct image *image_read(const char *path, char **cause);
+/* PATH a band of rows at a time (maps fit on images too large to hold
+ * whole): the same values image_read gives, rows in order.  The band is
+ * an image of the stream's width and channels and at least nrows rows;
+ * -1 (NULL) and *cause as image_read's, a non-finite EXR value naming
+ * its texel in the whole image. */
+struct image_stream;
+struct image_stream *image_stream_open(const char *path, int *w, int *h, int *nch, int *bits, char **cause);
+int image_stream_rows(struct image_stream *s, struct image *band, int nrows, char **cause);
+void image_stream_close(struct image_stream *s);	/* NULL is a no-op */
 struct image *image_new(int w, int h, int nch, int bits);
 void image_free(struct image *im);	/* NULL is a no-op */
 /* The value of channel c at texel i, with grey standing for every colour

@@ -61,6 +61,21 @@ int mapset_find(const struct mapset *m, const char *key);
 /* Write DIR (absent, empty, or earlier maps, which are replaced); -1 and
  * *cause. */
 int mapset_write(const char *dir, const struct mapset *m, char **cause);
+/* The same directory written a band of rows at a time (maps fit on
+ * textures too large to hold whole): begin takes m's head (size, maps'
+ * keys and ranges, exr; no values), fit whether de2000 and status follow,
+ * threads the files encoded at once; rows in order, v[a] the rows of map
+ * a; end writes maps.json (m's fit and history) and renames the directory
+ * into place.  Byte for byte what mapset_write writes for the whole maps.
+ * A failing call returns -1 (NULL) and *cause, leaves no output and frees
+ * the writer; mapset_writer_abort drops a writer that has not failed. */
+struct mapset_writer;
+struct mapset_writer *mapset_writer_begin(const char *dir, const struct mapset *m, int fit, int threads,
+    char **cause);
+int mapset_writer_rows(struct mapset_writer *wr, int nrows, const float *const *v, const float *de2000,
+    const unsigned char *status, char **cause);
+int mapset_writer_end(struct mapset_writer *wr, const struct mapset *m, char **cause);
+void mapset_writer_abort(struct mapset_writer *wr);	/* NULL is a no-op */
 /* A maps directory, for base/outdir.h: maps.json of format "skinbake-maps"
  * and its images. */
 extern const struct outdir_kind mapset_outdir_kind;
