@@ -51,7 +51,16 @@ struct mesh2_textures {
 	double tile_units;
 	const struct mesh2_uvmap *uv;
 	const unsigned char *on;	/* [n_triangles] 1 = bump, or NULL: every triangle */
+	/* The relief's cavity map (file name in the output directory) or NULL:
+	 * each bumped triangle's texture becomes the pattern of that map (by
+	 * the triangle's bump matrix, so it lies on the bump map) blending
+	 * SKIN_CavityBlack at 0 with the texture at 1, i.e. the texture's
+	 * light times the cavity (docs/relief.md). */
+	const char *cavity_png;
 };
+/* The declaration of that black (guarded: every file that uses it has it). */
+#define MESH2_CAVITY_BLACK "#ifndef (SKIN_CavityBlack)\n#declare SKIN_CavityBlack = texture { " \
+	"pigment { rgb 0 } finish { ambient 0 diffuse 0 emission 0 specular 0 } }\n#end\n"
 
 /* `#declare NAME = mesh2 { ... }` with every vertex moved by -inset along its
  * normal (inner copies for the per-light layers); with tex, a texture list.

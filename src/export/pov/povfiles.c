@@ -62,7 +62,10 @@ static int write_mesh(FILE *fp, const struct scene *s, const struct pov_skin *sk
 	for (int k = 0; k < n; k++) {
 		char *name = n > 1 ? xasprintf("SKIN_Mesh_%s_L%d", o->name, k + 1) : xasprintf("SKIN_Mesh_%s", o->name);
 		if (bumps) {
-			struct mesh2_textures tex = { .tile_units = skins[o->skin].tile_units, .uv = &uv, .on = on };
+			struct mesh2_textures tex = { .tile_units = skins[o->skin].tile_units, .uv = &uv, .on = on,
+				.cavity_png = skins[o->skin].cavity_png };
+			if (k == 0 && tex.cavity_png != NULL)
+				fputs(MESH2_CAVITY_BLACK, fp);
 			char *pre, *mid, *post, *plain;
 			povscene_mesh_texture(s, skins, o, st, n > 1 ? k : -1, &pre, &mid, &post,
 			    &plain);

@@ -8,9 +8,12 @@
 
 #include <math.h>
 #include <stdlib.h>
+#include <string.h>
 
 #include "base/util.h"
+#include "export/pov/mesh2.h"
 #include "export/pov/pov_maps.h"
+#include "export/pov/povao.h"
 #include "export/pov/povscene.h"
 #include "export/pov/sdl.h"
 #include "export/pov/separable.h"
@@ -70,6 +73,18 @@ static void write_frame_selection(FILE *fp, const struct scene *s, const struct 
 	fputs("#end\n", fp);
 }
 
+/* Whether a mesh of skin sn gets the fill's occlusion map (povao.h). */
+static int occluded(const struct scene *s, const char *sn)
+{
+	for (int i = 0; i < s->n_objects; i++) {
+		const struct scene_object *o = &s->objects[i];
+		if (o->material == SCENE_MAT_SKIN && !strcmp(s->skins[o->skin].name, sn) &&
+		    povao_wanted(s, o))
+			return 1;
+	}
+	return 0;
+}
+
 /* The split (povsplit.h) and the fill: SKIN_s_Diffuse and SKIN_s_Specular
  * tables, SKIN_s_Fill = albedo(theta_o), the finish of the averaged
  * entries (diffuse N for N entries) and the fill's (emission N x fill). */
@@ -100,12 +115,31 @@ static void write_split_fill(FILE *fp, const struct scene *s, const char *sn,
 		fputs("// The fill: a uniform sky light gives radiance albedo(theta_o) x fill "
 		    "(reciprocity).\n", fp);
 		if (ps->maps)
-			pov_maps_write_fill(fp, nm, ps->maps, lo, hi, ps->maps_uv);
+			pov_maps_write_fill(fp, nm, ps->maps, 0, lo, hi, ps->maps_uv);
 		else {
 			fprintf(fp, "#declare %s = ", nm);
 			sdl_albedo_pigment(fp, ps->n_albedo, ps->theta_albedo, ps->albedo_curve);
 		}
 		free(nm);
+		if (occluded(s, sn)) {
+			/* Where the sky is occluded the fill arrives bounced off the skin
+			 * (povsplit_bounce_curve): BASE.pov blends toward this. */
+			nm = xasprintf("SKIN_%s_FillBounce", sn);
+			fputs("// The fill bounced once off the skin (the occluded fill's low "
+			    "end): albedo(theta_o) x white-sky albedo.\n", fp);
+			if (ps->maps)
+				pov_maps_write_fill(fp, nm, ps->maps, 1, lo, hi, ps->maps_uv);
+			else {
+				double wa[3];
+				double *ab = povsplit_bounce_curve(ps->n_albedo, ps->theta_albedo,
+				    ps->albedo_curve, wa);
+				fprintf(fp, "// (white-sky albedo %.4f %.4f %.4f)\n#declare %s = ",
+				    wa[0], wa[1], wa[2], nm);
+				sdl_albedo_pigment(fp, ps->n_albedo, ps->theta_albedo, ab);
+				free(ab);
+			}
+			free(nm);
+		}
 		fprintf(fp, "#declare SKIN_%s_FillFinish = finish { diffuse 0 brilliance 1 "
 		    "ambient 0 emission ", sn);
 		sdl_rgb(fp, e);
@@ -121,6 +155,33 @@ static int has_mesh(const struct scene *s, int k)
 		if (s->objects[i].shape == SCENE_MESH && s->objects[i].material == SCENE_MAT_SKIN && s->objects[i].skin == k)
 			return 1;
 	return 0;
+}
+
+/* The skin's relief as POV-Ray normals: the planar tile, the diffuse
+ * part's softer copy, their per-triangle mesh forms, and the cavity's black. */
+static void write_normals(FILE *fp, const struct scene *s, int k, const struct pov_skin *ps)
+{
+	const struct scene_skin *sk = &s->skins[k];
+	if (ps->height_png != NULL)
+		fprintf(fp, "// bump_size = H_range * n_px / tile = " SDL_G "; one tile = " SDL_G " units, planar\n"
+		    "// (map_type 0) projection along z: attach with the object's or the view's orientation.\n"
+		    "#declare SKIN_%s_Normal = normal { bump_map { png \"%s\" map_type 0 interpolate 2 "
+		    "bump_size " SDL_G " } scale " SDL_G " }\n", ps->bump_size, ps->tile_units, sk->name, ps->height_png,
+		    ps->bump_size, ps->tile_units);
+	if (ps->diffuse_png != NULL)
+		fprintf(fp, "#declare SKIN_%s_NormalDiffuse = normal { bump_map { png \"%s\" "
+		    "map_type 0 interpolate 2 bump_size " SDL_G " } scale " SDL_G " }\n", sk->name,
+		    ps->diffuse_png, ps->diffuse_bump_size, ps->tile_units);
+	if (ps->diffuse_png != NULL && has_mesh(s, k))
+		fprintf(fp, "#declare SKIN_%s_NormalDiffuseMesh = normal { bump_map { png "
+		    "\"%s\" map_type 0 interpolate 2 bump_size " SDL_G " } }\n", sk->name,
+		    ps->diffuse_png, ps->diffuse_bump_size);
+	if (ps->cavity_png != NULL)
+		fputs(MESH2_CAVITY_BLACK, fp);
+	if (ps->height_png != NULL && has_mesh(s, k))
+		fprintf(fp, "// On meshes each triangle maps the tile onto its UVs by its own matrix (docs/pov.md).\n"
+		    "#declare SKIN_%s_NormalMesh = normal { bump_map { png \"%s\" map_type 0 interpolate 2 "
+		    "bump_size " SDL_G " } }\n", sk->name, ps->height_png, ps->bump_size);
 }
 
 void povinc_write(FILE *fp, const struct scene *s, const struct pov_skin *skins, const struct pov_options *o,
@@ -210,24 +271,7 @@ void povinc_write(FILE *fp, const struct scene *s, const struct pov_skin *skins,
 			    "emission 0 specular 0%s }\n", sk->name, sep.brilliance,
 			    sk->reflection ? " reflection { 0, 1 fresnel on } conserve_energy" : "");
 		}
-		if (ps->height_png != NULL)
-			fprintf(fp, "// bump_size = H_range * n_px / tile = " SDL_G "; one tile = " SDL_G " units, planar\n"
-			    "// (map_type 0) projection along z: attach with the object's or the view's orientation.\n"
-			    "#declare SKIN_%s_Normal = normal { bump_map { png \"%s\" map_type 0 interpolate 2 "
-			    "bump_size " SDL_G " } scale " SDL_G " }\n", ps->bump_size, ps->tile_units, sk->name, ps->height_png,
-			    ps->bump_size, ps->tile_units);
-		if (ps->diffuse_png != NULL)
-			fprintf(fp, "#declare SKIN_%s_NormalDiffuse = normal { bump_map { png \"%s\" "
-			    "map_type 0 interpolate 2 bump_size " SDL_G " } scale " SDL_G " }\n", sk->name,
-			    ps->diffuse_png, ps->diffuse_bump_size, ps->tile_units);
-		if (ps->diffuse_png != NULL && has_mesh(s, k))
-			fprintf(fp, "#declare SKIN_%s_NormalDiffuseMesh = normal { bump_map { png "
-			    "\"%s\" map_type 0 interpolate 2 bump_size " SDL_G " } }\n", sk->name,
-			    ps->diffuse_png, ps->diffuse_bump_size);
-		if (ps->height_png != NULL && has_mesh(s, k))
-			fprintf(fp, "// On meshes each triangle maps the tile onto its UVs by its own matrix (docs/pov.md).\n"
-			    "#declare SKIN_%s_NormalMesh = normal { bump_map { png \"%s\" map_type 0 interpolate 2 "
-			    "bump_size " SDL_G " } }\n", sk->name, ps->height_png, ps->bump_size);
+		write_normals(fp, s, k, ps);
 		/* Stand-ins for comparison scenes (paper figure 7): the skin's
 		 * normal-incidence albedo as Lambert and as Phong. */
 		fprintf(fp, "#declare SKIN_%s_Lambert = texture { pigment { ", sk->name);
