@@ -32,8 +32,9 @@ struct maps_fit_opts {
 	int input_linear;	/* 1: the albedo's values are linear sRGB; 0: sRGB-encoded */
 	double max_de;		/* CIEDE2000 above which a texel is unmatched */
 	int threads;		/* OpenMP threads, 0 = all */
-	int reread;		/* maps_fit_files: read the albedo again for the maps even when its colour ids
-				 * would fit in MAPS_FIT_IDS_MAX (tests; the same files) */
+	/* maps_fit_files: read the albedo again for the maps even when its
+	 * colour ids fit in MAPS_FIT_IDS_MAX (tests; the same files) */
+	int reread;
 };
 
 /* maps_fit_files keeps each texel's colour id (4 bytes) from its first
@@ -63,7 +64,8 @@ struct maps_fit_summary {
  * grey, optional alpha); mask (NULL: all) must have albedo's size.  *out
  * gets the maps with de2000 and status (caller frees).  -1 and *cause when
  * the sizes differ. */
-int maps_fit(struct family *f, const struct image *albedo, const struct image *mask, const struct maps_fit_opts *o,
+int maps_fit(struct family *f, const struct image *albedo, const struct image *mask,
+    const struct maps_fit_opts *o,
     struct mapset **out, struct maps_fit_summary *sum, char **cause);
 /* The same fit from files to a maps directory without holding the images:
  * the albedo (and mask) read in bands of rows for the distinct colours
@@ -76,10 +78,13 @@ int maps_fit(struct family *f, const struct image *albedo, const struct image *m
  * the seconds in maps.json).  -1 and *cause on failure, with
  * *input_error set when an input (unreadable, corrupt, sizes that differ)
  * is the cause; OUT is then as it was. */
-int maps_fit_files(struct family *f, const char *albedo, const char *mask, const struct maps_fit_opts *o,
-    const char *out, int exr, const char *command, struct maps_fit_summary *sum, int *input_error, char **cause);
+int maps_fit_files(struct family *f, const char *albedo, const char *mask,
+    const struct maps_fit_opts *o,
+    const char *out, int exr, const char *command, struct maps_fit_summary *sum, int *input_error,
+    char **cause);
 /* The summary as a JSON object (caller frees), for maps.json. */
-char *maps_fit_summary_json(const struct maps_fit_summary *s, const struct maps_fit_opts *o, const char *albedo);
+char *maps_fit_summary_json(const struct maps_fit_summary *s, const struct maps_fit_opts *o,
+    const char *albedo);
 /* Linear sRGB of texel i of an image read as the fit reads it. */
 void maps_texel_linear(const struct image *im, size_t i, int input_linear, double rgb[3]);
 #endif
