@@ -135,6 +135,17 @@ static void key_values(const uint32_t k[3], float v[3])
 		memcpy(&v[c], &k[c], sizeof v[c]);
 }
 
+/* After the last colour: the keys' spare room returned (realloc to a
+ * smaller size does not move) and, when no colour will be looked up
+ * again, the hash slots freed. */
+static void colours_drop_hash(struct colours *cl)
+{
+	free(cl->slot);
+	cl->slot = NULL;
+	cl->kcap = (size_t)(cl->n > 0 ? cl->n : 1);
+	cl->key = xreallocarray(cl->key, cl->kcap, sizeof *cl->key);
+}
+
 static void colours_free(struct colours *cl)
 {
 	free(cl->key);
@@ -200,8 +211,9 @@ static void fitter_free(struct fitter *F)
 {
 	if (F->res)
 		fit_lut_free(&F->t);
+	if ((void *)F->res != (void *)F->cl.key)
+		free(F->res);
 	colours_free(&F->cl);
-	free(F->res);
 	free(F->dh.h);
 }
 
@@ -240,15 +252,20 @@ static void fitter_scan(struct fitter *F, const struct image *albedo, const stru
 }
 
 /* Solve every colour: fixed chunks, each solved in order with warm starts,
- * so the result does not depend on the threads. */
-static void fitter_solve(struct fitter *F)
+ * so the result does not depend on the threads.  in_place: the colours
+ * are not looked up again (pass 2 has their ids), so a result of the
+ * size of a key (two axes: 3 floats) overwrites its key once read. */
+static void fitter_solve(struct fitter *F, int in_place)
 {
 	const struct colours *cl = &F->cl;
 	fit_lut_build(&F->t, F->f, F->threads);
 	const struct fit_lut *t = &F->t;
 	enum { CHUNK = 512 };
 	const int nr = F->nr = t->k + 1;
-	F->res = xmalloc(sizeof(float) * (size_t)(cl->n > 0 ? cl->n : 1) * (size_t)nr);
+	if (in_place && cl->n > 0 && sizeof(float) * (size_t)nr == sizeof *cl->key)
+		F->res = (float *)cl->key;
+	else
+		F->res = xmalloc(sizeof(float) * (size_t)(cl->n > 0 ? cl->n : 1) * (size_t)nr);
 	float *res = F->res;
 	const struct maps_fit_opts *o = F->o;
 	struct family *f = F->f;
@@ -339,7 +356,7 @@ int maps_fit(struct family *f, const struct image *albedo, const struct image *m
 	memset(sum, 0, sizeof *sum);
 	fitter_scan(&F, albedo, mask, albedo->h, NULL, sum);
 	sum->unique = F.cl.n;
-	fitter_solve(&F);
+	fitter_solve(&F, 0);
 	struct mapset *m = mapset_new(f, albedo->w, albedo->h, NULL);
 	size_t n = (size_t)albedo->w * albedo->h;
 	m->de2000 = xcalloc(n, sizeof(float));
@@ -425,7 +442,9 @@ int maps_fit_files(struct family *f, const char *albedo, const char *mask,
 	}
 	close_inputs(&sa, &sm, &ba, &bm);
 	sum->unique = F.cl.n;
-	fitter_solve(&F);
+	if (ids)
+		colours_drop_hash(&F.cl);
+	fitter_solve(&F, ids != NULL);
 	/* Pass 2: the maps, band by band, straight to the files. */
 	m = mapset_new(f, 1, 1, NULL);
 	m->w = w;

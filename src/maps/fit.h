@@ -52,11 +52,14 @@ struct maps_fit_summary {
 };
 
 /* Estimated needs of maps fit per texel of the albedo (the budget check of
- * `maps fit`): peak memory measured 50 MB at 1024^2 and 151 MB at 2048^2 texels
- * (a 3 x 3 family, 8-bit RGB PNG): 33 bytes per texel over about 16 MB, so
- * 40 per texel (a mask image adds to it) over 32 MB; files at most 2 bytes
- * (16-bit PNG) or 4 (EXR) per map (the family's axes and de2000) and 1 for
- * the status map, uncompressed. */
+ * `maps fit`), for the worst case of every texel a distinct colour: the
+ * streamed fit (maps_fit_files) holds per distinct colour its key (12
+ * bytes), result (12 with two axes, 16 with three) and 8 to 16 bytes of
+ * hash slots, and per texel its colour id (4); bands and the table are
+ * the fixed part.  Measured: 49 MB peak at 1024^2 with noise (1.05 M
+ * colours), 84 MB at 4096^2 with 77 k colours (the images are not held).
+ * Files at most 2 bytes (16-bit PNG) or 4 (EXR) per map (the family's
+ * axes and de2000) and 1 for the status map, uncompressed. */
 #define MAPS_FIT_MEM_PER_TEXEL 40.0
 #define MAPS_FIT_MEM_FIXED 32e6
 
