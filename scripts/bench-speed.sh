@@ -212,3 +212,10 @@ if [ -n "${BASE_SKINBAKE:-}" ] && command -v valgrind >/dev/null 2>&1; then
 	echo "| \`maps fit --family FAM --albedo A.png --threads 1\` (256 x 256, FAM above) | $o | $n |" \
 		"$(awk -v a="$o" -v b="$n" 'BEGIN { printf "%.3f", b / a }') | maps $same |"
 fi
+
+# ---- 5. what each pass did (hand-written notes with their own measurements, kept in
+# docs/bench/bench-speed.history so that the generated tables above replace only themselves) ----
+if [ -f "$top_srcdir/docs/bench/bench-speed.history" ]; then
+	echo
+	cat "$top_srcdir/docs/bench/bench-speed.history"
+fi

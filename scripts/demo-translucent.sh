@@ -12,6 +12,8 @@ B=${SKINBAKE:-./skinbake}
 out=${1:-out/demo}
 size=${SIZE:-320x240}
 scene=scenes/human-head-earglow.scene
+py=.venv/bin/python
+[ -x "$py" ] || py=python3
 model=/usr/share/assimp/models/Collada/human.zae
 [ -f "$model" ] || { echo "demo-translucent.sh: $model is missing (scripts/setup.sh installs" \
 	"assimp-testmodels)" >&2; exit 1; }
@@ -28,6 +30,11 @@ for mode in exact translucent; do
 	echo "== $mode: export and render $scene at $size"
 	$B export pov --scene "$scene" --bake "$out/paper-translucent" --out "$d" --mode $mode \
 		--size "$size" >"$d.log" 2>&1 || { cat "$d.log" >&2; exit 1; }
+	# the demo's eyes (scripts/eye_texture.py: hazel irises, white sclerae; scripts/demo.sh)
+	if [ -f "$d/human-head-earglow_eyes_texture.png" ]; then
+		"$py" scripts/eye_texture.py "$d/human-head-earglow_eyes_texture.png" "$d.eyes.png" &&
+			mv "$d.eyes.png" "$d/human-head-earglow_eyes_texture.png"
+	fi
 	(cd "$d" && povray human-head-earglow.ini >"../$(basename "$d").povray.log" 2>&1) || {
 		echo "demo-translucent.sh: povray failed, see $d.povray.log" >&2; exit 1; }
 	png="$out/human-head-earglow-$mode.png"

@@ -20,7 +20,7 @@ bl=${BLENDER:-blender}
 BL() { "$bl" -b -noaudio --python-exit-code 1 "$@"; }
 mkdir -p "$out"
 [ -f "$out/bake/manifest.json" ] || $B bake --preset paper --theta-nodes 10 --out "$out/bake" --quiet
-$B export blender --bake "$out/bake" --out "$out/bl-exact" >/dev/null
+$B export blender --bake "$out/bake" --out "$out/bl-exact" --mode exact >/dev/null
 $B export blender --bake "$out/bake" --out "$out/bl-translucent" --mode translucent >/dev/null
 BL --factory-startup --python exporters/blender/human_scene.py -- "$out/bl-scene.blend" --size "$size" \
 	--samples "$samples" >"$out/bl-scene.log" 2>&1

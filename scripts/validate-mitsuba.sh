@@ -57,7 +57,7 @@ if [ "${VALIDATE_QUICK:-0}" = 1 ]; then W=32 H=24 SPP_REF=256 SPP=64; fi
 
 [ -f "$mw/bake/manifest.json" ] || "$SKINBAKE" bake --preset paper --solver ad --quiet --out "$mw/bake" >/dev/null
 [ -z "$BLENDER" ] || [ -f "$mw/blender-set/manifest.json" ] ||
-	"$SKINBAKE" export blender --bake "$mw/bake" --out "$mw/blender-set" >/dev/null
+	"$SKINBAKE" export blender --bake "$mw/bake" --out "$mw/blender-set" --mode exact >/dev/null
 # Lights ten times farther than scenes/human-head.scene's key light, so that a
 # point light's fall-off in Mitsuba (1/d^2, exact at the look_at point) stays
 # within 1 % over the head, where POV-Ray's does not fall off at all.

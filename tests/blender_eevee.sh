@@ -16,7 +16,7 @@ if ! "$SKINBAKE" bake --preset paper --out "$bake" --theta-nodes 6 --resolution 
 	tap_done
 	exit 1
 fi
-"$SKINBAKE" export blender --bake "$bake" --out "$tmpd/set" >"$tmpd/export.log" 2>&1
+"$SKINBAKE" export blender --bake "$bake" --out "$tmpd/set" --mode exact >"$tmpd/export.log" 2>&1
 for e in CYCLES BLENDER_EEVEE; do
 	B --python "$imp" -- "$tmpd/set" --mode exact --scene sphere --engine $e --res 64 --samples 16 \
 		--render "$tmpd/$e.exr" >"$tmpd/$e.log" 2>&1

@@ -85,7 +85,7 @@ fi
 bake="$tmpd/bake"
 if "$SKINBAKE" bake --preset paper --out "$bake" --theta-nodes 6 --resolution 9x9 --batch-photons 1000 \
 	--max-photons 3e5 --target-error 0 --threads 1 --quiet >"$tmpd/bake.log" 2>&1; then
-	"$SKINBAKE" export blender --bake "$bake" --out "$tmpd/real" >"$tmpd/export.log" 2>&1
+	"$SKINBAKE" export blender --bake "$bake" --out "$tmpd/real" --mode exact >"$tmpd/export.log" 2>&1
 	check "skinbake export blender writes an image set" test $? -eq 0 -a -f "$tmpd/real/manifest.json"
 	B --python "$imp" -- "$tmpd/real" --mode exact --scene plane --render "$tmpd/real.exr" >"$tmpd/real.log" 2>&1
 	if relerr "$tmpd/real/manifest.json" exact.reference.radiance_rgb "$tmpd/real.log" 0.005 >"$tmpd/real.cmp"; then

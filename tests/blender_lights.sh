@@ -22,7 +22,7 @@ if ! "$SKINBAKE" bake --preset paper --out "$bake" --theta-nodes 6 --resolution 
 	tap_done
 	exit 1
 fi
-"$SKINBAKE" export blender --bake "$bake" --out "$tmpd/set" >"$tmpd/export.log" 2>&1
+"$SKINBAKE" export blender --bake "$bake" --out "$tmpd/set" --mode exact >"$tmpd/export.log" 2>&1
 check "image set exported" test -f "$tmpd/set/manifest.json"
 
 # The per-pixel reference uses bake_eval_rgb through tests/blender_brdf: the same numbers as

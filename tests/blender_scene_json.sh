@@ -29,7 +29,7 @@ B() { timeout 300 "$BLENDER" -b -noaudio --python-exit-code 1 "$@"; }
 # The importer needs an image set (its material is made, on no object).
 "$SKINBAKE" bake --preset paper --out "$tmpd/bake" --theta-nodes 3 --resolution 5x5 --r-bins 10 \
 	--radial-photons 2000 --quiet >"$tmpd/bake.log" 2>&1
-"$SKINBAKE" export blender --bake "$tmpd/bake" --out "$tmpd/set" --lut-cos 8 --lut-phi 3 >"$tmpd/export.log" 2>&1
+"$SKINBAKE" export blender --bake "$tmpd/bake" --out "$tmpd/set" --lut-cos 8 --lut-phi 3 --mode exact >"$tmpd/export.log" 2>&1
 check "image set exported" test -f "$tmpd/set/manifest.json"
 
 spheres='

@@ -28,7 +28,7 @@ set_up() {
 	[ -d "$tmpd/b_$s_n" ] || "$SKINBAKE" bake --preset paper --out "$tmpd/b_$s_n" \
 		--resolution 9x9 --r-bins 20 --radial-photons 4000 --quiet "$@" >"$tmpd/$s_n.log"
 	[ -d "$tmpd/set_$s_n" ] || "$SKINBAKE" export blender --bake "$tmpd/b_$s_n" \
-		--out "$tmpd/set_$s_n" >>"$tmpd/$s_n.log" 2>&1
+		--out "$tmpd/set_$s_n" --mode exact >>"$tmpd/$s_n.log" 2>&1
 	B --factory-startup --python "$imp" -- "$tmpd/set_$s_n" --mode "$s_mode" --scene sphere \
 		--res 128 --samples "$s_spp" --save "$tmpd/$s_n-$s_mode.blend" >>"$tmpd/$s_n.log"
 }

@@ -41,18 +41,21 @@ check "export blender --mode translucent" test $? -eq 0 -a -f "$set/manifest.jso
 check "  ... the manifest has the fitted node" python3 -c 'import json,sys
 sys.exit(json.load(open(sys.argv[1]))["translucent"]["node"] != "ShaderNodeSubsurfaceScattering")' "$set/manifest.json"
 
-# A Blender without its own fit in the set is refused by the importer (tests/lib/translucent_fit.sh);
-# sections 1-2 and the radius-0 check below need this version's fit.
+# A Blender without its own fit in the set imports it with the fallback, the node's far field as a
+# diffuse (tests/lib/translucent_fit.sh); section 2 and the radius-0 check need this version's fit.
 hasfit=1
-translucent_fit "$set" "$blver" "flat skin, back light and the radius-0 check" || hasfit=0
+translucent_fit "$set" "$blver" "back light and the radius-0 check" || hasfit=0
 
-# 1. Flat skin, exact mode with the node (sections 1-2 and the radius-0 check, not indented, only
-# with this version's fit).
-if [ "$hasfit" = 1 ]; then
+# 1. Flat skin, exact mode with the node (with this version's fit) or with the fallback's diffuse.
 B --python "$imp" -- "$set" --mode exact --scene box --samples 256 --render "$tmpd/box.exr" >"$tmpd/box.log" 2>&1
 check "exact mode with the translucent set: import and render" test $? -eq 0
-check "  ... the importer added this Blender's fitted node" \
-	grep -q "translucent: Cycles $blver" "$tmpd/box.log"
+if [ "$hasfit" = 1 ]; then
+	check "  ... the importer added this Blender's fitted node" \
+		grep -q "translucent: Cycles $blver" "$tmpd/box.log"
+else
+	check "  ... no fit for this Blender: the far field as a diffuse, said" \
+		grep -q "translucent: no fit for this Blender" "$tmpd/box.log"
+fi
 r=$(python3 - "$SKINBAKE" "$bake" "$set/manifest.json" "$tmpd/box.log" <<'PY'
 import json, math, subprocess, sys
 skinbake, bake, man, log = sys.argv[1:5]
@@ -81,6 +84,8 @@ echo "# flat box, translucent set in exact mode: render / eval - 1 per R, G, B: 
 # -0.13, -0.74, -0.47 % (256 samples).
 check "flat skin within 1 % of eval per channel ($errs)" \
 	test "$(echo "$r" | cut -d' ' -f4)" = 1
+
+if [ "$hasfit" = 1 ]; then
 
 # 2. Back light through slabs of 1, 2 and 4 mm (the node alone: the rest of the table is a
 # surface BRDF and adds nothing behind).  With this version's transmission table the set's
@@ -151,17 +156,32 @@ check "a translucent radius of 0: the importer fails" test $? -ne 0 -a ! -s "$tm
 check "  ... naming translucent.versions[$blver].radius_m" \
 	grep -q "translucent.versions\[$blver\].radius_m" "$tmpd/bad.log"
 fi
-# ... and a set without a fit for this Blender (5.0.1 rendered the 3.4.1 fit 12 % dark).
+# ... and a set without a fit for this Blender (5.0.1 rendered the 3.4.1 fit 12 % dark): never
+# another version's fit; the fallback, said (on a Blender without a fit, translucent_fit above).
+if [ "$hasfit" = 1 ]; then
 cp -r "$set" "$tmpd/bad2"
 python3 -c 'import json,sys; p=sys.argv[1]; m=json.load(open(p))
 t = m["translucent"]
 t["versions"] = [v for v in t["versions"] if v["blender"] != sys.argv[2]]
 json.dump(m, open(p, "w"))' "$tmpd/bad2/manifest.json" "$blver"
 B --python "$imp" -- "$tmpd/bad2" --mode exact --scene box --samples 1 --render "$tmpd/bad2.exr" >"$tmpd/bad2.log" 2>&1
-check "a set without a fit for this Blender: the importer fails" \
-	test $? -ne 0 -a ! -s "$tmpd/bad2.exr"
-check "  ... naming translucent.versions" \
-	grep -q "translucent.versions has fits for Blender" "$tmpd/bad2.log"
+check "a set without a fit for this Blender: the importer renders the fallback" \
+	test $? -eq 0 -a -s "$tmpd/bad2.exr"
+check "  ... no subsurface node, saying so and naming the fits it has" \
+	grep -q "translucent: no fit for this Blender .*(fits for .*): no subsurface node" "$tmpd/bad2.log"
+fi
+# 4. --mode auto, export blender's default: a bake with Rd(r) goes translucent, saying so; with
+# --textures (the node carries no detail normal map) or a bake without Rd(r), exact saying why.
+"$SKINBAKE" export blender --bake "$bake" --out "$tmpd/auto" --lut-cos 8 --lut-phi 3 2>"$tmpd/auto.log" >/dev/null
+check "export blender (default --mode auto) on a bake with Rd(r): a translucent set" \
+	test $? -eq 0 -a -n "$(grep -l '"translucent"' "$tmpd/auto/manifest.json" 2>/dev/null)"
+check "  ... saying so" grep -q "translucent (--mode auto: a bake with Rd(r)" "$tmpd/auto.log"
+"$SKINBAKE" texture --out "$tmpd/tex" --size 16 --quiet >/dev/null 2>&1
+"$SKINBAKE" export blender --bake "$bake" --textures "$tmpd/tex" --out "$tmpd/autotex" --lut-cos 8 \
+	--lut-phi 3 2>"$tmpd/autotex.log" >/dev/null
+check "  ... with --textures: exact, saying why" sh -c "test -f '$tmpd/autotex/manifest.json' &&
+	! grep -q '\"translucent\"' '$tmpd/autotex/manifest.json' &&
+	grep -q 'exact (--mode auto: --textures' '$tmpd/autotex.log'"
 # ... and a bake without a radial profile: export refuses it (exit 2, naming radial.rd_r, no set).
 cp -r "$bake" "$tmpd/norad"
 python3 -c 'import json,sys; p=sys.argv[1]; m=json.load(open(p)); del m["radial"]["rd_r"]
@@ -171,4 +191,9 @@ json.dump(m, open(p, "w"))' "$tmpd/norad/manifest.json"
 check "a bake without a radial profile: export exits 2 and writes nothing" \
 	test $? -eq 2 -a ! -e "$tmpd/noradset"
 check "  ... naming radial.rd_r" grep -q "radial.rd_r" "$tmpd/norad.log"
+"$SKINBAKE" export blender --bake "$tmpd/norad" --out "$tmpd/noradauto" --lut-cos 8 --lut-phi 3 \
+	>/dev/null 2>"$tmpd/noradauto.log"
+check "  ... under --mode auto: exact, naming radial.rd_r" sh -c "test -f '$tmpd/noradauto/manifest.json' &&
+	! grep -q '\"translucent\"' '$tmpd/noradauto/manifest.json' &&
+	grep -q 'exact (--mode auto: .*radial.rd_r' '$tmpd/noradauto.log'"
 tap_done

@@ -15,9 +15,8 @@
 #    about 99 % of its power within 5 mm): the translucent render at m0001's blood within 1 % of
 #    E cos(theta_i) f from `skinbake eval` of m0001, and at 0.06 within 1 % of the exact-mode
 #    render of the same maps (the family's table there: node + lambert_extra + remainder add up
-#    to it per texel).  On 4.x 1 % plus the calibration's G(0) error (2 % in all, as
-#    tests/blender_translucent.sh), 1 % a TAP TODO.  The exact render at m0001 within 0.5 % of
-#    eval checks the set-up.
+#    to it per texel), on every Blender (4.x too: the albedo table, blender_sss_albedo.h).  The
+#    exact render at m0001 within 0.5 % of eval checks the set-up.
 # 3. Bad input: a family set whose translucent entry has no per-texel maps is refused, naming
 #    translucent.versions[M.N].maps.
 # Runs on $BLENDER (Debian's 3.4, or a bpy venv through tests/bpy-blender: tests/blender_matrix.sh
@@ -134,25 +133,22 @@ info = rel(region(tr, 3, 29), w6)
 f = lambda v: " ".join("%+.4f" % x for x in v)
 lim = lambda v, t: int(max(abs(x) for x in v) <= t)
 print("%s | %s | %s | %s" % (f(e_a), f(t_a), f(t_b), f(info)),
-      lim(e_a, 0.005), lim(t_a, 0.01), lim(t_b, 0.01), lim(t_a, 0.02), lim(t_b, 0.02))
+      lim(e_a, 0.005), lim(t_a, 0.01), lim(t_b, 0.01))
 PY
 )
-nums=${r% * * * * *}
+nums=${r% * * *}
 flags=${r#"$nums" }
 echo "# box, render / expected - 1 (R G B): exact at blood 0.03 / eval m0001 | translucent at 0.03 / eval m0001" \
 	"| translucent at 0.06 / exact at 0.06 | (translucent at 0.06 / eval of the single bake at 0.06, not tested:" \
 	"the family's interpolation between members): $nums"
 set -- $flags
 check "exact set: the blood 0.03 region within 0.5 % of eval of m0001" test "$1" = 1
-if [ "${blver%%.*}" -ge 4 ] 2>/dev/null; then
-	check "translucent, blood 0.03 region within 2 % of eval of m0001 (1 % + the calibration's error)" test "$4" = 1
-	check "translucent, blood 0.06 region within 2 % of the exact render (1 % + the calibration's error)" test "$5" = 1
-	todo "translucent, both regions within 1 %" "4.x calibration noise of G(0) at colours 0.04-0.06, 1-2 %" \
-		test "$2$3" = 11
-else
-	check "translucent, blood 0.03 region within 1 % of eval of m0001" test "$2" = 1
-	check "translucent, blood 0.06 region within 1 % of the exact render" test "$3" = 1
-fi
+# Within 1 % on 4.x too since the node's far field is the table's at the walk's albedo measured
+# densely in the colour (blender_sss_albedo.h); with the profile table's G(0) (15 colours, 256
+# samples on 4.x, 1 % high) this needed 2 %.  Seventh session, 128 samples: 4.5.15 -0.26 -0.06
+# +0.06 % (0.03) and -0.06 +0.20 +0.15 % (0.06); 5.0.1 +0.15 +0.07 -0.18 % and +0.19 -0.15 -0.14 %.
+check "translucent, blood 0.03 region within 1 % of eval of m0001" test "$2" = 1
+check "translucent, blood 0.06 region within 1 % of the exact render" test "$3" = 1
 
 # 3. Bad input: a family set whose entry for this Blender has no per-texel maps.
 cp -r "$set" "$tmpd/bad"

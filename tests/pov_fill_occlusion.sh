@@ -46,6 +46,62 @@ check "skin: SKIN_skin_Fill_floor is declared and used" \
 	sh -c "grep -q '#declare SKIN_skin_Fill_floor' '$tmpd/skin/skin.pov' && grep -q 'SKIN_skin_Fill_floor }' '$tmpd/skin/skin_mesh_floor.inc' '$tmpd/skin/skin.pov'"
 check "skin: POV-Ray renders it" pov_render "$tmpd/skin" skin 32 32
 
+# The occluded fill's low end: the fill bounced once off the skin, albedo(theta_o) x fill x A with
+# A the white-sky albedo 2 int a(mu) mu dmu (export/pov/povsplit.h).  A camera between floor and
+# ceiling looks at the floor's centre (V 0.446, in the key's shadow, so only the fill lights it), 11
+# degrees off the normal.  Three renders of the same .pov: as written (P), the low end black (the
+# old, grey occlusion: P0 = fill x a x V) and the low end the full fill (P1 = fill x a); the
+# bounce's share (P - P0) / (P1 - P0) must be A per channel, A integrated here from the .inc's
+# fill colour map (linear in theta between nodes, as the aoi pattern is).  16-bit pixels of
+# about 0.01-0.04 give A to about 1e-3; 0.005 allowed.
+{
+	printf '[scene]\nwidth = 17\nheight = 17\nfill = 0.2 0.2 0.2\nfill_occlusion = 1024\n'
+	printf '[camera]\ntype = orthographic\nlocation = 0 0.5 -0.1\nlook_at = 0 0 0\nwidth = 0.02\n'
+	printf '[light key]\ntype = parallel\nposition = 1000 3000 -400\ncolor = 0.8 0.8 0.8\n'
+	printf '[skin skin]\npreset = paper\n'
+	printf '[object floor]\nshape = mesh\nfile = %s\nmesh = floor\nmaterial = skin\n' "$FIX"
+	printf '[object ceiling]\nshape = mesh\nfile = %s\nmesh = ceiling\nmaterial = model\n' "$FIX"
+} >"$tmpd/warm.scene"
+"$SKINBAKE" export pov --scene "$tmpd/warm.scene" --bake "$B" --out "$tmpd/warm" >/dev/null 2>"$tmpd/warm.err"
+check "skin: the occluded fill blends toward SKIN_skin_FillBounce, declared in the .inc" \
+	sh -c "grep -q 'pigment_map { \[0 SKIN_skin_FillBounce\] \[1 SKIN_skin_Fill\] }' '$tmpd/warm/warm.pov' &&
+		grep -q '#declare SKIN_skin_FillBounce = pigment { aoi' '$tmpd/warm/warm.inc'"
+for v in bounce black full; do
+	mkdir -p "$tmpd/w-$v"
+	cp "$tmpd/warm/"* "$tmpd/w-$v/"
+	case $v in
+	black) sed -i 's/\[0 SKIN_skin_FillBounce\]/[0 rgb 0]/' "$tmpd/w-$v/warm.pov" ;;
+	full) sed -i 's/\[0 SKIN_skin_FillBounce\]/[0 SKIN_skin_Fill]/' "$tmpd/w-$v/warm.pov" ;;
+	esac
+	check "warm occlusion, low end $v: POV-Ray renders it" pov_render "$tmpd/w-$v" warm 17 17
+done
+check "the bounce's share of the occluded fill is the white-sky albedo (R, G, B within 0.005)" python3 -c "
+import math, re, sys
+sys.path.insert(0, '$top_srcdir/tests/lib')
+from images import read_png
+inc = open('$tmpd/warm/warm.inc').read()
+m = re.search(r'#declare SKIN_skin_Fill = pigment \{ aoi color_map \{(.*?)\} \}', inc)
+ent = [(float(v), (float(r), float(g), float(b))) for v, r, g, b in
+       re.findall(r'\[([0-9.]+) rgb <([-0-9.e]+),([-0-9.e]+),([-0-9.e]+)>\]', m.group(1))]
+th = sorted((math.pi * (1 - v), c) for v, c in ent if v >= 0.5)
+def a(t, c):
+    if t <= th[0][0]: return th[0][1][c]
+    for (t0, c0), (t1, c1) in zip(th, th[1:]):
+        if t <= t1: return c0[c] + (t - t0) / (t1 - t0) * (c1[c] - c0[c])
+    return th[-1][1][c]
+n = 4000
+A = [sum(a(math.acos((u + 0.5) / n), c) * 2 * (u + 0.5) / n / n for u in range(n)) for c in range(3)]
+px = {}
+for v in ('bounce', 'black', 'full'):
+    w, h, ch, bits, rows, _ = read_png('$tmpd/w-%s/r.png' % v)
+    px[v] = [x / 65535 for x in rows[h // 2][w // 2][:3]]
+share = [(px['bounce'][c] - px['black'][c]) / (px['full'][c] - px['black'][c]) for c in range(3)]
+V = px['black'][1] / px['full'][1]
+print('# V %.4f; A (integrated) %s; bounce share (rendered) %s' % (V, ' '.join('%.4f' % x for x in A),
+      ' '.join('%.4f' % x for x in share)))
+sys.exit(not (0.3 < V < 0.6 and all(abs(share[c] - A[c]) < 0.005 for c in range(3))))
+"
+
 scene none 0 skin
 "$SKINBAKE" export pov --scene "$tmpd/none.scene" --bake "$B" --out "$tmpd/none" >/dev/null 2>"$tmpd/none.err"
 check "fill_occlusion = 0: no map, the plain fill" sh -c "! ls '$tmpd/none' | grep -q _ao_ && ! grep -q _ao_ '$tmpd/none/none.pov'"

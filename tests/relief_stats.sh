@@ -72,6 +72,54 @@ for s in face forehead cheek; do
 		awk -v a="$pd" -v b="$fd" 'BEGIN { exit !(a > b) }'
 done
 
+# The cavity map (cavity.png, docs/relief.md), on the 8 mm tiles above: a pore is a light trap and
+# counts in full, a furrow is filled in by light from under the plateaus beside it and counts with
+# the weight 0.3, so the pore bottoms are darker than the furrow bottoms; the map is listed, in
+# [0, 1] with a mean near 1, and seamless (the wrap column's differences are distributed like the
+# interior columns', as for height.png in tests/texture_cli.sh).
+if command -v python3 >/dev/null 2>&1; then
+	for s in face cheek; do
+		python3 - "$tmpd/pores-$s" >"$tmpd/cav-$s.txt" 2>&1 <<'EOF'
+import json, math, os, sys
+sys.path.insert(0, os.path.join(os.environ["top_srcdir"], "tests", "lib"))
+import images
+d = sys.argv[1]
+m = json.load(open(d + "/manifest.json"))
+def gray(name):
+    w, h, ch, bits, rows, text = images.read_png(d + "/" + name)
+    return w, h, [px[0] for row in rows for px in row], text
+w, h, cav, _ = gray("cavity.png")
+cav = [v / 65535.0 for v in cav]
+def heights(name):
+    w, h, v, t = gray(name)
+    lo, hi = float(t["skinbake:height_min_um"]), float(t["skinbake:height_max_um"])
+    return [lo + x / 65535.0 * (hi - lo) for x in v]
+pores, furrows = heights("pores_height.png"), heights("furrows_height.png")
+pmin, fmin = min(pores), min(furrows)
+in_pore = [c for c, p in zip(cav, pores) if p < 0.5 * pmin]
+in_furrow = [c for c, p, f in zip(cav, pores, furrows) if p == 0 and f < 0.5 * fmin]
+mp, mf = sum(in_pore) / len(in_pore), sum(in_furrow) / len(in_furrow)
+def rms_col(c):
+    return math.sqrt(sum((cav[r * w + (c + 1) % w] - cav[r * w + c]) ** 2 for r in range(h)) / h)
+inner = sorted(rms_col(c) for c in range(w - 1))
+seam, med = rms_col(w - 1), inner[len(inner) // 2]
+print("listed", int("cavity.png" in m["files"] and "cavity" in m))
+print("range %.4f %.4f %.4f" % (min(cav), max(cav), sum(cav) / len(cav)))
+print("pore_bottoms %.4f furrow_bottoms %.4f" % (mp, mf))
+print("seam %.4g median %.4g" % (seam, med))
+EOF
+		v() { awk -v k="$1" -v i="$2" '$1 == k { print $i }' "$tmpd/cav-$s.txt"; }
+		sed 's/^/# /' "$tmpd/cav-$s.txt"
+		check "site $s: cavity.png written and listed" test "$(v listed 2)" = 1
+		check "site $s: cavity in [0, 1], mean $(v range 4) in (0.9, 1)" awk -v lo="$(v range 2)" \
+			-v hi="$(v range 3)" -v m="$(v range 4)" 'BEGIN { exit !(lo >= 0 && hi <= 1 && m > 0.9 && m < 1) }'
+		check "site $s: pore bottoms ($(v pore_bottoms 2)) darker than furrow bottoms ($(v pore_bottoms 4))" \
+			awk -v p="$(v pore_bottoms 2)" -v f="$(v pore_bottoms 4)" 'BEGIN { exit !(p < f && f < 1) }'
+		check "site $s: cavity.png seamless (wrap $(v seam 2), interior median $(v seam 4))" \
+			awk -v a="$(v seam 2)" -v b="$(v seam 4)" 'BEGIN { exit !(a >= 0.5 * b && a <= 2 * b) }'
+	done
+fi
+
 # Without the range table nothing is compared, and the report says so (not "0 outside").
 SKINBAKE_DATADIR="$tmpd/none" "$S" texture --site face --size 64 --quiet --stats --out "$tmpd/notable" >"$tmpd/notable.txt"
 check "no range table: report says not compared" sh -c \

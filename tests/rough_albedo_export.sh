@@ -19,7 +19,7 @@ for k in rough smooth; do
 	printf '[skin]\nbase = fair-dry\nname = %s\n[surface]\nroughness = %s\n' $k $r >"$tmpd/$k.ini"
 	"$SKINBAKE" bake --preset-file "$tmpd/$k.ini" --solver mc --wavelengths 550 --theta-in 10,60 --target-error 0.3 \
 		--batch-photons 200 --threads 1 --out "$tmpd/$k" --quiet && ok "$k bake" || fail "$k bake"
-	"$SKINBAKE" export blender --bake "$tmpd/$k" --out "$tmpd/$k-bl" >/dev/null 2>&1 \
+	"$SKINBAKE" export blender --bake "$tmpd/$k" --out "$tmpd/$k-bl" --mode exact >/dev/null 2>&1 \
 		&& ok "$k: export blender" || fail "$k: export blender"
 	# a(90): the diffuse at theta_i 90 over 64 x 48 midpoints (cos theta_o, delta_phi over [0, 180]).
 	awk 'BEGIN { for (u = 0; u < 64; u++) for (p = 0; p < 48; p++)

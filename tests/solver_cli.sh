@@ -30,7 +30,7 @@ assert rad['photons']>=3*1024 and rad['target_rel_err']==0.1 and len(rad['mean_r
 assert all(0<e<0.12*x for x,e in zip(rad['mean_radius_cm'],rad['mean_radius_err_cm']))"
 check "eval reads the ad bake" sh -c "'$B' eval --bake '$out' --theta-in 20 --theta-out 35 --phi 40 --json | python3 -c '
 import json,sys; d=json.load(sys.stdin); assert len(d[\"diffuse\"])==3 and all(x>0 for x in d[\"diffuse\"])'"
-check "export blender reads the ad bake" "$B" export blender --bake "$out" --out "$tmpd/blend" --lut-cos 8 --lut-phi 3
+check "export blender reads the ad bake" "$B" export blender --bake "$out" --out "$tmpd/blend" --lut-cos 8 --lut-phi 3 --mode exact
 check "export pov reads the ad bake" "$B" export pov --bake "$out" --scene "$top_srcdir/scenes/sphere.scene" \
 	--out "$tmpd/pov" --data-dir "$top_srcdir/exporters/pov"
 

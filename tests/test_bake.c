@@ -377,6 +377,48 @@ static void test_ad_orders_albedo(void **state)
 	bake_result_free(&b);
 }
 
+/* A mean radius with a stated error of exactly 0 is refused (a Monte Carlo
+ * estimate of returned light always has a spread): given profiles (the
+ * family's shared Rd(r) path) with no photon in the bins, and with all of
+ * them in the first bin; a profile with a spread is baked. */
+static void test_zero_radius_error_refused(void **state)
+{
+	(void)state;
+	static struct bake_spec s;
+	base_spec(&s);
+	s.method = solvers_index("ad");
+	s.ad_quad = 8;
+	s.ad_tol = 0.01;
+	s.n_ti = 1;
+	static double zero[20], err0[20], one[20], spread[20], spread_err[20];
+	one[0] = 5.0;
+	for (int i = 0; i < 20; i++) {
+		spread[i] = 10.0 * exp(-i / 4.0);
+		spread_err[i] = 0.02 * spread[i];
+	}
+	const double *cases[3][2] = { { zero, err0 }, { one, err0 }, { spread, spread_err } };
+	for (int c = 0; c < 3; c++) {
+		struct bake_radial_given g = { .photons = 1000, .n_shared = 2 };
+		for (int w = 0; w < s.n_wl; w++) {
+			g.rd_r[w] = cases[c][0];
+			g.rd_r_err[w] = cases[c][1];
+		}
+		s.radial_given = &g;
+		struct bake_result r;
+		char *cause = NULL;
+		int rc = bake_run(&s, &r, &cause);
+		if (c < 2) {
+			assert_int_equal(rc, -1);
+			assert_non_null(strstr(cause, "stated error of 0"));
+			free(cause);
+		} else {
+			assert_int_equal(rc, 0);
+			assert_true(r.mean_radius_err_cm[0] > 0.0);
+			bake_result_free(&r);
+		}
+	}
+}
+
 int main(void)
 {
 	const struct CMUnitTest tests[] = {
@@ -388,6 +430,7 @@ int main(void)
 		cmocka_unit_test(test_reciprocity),
 		cmocka_unit_test(test_solver_seam),
 		cmocka_unit_test(test_ad_orders_albedo),
+		cmocka_unit_test(test_zero_radius_error_refused),
 	};
 	return cmocka_run_group_tests_name("bake", tests, NULL, NULL);
 }

@@ -3,7 +3,8 @@
  * crossed sinusoids (isotropic and stretched: the discrete structure tensor
  * exactly), a diagonal sinusoid (direction) and flat-bottomed discs (pore
  * count, density, diameter to the lattice bound) and a triangle wave (the
- * developed area ratio Sdr). */
+ * developed area ratio Sdr); the cavity map against a flat map, a tilted
+ * plane and a round hole. */
 #include <stdarg.h>
 #include <stddef.h>
 #include <stdint.h>
@@ -12,6 +13,7 @@
 #include <math.h>
 #include <stdlib.h>
 
+#include "geom/relief_cavity.h"
 #include "geom/relief_far.h"
 #include "geom/relief_stats.h"
 
@@ -186,6 +188,56 @@ static void test_far_alpha(void **state)
 	free(nz);
 }
 
+/* A round flat-bottomed hole of radius R px and depth D centred on pixel
+ * (r0, c0), wrapped. */
+static void hole(float *h, int r0, int c0, double R, double D)
+{
+	for (int r = 0; r < N; r++)
+		for (int c = 0; c < N; c++) {
+			int dr = abs(r - r0), dc = abs(c - c0);
+			dr = dr > N / 2 ? N - dr : dr;
+			dc = dc > N / 2 ? N - dc : dc;
+			h[r * N + c] = dr * dr + dc * dc < R * R ? (float)-D : 0.0f;
+		}
+}
+
+/* cavity: 1 on flat and on tilted planes (the horizon is taken from the
+ * tangent plane); at the centre of a round hole of radius R and depth D the
+ * horizon is at atan(D / R) all round, so cavity = R^2 / (R^2 + D^2), here
+ * 1/2; the one-pixel wall of the sampled hole puts the rim up to a pixel
+ * further (0.49 to 0.53 accepted).  A hole across the corner of the tile gives the
+ * same value as one in the middle (no seam). */
+static void test_cavity(void **state)
+{
+	(void)state;
+	float *h = malloc(sizeof *h * N * N), *cav = malloc(sizeof *cav * N * N);
+	for (int i = 0; i < N * N; i++)
+		h[i] = 0;
+	relief_cavity(N, PITCH, h, 20 * PITCH, cav);
+	for (int i = 0; i < N * N; i++)
+		assert_true(cav[i] == 1.0f);
+	for (int r = 0; r < N; r++)
+		for (int c = 0; c < N; c++)
+			h[r * N + c] = (float)(0.7 * c * PITCH);
+	relief_cavity(N, PITCH, h, 8 * PITCH, cav);
+	for (int r = 0; r < N; r++)
+		for (int c = 10; c < N - 10; c++)
+			assert_true(fabs(cav[r * N + c] - 1) < 1e-6);
+	const double R = 16;
+	hole(h, N / 2, N / 2, R, R * PITCH);
+	relief_cavity(N, PITCH, h, 40 * PITCH, cav);
+	double mid = cav[(N / 2) * N + N / 2];
+	assert_true(mid > 0.49 && mid < (R + 1) * (R + 1) / ((R + 1) * (R + 1) + R * R));
+	assert_true(cav[3 * N + 3] == 1.0f);	/* far from the hole */
+	hole(h, 0, 0, R, R * PITCH);
+	relief_cavity(N, PITCH, h, 40 * PITCH, cav);
+	assert_true(fabs(cav[0] - mid) < 1e-5);
+	assert_true(fabs(relief_cavity_radius(0.035, 0.2) - 0.035) < 1e-15);
+	assert_true(fabs(relief_cavity_radius(0.5, 0.2) - 0.1) < 1e-15);
+	free(h);
+	free(cav);
+}
+
 static void test_bad_input(void **state)
 {
 	(void)state;
@@ -206,6 +258,7 @@ int main(void)
 		cmocka_unit_test(test_discs),
 		cmocka_unit_test(test_developed_area),
 		cmocka_unit_test(test_far_alpha),
+		cmocka_unit_test(test_cavity),
 		cmocka_unit_test(test_bad_input),
 	};
 	return cmocka_run_group_tests(tests, NULL, NULL);

@@ -441,6 +441,23 @@ static int bake_solve_p(const struct bake_spec *s, const struct solver_problem *
 			r->mean_radius_err_cm[w] =
 			    tally_mean_radius_err(e->rd_r, e->rd_r_err, s->n_r, s->dr);
 	}
+	/* A Monte Carlo mean radius of light that came back (diffuse albedo
+	 * above 0) always has a spread: a stated error of exactly 0 (or not a
+	 * number) means that no photon was scored in the bins, or that the
+	 * estimator failed, and the bake is refused rather than written. */
+	for (int w = 0; w < s->n_wl && s->n_r > 0; w++) {
+		double err = r->mean_radius_err_cm[w];
+		const struct brdf_entry *e = &r->table.entry[w * s->n_ti];
+		if (e->albedo.v > 0.0 && !(err > 0.0 && isfinite(err))) {
+			*cause = xasprintf("Rd(r) at %g nm: the mean radius %g cm has a stated "
+			    "error of %g (diffuse albedo %g): a Monte Carlo estimate without "
+			    "spread, so no photon was scored in the %d bins of %g cm or the "
+			    "estimator failed; bake refused", s->wl_nm[w], r->mean_radius_cm[w],
+			    err, e->albedo.v, s->n_r, s->dr);
+			bake_result_free(r);
+			return -1;
+		}
+	}
 	return 0;
 }
 

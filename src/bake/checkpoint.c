@@ -14,7 +14,17 @@
 #include "base/util.h"
 
 static const char MAGIC[] = "skinbake checkpoint 1\n";
-enum { NAME_MAX_CK = 16 };
+/* Checkpoints of units (family members) are append-only: the same header
+ * (magic, identity, count), then each record followed by a chained FNV-1a
+ * hash (of the previous record's hash, or of the header's magic and
+ * identity, and the record's bytes).  A save appends the new records,
+ * syncs them, then writes the count in place and syncs again, so the file
+ * always holds a complete earlier checkpoint: the records past the count
+ * (an append cut short) are ignored and cut off by the next save.  Each
+ * save writes only the new members (the whole file once grew to 98 MB per
+ * save on the 8 x 6 family, 15 % of its CPU). */
+static const char MAGIC_UNITS[] = "skinbake checkpoint 2\n";
+enum { NAME_MAX_CK = 16, COUNT_AT = sizeof MAGIC + sizeof(uint64_t) };
 
 struct record {
 	unsigned char *state;	/* packed by the method; NULL: none yet */
@@ -33,6 +43,10 @@ struct checkpoint {
 	int n_loaded;		/* runs read from the file */
 	int seq;		/* solver runs begun in this process */
 	const char *unit;	/* what a record is, for the note: "solver run" or "member" */
+	int units;		/* 1: the append-only file of units (MAGIC_UNITS) */
+	int n_saved;		/* units: records in the file (its count) */
+	off_t end;		/* units: bytes of the file up to its last counted record */
+	uint64_t chain;		/* units: the hash after the last counted record */
 	char *note, *error;
 	struct solver_ckpt hooks;
 	struct lock *lock;	/* held while this process writes the file (base/lock.h) */
@@ -91,6 +105,76 @@ static unsigned char *slurp(const char *path, size_t *len, char **cause)
 	return b;
 }
 
+static int wrong_id(struct checkpoint *c, uint64_t id, char **cause)
+{
+	*cause = xasprintf("%s was written by a different bake (identity %016llx; this command's is %016llx: "
+	    "another preset, wavelengths, angles, grid, solver setting or seed); run that command with --resume, "
+	    "or remove the file", c->path, (unsigned long long)id, (unsigned long long)c->id);
+	return -1;
+}
+
+/* The append-only file of units b[len] (frees b) into c->rec. */
+static int load_units(struct checkpoint *c, unsigned char *b, size_t len, char **cause)
+{
+	struct solver_buf in = { .p = b, .len = len };
+	char magic[sizeof MAGIC_UNITS];
+	uint64_t id = 0;
+	uint32_t n = 0;
+	solver_buf_get(&in, magic, sizeof magic);
+	solver_buf_get(&in, &id, sizeof id);
+	solver_buf_get(&in, &n, sizeof n);
+	if (in.bad || memcmp(magic, MAGIC_UNITS, sizeof MAGIC_UNITS) != 0) {
+		free(b);
+		*cause = xasprintf("%s is not a complete skinbake checkpoint (damaged, or of "
+		    "another version); remove it to bake from the start", c->path);
+		return -1;
+	}
+	if (id != c->id) {
+		free(b);
+		return wrong_id(c, id, cause);
+	}
+	uint64_t h = fnv(FNV0, b, sizeof MAGIC_UNITS + sizeof id);
+	if (n > len)
+		in.bad = 1;
+	c->rec = xcalloc(n && !in.bad ? n : 1, sizeof *c->rec);
+	c->cap = n && !in.bad ? (int)n : 1;
+	for (uint32_t i = 0; i < n && !in.bad; i++) {
+		struct record *r = &c->rec[i];
+		size_t at = in.pos;
+		uint64_t sum = 0;
+		solver_buf_get(&in, &r->done, sizeof r->done);
+		solver_buf_get(&in, r->method, sizeof r->method);
+		solver_buf_get(&in, &r->len, sizeof r->len);
+		if (in.bad || r->len > in.len - in.pos || in.len - in.pos - r->len < sizeof sum) {
+			in.bad = 1;
+			break;
+		}
+		in.pos += r->len;
+		h = fnv(h, b + at, in.pos - at);
+		solver_buf_get(&in, &sum, sizeof sum);
+		if (sum != h) {
+			in.bad = 1;
+			break;
+		}
+		r->state = xmalloc(r->len ? r->len : 1);
+		memcpy(r->state, b + in.pos - sizeof sum - r->len, r->len);
+		r->method[NAME_MAX_CK - 1] = '\0';
+		c->n = (int)i + 1;
+	}
+	free(b);
+	if (in.bad) {
+		*cause = xasprintf("%s: its records are inconsistent; remove it to bake from the "
+		    "start", c->path);
+		return -1;
+	}
+	c->n_loaded = c->n_saved = c->n;
+	c->end = (off_t)in.pos;
+	c->chain = h;
+	c->note = xasprintf("resuming from %s: %d member%s finished\n", c->path, c->n,
+	    c->n == 1 ? "" : "s");
+	return 0;
+}
+
 /* Parse the file into c->rec; -1 and *cause when it is damaged or foreign. */
 static int load(struct checkpoint *c, char **cause)
 {
@@ -103,6 +187,8 @@ static int load(struct checkpoint *c, char **cause)
 	uint64_t id, sum, want = len >= 8 ? fnv(FNV0, b, len - 8) : 0;
 	uint32_t n = 0;
 	solver_buf_get(&in, magic, sizeof magic);
+	if (c->units)
+		return load_units(c, b, len, cause);
 	if (in.bad || memcmp(magic, MAGIC, sizeof MAGIC) != 0 || (memcpy(&sum, b + len - 8, 8), sum != want)) {
 		*cause = xasprintf("%s is not a complete skinbake checkpoint (damaged, or of another version); remove it "
 		    "to bake from the start", c->path);
@@ -112,11 +198,8 @@ static int load(struct checkpoint *c, char **cause)
 	in.len -= 8;
 	solver_buf_get(&in, &id, sizeof id);
 	if (id != c->id) {
-		*cause = xasprintf("%s was written by a different bake (identity %016llx; this command's is %016llx: "
-		    "another preset, wavelengths, angles, grid, solver setting or seed); run that command with --resume, "
-		    "or remove the file", c->path, (unsigned long long)id, (unsigned long long)c->id);
 		free(b);
-		return -1;
+		return wrong_id(c, id, cause);
 	}
 	solver_buf_get(&in, &n, sizeof n);
 	if (n > len) {
@@ -171,6 +254,19 @@ static int write_all(int fd, const void *v, size_t n)
 	return 0;
 }
 
+/* fsync of the directory holding c->path (after a rename or a creation). */
+static void sync_dir(const struct checkpoint *c)
+{
+	char *slash = strrchr(c->path, '/');
+	char *dir = slash ? xasprintf("%.*s", slash == c->path ? 1 : (int)(slash - c->path), c->path) : xstrdup(".");
+	int dfd = open(dir, O_RDONLY | O_DIRECTORY | O_CLOEXEC);
+	if (dfd >= 0) {
+		fsync(dfd);
+		close(dfd);
+	}
+	free(dir);
+}
+
 /* The records to path.tmp, fsync, rename onto path, fsync of the directory. */
 static int save_file(struct checkpoint *c, char **cause)
 {
@@ -205,14 +301,75 @@ static int save_file(struct checkpoint *c, char **cause)
 		*cause = xasprintf("%s: %s", c->path, strerror(err));
 		return -1;
 	}
-	char *slash = strrchr(c->path, '/');
-	char *dir = slash ? xasprintf("%.*s", slash == c->path ? 1 : (int)(slash - c->path), c->path) : xstrdup(".");
-	int dfd = open(dir, O_RDONLY | O_DIRECTORY | O_CLOEXEC);
-	if (dfd >= 0) {
-		fsync(dfd);
-		close(dfd);
+	sync_dir(c);
+	return 0;
+}
+
+static int pwrite_all(int fd, const void *v, size_t n, off_t at)
+{
+	const unsigned char *p = v;
+	while (n > 0) {
+		ssize_t k = pwrite(fd, p, n, at);
+		if (k < 0 && errno == EINTR)
+			continue;
+		if (k <= 0)
+			return -1;
+		p += k;
+		n -= (size_t)k;
+		at += k;
 	}
-	free(dir);
+	return 0;
+}
+
+/* Units: append the records not yet in the file (see MAGIC_UNITS), then
+ * the count; the appended states are freed (they are never read back). */
+static int save_units(struct checkpoint *c, char **cause)
+{
+	int fresh = c->end == 0;
+	int fd = open(c->path, O_WRONLY | O_CREAT | O_CLOEXEC, 0644);
+	struct solver_buf b = { 0 };
+	uint32_t n = (uint32_t)c->n;
+	uint64_t h = c->chain;
+	if (fresh) {
+		uint32_t zero = 0;
+		solver_buf_put(&b, MAGIC_UNITS, sizeof MAGIC_UNITS);
+		solver_buf_put(&b, &c->id, sizeof c->id);
+		h = fnv(FNV0, b.p, b.len);
+		solver_buf_put(&b, &zero, sizeof zero);
+	}
+	for (int i = c->n_saved; i < c->n; i++) {
+		const struct record *r = &c->rec[i];
+		size_t at = b.len;
+		solver_buf_put(&b, &r->done, sizeof r->done);
+		solver_buf_put(&b, r->method, sizeof r->method);
+		solver_buf_put(&b, &r->len, sizeof r->len);
+		solver_buf_put(&b, r->state, r->len);
+		h = fnv(h, b.p + at, b.len - at);
+		solver_buf_put(&b, &h, sizeof h);
+	}
+	int rc = fd < 0 || ftruncate(fd, c->end) != 0 || pwrite_all(fd, b.p, b.len, c->end) != 0 ||
+	    fdatasync(fd) != 0 || pwrite_all(fd, &n, sizeof n, COUNT_AT) != 0 || fdatasync(fd) != 0 ?
+	    -1 : 0;
+	int err = errno;
+	if (fd >= 0 && close(fd) != 0 && rc == 0) {
+		rc = -1;
+		err = errno;
+	}
+	if (rc != 0) {
+		free(b.p);
+		*cause = xasprintf("%s: %s", c->path, strerror(err));
+		return -1;
+	}
+	if (fresh)
+		sync_dir(c);
+	c->end += (off_t)b.len;
+	c->chain = h;
+	for (int i = c->n_saved > c->n_loaded ? c->n_saved : c->n_loaded; i < c->n; i++) {
+		free(c->rec[i].state);
+		c->rec[i].state = NULL;
+	}
+	c->n_saved = c->n;
+	free(b.p);
 	return 0;
 }
 
@@ -260,6 +417,7 @@ static struct checkpoint *open_id(const char *out, uint64_t id, const char *unit
     char **cause)
 {
 	struct checkpoint *c = xcalloc(1, sizeof *c);
+	c->units = strcmp(unit, "member") == 0;
 	c->path = checkpoint_path(out);
 	c->tmp = xasprintf("%s.tmp", c->path);
 	c->id = id;
@@ -334,7 +492,7 @@ void checkpoint_unit_add(struct checkpoint *c, const void *state, size_t len)
 	r->done = 1;
 	snprintf(r->method, sizeof r->method, "member");
 	double now = util_now();
-	if (c->error == NULL && now - c->last >= c->every_s && save_file(c, &c->error) == 0)
+	if (c->error == NULL && now - c->last >= c->every_s && save_units(c, &c->error) == 0)
 		c->last = now;
 }
 

@@ -52,8 +52,10 @@ struct checkpoint *checkpoint_open(const char *out, uint64_t id, int resume, int
  * (seeded with 0 or with checkpoint_identity).  checkpoint_open_units acts
  * as checkpoint_open (same errors); checkpoint_units is how many units
  * were restored, checkpoint_unit the k-th of them (owned by c);
- * checkpoint_unit_add appends one (when c writes) and writes the file when
- * every_s seconds have passed since the last write. */
+ * checkpoint_unit_add appends one (when c writes) and, when every_s
+ * seconds have passed since the last write, appends the units not yet in
+ * the file to it (an append-only file, "skinbake checkpoint 2": the units
+ * already written are not written again; checkpoint.c). */
 uint64_t checkpoint_hash(uint64_t h, const void *v, size_t n);
 struct checkpoint *checkpoint_open_units(const char *out, uint64_t id, int resume, int write, double every_s,
     char **cause);

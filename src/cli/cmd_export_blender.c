@@ -3,6 +3,7 @@
 #include "config.h"
 
 #include <math.h>
+#include <stdio.h>
 #include <stdlib.h>
 #include <string.h>
 
@@ -17,10 +18,12 @@
 
 static const char *CMD = "export blender";
 
+enum { MODE_EXACT, MODE_TRANSLUCENT, MODE_AUTO };	/* --mode, in its choices' order */
+
 /* After the options: the bake (and textures) as a BRDF source, the image set;
  * translucent: Cycles' subsurface node fitted to Rd(r), the table the rest. */
 static int run(const char *bake_dir, const char *tex_dir, const char *out, const struct blender_options *o,
-    int translucent)
+    int mode)
 {
 	char *cause = NULL;
 	struct brdf_source *src = brdf_source_open(bake_dir, &cause);
@@ -31,11 +34,17 @@ static int run(const char *bake_dir, const char *tex_dir, const char *out, const
 	}
 	struct blender_set *s = NULL;
 	struct blender_sss w;
-	int rc = CLI_EXIT_OK;
-	if (blender_check(src, o, &cause) != 0 || (tex_dir && brdf_source_add_textures(src, tex_dir, &cause) != 0) ||
-	    (translucent && blender_sss_wrap(src, &w, &cause) != 0) || (s = blender_prepare(src, o, &cause)) == NULL)
+	int rc = CLI_EXIT_OK, translucent = mode == MODE_TRANSLUCENT;
+	char *note = NULL;
+	if (blender_check(src, o, &cause) != 0 ||
+	    (tex_dir && brdf_source_add_textures(src, tex_dir, &cause) != 0) ||
+	    (translucent && blender_sss_wrap(src, &w, &cause) != 0))
 		rc = cli_usage_error(CMD, "%s", cause);
-	else {
+	else if (mode == MODE_AUTO && (translucent = blender_sss_auto(src, tex_dir != NULL, &w, &note)) >= 0)
+		fprintf(stderr, "skinbake %s: %s\n", CMD, note);
+	if (rc == CLI_EXIT_OK && (s = blender_prepare(src, o, &cause)) == NULL)
+		rc = cli_usage_error(CMD, "%s", cause);
+	else if (rc == CLI_EXIT_OK) {
 		if (translucent) {
 			char *j = blender_sss_json(&w, NULL);
 			blender_set_add_section(s, "translucent", j);
@@ -45,6 +54,7 @@ static int run(const char *bake_dir, const char *tex_dir, const char *out, const
 			rc = rc == -1 ? cli_usage_error(CMD, "%s", cause) : cli_fail(CMD, "%s", cause);
 	}
 	free(cause);
+	free(note);
 	blender_set_free(s);
 	brdf_source_free(src);
 	return rc;
@@ -73,7 +83,7 @@ int cmd_export_blender(int argc, char **argv)
 	struct blender_options o;
 	const char *bake_dir = NULL, *out, *tex_dir = NULL, *fam_dir = NULL, *maps_dir = NULL;
 	double se, sa, ve, va;
-	int sub, translucent = 0;
+	int sub, mode = MODE_AUTO;
 	blender_options_default(&o);
 	const struct opt opts[] = {
 		{ "bake", OPT_PATH_IN, &bake_dir, "DIR", .flags = OPT_REQUIRED | OPT_DIR, .excl = "family",
@@ -103,9 +113,10 @@ int cmd_export_blender(int argc, char **argv)
 		  .help = "delta_phi nodes over [0, 180] degrees," },
 		{ "map-size", OPT_INT, &o.map_size, "PX", "16", .lo = BLENDER_MAP_MIN, .hi = BLENDER_MAP_MAX, .unit = "px",
 		  .help = "side of albedo.exr, roughness.png and the flat detail maps," },
-		{ "mode", OPT_ENUM, &translucent, .choices = "exact|translucent", .def = "exact",
-		  .help = "translucent: Cycles' subsurface fitted to Rd(r) beside the rest of the table (docs/translucency.md; "
-		  "with --family: per texel, docs/maps.md)" },
+		{ "mode", OPT_ENUM, &mode, .choices = "exact|translucent|auto", .def = "auto",
+		  .help = "translucent: Cycles' subsurface fitted to Rd(r) beside the rest of the table "
+		  "(docs/translucency.md; with --family: per texel, docs/maps.md); auto: translucent "
+		  "for a --bake without --textures, else exact, saying why" },
 		OPT_END
 	};
 	const struct opt_cmd cmd = { "export blender", "--bake DIR --out DIR [options]",
@@ -129,7 +140,10 @@ int cmd_export_blender(int argc, char **argv)
 	const char *in[] = { bake_dir, tex_dir, fam_dir, maps_dir };
 	if (opt_out_check(&x, out, &blender_outdir_kind, in, 4) != 0)
 		return CLI_EXIT_USAGE;
+	if (fam_dir && mode == MODE_AUTO)
+		fprintf(stderr, "skinbake %s: exact (--mode auto: a --family)\n", CMD);
 	if (fam_dir)
-		return run_family(fam_dir, maps_dir, tex_dir, out, sub, &o, translucent);
-	return run(bake_dir, tex_dir, out, &o, translucent);
+		return run_family(fam_dir, maps_dir, tex_dir, out, sub, &o,
+		    mode == MODE_TRANSLUCENT);
+	return run(bake_dir, tex_dir, out, &o, mode);
 }

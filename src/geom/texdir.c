@@ -17,6 +17,7 @@
 #include "base/outdir.h"
 #include "base/srgb.h"
 #include "base/util.h"
+#include "geom/relief_cavity.h"
 #include "geom/relief_far.h"
 #include "io/exrio.h"
 #include "io/json.h"
@@ -123,6 +124,8 @@ struct outputs {
 	int far_m;	/* roughness_far.png edge [px] */
 	float *far_alpha;	/* its alpha_relief values [1] */
 	double far_block_um;	/* its texel on the skin [um] */
+	float *cavity;		/* cavity.png's values [1], n x n */
+	double cavity_um;	/* its look-around radius [um] */
 };
 
 static char *path_in(const struct outputs *o, const char *name)
@@ -349,9 +352,26 @@ static int write_manifest(const struct outputs *o, const struct relief *r, struc
 	json_object_object_add(far, "alpha_mean", json_num(amean));
 	json_object_object_add(far, "alpha_max", json_num(amax));
 	json_object_object_add(m, "far_roughness", far);
+	json_object *cv = json_object_new_object();
+	double cmean = 0, cmin = 1;
+	size_t ncv = (size_t)o->cfg->size * (size_t)o->cfg->size;
+	for (size_t i = 0; i < ncv; i++) {
+		cmean += o->cavity[i] / (double)ncv;
+		cmin = fmin(cmin, o->cavity[i]);
+	}
+	json_object_object_add(cv, "file", json_object_new_string("cavity.png"));
+	json_object_object_add(cv, "radius_um", json_num(o->cavity_um));
+	json_object_object_add(cv, "furrow_weight", json_num(RELIEF_CAVITY_FURROW_WEIGHT));
+	json_object_object_add(cv, "mean", json_num(cmean));
+	json_object_object_add(cv, "min", json_num(cmin));
+	json_object_object_add(cv, "encoding", json_object_new_string(
+	    "16-bit gray, cavity = value / 65535 = AO(pores) * AO(furrows)^furrow_weight, "
+	    "horizon-based ambient occlusion of each relief (1 = open sky); multiply into "
+	    "the skin's shading (docs/relief.md)"));
+	json_object_object_add(m, "cavity", cv);
 	static const char *files[] = { "height.png", "normal.png", "normal.exr", "height.exr",
 		"preview.png", "pores_height.png", "furrows_height.png", "roughness_far.png",
-		"manifest.json" };
+		"cavity.png", "manifest.json" };
 	json_object *fl = json_object_new_array();
 	for (size_t i = 0; i < sizeof files / sizeof files[0]; i++)
 		json_object_array_add(fl, json_object_new_string(files[i]));
@@ -366,7 +386,7 @@ static int write_manifest(const struct outputs *o, const struct relief *r, struc
 
 static const char *const texdir_names[] = {
 	"height.png", "normal.png", "normal.exr", "height.exr", "preview.png",
-	"pores_height.png", "furrows_height.png", "roughness_far.png", NULL
+	"pores_height.png", "furrows_height.png", "roughness_far.png", "cavity.png", NULL
 };
 const struct outdir_kind texdir_outdir_kind = {
 	"texture directory", "manifest.json", "kind", "skinbake texture", texdir_names
@@ -392,13 +412,18 @@ static int write_files(const char *dir, const struct texture_config *cfg, const 
 	o.far_block_um = cfg->relief.tile / o.far_m * 1e4;
 	relief_far_alpha(m->n, m->nx, m->ny, m->nz, o.far_m, o.far_alpha);
 	char *far_path = path_in(&o, "roughness_far.png");
+	double cav_r = relief_cavity_radius(cell, cfg->relief.tile);
+	o.cavity = xmalloc(sizeof *o.cavity * npx);
+	o.cavity_um = cav_r * 1e4;
+	relief_cavity_combined(m->n, pitch, m->pores, m->furrows, cav_r, o.cavity);
+	char *cav_path = path_in(&o, "cavity.png");
 	/* The writers are independent (own libpng / OpenEXR contexts), and
 	 * compression dominates, so they run in parallel; the manifest, which
 	 * lists them, comes last. */
-	char *why[7] = { NULL };
+	char *why[8] = { NULL };
 	int failed = 0;
 #pragma omp parallel for schedule(dynamic, 1) reduction(|:failed)
-	for (int t = 0; t < 7; t++) {
+	for (int t = 0; t < 8; t++) {
 		int e = 0;
 		switch (t) {
 		case 0:
@@ -421,6 +446,10 @@ static int write_files(const char *dir, const struct texture_config *cfg, const 
 			e = write_height_png(&o, "furrows_height.png", "furrows", m->furrows, sf,
 			    &why[t]);
 			break;
+		case 6:
+			e = relief_cavity_write(cav_path, m->n, o.cavity, o.cavity_um, cfg->site,
+			    o.software, &why[t]);
+			break;
 		default:
 			e = relief_far_write(far_path, o.far_m, o.far_alpha, o.far_block_um,
 			    cfg->site, o.software, &why[t]);
@@ -428,15 +457,17 @@ static int write_files(const char *dir, const struct texture_config *cfg, const 
 		}
 		failed |= e != 0;
 	}
-	for (int t = 0; t < 7; t++) {
+	for (int t = 0; t < 8; t++) {
 		if (why[t] && *cause == NULL)
 			*cause = why[t];
 		else
 			free(why[t]);
 	}
 	free(far_path);
+	free(cav_path);
 	int rc = failed ? -1 : write_manifest(&o, r, sh, sp, sf, cause);
 	free(o.far_alpha);
+	free(o.cavity);
 	return rc;
 }
 

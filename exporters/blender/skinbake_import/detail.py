@@ -27,6 +27,7 @@ def detail_normal(tr, m, no_detail, geo, far=False):
     the face maps, mean n_z 0.87, rendered 13 % dark); with it the mean irradiance is exact."""
     d = m["detail"]
     tr.far = None
+    tr.detail_co = None
     if no_detail or d.get("flat") or not d.get("tile_mm"):
         return None, None
     img = load_image(m, "normal")
@@ -38,6 +39,7 @@ def detail_normal(tr, m, no_detail, geo, far=False):
     rep.node.label = f"tiles per UV unit (tile {float(d['tile_mm']):g} mm)"
     co = tr.vmath("MULTIPLY", uv.outputs["UV"], tr.xyz(rep, rep, 1.0, (-1650, -900)), loc=(-1500, -750))
     t = tr.tex(img, co, (-1300, -700), label="normal.png (OpenGL +Y)")
+    tr.detail_co = co
     nm = tr.node("ShaderNodeNormalMap", (-1000, -700), space="TANGENT")
     tr.link(t.outputs["Color"], nm.inputs["Color"])
     if far:
@@ -204,3 +206,33 @@ def far_area_mean(tr, area_mean):
     if far is None or not isinstance(far[0], float):
         return area_mean
     return 1.0 + (1.0 - far[0]) * (area_mean - 1.0)
+
+
+def cavity(tr, m, shader, loc=(1300, 200)):
+    """The skin's shader darkened by the relief's cavity (cavity.png tiled like normal.png): a
+    Mix Shader between nothing (a black emission) at factor 0 and the skin at 1, i.e. the skin's
+    light times the cavity, so furrows and pores are darker than their slopes alone make them
+    (docs/relief.md).  The shader itself when the set has no cavity map, the detail is off, or
+    SKINBAKE_CAVITY=off."""
+    co = getattr(tr, "detail_co", None)
+    if co is None or "cavity" not in m["files"] or os.environ.get("SKINBAKE_CAVITY") == "off":
+        return shader
+    x, y = loc
+    img = load_image(m, "cavity")
+    t = tr.tex(img, co, (x - 600, y - 300), label="cavity.png (ambient occlusion of the relief)")
+    fac = t.outputs["Color"]
+    far = getattr(tr, "far", None)
+    if far is not None:
+        # Where the relief is below a pixel the map fades to its mean with the normal map (f = 1:
+        # the mean alone), as the far roughness replaces the slopes: no sample noise far away.
+        mean = float(m["files"]["cavity"].get("mean", 1.0))
+        fac = tr.math("MULTIPLY_ADD", tr.math("SUBTRACT", mean, fac, loc=(x - 450, y - 450)), far[0], fac,
+                      loc=(x - 300, y - 400))
+    black = tr.node("ShaderNodeEmission", (x - 300, y - 150), label="nothing")
+    black.inputs["Color"].default_value = (0.0, 0.0, 0.0, 1.0)
+    black.inputs["Strength"].default_value = 0.0
+    mix = tr.node("ShaderNodeMixShader", (x, y), label="skin x cavity")
+    tr.link(fac, mix.inputs["Fac"])
+    tr.link(black.outputs["Emission"], mix.inputs[1])
+    tr.link(shader, mix.inputs[2])
+    return mix.outputs["Shader"]

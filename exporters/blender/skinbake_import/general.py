@@ -10,7 +10,7 @@ import bpy
 
 from . import calibration
 from .common import say
-from .detail import detail_normal, far_area_mean, far_roughness
+from .detail import cavity, detail_normal, far_area_mean, far_roughness
 from .footprint import walk_radius
 from .imageset import _check_fit, load_family_image, load_image
 from .nodes import Tree, sock, stamp
@@ -209,7 +209,8 @@ def build_general(m, name="skinbake general", no_detail=False, no_specular=False
     out = tr.node("ShaderNodeOutputMaterial", (1600, 0))
     geo = tr.node("ShaderNodeNewGeometry", (-2300, 300))
     nrm, area = detail_normal(tr, m, no_detail, geo, far=True)
-    tr.link(general_shader(tr, m, nrm, area, geo, unit_scale, no_specular, calibrate), out.inputs["Surface"])
+    shader = general_shader(tr, m, nrm, area, geo, unit_scale, no_specular, calibrate)
+    tr.link(cavity(tr, m, shader), out.inputs["Surface"])
     stamp(mat, m, "general")
     return mat
 

@@ -17,10 +17,12 @@ import os
 from .common import ImageSetError, say
 
 
-def pick_version(t):
-    """The versions[] entry of this Blender (major.minor).  Another Blender is refused rather than
-    given a wrong material: the walk answers differently per version (5.0.1 rendered the 3.4.1 fit
-    12 % dark on the flat box, its "Random Walk" being 3.4's fixed-radius walk)."""
+def pick_version(t, family=True):
+    """The versions[] entry of this Blender (major.minor).  Another Blender's fit is never used:
+    the walk answers differently per version (5.0.1 rendered the 3.4.1 fit 12 % dark on the flat
+    box, its "Random Walk" being 3.4's fixed-radius walk).  Without a fit for this Blender: None
+    for a single bake's set (FAMILY false: the importer falls back to the far field as a diffuse,
+    far_field_fallback), refused for a family set."""
     import bpy
     have = "%d.%d" % tuple(bpy.app.version[:2])
     vs = t.get("versions")
@@ -30,6 +32,8 @@ def pick_version(t):
     for v in vs:
         if v.get("blender") == have:
             return v
+    if not family:
+        return None
     got = ", ".join(repr(v.get("blender")) for v in vs)
     raise ImageSetError(f"manifest.json: translucent.versions has fits for Blender {got}, not for "
                         f"this Blender {bpy.app.version_string} ({have}): its random walk was not "
@@ -298,13 +302,57 @@ def thickness_shader(nt, v, views, unit_scale, loc):
     return add.outputs[0]
 
 
+def far_field_fallback(mat, t):
+    """A single bake's translucent set on a Blender without its own fit: no subsurface node (an
+    uncalibrated walk would not match Rd(r)); the far field the set's table lost
+    (translucent.far_pi_f_removed, per theta_o_deg) comes back as a Diffuse BSDF beside the rest,
+    so flat light sums to the baked BRDF as in the exact set, but no light travels under the
+    surface.  Says so; returns MAT."""
+    import bpy
+    views, far = t.get("theta_o_deg"), t.get("far_pi_f_removed")
+    if not isinstance(views, list) or len(views) < 2 or not all(
+            isinstance(y, (int, float)) and 0 <= y < 90 for y in views):
+        raise ImageSetError(f"manifest.json: translucent.theta_o_deg = {views!r} must be angles "
+                            "in [0, 90) degrees")
+    if not isinstance(far, list) or len(far) != len(views) or not all(
+            isinstance(e, list) and len(e) == 3 and all(isinstance(y, (int, float)) and 0 <= y <= 1
+                                                        for y in e) for e in far):
+        raise ImageSetError(f"manifest.json: translucent.far_pi_f_removed = {far!r} must be one "
+                            "[R, G, B] in [0, 1] per translucent.theta_o_deg")
+    nt = mat.node_tree
+    out = next(n for n in nt.nodes if n.bl_idname == "ShaderNodeOutputMaterial" and n.is_active_output)
+    link = out.inputs["Surface"].links[0]
+    src = link.from_socket
+    nt.links.remove(link)
+    dif = nt.nodes.new("ShaderNodeBsdfDiffuse")
+    dif.label = "skinbake: the subsurface node's far field (no fit for this Blender)"
+    dif.location = (out.location[0] - 400, out.location[1] - 300)
+    view_colour(nt, dif.inputs["Color"], views, far)
+    add = nt.nodes.new("ShaderNodeAddShader")
+    add.location = (out.location[0] - 100, out.location[1])
+    out.location = (out.location[0] + 150, out.location[1])
+    nt.links.new(src, add.inputs[0])
+    nt.links.new(dif.outputs["BSDF"], add.inputs[1])
+    nt.links.new(add.outputs["Shader"], out.inputs["Surface"])
+    mat["skinbake_translucent"] = 0
+    got = ", ".join(str(v.get("blender")) for v in t.get("versions", []))
+    say(f"translucent: no fit for this Blender {bpy.app.version_string} in the set (fits for "
+        f"{got}): no subsurface node, its far field as a diffuse (up to " +
+        " ".join(f"{max(e[c] for e in far):.4g}" for c in range(3)) + "), so flat light matches "
+        "the bake but no light travels under the surface (calibrate this Blender: make "
+        "calibrate-blender with its bpy, and export again)")
+    return mat
+
+
 def add_subsurface(mat, m, unit_scale=1.0):
     """Add the fitted node beside the shader that reaches MAT's output, when the manifest M has a
     "translucent" section; returns MAT.  UNIT_SCALE: metres per scene unit."""
     t = m.get("translucent")
     if not t:
         return mat
-    v = pick_version(t)
+    v = pick_version(t, "family" in m)
+    if v is None:
+        return far_field_fallback(mat, t)
     where = f"manifest.json: translucent.versions[{v.get('blender')}]"
     for key in ("colour", "radius_m"):
         x = v.get(key)

@@ -146,6 +146,7 @@ static void detail_free(struct blender_maps *d)
 	free(d->own_height);
 	free(d->own_normal);
 	free(d->far);
+	free(d->cavity);
 }
 
 static void detail_use(const struct texdir *t, struct blender_maps *d)
@@ -170,6 +171,23 @@ static void detail_use(const struct texdir *t, struct blender_maps *d)
 			d->far = NULL;
 		}
 		d->far_n = d->far != NULL ? w : 0;
+	}
+	free(why);
+	free(fp);
+	/* cavity.png likewise (texture directories before issue 24's relief7
+	 * round have none). */
+	fp = xasprintf("%s/cavity.png", t->dir);
+	why = NULL;
+	f = fopen(fp, "rb");
+	if (f != NULL) {
+		int w, h, ch, bits;
+		fclose(f);
+		d->cavity = pngio_read(fp, &w, &h, &ch, &bits, &why);
+		if (d->cavity != NULL && (w != h || ch != 1 || bits != 16)) {
+			free(d->cavity);
+			d->cavity = NULL;
+		}
+		d->cavity_n = d->cavity != NULL ? w : 0;
 	}
 	free(why);
 	free(fp);
@@ -427,6 +445,11 @@ int blender_write_files(const struct blender_set *s, const char *dir, char **cau
 	path = d->far != NULL ? xasprintf("%s/roughness_far.png", dir) : NULL;
 	if (path != NULL && pngio_write(path, d->far_n, d->far_n, 1, 16, d->far, 0, 0, NULL,
 	    cause) != 0)
+		goto out;
+	free(path);
+	path = d->cavity != NULL ? xasprintf("%s/cavity.png", dir) : NULL;
+	if (path != NULL && pngio_write(path, d->cavity_n, d->cavity_n, 1, 16, d->cavity, 0, 0,
+	    NULL, cause) != 0)
 		goto out;
 	free(path);
 	/* The manifest goes last: its presence marks a complete image set. */

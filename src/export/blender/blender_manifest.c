@@ -72,6 +72,17 @@ static json_object *files_info(const struct blender_options *o, const struct ble
 		    "alpha_relief = value / 65535 per block of the tile (docs/relief.md): "
 		    "GGX alpha^2 = alpha_skin^2 + alpha_relief^2 where the relief is below a "
 		    "pixel"));
+	if (d->cavity != NULL) {
+		json_object *c = jfile("cavity.png", d->cavity_n, d->cavity_n, "gray", "16-bit PNG",
+		    "Non-Color", "cavity = value / 65535, the relief's ambient occlusion tiled like "
+		    "normal.png (docs/relief.md): multiplies the skin's shading");
+		double sum = 0;
+		size_t np = (size_t)d->cavity_n * (size_t)d->cavity_n;
+		for (size_t i = 0; i < np; i++)
+			sum += d->cavity[i] / 65535.0;
+		json_object_object_add(c, "mean", jd(sum / (double)np));
+		json_object_object_add(x, "cavity", c);
+	}
 	return x;
 }
 

@@ -23,6 +23,10 @@ struct blender_maps {
 	 * `skinbake texture`, docs/relief.md), or NULL when the textures have none. */
 	uint16_t *far;		/* [far_n][far_n] alpha_relief * 65535 */
 	int far_n;		/* its edge [px] */
+	/* The relief's cavity (DIR/cavity.png of the texture directory, or
+	 * NULL when it has none): multiplied into the shading. */
+	uint16_t *cavity;	/* [cavity_n][cavity_n] cavity * 65535 */
+	int cavity_n;		/* its edge [px] */
 };
 
 /* Everything the exact-mode check needs: the reference plane (+Z normal)

@@ -21,12 +21,24 @@ void blender_sss_series(const struct sss_table *t, char *buf, size_t n)
 	snprintf(buf, n, "%d.%d", major, minor);
 }
 
-/* The same major.minor? */
+/* The same major.minor?  (Digits compared up to the second dot: this runs
+ * at every far-field lookup, where sscanf had cost 2 s of a translucent
+ * export.) */
 static int same_series(const char *a, const char *b)
 {
-	int a1 = -1, a2 = -1, b1 = -2, b2 = -2;
-	return sscanf(a, "%d.%d", &a1, &a2) == 2 && sscanf(b, "%d.%d", &b1, &b2) == 2 && a1 == b1 &&
-	    a2 == b2;
+	int dots = 0;
+	for (;; a++, b++) {
+		if (*a == '.' && *b == '.') {
+			if (++dots == 2)
+				return 1;
+			continue;
+		}
+		int da = *a >= '0' && *a <= '9', db = *b >= '0' && *b <= '9';
+		if (!da || !db)
+			return !da && !db && dots == 1;	/* both numbers end here */
+		if (*a != *b)
+			return 0;
+	}
 }
 
 /* The node below V in the ascending X[n] and the weight of the one above (clamped). */
@@ -135,6 +147,27 @@ int blender_sss_wrap(struct brdf_source *src, struct blender_sss *w, char **caus
 		blender_thick_weights(&w->fit[v], tt, &w->thick[v]);
 	blender_sss_wrap_fitted(src, w);
 	return 0;
+}
+
+int blender_sss_auto(struct brdf_source *src, int textures, struct blender_sss *w, char **note)
+{
+	char *err = NULL;
+	if (textures || blender_sss_wrap(src, w, &err) != 0) {
+		const char *why = textures ? "--textures: the fitted node carries no detail normal map" : err;
+		*note = xasprintf("exact (--mode auto: %s)", why);
+		free(err);
+		return 0;
+	}
+	char vers[128] = "";
+	for (int v = 0; v < w->n; v++) {
+		char ser[32];
+		blender_sss_series(w->fit[v].table, ser, sizeof ser);
+		size_t at = strlen(vers);
+		snprintf(vers + at, sizeof vers - at, "%s%s", v ? ", " : "", ser);
+	}
+	*note = xasprintf("translucent (--mode auto: a bake with Rd(r), Cycles' node fitted for "
+	    "Blender %s; --mode exact for the exact set)", vers);
+	return 1;
 }
 
 void blender_sss_extra(const struct blender_sss *w, int v, double theta_o, double rgb[3])

@@ -49,6 +49,14 @@ int blender_sss_wrap(struct brdf_source *src, struct blender_sss *w, char **caus
 int blender_sss_fit(const struct bake *b, struct blender_sss *w, char **cause);
 void blender_sss_wrap_fitted(struct brdf_source *src, struct blender_sss *w);
 
+/* --mode auto, export blender's default, on a bake: 1 with SRC wrapped as by
+ * blender_sss_wrap where the fit can be made; else 0, SRC untouched (the set
+ * stays exact): with TEXTURES (the importer gives the fitted node no detail
+ * normal map, so it would flatten the relief of most of the red light: the
+ * node is about 94 % of it on a flat box), or when the fit fails (no Rd(r)).
+ * *NOTE says which and why (caller frees). */
+int blender_sss_auto(struct brdf_source *src, int textures, struct blender_sss *w, char **note);
+
 /* Version v's lambert_extra at view angle theta_o [rad]: the largest far
  * field of the versions less its own, per R, G, B (pi f [-]). */
 void blender_sss_extra(const struct blender_sss *w, int v, double theta_o, double rgb[3]);

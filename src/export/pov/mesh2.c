@@ -151,6 +151,32 @@ void mesh2_visible(const struct mesh *m, const struct scene_camera *c, double as
 	}
 }
 
+/* One bumped triangle's texture, MAT its matrix.  With a cavity map the
+ * texture's body (without its "texture {" and last "}") goes into a
+ * texture_map over the map; the pattern's own matrix (inside
+ * pigment_pattern) leaves the table's world-space pigments alone. */
+static void write_texture(FILE *fp, const struct mesh2_textures *tex, const char *mat)
+{
+	const char *pre = tex->pre;
+	size_t npost = strlen(tex->post);
+	int cav = tex->cavity_png != NULL && strncmp(pre, "texture {", 9) == 0 && npost > 0
+	    && tex->post[npost - 1] == '}';
+	if (cav) {
+		fprintf(fp, ",\n  texture { pigment_pattern { image_map { png \"%s\" "
+		    "interpolate 2 }%s } texture_map { [0 SKIN_CavityBlack] [1",
+		    tex->cavity_png, mat);
+		pre += 9;
+		npost--;
+	} else
+		fputs(",\n  ", fp);
+	if (tex->mid)
+		fprintf(fp, "%s%s%s%s%.*s", pre, mat, tex->mid, mat, (int)npost, tex->post);
+	else
+		fprintf(fp, "%s%s%.*s", pre, mat, (int)npost, tex->post);
+	if (cav)
+		fputs("] } }", fp);
+}
+
 int mesh2_write(FILE *fp, const char *name, const struct mesh *m, double inset, const struct mesh2_textures *tex)
 {
 	int nb = 0;
@@ -187,11 +213,7 @@ int mesh2_write(FILE *fp, const char *name, const struct mesh *m, double inset, 
 			    "%.7g,%.7g,%.7g, %.9g,%.9g,%.9g>",
 			    mx[t][0], mx[t][1], mx[t][2], mx[t][3], mx[t][4], mx[t][5], mx[t][6],
 			    mx[t][7], mx[t][8], mx[t][9], mx[t][10], mx[t][11]);
-			if (tex->mid)
-				fprintf(fp, ",\n  %s%s%s%s%s", tex->pre, mat, tex->mid, mat,
-				    tex->post);
-			else
-				fprintf(fp, ",\n  %s%s%s", tex->pre, mat, tex->post);
+			write_texture(fp, tex, mat);
 		}
 		fputs(" }\n", fp);
 		free(mx);

@@ -51,6 +51,12 @@ struct mesh2_textures {
 	double tile_units;
 	const struct mesh2_uvmap *uv;
 	const unsigned char *on;	/* [n_triangles] 1 = bump, or NULL: every triangle */
+	/* The relief's cavity map (file name in the output directory) or NULL:
+	 * each bumped triangle's texture becomes the pattern of that map (by
+	 * the triangle's bump matrix, so it lies on the bump map) blending
+	 * SKIN_CavityBlack at 0 with the texture at 1, i.e. the texture's
+	 * light times the cavity (docs/relief.md). */
+	const char *cavity_png;
 };
 
 /* `#declare NAME = mesh2 { ... }` with every vertex moved by -inset along its

@@ -280,8 +280,8 @@ static int one_specular(const struct pov_maps *pm, double alpha)
 	return 1;
 }
 
-void pov_maps_write_fill(FILE *fp, const char *name, const struct pov_maps *pm, const double lo[3],
-    const double hi[3], int uv)
+void pov_maps_write_fill(FILE *fp, const char *name, const struct pov_maps *pm, int bounce,
+    const double lo[3], const double hi[3], int uv)
 {
 	const struct brdf_family *f = pm->fam;
 	for (int m = 0; m < f->n_members; m++) {
@@ -290,6 +290,11 @@ void pov_maps_write_fill(FILE *fp, const char *name, const struct pov_maps *pm, 
 		const struct brdf_source *b = pm->src[m];
 		const struct bake *mb = brdf_family_member_bake(f, m);
 		double *a = povsplit_fill_curve(mb, b->n_albedo, b->theta_albedo, b->albedo_rgb);
+		if (bounce) {
+			double *ab = povsplit_bounce_curve(b->n_albedo, b->theta_albedo, a, NULL);
+			free(a);
+			a = ab;
+		}
 		fprintf(fp, "#declare %s_M%04d = ", name, m);
 		sdl_albedo_pigment(fp, b->n_albedo, b->theta_albedo, a);
 		free(a);

@@ -89,7 +89,8 @@ int pov_maps_write_part(FILE *fp, const char *name, const struct pov_maps *pm, i
     const double hi[3], int n_theta, int n_gamma, int uv);
 /* `#declare NAME_M<m> = pigment { aoi ... }` per member reached, its
  * directional-hemispherical albedo a(theta_o) (the fill, povinc.c), and
- * NAME blending them by the maps. */
-void pov_maps_write_fill(FILE *fp, const char *name, const struct pov_maps *pm, const double lo[3],
-    const double hi[3], int uv);
+ * NAME blending them by the maps; with bounce, a(theta_o) times the
+ * member's white-sky albedo instead (povsplit_bounce_curve). */
+void pov_maps_write_fill(FILE *fp, const char *name, const struct pov_maps *pm, int bounce,
+    const double lo[3], const double hi[3], int uv);
 #endif

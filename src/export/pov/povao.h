@@ -5,11 +5,11 @@
  * fill, povinc.c) is multiplied by V.  V is traced per mesh vertex with N
  * stratified cosine-distributed rays against every mesh of the scene (a
  * uniform grid, any hit), interpolated over each triangle into the mesh's
- * UV space and written as a 16-bit grey PNG that BASE.pov multiplies the
- * fill pigment by.  Left out: light bounced between surfaces (the nostrils
- * and the ear's folds get no skin-coloured interreflection), and the BRDF
- * weighting of the directions (cosine only), and non-mesh shapes as
- * occluders. */
+ * UV space and written as a 16-bit grey PNG by which BASE.pov blends the
+ * fill pigment (V = 1) toward the fill bounced once off the skin (V = 0,
+ * povsplit_bounce_curve).  Left out: the key's light bounced between
+ * surfaces, more than one bounce, the BRDF weighting of the directions
+ * (cosine only), and non-mesh shapes as occluders. */
 #ifndef SKINBAKE_POVAO_H
 #define SKINBAKE_POVAO_H
 #include "scene/scene.h"

@@ -338,6 +338,8 @@ struct inputs {
 						 * pixel (povfar.h), or NULL */
 	int far_m[SCENE_MAX_SKINS];	/* its edge [px] */
 	char *fars[SCENE_MAX_SKINS];	/* its name in the output directory */
+	char *cav_src[SCENE_MAX_SKINS];	/* the texture directory's cavity.png, or NULL */
+	char *cavs[SCENE_MAX_SKINS];	/* its name in the output directory */
 	struct bumpmap blur[SCENE_MAX_SKINS];	/* the height map blurred by Rd(r) */
 	char *blurs[SCENE_MAX_SKINS];	/* its name in the output directory, or NULL */
 	double *fill_curve[SCENE_MAX_SKINS];	/* the fill's whole albedo, or NULL */
@@ -353,6 +355,8 @@ static void inputs_free(struct inputs *in)
 		free(in->heights[k]);
 		free(in->far_px[k]);
 		free(in->fars[k]);
+		free(in->cav_src[k]);
+		free(in->cavs[k]);
 		bumpmap_free(&in->blur[k]);
 		free(in->blurs[k]);
 		free(in->fill_curve[k]);
@@ -717,7 +721,41 @@ static int load_bumps(const struct povexport_options *o, const struct scene *s, 
 	/* --bump-filter off keeps the bump map as it is, also below a pixel. */
 	if (o->bump_filter && load_far(s, base, k, tdir, in, r, cause) != 0)
 		return -1;
+	/* The cavity map (texture directories of issue 24's relief7 round on)
+	 * darkens furrows and pores where the bump map is drawn, on meshes
+	 * (mesh2.h); SKINBAKE_CAVITY=off leaves it out. */
+	char *cp = xasprintf("%s/cavity.png", tdir);
+	const char *env = getenv("SKINBAKE_CAVITY");
+	if (in->ps[k].height_png != NULL && access(cp, R_OK) == 0
+	    && !(env != NULL && strcmp(env, "off") == 0)) {
+		in->cav_src[k] = cp;
+		in->cavs[k] = xasprintf("%s_%s_cavity.png", base, sk->name);
+		in->ps[k].cavity_png = in->cavs[k];
+	} else
+		free(cp);
 	return load_split(o, s, base, k, in, alpha_sub, r, cause);
+}
+
+/* The cavity map box-filtered by f like the height map (the mean of its
+ * blocks: a pixel's average darkening, without aliasing). */
+static int write_cavity(const char *src, int f, const char *dst, char **cause)
+{
+	int n, h, ch, bits;
+	uint16_t *px = pngio_read(src, &n, &h, &ch, &bits, cause);
+	if (px == NULL)
+		return -1;
+	if (n != h || ch != 1 || bits != 16 || n % f != 0) {
+		free(px);
+		return povfiles_copy(src, dst, cause);
+	}
+	double lo, hi;
+	uint16_t *q = bumpmap_filter(px, n, 0, 1, f, &lo, &hi);
+	for (size_t i = 0; i < (size_t)(n / f) * (size_t)(n / f); i++)
+		q[i] = (uint16_t)nearbyint((lo + q[i] / 65535.0 * (hi - lo)) * 65535);
+	int e = pngio_write(dst, n / f, n / f, 1, 16, q, 0, 0, NULL, cause);
+	free(px);
+	free(q);
+	return e;
 }
 
 /* The height maps, far roughness maps and the shape macros next to the written scene. */
@@ -737,6 +775,16 @@ static int write_extras(const struct scene *s, const char *out, const char *base
 		if (in->blurs[k]) {
 			char *dst = xasprintf("%s/%s", out, in->blurs[k]);
 			int e = bumpmap_write_png(&in->blur[k], dst, cause);
+			free(dst);
+			if (e != 0)
+				return -1;
+		}
+	for (int k = 0; k < s->n_skins; k++)
+		if (in->cavs[k]) {
+			char *dst = xasprintf("%s/%s", out, in->cavs[k]);
+			int f = in->hm[k].filter;
+			int e = f > 1 ? write_cavity(in->cav_src[k], f, dst, cause)
+				      : povfiles_copy(in->cav_src[k], dst, cause);
 			free(dst);
 			if (e != 0)
 				return -1;

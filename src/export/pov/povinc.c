@@ -8,9 +8,11 @@
 
 #include <math.h>
 #include <stdlib.h>
+#include <string.h>
 
 #include "base/util.h"
 #include "export/pov/pov_maps.h"
+#include "export/pov/povao.h"
 #include "export/pov/povscene.h"
 #include "export/pov/sdl.h"
 #include "export/pov/separable.h"
@@ -70,6 +72,18 @@ static void write_frame_selection(FILE *fp, const struct scene *s, const struct 
 	fputs("#end\n", fp);
 }
 
+/* Whether a mesh of skin sn gets the fill's occlusion map (povao.h). */
+static int occluded(const struct scene *s, const char *sn)
+{
+	for (int i = 0; i < s->n_objects; i++) {
+		const struct scene_object *o = &s->objects[i];
+		if (o->material == SCENE_MAT_SKIN && !strcmp(s->skins[o->skin].name, sn) &&
+		    povao_wanted(s, o))
+			return 1;
+	}
+	return 0;
+}
+
 /* The split (povsplit.h) and the fill: SKIN_s_Diffuse and SKIN_s_Specular
  * tables, SKIN_s_Fill = albedo(theta_o), the finish of the averaged
  * entries (diffuse N for N entries) and the fill's (emission N x fill). */
@@ -100,12 +114,31 @@ static void write_split_fill(FILE *fp, const struct scene *s, const char *sn,
 		fputs("// The fill: a uniform sky light gives radiance albedo(theta_o) x fill "
 		    "(reciprocity).\n", fp);
 		if (ps->maps)
-			pov_maps_write_fill(fp, nm, ps->maps, lo, hi, ps->maps_uv);
+			pov_maps_write_fill(fp, nm, ps->maps, 0, lo, hi, ps->maps_uv);
 		else {
 			fprintf(fp, "#declare %s = ", nm);
 			sdl_albedo_pigment(fp, ps->n_albedo, ps->theta_albedo, ps->albedo_curve);
 		}
 		free(nm);
+		if (occluded(s, sn)) {
+			/* Where the sky is occluded the fill arrives bounced off the skin
+			 * (povsplit_bounce_curve): BASE.pov blends toward this. */
+			nm = xasprintf("SKIN_%s_FillBounce", sn);
+			fputs("// The fill bounced once off the skin (the occluded fill's low "
+			    "end): albedo(theta_o) x white-sky albedo.\n", fp);
+			if (ps->maps)
+				pov_maps_write_fill(fp, nm, ps->maps, 1, lo, hi, ps->maps_uv);
+			else {
+				double wa[3];
+				double *ab = povsplit_bounce_curve(ps->n_albedo, ps->theta_albedo,
+				    ps->albedo_curve, wa);
+				fprintf(fp, "// (white-sky albedo %.4f %.4f %.4f)\n#declare %s = ",
+				    wa[0], wa[1], wa[2], nm);
+				sdl_albedo_pigment(fp, ps->n_albedo, ps->theta_albedo, ab);
+				free(ab);
+			}
+			free(nm);
+		}
 		fprintf(fp, "#declare SKIN_%s_FillFinish = finish { diffuse 0 brilliance 1 "
 		    "ambient 0 emission ", sn);
 		sdl_rgb(fp, e);

@@ -430,7 +430,10 @@ static void write_layers(FILE *fp, const struct scene *s, const struct pov_skin 
 	}
 }
 
-/* The fill of skin meshes times their occlusion maps (povao.h). */
+/* The fill of skin meshes seen past their occlusion maps (povao.h): the
+ * visible sky's fill, and where the sky is occluded the fill bounced once
+ * off the skin (SKIN_s_FillBounce, povinc.c), blended linearly in V:
+ * albedo x fill x (V + (1 - V) x white-sky albedo). */
 static void write_fill_occlusion(FILE *fp, const struct scene *s, const struct pov_skin *skins,
     const char *base)
 {
@@ -443,8 +446,8 @@ static void write_fill_occlusion(FILE *fp, const struct scene *s, const struct p
 		fprintf(fp, "// The fill seen past the meshes: %d rays per vertex (povao).\n",
 		    s->fill_occlusion);
 		fprintf(fp, "#declare SKIN_%s_Fill_%s = pigment { uv_mapping image_pattern { png "
-		    "\"%s\" gamma 1.0 map_type 0 interpolate 2 }\n  pigment_map { [0 rgb 0] "
-		    "[1 SKIN_%s_Fill] } }\n", sn, o->name, ao, sn);
+		    "\"%s\" gamma 1.0 map_type 0 interpolate 2 }\n  pigment_map { "
+		    "[0 SKIN_%s_FillBounce] [1 SKIN_%s_Fill] } }\n", sn, o->name, ao, sn, sn);
 		free(ao);
 	}
 }

@@ -78,6 +78,34 @@ double *povsplit_fill_curve(const struct bake *b, int n, const double *th, const
 	return a;
 }
 
+double *povsplit_bounce_curve(int n, const double *th, const double *a, double white[3])
+{
+	enum { NM = 512 };
+	double w[3] = { 0, 0, 0 };
+	for (int u = 0; u < NM; u++) {
+		double mu = (u + 0.5) / NM, t = acos(mu);
+		int j = 0;
+		while (j < n - 1 && th[j + 1] < t)
+			j++;
+		double f = 0;
+		if (j < n - 1 && t > th[j])
+			f = (t - th[j]) / (th[j + 1] - th[j]);
+		for (int c = 0; c < 3; c++) {
+			const double *ac = a + c * n;
+			double v = ac[j] + (j < n - 1 ? f * (ac[j + 1] - ac[j]) : 0);
+			w[c] += v * 2 * mu / NM;
+		}
+	}
+	double *b = xmalloc(sizeof *b * 3 * (size_t)n);
+	for (int c = 0; c < 3; c++)
+		for (int i = 0; i < n; i++)
+			b[c * n + i] = a[c * n + i] * w[c];
+	if (white != NULL)
+		for (int c = 0; c < 3; c++)
+			white[c] = w[c];
+	return b;
+}
+
 /* Mean radius of a 2-D Gaussian: sigma sqrt(pi / 2). */
 #define MEAN_PER_SIGMA 1.2533141373155
 

@@ -65,6 +65,16 @@ double povsplit_slope2(const struct bumpmap *h);
  * frees. */
 double *povsplit_fill_curve(const struct bake *b, int n, const double *th, const double *diffuse);
 
+/* The fill bounced once off the skin itself, for the occluded part of the
+ * hemisphere (povao.h, povscene.c): skin seen in an occluded direction is
+ * taken as lit by the fill alone, so it sends back its white-sky albedo
+ * A = integral of a(mu) 2 mu dmu over mu = cos theta in [0, 1] times the
+ * fill, and the surface returns a(theta_o) x A x fill.  a is a fill curve
+ * ([3][n] at th, radians, ascending; linear in theta between nodes, held
+ * beyond them, as the aoi pigment interpolates it).  Returns [3][n] =
+ * a x A per channel and, if white is not NULL, A; caller frees. */
+double *povsplit_bounce_curve(int n, const double *th, const double *a, double white[3]);
+
 /* K of bake B on texels of texel_um; -1 when B has neither a profile nor a
  * mean exit radius. */
 int povsplit_kernel_make(const struct bake *b, double texel_um, struct povsplit_kernel *k);

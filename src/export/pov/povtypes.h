@@ -17,6 +17,7 @@ struct pov_skin {
 	double albedo_rgb[3];	/* diffuse albedo at normal incidence (lambert/phong stand-ins) [-] */
 	double ior;		/* top-surface index for reflection { fresnel } [-] */
 	const char *height_png;	/* height map file name inside the output directory, or NULL */
+	const char *cavity_png;	/* the relief's cavity map there (meshes only), or NULL */
 	double bump_size;	/* POV bump_size [-] */
 	double tile_units;	/* tile edge [scene units] */
 	const struct pov_maps *maps;	/* a family blended by maps (export/pov/pov_maps.h), or NULL */
