@@ -42,11 +42,20 @@ void ad_cache_init(struct ad_cache *c, void *block, size_t bytes)
 	c->hits = c->misses = 0;
 }
 
+/* The header values of in's key. */
+static void header(const struct ad_layer_in *in, double *hdr)
+{
+	const double v[HDR] = { in->n, in->ne, in->tau, in->omega, in->dtau_max, in->n_index,
+		in->doubling_only, 0.0 };
+	memcpy(hdr, v, sizeof v);
+}
+
 /* The key of in, written to k [key_len] (k == NULL: only hashed). */
 static uint64_t key_of(const struct ad_layer_in *in, double *k)
 {
 	const int n = in->n, ne = in->ne;
-	double hdr[HDR] = { n, ne, in->tau, in->omega, in->dtau_max, in->n_index, in->doubling_only, 0.0 };
+	double hdr[HDR];
+	header(in, hdr);
 	struct { const double *p; size_t len; } part[] = {
 		{ hdr, HDR }, { in->mu, (size_t)n }, { in->w, (size_t)n }, { in->mu_e, (size_t)ne },
 		{ in->ext_e, (size_t)ne }, { in->Hpp, mat(n, ne) }, { in->Hpm, mat(n, ne) },
@@ -73,7 +82,8 @@ static int same_key(const double *e, const struct ad_layer_in *in)
 	const int n = in->n, ne = in->ne;
 	if (e[0] != n || e[1] != ne)
 		return 0;
-	double hdr[HDR] = { n, ne, in->tau, in->omega, in->dtau_max, in->n_index, in->doubling_only, 0.0 };
+	double hdr[HDR];
+	header(in, hdr);
 	const double *p = e;
 	if (memcmp(p, hdr, sizeof hdr))
 		return 0;
@@ -145,7 +155,9 @@ static void compact(struct ad_cache *c)
 	c->n = m;
 	c->top = top;
 	if (c->top > c->cap / 2 || c->n > c->max / 2)
-		c->n = 0, c->top = 0;
+		c->n = 0;
+	if (c->n == 0)
+		c->top = 0;
 }
 
 static void insert(struct ad_cache *c, const struct ad_layer_in *in, const struct ad_layer_out *out)
