@@ -5,7 +5,8 @@
 # the masks in scenes/masks/ (made by scripts/showcase_masks.py); the eyes with their own colours (scripts/eye_texture.py, not the
 # skin's table); the face's pores and furrows (docs/relief.md).  Writes (OUT: out/demo):
 #   OUT/human-head.png     640x480, scenes/showcase-head.scene (a warm soft key, a cool sky fill
-#                          occluded by the head itself: fill_occlusion, docs/pov.md)
+#                          occluded by the head itself, the occluded part bounced once off the
+#                          skin: fill_occlusion, docs/pov.md)
 #   OUT/complexions.png    the same head with four complexions (the same family, other maps):
 #                          fair with freckles, medium, brown, dark (epidermal melanin 0.011,
 #                          0.035, 0.10, 0.35; brown is brown-oily's, dark within Jacques'

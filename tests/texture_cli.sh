@@ -26,7 +26,8 @@ for s in $sites; do
 	od="$tmpd/$s"
 	if "$S" texture --site "$s" --size 96 --quiet --out "$od"; then ok "site $s runs"; else fail "site $s runs"; fi
 	all=1
-	for f in height.png normal.png normal.exr height.exr preview.png pores_height.png furrows_height.png manifest.json; do
+	for f in height.png normal.png normal.exr height.exr preview.png pores_height.png furrows_height.png \
+		roughness_far.png cavity.png manifest.json; do
 		test -s "$od/$f" || all=0
 	done
 	check "site $s: all files" test $all = 1

@@ -58,6 +58,9 @@ struct mesh2_textures {
 	 * light times the cavity (docs/relief.md). */
 	const char *cavity_png;
 };
+/* The declaration of that black (guarded: every file that uses it has it). */
+#define MESH2_CAVITY_BLACK "#ifndef (SKIN_CavityBlack)\n#declare SKIN_CavityBlack = texture { " \
+	"pigment { rgb 0 } finish { ambient 0 diffuse 0 emission 0 specular 0 } }\n#end\n"
 
 /* `#declare NAME = mesh2 { ... }` with every vertex moved by -inset along its
  * normal (inner copies for the per-light layers); with tex, a texture list.

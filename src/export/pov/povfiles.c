@@ -42,10 +42,6 @@ static void write_ini(FILE *fp, const struct scene *s, const char *input, const 
 		fprintf(fp, "Initial_Frame=1\nFinal_Frame=%d\n", frames);
 }
 
-/* The black that the cavity map blends the skin with (mesh2.h). */
-static const char CAVITY_BLACK[] = "#ifndef (SKIN_CavityBlack)\n#declare SKIN_CavityBlack = "
-    "texture { pigment { rgb 0 } finish { ambient 0 diffuse 0 emission 0 specular 0 } }\n#end\n";
-
 /* BASE_mesh_NAME.inc: the object's mesh2 (one per layer for per-light
  * layers); skin meshes with a bump map carry per-triangle textures. */
 static int write_mesh(FILE *fp, const struct scene *s, const struct pov_skin *skins, const struct scene_object *o,
@@ -69,7 +65,7 @@ static int write_mesh(FILE *fp, const struct scene *s, const struct pov_skin *sk
 			struct mesh2_textures tex = { .tile_units = skins[o->skin].tile_units, .uv = &uv, .on = on,
 				.cavity_png = skins[o->skin].cavity_png };
 			if (k == 0 && tex.cavity_png != NULL)
-				fputs(CAVITY_BLACK, fp);
+				fputs(MESH2_CAVITY_BLACK, fp);
 			char *pre, *mid, *post, *plain;
 			povscene_mesh_texture(s, skins, o, st, n > 1 ? k : -1, &pre, &mid, &post,
 			    &plain);

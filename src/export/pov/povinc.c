@@ -11,6 +11,7 @@
 #include <string.h>
 
 #include "base/util.h"
+#include "export/pov/mesh2.h"
 #include "export/pov/pov_maps.h"
 #include "export/pov/povao.h"
 #include "export/pov/povscene.h"
@@ -257,6 +258,8 @@ void povinc_write(FILE *fp, const struct scene *s, const struct pov_skin *skins,
 			fprintf(fp, "#declare SKIN_%s_NormalDiffuseMesh = normal { bump_map { png "
 			    "\"%s\" map_type 0 interpolate 2 bump_size " SDL_G " } }\n", sk->name,
 			    ps->diffuse_png, ps->diffuse_bump_size);
+		if (ps->cavity_png != NULL)
+			fputs(MESH2_CAVITY_BLACK, fp);
 		if (ps->height_png != NULL && has_mesh(s, k))
 			fprintf(fp, "// On meshes each triangle maps the tile onto its UVs by its own matrix (docs/pov.md).\n"
 			    "#declare SKIN_%s_NormalMesh = normal { bump_map { png \"%s\" map_type 0 interpolate 2 "

@@ -149,10 +149,8 @@ static void write_shape(FILE *fp, const struct scene_object *o, double inset, in
 
 /* The bump map of a non-mesh skin object: patches and boxes carry it with
  * their own orientation, curved shapes get it projected along the view. */
-static void write_bump(FILE *fp, const struct scene *s, const struct scene_object *o,
-    const char *which)
+static void write_bump_xform(FILE *fp, const struct scene *s, const struct scene_object *o)
 {
-	fprintf(fp, "\n    normal { SKIN_%s_Normal%s", s->skins[o->skin].name, which);
 	if (o->shape == SCENE_PATCH || o->shape == SCENE_BOX) {
 		fputs(" translate ", fp);
 		sdl_vec(fp, o->center);
@@ -162,7 +160,33 @@ static void write_bump(FILE *fp, const struct scene *s, const struct scene_objec
 		vec3_unit_toward(s->camera.location, s->camera.look_at, d);
 		sdl_align(fp, d);
 	}
+}
+
+static void write_bump(FILE *fp, const struct scene *s, const struct scene_object *o,
+    const char *which)
+{
+	fprintf(fp, "\n    normal { SKIN_%s_Normal%s", s->skins[o->skin].name, which);
+	write_bump_xform(fp, s, o);
 	fputs(" }", fp);
+}
+
+/* With a cavity map (mesh2.h) the skin's texture body goes into a
+ * texture_map over the map, placed like the bump map: returns the text
+ * that closes it, after opening it (or "\n  texture {" is the opening and
+ * " }" the close without one; *open receives the opening left to write). */
+static const char *cavity_open(FILE *fp, const struct scene *s, const struct scene_object *o,
+    const struct pov_skin *ps, const char **open)
+{
+	if (ps->cavity_png == NULL || ps->sss.on) {
+		*open = "\n  texture {";
+		return " }";
+	}
+	fprintf(fp, "\n  texture { pigment_pattern { image_map { png \"%s\" interpolate 2 } scale "
+	    SDL_G, ps->cavity_png, ps->tile_units);
+	write_bump_xform(fp, s, o);
+	fputs(" } texture_map { [0 SKIN_CavityBlack] [1", fp);
+	*open = "";
+	return "] } }";
 }
 
 /* The fill's pigment of skin object o: SKIN_s_Fill, or with its occlusion
@@ -190,8 +214,11 @@ static void write_skin_texture(FILE *fp, const struct scene *s, const struct sce
 		/* The split and the fill (povsplit.h, povinc.c): entries averaged,
 		 * finish diffuse N. */
 		const struct pov_skin *ps = &skins[o->skin];
-		const char *sn = sk->name;
-		fputs("\n  texture { average texture_map {", fp);
+		const char *sn = sk->name, *open;
+		const char *close = bumped(s, skins, o) ? cavity_open(fp, s, o, ps, &open) : " }";
+		if (!bumped(s, skins, o))
+			open = "\n  texture {";
+		fprintf(fp, "%s average texture_map {", open);
 		for (int e = ps->diffuse_png ? 1 : 0; e <= (ps->diffuse_png ? 2 : 0); e++) {
 			fprintf(fp, " [1 pigment { %s%s%s }", e ? "SKIN_" : pigment, e ? sn : "",
 			    e == 1 ? "_Diffuse" : e == 2 ? "_Specular" : "");
@@ -205,19 +232,25 @@ static void write_skin_texture(FILE *fp, const struct scene *s, const struct sce
 			    sn);
 			free(fpig);
 		}
-		fputs(" } }", fp);
-	} else if (rest > 0) {
-		fprintf(fp, "\n  texture { average texture_map { [1 pigment { %s }", pigment);
-		if (bumped(s, skins, o))
-			write_bump(fp, s, o, "");
-		fprintf(fp, "\n    finish { %s }] [%d SKIN_Clear] } }", finish, rest);
+		fprintf(fp, " }%s", close);
 	} else {
+		const char *open = "\n  texture {", *close = " }";
 		if (skins[o->skin].sss.on)
 			fprintf(fp, "\n  texture { SKIN_%s_Subsurface }", sk->name);
-		fprintf(fp, "\n  texture { pigment { %s }", pigment);
+		if (bumped(s, skins, o))
+			close = cavity_open(fp, s, o, &skins[o->skin], &open);
+		if (rest > 0)
+			fprintf(fp, "%s average texture_map { [1", open);
+		else
+			fputs(open, fp);
+		fprintf(fp, " pigment { %s }", pigment);
 		if (bumped(s, skins, o))
 			write_bump(fp, s, o, "");
-		fprintf(fp, "\n    finish { %s } }", finish);
+		if (rest > 0)
+			fprintf(fp, "\n    finish { %s }] [%d SKIN_Clear] }%s", finish, rest,
+			    close);
+		else
+			fprintf(fp, "\n    finish { %s }%s", finish, close);
 	}
 	if (sk->reflection || skins[o->skin].sss.on)
 		fprintf(fp, "\n  interior { SKIN_%s_Interior }", sk->name);
