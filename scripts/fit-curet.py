@@ -55,6 +55,11 @@ With --multiple the lobe also carries the facets' later reflections
 and by eval of a bake), so the fitted preset reflects what its transport's
 rough top reflects.
 
+--objective log (issue 21, round 7) minimises the mean of ln(f/y)^2 instead
+of the squared relative error (which weighs a model too high by a factor more
+than one too low by the same factor); --step-scale shrinks the simplex's first
+steps to refine near --start.
+
 Monte Carlo noise (with --solver ad the errors are the solver's estimates,
 about 1e-4 relative, and the same formulas hold): the objective is the mean over the points of
 r_i^2 - e_i^2, with r_i = (f_i - y_i) / y_i the relative error and e_i the
@@ -199,9 +204,20 @@ def parse_columns(out):
     return tot, err
 
 
+LOG_OBJECTIVE = False
+
+
 def objective(points, f, e):
-    """Debiased mean squared relative error and its Monte Carlo standard deviation."""
+    """Debiased mean squared relative error and its Monte Carlo standard deviation
+    (--objective log: the mean squared log ratio ln(f / y), issue 21 round 7)."""
     s, v = 0.0, 0.0
+    if LOG_OBJECTIVE:
+        for p, fi, ei in zip(points, f, e):
+            r, er = math.log(max(fi, 1e-12) / p[4]), ei / max(fi, 1e-12)
+            s += r * r - er * er
+            v += 4.0 * r * r * er * er
+        n = len(points)
+        return s / n, math.sqrt(v) / n
     for p, fi, ei in zip(points, f, e):
         r, er = (fi - p[4]) / p[4], ei / p[4]
         s += r * r - er * er
@@ -493,7 +509,13 @@ def main():
                     "pairs) and the residuals by region and by the angle between light and camera (markdown)")
     ap.add_argument("--evaluate", default=None, metavar="INI",
                     help="no fit: the preset file at all 205 points (adding-doubling), its errors, fall and rise")
+    ap.add_argument("--step-scale", type=float, default=1.0,
+                    help="scale on the simplex's first steps (ln 3, ln 3, ln 1.5, ln 1.5 ...); < 1 to refine near --start")
+    ap.add_argument("--objective", default="rel", choices=("rel", "log"),
+                    help="rel: mean squared relative error (default); log: mean squared ln(f / y)")
     a = ap.parse_args()
+    global LOG_OBJECTIVE
+    LOG_OBJECTIVE = a.objective == "log"
     if a.rough_epi and not a.rough:
         sys.exit("fit-curet: --rough-epi needs --rough")
     if a.rough_epi and a.sebum == "both":
@@ -563,6 +585,7 @@ def main():
         NAMES.append("macro")
         x0.append(math.log(st[5] if len(st) > 5 else 0.1))
         steps.append(math.log(2.0))
+    steps = [v * a.step_scale for v in steps]
     best = None
     for sebum in {"on": (1,), "off": (0,), "both": (1, 0)}[a.sebum]:
         x, (j, sd), n = nelder_mead(lambda xx: f(xx, sebum), x0, steps, 3.0, a.max_evals)

@@ -863,6 +863,34 @@ with the same θi, θv and Δφ).
 EOF
 }
 
+# Issue 21, round 7: the same two-interface model fitted in log space (curet39-rough-log).
+rough_log=""
+case " $roughs " in *" curet39-rough-log "*) rough_log=curet39-rough-log ;; esac
+log_section() {
+	p=$rough_log
+	q=${rough_ms:-curet39-rough-ms}
+	log=$top_srcdir/docs/validation/fit-curet39-rough-log.tsv
+	best=$(awk -F'\t' '/^[0-9]/ { if (m == "" || $8 < m) { m = $8; b = $1 } } END { print b }' "$log" 2>/dev/null)
+	n_ev=$(grep -c '^[0-9]' "$log" 2>/dev/null || echo 0)
+	cat <<EOF
+
+#### Fitting in log space (round 7)
+
+The relative error r = f/y − 1 is not symmetric in the ratio: a model a factor 1.25 too high
+costs r² = 0.0625, one a factor 1.25 too low 0.04, so a fit on r leans low, and the held-out
+misses are mostly the model being too low (at grazing). \`scripts/fit-curet.py --objective log\`
+minimises the mean of ln(f/y)² instead (the same 20 training points, the same five freedoms and
+bounds as \`$q\`, started at its values; log docs/validation/fit-curet39-rough-log.tsv, $n_ev
+evaluations, the preset is evaluation $best). Its preset \`$p\`: $(hs "$p" 2) % on the training
+points, **$(hs "$p" 3) % held out** (goal under 8 %: not met), back-side fall $(f5 "$p" total 9),
+forward rise $(f5 "$p" total 10) (CUReT $cur_back, $cur_fwd), $(hs "$p" 7) % against the Marschner fit;
+held out by region (θi < 60° / θi ≥ 60° back side / mirror side): $(splitcol "$p" 1) / $(splitcol "$p" 2) /
+$(splitcol "$p" 3) % (\`$q\`: $(splitcol "$q" 1) / $(splitcol "$q" 2) / $(splitcol "$q" 3) %).
+The weighting changes what the 20 points ask for only a little, since the model is within about
+10 % of all of them; it cannot reach the grazing points they do not contain.
+EOF
+}
+
 if [ -n "$roughs" ] && [ "$fit_ok" = 1 ]; then
 	{
 		cat <<EOF
@@ -916,6 +944,7 @@ EOF
 		[ -n "$rough_ad" ] && rough_ad_section
 		[ -n "$rough_macro" ] && [ -n "$rough_ad" ] && macro_section
 		[ -n "$rough_ms" ] && [ -n "$rough_ad" ] && ms_section
+		[ -n "$rough_log" ] && log_section
 		printf '\n'
 		sed '1{/^<!--/d}' "$top_srcdir/scripts/validate-ad-rough.md"
 	} >>"$br/section.md"

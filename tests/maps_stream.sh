@@ -98,4 +98,26 @@ for bad in trunc flip; do
 	"$B" maps fit --family "$fam" --albedo "$tmpd/$bad.png" --out "$tmpd/new_$bad" --quiet 2> /dev/null
 	check "  ... and a new --out is not made" test ! -e "$tmpd/new_$bad"
 done
+# A full disk while the maps stream out (strace injects ENOSPC into the K-th
+# write of the fit: early, in the first band, and the last write of a good
+# run): exit 1 with the system's message, no --out, no staging left.
+if command -v strace > /dev/null 2>&1 && strace -f -qq -o /dev/null true 2> /dev/null; then
+	# the writes of a good run: the last one is the late failure (one thread:
+	# strace counts the writes of each thread apart)
+	strace -f -qq -e trace=write -o "$tmpd/writes" "$B" maps fit --family "$fam" --albedo "$tmpd/a.png" \
+		--out "$tmpd/good" --threads 1 --quiet
+	last=$(grep -c 'write(' "$tmpd/writes")
+	echo "# a good fit writes $last times"
+	for k in 1 4 "$last"; do
+		rm -rf "$tmpd/full"
+		strace -f -qq -o /dev/null -e inject=write:error=ENOSPC:when=$k "$B" maps fit --family "$fam" \
+			--albedo "$tmpd/a.png" --out "$tmpd/full" --threads 1 --quiet 2> "$tmpd/e"
+		rc=$?
+		check "fit, disk full at write $k: exit 1 ($rc), '$(head -c 120 "$tmpd/e")', nothing left" sh -c \
+			"[ $rc = 1 ] && grep -q 'No space left on device' '$tmpd/e' && [ ! -e '$tmpd/full' ] &&
+			! ls -a '$tmpd' | grep -q staging"
+	done
+else
+	skip "strace cannot inject faults here"
+fi
 tap_done

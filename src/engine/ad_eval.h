@@ -25,6 +25,9 @@ struct ad_series {
 
 /* Points per bin in theta_o for the bin means. */
 #define AD_EVAL_POINTS 8
+/* Nodes of the least-squares line that gives the value at grazing exit under
+ * a rough top (ad_eval.c grazing_line). */
+#define AD_EVAL_GRAZING_NODES 4
 
 /* f for beam e at exit theta_o, dphi [rad]; orders m < m_max (all if
  * m_max <= 0 or larger than the series). */

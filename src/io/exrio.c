@@ -91,7 +91,8 @@ static int writer_fail(struct exrio_writer *wr, char **cause)
 	return -1;
 }
 
-struct exrio_writer *exrio_writer_open(const char *path, int w, int h, int nch, const char *const *names,
+struct exrio_writer *exrio_writer_open(const char *path, int w, int h, int nch,
+    const char *const *names,
     int nattr, const struct exr_attr_kv *attrs, char **cause)
 {
 	struct exrio_writer *wr = xcalloc(1, sizeof *wr);
@@ -121,7 +122,8 @@ struct exrio_writer *exrio_writer_open(const char *path, int w, int h, int nch, 
 	    exr_initialize_required_attr_simple(wr->f, part, w, h, EXR_COMPRESSION_ZIP))
 		goto fail;
 	for (int c = 0; c < nch; c++)
-		if (exr_add_channel(wr->f, part, names[c], EXR_PIXEL_FLOAT, EXR_PERCEPTUALLY_LINEAR, 1,
+		if (exr_add_channel(wr->f, part, names[c], EXR_PIXEL_FLOAT, EXR_PERCEPTUALLY_LINEAR,
+		    1,
 		    1))
 			goto fail;
 	for (int a = 0; a < nattr; a++)
@@ -195,7 +197,8 @@ int exrio_writer_rows(struct exrio_writer *wr, const float *const *planes, int n
 		}
 		int take = full - wr->nbuf < nrows - r ? full - wr->nbuf : nrows - r;
 		for (int c = 0; c < wr->nch; c++)
-			memcpy(wr->buf[c] + (size_t)wr->nbuf * (size_t)wr->w, planes[c] + (size_t)r * (size_t)wr->w,
+			memcpy(wr->buf[c] + (size_t)wr->nbuf * (size_t)wr->w,
+			    planes[c] + (size_t)r * (size_t)wr->w,
 			    sizeof(float) * (size_t)take * (size_t)wr->w);
 		wr->nbuf += take;
 		r += take;
@@ -224,7 +227,8 @@ int exrio_writer_close(struct exrio_writer *wr, char **cause)
 	if (wr->y != wr->h || exr_finish(&wr->f) != EXR_ERR_SUCCESS)
 		rc = -1;
 	if (rc != 0) {
-		*cause = xasprintf("%s: writing the EXR failed%s%s", wr->path, wr->msg.text[0] ? ": " : "",
+		*cause = xasprintf("%s: writing the EXR failed%s%s", wr->path, wr->msg.text[0]
+		    ? ": " : "",
 		    wr->msg.text[0] ? wr->msg.text : wr->y != wr->h ? "rows missing" : "");
 		unlink(wr->tmp);
 	} else
@@ -283,7 +287,8 @@ int exrio_size(const char *path, int *w, int *h, char **cause)
 	return 0;
 }
 
-int exrio_read_channel_rows(const char *path, const char *name, int w, int h, int y0, int ny, float *out,
+int exrio_read_channel_rows(const char *path, const char *name, int w, int h, int y0, int ny,
+    float *out,
     char **cause)
 {
 	exr_context_t f;
@@ -329,7 +334,8 @@ int exrio_read_channel_rows(const char *path, const char *name, int w, int h, in
 			ch->user_line_stride = w * (int)sizeof(float);
 			ch->user_bytes_per_element = sizeof(float);
 			ch->user_data_type = EXR_PIXEL_FLOAT;
-			ch->decode_to_ptr = (uint8_t *)(inside ? out + (size_t)(r0 - y0) * (size_t)w : tmp);
+			ch->decode_to_ptr = (uint8_t *)(inside ? out + (size_t)(r0 - y0) * (size_t)w
+			    : tmp);
 		}
 		if (!found) {
 			*cause = xasprintf("%s: no channel '%s'", path, name);
@@ -345,7 +351,8 @@ int exrio_read_channel_rows(const char *path, const char *name, int w, int h, in
 		if (!inside)
 			for (int r = 0; r < ci.height; r++)
 				if (r0 + r >= y0 && r0 + r < y0 + ny)
-					memcpy(out + (size_t)(r0 + r - y0) * (size_t)w, tmp + (size_t)r * (size_t)w,
+					memcpy(out + (size_t)(r0 + r - y0) * (size_t)w,
+					    tmp + (size_t)r * (size_t)w,
 					    sizeof(float) * (size_t)w);
 	}
 	rc = 0;

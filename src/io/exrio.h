@@ -21,7 +21,8 @@ int exrio_write(const char *path, int w, int h, int nch, const char *const *name
  * chunk (16 rows).  A failing call returns -1 (NULL) and *cause, removes
  * the temporary file and frees wr. */
 struct exrio_writer;
-struct exrio_writer *exrio_writer_open(const char *path, int w, int h, int nch, const char *const *names,
+struct exrio_writer *exrio_writer_open(const char *path, int w, int h, int nch,
+    const char *const *names,
     int nattr, const struct exr_attr_kv *attrs, char **cause);
 int exrio_writer_rows(struct exrio_writer *wr, const float *const *planes, int nrows, char **cause);
 /* After the last row: finish and rename into place; frees wr. */
@@ -33,7 +34,8 @@ int exrio_size(const char *path, int *w, int *h, char **cause);
 /* Read channel NAME of PATH into out (w*h floats, size must match). */
 int exrio_read_channel(const char *path, const char *name, int w, int h, float *out, char **cause);
 /* Rows y0 .. y0 + ny - 1 of channel NAME into out (ny*w floats). */
-int exrio_read_channel_rows(const char *path, const char *name, int w, int h, int y0, int ny, float *out,
+int exrio_read_channel_rows(const char *path, const char *name, int w, int h, int y0, int ny,
+    float *out,
     char **cause);
 /* A string attribute of PATH (caller frees), or NULL with *cause. */
 char *exrio_read_string_attr(const char *path, const char *key, char **cause);

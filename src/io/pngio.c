@@ -85,7 +85,8 @@ struct pngio_writer {
  * from errno (libpng's write stops at the failed fwrite: its cause). */
 static int writer_fail(struct pngio_writer *wr, int e, char **cause)
 {
-	*cause = xasprintf("%s: writing the PNG failed%s%s", wr->path, e ? ": " : "", e ? strerror(e) : "");
+	*cause = xasprintf("%s: writing the PNG failed%s%s", wr->path, e ? ": " : "", e
+	    ? strerror(e) : "");
 	pngio_writer_abort(wr);
 	return -1;
 }
@@ -104,7 +105,8 @@ void pngio_writer_abort(struct pngio_writer *wr)
 	free(wr);
 }
 
-struct pngio_writer *pngio_writer_open(const char *path, int w, int h, int channels, int bits, int srgb,
+struct pngio_writer *pngio_writer_open(const char *path, int w, int h, int channels, int bits,
+    int srgb,
     int ntext, const struct png_text_kv *text, char **cause)
 {
 	static const int types[] = { 0, PNG_COLOR_TYPE_GRAY, PNG_COLOR_TYPE_GRAY_ALPHA,
@@ -206,7 +208,8 @@ int pngio_writer_close(struct pngio_writer *wr, char **cause)
 int pngio_write(const char *path, int w, int h, int channels, int bits, const uint16_t *px,
     int srgb, int ntext, const struct png_text_kv *text, char **cause)
 {
-	struct pngio_writer *wr = pngio_writer_open(path, w, h, channels, bits, srgb, ntext, text, cause);
+	struct pngio_writer *wr = pngio_writer_open(path, w, h, channels, bits, srgb, ntext, text,
+	    cause);
 	if (wr == NULL || pngio_writer_rows(wr, px, h, cause) != 0)
 		return -1;
 	return pngio_writer_close(wr, cause);
@@ -316,13 +319,15 @@ void pngio_reader_close(struct pngio_reader *rd)
 
 static void *reader_fail(struct pngio_reader *rd, char **cause)
 {
-	*cause = rd->msg.text[0] ? xasprintf("%s: not a readable PNG file (%s)", rd->path, rd->msg.text)
+	*cause = rd->msg.text[0] ? xasprintf("%s: not a readable PNG file (%s)", rd->path,
+	    rd->msg.text)
 				 : xasprintf("%s: not a readable PNG file", rd->path);
 	pngio_reader_close(rd);
 	return NULL;
 }
 
-struct pngio_reader *pngio_reader_open(const char *path, int *w, int *h, int *channels, int *bits, char **cause)
+struct pngio_reader *pngio_reader_open(const char *path, int *w, int *h, int *channels, int *bits,
+    char **cause)
 {
 	FILE *fp = fopen(path, "rb");
 	if (!fp) {
@@ -345,7 +350,8 @@ struct pngio_reader *pngio_reader_open(const char *path, int *w, int *h, int *ch
 	png_uint_32 pw = png_get_image_width(png, info), ph = png_get_image_height(png, info);
 	double need = (double)png_get_rowbytes(png, info) * (double)ph;
 	if (need > PNG_MAX_INFLATE * file_bytes + 65536.0) {
-		snprintf(rd->msg.text, sizeof rd->msg.text, "%lu x %lu pixels cannot be held in %.0f bytes",
+		snprintf(rd->msg.text, sizeof rd->msg.text,
+		    "%lu x %lu pixels cannot be held in %.0f bytes",
 		    (unsigned long)pw, (unsigned long)ph, file_bytes);
 		png_longjmp(png, 1);
 	}
@@ -394,16 +400,19 @@ struct pngio_reader *pngio_reader_open(const char *path, int *w, int *h, int *ch
 int pngio_reader_rows(struct pngio_reader *rd, uint16_t *px, int nrows, char **cause)
 {
 	if (nrows > rd->h - rd->y) {
-		*cause = xasprintf("%s: rows %d to %d asked of %d", rd->path, rd->y, rd->y + nrows - 1, rd->h);
+		*cause = xasprintf("%s: rows %d to %d asked of %d", rd->path, rd->y,
+		    rd->y + nrows - 1, rd->h);
 		return -1;
 	}
 	if (rd->whole) {
-		memcpy(px, rd->whole + (size_t)rd->y * rd->n, sizeof(uint16_t) * rd->n * (size_t)nrows);
+		memcpy(px, rd->whole + (size_t)rd->y * rd->n,
+		    sizeof(uint16_t) * rd->n * (size_t)nrows);
 		rd->y += nrows;
 		return 0;
 	}
 	if (setjmp(png_jmpbuf(rd->png))) {
-		*cause = rd->msg.text[0] ? xasprintf("%s: not a readable PNG file (%s)", rd->path, rd->msg.text)
+		*cause = rd->msg.text[0] ? xasprintf("%s: not a readable PNG file (%s)", rd->path,
+		    rd->msg.text)
 					 : xasprintf("%s: not a readable PNG file", rd->path);
 		return -1;
 	}
@@ -421,8 +430,10 @@ int pngio_reader_rows(struct pngio_reader *rd, uint16_t *px, int nrows, char **c
 	rd->y += nrows;
 	if (rd->y == rd->h) {
 		if (setjmp(png_jmpbuf(rd->png))) {
-			*cause = rd->msg.text[0] ? xasprintf("%s: not a readable PNG file (%s)", rd->path, rd->msg.text)
-						 : xasprintf("%s: not a readable PNG file", rd->path);
+			*cause = rd->msg.text[0] ? xasprintf("%s: not a readable PNG file (%s)",
+			    rd->path, rd->msg.text)
+						 : xasprintf("%s: not a readable PNG file",
+						     rd->path);
 			return -1;
 		}
 		png_read_end(rd->png, NULL);

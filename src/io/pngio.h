@@ -25,7 +25,8 @@ uint16_t *pngio_read(const char *path, int *w, int *h, int *channels, int *bits,
  * pngio_writer_abort (which removes the temporary file) or
  * pngio_reader_close may follow. */
 struct pngio_writer;
-struct pngio_writer *pngio_writer_open(const char *path, int w, int h, int channels, int bits, int srgb,
+struct pngio_writer *pngio_writer_open(const char *path, int w, int h, int channels, int bits,
+    int srgb,
     int ntext, const struct png_text_kv *text, char **cause);
 /* Rows y .. y + nrows - 1 in order, px as pngio_write's (w*channels per row). */
 int pngio_writer_rows(struct pngio_writer *wr, const uint16_t *px, int nrows, char **cause);
@@ -35,7 +36,8 @@ void pngio_writer_abort(struct pngio_writer *wr);	/* NULL is a no-op */
 
 struct pngio_reader;
 /* Open PATH and read its header (the same checks as pngio_read). */
-struct pngio_reader *pngio_reader_open(const char *path, int *w, int *h, int *channels, int *bits, char **cause);
+struct pngio_reader *pngio_reader_open(const char *path, int *w, int *h, int *channels, int *bits,
+    char **cause);
 /* The next nrows rows as 16-bit samples, as pngio_read gives them. */
 int pngio_reader_rows(struct pngio_reader *rd, uint16_t *px, int nrows, char **cause);
 void pngio_reader_close(struct pngio_reader *rd);	/* NULL is a no-op */

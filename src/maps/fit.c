@@ -17,9 +17,8 @@
 #include "base/srgb.h"
 #include "base/util.h"
 #include "io/json.h"
+#include "maps/fitlut.h"
 #include "skin/colour.h"
-
-#define REG 0.01	/* pull toward the axis middle, CIELAB units per unit of normalised coordinate */
 
 static int n_threads(int t)
 {
@@ -29,351 +28,6 @@ static int n_threads(int t)
 	(void)t;
 	return 1;
 #endif
-}
-
-/* The family's CIELAB on a dense grid, and buckets over CIELAB. */
-struct lut {
-	const struct family *f;
-	int k;				/* axes */
-	int g[FAMILY_MAX_AXES];		/* grid points per axis */
-	double c0[FAMILY_MAX_AXES], c1[FAMILY_MAX_AXES];	/* axis coordinate at the grid's ends */
-	int n;				/* grid points */
-	double *lab;			/* [n][3] */
-	int n_coarse;			/* grid points in the buckets: every step-th per axis and the last */
-	double lo[3], cell;		/* bucket grid origin and cell size (CIELAB units) */
-	int dim[3];
-	int *start, *item;		/* CSR: bucket b holds item[start[b] .. start[b + 1]) */
-};
-
-/* Parameter values at grid coordinates g (continuous, in grid units). */
-static void grid_params(const struct lut *t, const double *g, double *x)
-{
-	for (int a = 0; a < t->k; a++) {
-		double c = t->c0[a] + (t->c1[a] - t->c0[a]) * g[a] / (t->g[a] - 1);
-		x[a] = family_axis_value(&t->f->axis[a], c);
-		/* keep the ends exact (exp(log(v)) may differ in the last bit) */
-		const struct family_axis *ax = &t->f->axis[a];
-		x[a] = fmin(fmax(x[a], ax->node[0]), ax->node[ax->n - 1]);
-	}
-}
-
-static void params_lab(const struct family *f, const double *x, double lab[3])
-{
-	double rgb[3];
-	family_albedo(f, x, NULL, rgb, NULL);
-	colour_linear_srgb_to_lab(rgb, lab);
-}
-
-static void lut_build(struct lut *t, const struct family *f, int threads)
-{
-	memset(t, 0, sizeof *t);
-	t->f = f;
-	t->k = f->n_axes;
-	static const int per_axis[FAMILY_MAX_AXES + 1] = { 0, 2048, 160, 48 };
-	t->n = 1;
-	for (int a = 0; a < FAMILY_MAX_AXES; a++) {
-		t->g[a] = a < t->k ? per_axis[t->k] : 1;
-		if (a < t->k) {
-			const struct family_axis *ax = &f->axis[a];
-			t->c0[a] = family_axis_coord(ax, ax->node[0]);
-			t->c1[a] = family_axis_coord(ax, ax->node[ax->n - 1]);
-		}
-		t->n *= t->g[a];
-	}
-	t->lab = xmalloc(sizeof(double) * 3 * (size_t)t->n);
-	(void)threads; /* only OpenMP's pragma reads it */
-#pragma omp parallel for schedule(static) num_threads(threads)
-	for (int i = 0; i < t->n; i++) {
-		double g[FAMILY_MAX_AXES] = { i % t->g[0], (i / t->g[0]) % t->g[1], i / (t->g[0] * t->g[1]) }, x[3];
-		grid_params(t, g, x);
-		params_lab(f, x, t->lab + 3 * (size_t)i);
-	}
-	/* Buckets of 2 CIELAB units over a coarse subset of the grid (the
-	 * refinement walks the fine grid from the coarse point found). */
-	static const int step[FAMILY_MAX_AXES + 1] = { 1, 16, 4, 4 };
-	int *coarse = xmalloc(sizeof(int) * (size_t)t->n);
-	t->n_coarse = 0;
-	for (int i = 0; i < t->n; i++) {
-		int q[FAMILY_MAX_AXES] = { i % t->g[0], (i / t->g[0]) % t->g[1], i / (t->g[0] * t->g[1]) }, in = 1;
-		for (int a = 0; a < t->k; a++)
-			in = in && (q[a] % step[t->k] == 0 || q[a] == t->g[a] - 1);
-		if (in)
-			coarse[t->n_coarse++] = i;
-	}
-	double hi[3] = { -INFINITY, -INFINITY, -INFINITY };
-	for (int c = 0; c < 3; c++)
-		t->lo[c] = INFINITY;
-	for (int j = 0; j < t->n_coarse; j++)
-		for (int c = 0; c < 3; c++) {
-			t->lo[c] = fmin(t->lo[c], t->lab[3 * (size_t)coarse[j] + c]);
-			hi[c] = fmax(hi[c], t->lab[3 * (size_t)coarse[j] + c]);
-		}
-	t->cell = 2.0;
-	double vol = 1.0;
-	for (int c = 0; c < 3; c++)
-		vol *= (hi[c] - t->lo[c]) / t->cell + 1.0;
-	if (vol > 1e6)
-		t->cell *= cbrt(vol / 1e6);
-	size_t nb = 1;
-	for (int c = 0; c < 3; c++) {
-		t->dim[c] = (int)floor((hi[c] - t->lo[c]) / t->cell) + 1;
-		nb *= (size_t)t->dim[c];
-	}
-	t->start = xcalloc(nb + 1, sizeof(int));
-	t->item = xmalloc(sizeof(int) * (size_t)t->n_coarse);
-	int *bi = xmalloc(sizeof(int) * (size_t)t->n_coarse);
-	for (int j = 0; j < t->n_coarse; j++) {
-		int b[3];
-		for (int c = 0; c < 3; c++) {
-			b[c] = (int)floor((t->lab[3 * (size_t)coarse[j] + c] - t->lo[c]) / t->cell);
-			b[c] = b[c] < 0 ? 0 : b[c] >= t->dim[c] ? t->dim[c] - 1 : b[c];
-		}
-		bi[j] = (b[2] * t->dim[1] + b[1]) * t->dim[0] + b[0];
-		t->start[bi[j] + 1]++;
-	}
-	for (size_t b = 0; b < nb; b++)
-		t->start[b + 1] += t->start[b];
-	int *fill = xmalloc(sizeof(int) * nb);
-	memcpy(fill, t->start, sizeof(int) * nb);
-	for (int j = 0; j < t->n_coarse; j++)
-		t->item[fill[bi[j]]++] = coarse[j];
-	free(fill);
-	free(bi);
-	free(coarse);
-}
-
-static void lut_free(struct lut *t)
-{
-	free(t->lab);
-	free(t->start);
-	free(t->item);
-}
-
-static double d2(const double *a, const double *b)
-{
-	double x = a[0] - b[0], y = a[1] - b[1], z = a[2] - b[2];
-	return x * x + y * y + z * z;
-}
-
-/* The coarse grid point nearest to lab in CIELAB: buckets shell by shell
- * around lab's bucket until no closer point can remain; all coarse points
- * past 40 shells. */
-static int lut_nearest(const struct lut *t, const double lab[3])
-{
-	int tc[3], best = -1;
-	double bd = INFINITY;
-	for (int c = 0; c < 3; c++)
-		tc[c] = (int)floor((lab[c] - t->lo[c]) / t->cell);
-	int s0 = 0;	/* shells before the box */
-	for (int c = 0; c < 3; c++) {
-		int out = tc[c] < 0 ? -tc[c] : tc[c] >= t->dim[c] ? tc[c] - t->dim[c] + 1 : 0;
-		s0 = out > s0 ? out : s0;
-	}
-	int smax = t->dim[0] + t->dim[1] + t->dim[2] + s0;
-	for (int s = s0; s <= smax; s++) {
-		if (s > s0 + 40) {
-			for (int j = 0; j < t->n_coarse; j++) {
-				double d = d2(t->lab + 3 * (size_t)t->item[j], lab);
-				if (d < bd || (d == bd && t->item[j] < best)) {
-					bd = d;
-					best = t->item[j];
-				}
-			}
-			return best;
-		}
-		int lo[3], hi[3];
-		for (int c = 0; c < 3; c++) {
-			lo[c] = tc[c] - s < 0 ? 0 : tc[c] - s;
-			hi[c] = tc[c] + s >= t->dim[c] ? t->dim[c] - 1 : tc[c] + s;
-		}
-		for (int z = lo[2]; z <= hi[2]; z++)
-			for (int y = lo[1]; y <= hi[1]; y++)
-				for (int x = lo[0]; x <= hi[0]; x++) {
-					int cheb = abs(x - tc[0]);
-					cheb = abs(y - tc[1]) > cheb ? abs(y - tc[1]) : cheb;
-					cheb = abs(z - tc[2]) > cheb ? abs(z - tc[2]) : cheb;
-					if (cheb != s)
-						continue;
-					int b = (z * t->dim[1] + y) * t->dim[0] + x;
-					for (int j = t->start[b]; j < t->start[b + 1]; j++) {
-						double d = d2(t->lab + 3 * (size_t)t->item[j], lab);
-						if (d < bd || (d == bd && t->item[j] < best)) {
-							bd = d;
-							best = t->item[j];
-						}
-					}
-				}
-		/* A point in shell s + 1 or beyond is at least s cells away. */
-		if (best >= 0 && bd <= (s * t->cell) * (s * t->cell))
-			return best;
-	}
-	return best;
-}
-
-/* lut_eval for two axes: the same operations in the same order (so the
- * same bits), unrolled; the general loop spends most of its time on
- * indexing and branches. */
-static void lut_eval2(const struct lut *t, const int *i0, const double *fr, double lab[3],
-    double jac[3][FAMILY_MAX_AXES])
-{
-	const double f0 = fr[0], f1 = fr[1], e0 = 1.0 - fr[0], e1 = 1.0 - fr[1];
-	const double w[4] = { e0 * e1, f0 * e1, e0 * f1, f0 * f1 };
-	const double d0[4] = { -1.0 * e1, 1.0 * e1, -1.0 * f1, 1.0 * f1 };
-	const double d1[4] = { e0 * -1.0, f0 * -1.0, e0 * 1.0, f0 * 1.0 };
-	const int base = i0[0] + i0[1] * t->g[0];
-	const int off[4] = { base, base + 1, base + t->g[0], base + t->g[0] + 1 };
-	for (int c = 0; c < 3; c++) {
-		lab[c] = 0.0;
-		jac[c][0] = 0.0;
-		jac[c][1] = 0.0;
-	}
-	for (int corner = 0; corner < 4; corner++) {
-		const double *L = t->lab + 3 * (size_t)off[corner];
-		for (int c = 0; c < 3; c++) {
-			lab[c] += w[corner] * L[c];
-			jac[c][0] += d0[corner] * L[c];
-			jac[c][1] += d1[corner] * L[c];
-		}
-	}
-}
-
-/* The multilinear interpolant of the grid at g and its Jacobian. */
-static void lut_eval(const struct lut *t, const double *g, double lab[3], double jac[3][FAMILY_MAX_AXES])
-{
-	int i0[FAMILY_MAX_AXES];
-	double fr[FAMILY_MAX_AXES];
-	for (int a = 0; a < t->k; a++) {
-		i0[a] = (int)floor(g[a]);
-		if (i0[a] > t->g[a] - 2)
-			i0[a] = t->g[a] - 2;
-		if (i0[a] < 0)
-			i0[a] = 0;
-		fr[a] = g[a] - i0[a];
-	}
-	if (t->k == 2) {
-		lut_eval2(t, i0, fr, lab, jac);
-		return;
-	}
-	for (int c = 0; c < 3; c++) {
-		lab[c] = 0.0;
-		for (int a = 0; a < t->k; a++)
-			jac[c][a] = 0.0;
-	}
-	for (int corner = 0; corner < (1 << t->k); corner++) {
-		int idx = 0, mul = 1;
-		double w = 1.0, dw[FAMILY_MAX_AXES];
-		for (int a = 0; a < t->k; a++) {
-			int bit = (corner >> a) & 1;
-			idx += (i0[a] + bit) * mul;
-			mul *= t->g[a];
-			w *= bit ? fr[a] : 1.0 - fr[a];
-		}
-		for (int a = 0; a < t->k; a++) {
-			dw[a] = 1.0;
-			for (int b = 0; b < t->k; b++) {
-				int bit = (corner >> b) & 1;
-				dw[a] *= b == a ? (bit ? 1.0 : -1.0) : (bit ? fr[b] : 1.0 - fr[b]);
-			}
-		}
-		const double *L = t->lab + 3 * (size_t)idx;
-		for (int c = 0; c < 3; c++) {
-			lab[c] += w * L[c];
-			for (int a = 0; a < t->k; a++)
-				jac[c][a] += dw[a] * L[c];
-		}
-	}
-}
-
-static double cost(const struct lut *t, const double *g, const double *target, double lab[3],
-    double jac[3][FAMILY_MAX_AXES])
-{
-	lut_eval(t, g, lab, jac);
-	double s = d2(lab, target);
-	for (int a = 0; a < t->k; a++) {
-		double r = REG * (g[a] / (t->g[a] - 1) - 0.5);
-		s += r * r;
-	}
-	return s;
-}
-
-/* Solve the k x k system m x = b (k <= 3) by Gaussian elimination with
- * pivoting; 0 when singular. */
-static int solve(int k, double m[3][3], double *b)
-{
-	for (int c = 0; c < k; c++) {
-		int p = c;
-		for (int r = c + 1; r < k; r++)
-			if (fabs(m[r][c]) > fabs(m[p][c]))
-				p = r;
-		if (fabs(m[p][c]) < 1e-300)
-			return 0;
-		for (int j = 0; j < k; j++) {
-			double x = m[c][j];
-			m[c][j] = m[p][j];
-			m[p][j] = x;
-		}
-		double x = b[c];
-		b[c] = b[p];
-		b[p] = x;
-		for (int r = c + 1; r < k; r++) {
-			double q = m[r][c] / m[c][c];
-			for (int j = c; j < k; j++)
-				m[r][j] -= q * m[c][j];
-			b[r] -= q * b[c];
-		}
-	}
-	for (int c = k - 1; c >= 0; c--) {
-		for (int j = c + 1; j < k; j++)
-			b[c] -= m[c][j] * b[j];
-		b[c] /= m[c][c];
-	}
-	return 1;
-}
-
-/* Damped Gauss-Newton (Levenberg-Marquardt) from g, inside the grid; the
- * CIELAB distance reached. */
-static double refine(const struct lut *t, double *g, const double *target)
-{
-	double lab[3], jac[3][FAMILY_MAX_AXES], lambda = 1e-3;
-	double c = cost(t, g, target, lab, jac);
-	for (int it = 0; it < 50; it++) {
-		double m[3][3] = { { 0 } }, b[3] = { 0 }, gn[FAMILY_MAX_AXES];
-		for (int a = 0; a < t->k; a++) {
-			double ra = REG / (t->g[a] - 1), r = REG * (g[a] / (t->g[a] - 1) - 0.5);
-			for (int bb = 0; bb < t->k; bb++)
-				for (int q = 0; q < 3; q++)
-					m[a][bb] += jac[q][a] * jac[q][bb];
-			m[a][a] += ra * ra;
-			for (int q = 0; q < 3; q++)
-				b[a] -= jac[q][a] * (lab[q] - target[q]);
-			b[a] -= ra * r;
-		}
-		for (int a = 0; a < t->k; a++)
-			m[a][a] *= 1.0 + lambda;
-		if (!solve(t->k, m, b))
-			break;
-		double step = 0.0;
-		for (int a = 0; a < t->k; a++) {
-			gn[a] = fmin(fmax(g[a] + b[a], 0.0), t->g[a] - 1.0);
-			step = fmax(step, fabs(gn[a] - g[a]));
-		}
-		double labn[3], jacn[3][FAMILY_MAX_AXES], cn = cost(t, gn, target, labn, jacn);
-		if (cn <= c) {
-			memcpy(g, gn, sizeof(double) * (size_t)t->k);
-			memcpy(lab, labn, sizeof lab);
-			memcpy(jac, jacn, sizeof jac);
-			lambda = fmax(lambda / 3.0, 1e-9);
-			int done = step < 1e-7 || c - cn < 1e-14;
-			c = cn;
-			if (done)
-				break;
-		} else {
-			lambda *= 10.0;
-			if (lambda > 1e8)
-				break;
-		}
-	}
-	return sqrt(d2(lab, target));
 }
 
 void maps_texel_linear(const struct image *im, size_t i, int input_linear, double rgb[3])
@@ -411,8 +65,8 @@ static void texel_bits(const struct image *im, size_t i, uint32_t k[3])
  * (the low bits of a product see only the key's low bits). */
 static size_t key_hash(const uint32_t k[3], int bits)
 {
-	uint64_t h = ((((uint64_t)k[0] * 0x9E3779B97F4A7C15ULL) ^ k[1]) * 0xC2B2AE3D27D4EB4FULL ^ k[2]) *
-	    0x165667B19E3779F9ULL;
+	uint64_t h = (((uint64_t)k[0] * 0x9E3779B97F4A7C15ULL) ^ k[1]) * 0xC2B2AE3D27D4EB4FULL;
+	h = (h ^ k[2]) * 0x165667B19E3779F9ULL;
 	return (size_t)(h >> (64 - bits));
 }
 
@@ -481,31 +135,21 @@ static void key_values(const uint32_t k[3], float v[3])
 		memcpy(&v[c], &k[c], sizeof v[c]);
 }
 
+/* After the last colour: the keys' spare room returned (realloc to a
+ * smaller size does not move) and, when no colour will be looked up
+ * again, the hash slots freed. */
+static void colours_drop_hash(struct colours *cl)
+{
+	free(cl->slot);
+	cl->slot = NULL;
+	cl->kcap = (size_t)(cl->n > 0 ? cl->n : 1);
+	cl->key = xreallocarray(cl->key, cl->kcap, sizeof *cl->key);
+}
+
 static void colours_free(struct colours *cl)
 {
 	free(cl->key);
 	free(cl->slot);
-}
-
-/* One colour's parameters (grid coordinates g, warm-started from g when
- * warm), by the coarse nearest point and the refinement; a warm start that
- * reaches an exact match (within 0.02 CIELAB) is taken as it is. */
-static void solve_colour(const struct lut *t, const double target[3], double *g, int warm)
-{
-	double gw[FAMILY_MAX_AXES], rw = INFINITY;
-	if (warm) {
-		memcpy(gw, g, sizeof gw);
-		rw = refine(t, gw, target);
-		if (rw < 0.02) {
-			memcpy(g, gw, sizeof gw);
-			return;
-		}
-	}
-	int nb = lut_nearest(t, target);
-	for (int a = 0; a < t->k; a++)
-		g[a] = (nb / (a == 0 ? 1 : a == 1 ? t->g[0] : t->g[0] * t->g[1])) % t->g[a];
-	if (refine(t, g, target) > rw)
-		memcpy(g, gw, sizeof gw);
 }
 
 /* The errors over fitted texels, in 0.001 bins up to 100, for the median
@@ -545,7 +189,7 @@ struct fitter {
 	struct family *f;
 	const struct maps_fit_opts *o;
 	int threads;
-	struct lut t;
+	struct fit_lut t;
 	struct colours cl;
 	int nr;
 	float *res;
@@ -566,9 +210,10 @@ static void fitter_init(struct fitter *F, struct family *f, const struct maps_fi
 static void fitter_free(struct fitter *F)
 {
 	if (F->res)
-		lut_free(&F->t);
+		fit_lut_free(&F->t);
+	if ((void *)F->res != (void *)F->cl.key)
+		free(F->res);
 	colours_free(&F->cl);
-	free(F->res);
 	free(F->dh.h);
 }
 
@@ -581,7 +226,8 @@ static int texel_in(const struct image *albedo, const struct image *mask, size_t
 /* Pass 1 over a band: its fitted texels' colours, in raster order; ids
  * (NULL or one per texel of the band) gets each texel's colour, -1 when
  * it is not fitted. */
-static void fitter_scan(struct fitter *F, const struct image *albedo, const struct image *mask, int nrows,
+static void fitter_scan(struct fitter *F, const struct image *albedo, const struct image *mask,
+    int nrows,
     int32_t *ids, struct maps_fit_summary *sum)
 {
 	size_t n = (size_t)albedo->w * (size_t)nrows;
@@ -594,7 +240,8 @@ static void fitter_scan(struct fitter *F, const struct image *albedo, const stru
 			uint32_t k[3];
 			texel_bits(albedo, i, k);
 			/* runs of one colour: no hash */
-			id = prev_id >= 0 && memcmp(k, prev, sizeof k) == 0 ? prev_id : colours_add(&F->cl, k);
+			id = prev_id >= 0 && memcmp(k, prev, sizeof k) == 0 ? prev_id
+			    : colours_add(&F->cl, k);
 			memcpy(prev, k, sizeof k);
 			prev_id = id;
 		}
@@ -605,15 +252,20 @@ static void fitter_scan(struct fitter *F, const struct image *albedo, const stru
 }
 
 /* Solve every colour: fixed chunks, each solved in order with warm starts,
- * so the result does not depend on the threads. */
-static void fitter_solve(struct fitter *F)
+ * so the result does not depend on the threads.  in_place: the colours
+ * are not looked up again (pass 2 has their ids), so a result of the
+ * size of a key (two axes: 3 floats) overwrites its key once read. */
+static void fitter_solve(struct fitter *F, int in_place)
 {
 	const struct colours *cl = &F->cl;
-	lut_build(&F->t, F->f, F->threads);
-	const struct lut *t = &F->t;
+	fit_lut_build(&F->t, F->f, F->threads);
+	const struct fit_lut *t = &F->t;
 	enum { CHUNK = 512 };
 	const int nr = F->nr = t->k + 1;
-	F->res = xmalloc(sizeof(float) * (size_t)(cl->n > 0 ? cl->n : 1) * (size_t)nr);
+	if (in_place && cl->n > 0 && sizeof(float) * (size_t)nr == sizeof *cl->key)
+		F->res = (float *)cl->key;
+	else
+		F->res = xmalloc(sizeof(float) * (size_t)(cl->n > 0 ? cl->n : 1) * (size_t)nr);
 	float *res = F->res;
 	const struct maps_fit_opts *o = F->o;
 	struct family *f = F->f;
@@ -628,9 +280,9 @@ static void fitter_solve(struct fitter *F)
 			for (int c = 0; c < 3; c++)
 				rgb[c] = o->input_linear ? v[c] : srgb_decode(v[c]);
 			colour_linear_srgb_to_lab(rgb, target);
-			solve_colour(t, target, g, u > ch * CHUNK);
-			grid_params(t, g, x);
-			params_lab(f, x, lab);
+			fit_lut_solve(t, target, g, u > ch * CHUNK);
+			fit_lut_params(t, g, x);
+			fit_lut_lab(f, x, lab);
 			float *r = res + (size_t)u * (size_t)nr;
 			for (int a = 0; a < t->k; a++)
 				r[a] = (float)x[a];
@@ -643,7 +295,8 @@ static void fitter_solve(struct fitter *F)
  * colour from ids (pass 1's) or else from the albedo and mask; not fitted
  * texels keep the values v[a] and de2000 hold, and status 128.  -1 when a
  * colour was not seen by pass 1 (the file changed). */
-static int fitter_apply(struct fitter *F, const int32_t *ids, const struct image *albedo, const struct image *mask,
+static int fitter_apply(struct fitter *F, const int32_t *ids, const struct image *albedo,
+    const struct image *mask,
     long n, float *const *v, float *de2000, unsigned char *status, struct maps_fit_summary *sum)
 {
 	long unmatched = 0, unseen = 0;
@@ -663,7 +316,8 @@ static int fitter_apply(struct fitter *F, const int32_t *ids, const struct image
 		else {
 			uint32_t key[3];
 			texel_bits(albedo, (size_t)i, key);
-			id = prev_id >= 0 && memcmp(key, prev, sizeof key) == 0 ? prev_id : colours_id(&F->cl, key);
+			id = prev_id >= 0 && memcmp(key, prev, sizeof key) == 0 ? prev_id
+			    : colours_id(&F->cl, key);
 			memcpy(prev, key, sizeof key);
 			prev_id = id;
 			unseen += id < 0;
@@ -687,11 +341,13 @@ static int fitter_apply(struct fitter *F, const int32_t *ids, const struct image
 	return unseen ? -1 : 0;
 }
 
-int maps_fit(struct family *f, const struct image *albedo, const struct image *mask, const struct maps_fit_opts *o,
+int maps_fit(struct family *f, const struct image *albedo, const struct image *mask,
+    const struct maps_fit_opts *o,
     struct mapset **out, struct maps_fit_summary *sum, char **cause)
 {
 	if (mask && (mask->w != albedo->w || mask->h != albedo->h)) {
-		*cause = xasprintf("the mask is %d x %d texels, the albedo %d x %d", mask->w, mask->h, albedo->w, albedo->h);
+		*cause = xasprintf("the mask is %d x %d texels, the albedo %d x %d", mask->w,
+		    mask->h, albedo->w, albedo->h);
 		return -1;
 	}
 	double t0 = util_now();
@@ -700,7 +356,7 @@ int maps_fit(struct family *f, const struct image *albedo, const struct image *m
 	memset(sum, 0, sizeof *sum);
 	fitter_scan(&F, albedo, mask, albedo->h, NULL, sum);
 	sum->unique = F.cl.n;
-	fitter_solve(&F);
+	fitter_solve(&F, 0);
 	struct mapset *m = mapset_new(f, albedo->w, albedo->h, NULL);
 	size_t n = (size_t)albedo->w * albedo->h;
 	m->de2000 = xcalloc(n, sizeof(float));
@@ -718,7 +374,8 @@ int maps_fit(struct family *f, const struct image *albedo, const struct image *m
 }
 
 /* Open the albedo (and mask) streams; -1 and *cause. */
-static int open_inputs(const char *albedo, const char *mask, struct image_stream **sa, struct image_stream **sm,
+static int open_inputs(const char *albedo, const char *mask, struct image_stream **sa,
+    struct image_stream **sm,
     struct image **ba, struct image **bm, int band, int *w, int *h, char **cause)
 {
 	int nch, bits, mw, mh, mch, mbits;
@@ -731,7 +388,8 @@ static int open_inputs(const char *albedo, const char *mask, struct image_stream
 		if (*sm == NULL)
 			return -1;
 		if (mw != *w || mh != *h) {
-			*cause = xasprintf("the mask is %d x %d texels, the albedo %d x %d", mw, mh, *w, *h);
+			*cause = xasprintf("the mask is %d x %d texels, the albedo %d x %d", mw, mh,
+			    *w, *h);
 			return -1;
 		}
 		*bm = image_new(*w, band, mch, mbits);
@@ -739,7 +397,8 @@ static int open_inputs(const char *albedo, const char *mask, struct image_stream
 	return 0;
 }
 
-static void close_inputs(struct image_stream **sa, struct image_stream **sm, struct image **ba, struct image **bm)
+static void close_inputs(struct image_stream **sa, struct image_stream **sm, struct image **ba,
+    struct image **bm)
 {
 	image_stream_close(*sa);
 	image_stream_close(*sm);
@@ -749,8 +408,10 @@ static void close_inputs(struct image_stream **sa, struct image_stream **sm, str
 	*ba = *bm = NULL;
 }
 
-int maps_fit_files(struct family *f, const char *albedo, const char *mask, const struct maps_fit_opts *o,
-    const char *out, int exr, const char *command, struct maps_fit_summary *sum, int *input_error, char **cause)
+int maps_fit_files(struct family *f, const char *albedo, const char *mask,
+    const struct maps_fit_opts *o,
+    const char *out, int exr, const char *command, struct maps_fit_summary *sum, int *input_error,
+    char **cause)
 {
 	enum { BAND = 64 };
 	double t0 = util_now();
@@ -774,13 +435,16 @@ int maps_fit_files(struct family *f, const char *albedo, const char *mask, const
 		ids = xmalloc(sizeof(int32_t) * (size_t)w * (size_t)h);
 	for (int y = 0; y < h; y += BAND) {
 		int nr = h - y < BAND ? h - y : BAND;
-		if (image_stream_rows(sa, ba, nr, cause) != 0 || (sm && image_stream_rows(sm, bm, nr, cause) != 0))
+		if (image_stream_rows(sa, ba, nr, cause) != 0 || (sm && image_stream_rows(sm, bm,
+		    nr, cause) != 0))
 			goto out;
 		fitter_scan(&F, ba, bm, nr, ids ? ids + (size_t)y * (size_t)w : NULL, sum);
 	}
 	close_inputs(&sa, &sm, &ba, &bm);
 	sum->unique = F.cl.n;
-	fitter_solve(&F);
+	if (ids)
+		colours_drop_hash(&F.cl);
+	fitter_solve(&F, ids != NULL);
 	/* Pass 2: the maps, band by band, straight to the files. */
 	m = mapset_new(f, 1, 1, NULL);
 	m->w = w;
@@ -809,8 +473,10 @@ int maps_fit_files(struct family *f, const char *albedo, const char *mask, const
 		if (ids == NULL && (image_stream_rows(sa, ba, nr, cause) != 0 ||
 		    (sm && image_stream_rows(sm, bm, nr, cause) != 0)))
 			goto out;
-		if (fitter_apply(&F, ids ? ids + (size_t)y * (size_t)w : NULL, ba, bm, (long)w * nr, v, de, st, sum) != 0) {
-			*cause = xasprintf("%s: changed while it was read (a colour the first reading did not have)", albedo);
+		if (fitter_apply(&F, ids ? ids + (size_t)y * (size_t)w : NULL, ba, bm, (long)w * nr,
+		    v, de, st, sum) != 0) {
+			*cause = xasprintf("%s: changed while it was read (a colour the first "
+			    "reading did not have)", albedo);
 			goto out;
 		}
 		*input_error = 0;
@@ -846,11 +512,13 @@ out:
 	return rc;
 }
 
-char *maps_fit_summary_json(const struct maps_fit_summary *s, const struct maps_fit_opts *o, const char *albedo)
+char *maps_fit_summary_json(const struct maps_fit_summary *s, const struct maps_fit_opts *o,
+    const char *albedo)
 {
 	json_object *j = json_object_new_object();
 	json_object_object_add(j, "albedo", json_object_new_string(albedo));
-	json_object_object_add(j, "input", json_object_new_string(o->input_linear ? "linear sRGB" : "sRGB-encoded"));
+	json_object_object_add(j, "input", json_object_new_string(o->input_linear ? "linear sRGB"
+	    : "sRGB-encoded"));
 	json_object_object_add(j, "max_de2000", json_num(o->max_de));
 	json_object_object_add(j, "texels", json_object_new_int64(s->texels));
 	json_object_object_add(j, "fitted", json_object_new_int64(s->fitted));

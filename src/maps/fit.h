@@ -32,8 +32,9 @@ struct maps_fit_opts {
 	int input_linear;	/* 1: the albedo's values are linear sRGB; 0: sRGB-encoded */
 	double max_de;		/* CIEDE2000 above which a texel is unmatched */
 	int threads;		/* OpenMP threads, 0 = all */
-	int reread;		/* maps_fit_files: read the albedo again for the maps even when its colour ids
-				 * would fit in MAPS_FIT_IDS_MAX (tests; the same files) */
+	/* maps_fit_files: read the albedo again for the maps even when its
+	 * colour ids fit in MAPS_FIT_IDS_MAX (tests; the same files) */
+	int reread;
 };
 
 /* maps_fit_files keeps each texel's colour id (4 bytes) from its first
@@ -51,11 +52,14 @@ struct maps_fit_summary {
 };
 
 /* Estimated needs of maps fit per texel of the albedo (the budget check of
- * `maps fit`): peak memory measured 50 MB at 1024^2 and 151 MB at 2048^2 texels
- * (a 3 x 3 family, 8-bit RGB PNG): 33 bytes per texel over about 16 MB, so
- * 40 per texel (a mask image adds to it) over 32 MB; files at most 2 bytes
- * (16-bit PNG) or 4 (EXR) per map (the family's axes and de2000) and 1 for
- * the status map, uncompressed. */
+ * `maps fit`), for the worst case of every texel a distinct colour: the
+ * streamed fit (maps_fit_files) holds per distinct colour its key (12
+ * bytes), result (12 with two axes, 16 with three) and 8 to 16 bytes of
+ * hash slots, and per texel its colour id (4); bands and the table are
+ * the fixed part.  Measured: 49 MB peak at 1024^2 with noise (1.05 M
+ * colours), 84 MB at 4096^2 with 77 k colours (the images are not held).
+ * Files at most 2 bytes (16-bit PNG) or 4 (EXR) per map (the family's
+ * axes and de2000) and 1 for the status map, uncompressed. */
 #define MAPS_FIT_MEM_PER_TEXEL 40.0
 #define MAPS_FIT_MEM_FIXED 32e6
 
@@ -63,7 +67,8 @@ struct maps_fit_summary {
  * grey, optional alpha); mask (NULL: all) must have albedo's size.  *out
  * gets the maps with de2000 and status (caller frees).  -1 and *cause when
  * the sizes differ. */
-int maps_fit(struct family *f, const struct image *albedo, const struct image *mask, const struct maps_fit_opts *o,
+int maps_fit(struct family *f, const struct image *albedo, const struct image *mask,
+    const struct maps_fit_opts *o,
     struct mapset **out, struct maps_fit_summary *sum, char **cause);
 /* The same fit from files to a maps directory without holding the images:
  * the albedo (and mask) read in bands of rows for the distinct colours
@@ -76,10 +81,13 @@ int maps_fit(struct family *f, const struct image *albedo, const struct image *m
  * the seconds in maps.json).  -1 and *cause on failure, with
  * *input_error set when an input (unreadable, corrupt, sizes that differ)
  * is the cause; OUT is then as it was. */
-int maps_fit_files(struct family *f, const char *albedo, const char *mask, const struct maps_fit_opts *o,
-    const char *out, int exr, const char *command, struct maps_fit_summary *sum, int *input_error, char **cause);
+int maps_fit_files(struct family *f, const char *albedo, const char *mask,
+    const struct maps_fit_opts *o,
+    const char *out, int exr, const char *command, struct maps_fit_summary *sum, int *input_error,
+    char **cause);
 /* The summary as a JSON object (caller frees), for maps.json. */
-char *maps_fit_summary_json(const struct maps_fit_summary *s, const struct maps_fit_opts *o, const char *albedo);
+char *maps_fit_summary_json(const struct maps_fit_summary *s, const struct maps_fit_opts *o,
+    const char *albedo);
 /* Linear sRGB of texel i of an image read as the fit reads it. */
 void maps_texel_linear(const struct image *im, size_t i, int input_linear, double rgb[3]);
 #endif

@@ -30,7 +30,8 @@ enum image_kind image_kind(const char *path, char **cause)
 		return IMAGE_PNG;
 	if (n >= 4 && memcmp(b, exr, 4) == 0)
 		return IMAGE_EXR;
-	*cause = xasprintf("%s: not a PNG or OpenEXR image (its first bytes are neither signature)", path);
+	*cause = xasprintf("%s: not a PNG or OpenEXR image (its first bytes are neither signature)",
+	    path);
 	return IMAGE_NONE;
 }
 
@@ -137,11 +138,13 @@ static struct image *read_exr(const char *path, char **cause)
 struct image *image_read(const char *path, char **cause)
 {
 	enum image_kind k = image_kind(path, cause);
-	struct image *im = k == IMAGE_PNG ? read_png(path, cause) : k == IMAGE_EXR ? read_exr(path, cause) : NULL;
+	struct image *im = k == IMAGE_PNG ? read_png(path, cause) : k == IMAGE_EXR ? read_exr(path,
+	    cause) : NULL;
 	if (im && im->bits == 32)
 		for (size_t i = 0; i < (size_t)im->w * im->h * im->nch; i++)
 			if (!isfinite(im->v[i])) {
-				*cause = xasprintf("%s: texel %zu holds a value that is not finite", path, i / (size_t)im->nch);
+				*cause = xasprintf("%s: texel %zu holds a value that is not finite",
+				    path, i / (size_t)im->nch);
 				image_free(im);
 				return NULL;
 			}
@@ -168,7 +171,8 @@ void image_stream_close(struct image_stream *s)
 	free(s);
 }
 
-struct image_stream *image_stream_open(const char *path, int *w, int *h, int *nch, int *bits, char **cause)
+struct image_stream *image_stream_open(const char *path, int *w, int *h, int *nch, int *bits,
+    char **cause)
 {
 	enum image_kind k = image_kind(path, cause);
 	if (k == IMAGE_NONE)
@@ -193,11 +197,14 @@ struct image_stream *image_stream_open(const char *path, int *w, int *h, int *nc
 		if (exrio_read_channel_rows(path, "R", s->w, s->h, 0, 1, row, &why) == 0) {
 			free(why);
 			why = NULL;
-			s->nch = exrio_read_channel_rows(path, "A", s->w, s->h, 0, 1, row, &why) == 0 ? 4 : 3;
-		} else if (free(why), why = NULL, exrio_read_channel_rows(path, "Y", s->w, s->h, 0, 1, row, &why) == 0)
+			s->nch = exrio_read_channel_rows(path, "A", s->w, s->h, 0, 1, row,
+			    &why) == 0 ? 4 : 3;
+		} else if (free(why), why = NULL, exrio_read_channel_rows(path, "Y", s->w, s->h, 0,
+		    1, row, &why) == 0)
 			s->nch = 1;
 		else
-			*cause = xasprintf("%s: an OpenEXR image without R, G, B or Y channels", path);
+			*cause = xasprintf("%s: an OpenEXR image without R, G, B or Y channels",
+			    path);
 		free(why);
 		free(row);
 		if (s->nch == 0) {
@@ -219,9 +226,11 @@ int image_stream_rows(struct image_stream *s, struct image *band, int nrows, cha
 	if (nrows > s->band) {
 		s->band = nrows;
 		if (s->png)
-			s->px = xreallocarray(s->px, (size_t)s->w * (size_t)nrows * (size_t)s->nch, sizeof(uint16_t));
+			s->px = xreallocarray(s->px, (size_t)s->w * (size_t)nrows * (size_t)s->nch,
+			    sizeof(uint16_t));
 		else
-			s->plane = xreallocarray(s->plane, (size_t)s->w * (size_t)nrows, sizeof(float));
+			s->plane = xreallocarray(s->plane, (size_t)s->w * (size_t)nrows,
+			    sizeof(float));
 	}
 	if (s->png) {
 		if (pngio_reader_rows(s->png, s->px, nrows, cause) != 0)
@@ -232,7 +241,8 @@ int image_stream_rows(struct image_stream *s, struct image *band, int nrows, cha
 		static const char *names[] = { "R", "G", "B", "A" };
 		size_t np = (size_t)s->w * (size_t)nrows;
 		for (int c = 0; c < s->nch; c++) {
-			if (exrio_read_channel_rows(s->path, s->nch == 1 ? "Y" : names[c], s->w, s->h, s->y, nrows, s->plane,
+			if (exrio_read_channel_rows(s->path, s->nch == 1 ? "Y" : names[c], s->w,
+			    s->h, s->y, nrows, s->plane,
 			    cause) != 0)
 				return -1;
 			for (size_t i = 0; i < np; i++)
@@ -240,7 +250,8 @@ int image_stream_rows(struct image_stream *s, struct image *band, int nrows, cha
 		}
 		for (size_t i = 0; i < n; i++)
 			if (!isfinite(band->v[i])) {
-				*cause = xasprintf("%s: texel %zu holds a value that is not finite", s->path,
+				*cause = xasprintf("%s: texel %zu holds a value that is not finite",
+				    s->path,
 				    (size_t)s->y * (size_t)s->w + i / (size_t)s->nch);
 				return -1;
 			}
@@ -277,7 +288,8 @@ int image_write_exr(const char *path, const struct image *im, const char *const 
 		a[k].key = attr_kv[2 * k];
 		a[k].value = attr_kv[2 * k + 1];
 	}
-	int rc = exrio_write(path, im->w, im->h, im->nch, names, (const float *const *)planes, nattr, a, cause);
+	int rc = exrio_write(path, im->w, im->h, im->nch, names, (const float *const *)planes,
+	    nattr, a, cause);
 	for (int c = 0; c < im->nch; c++)
 		free(planes[c]);
 	free(planes);
@@ -303,7 +315,8 @@ int image_check_out(const char *path, int *exr, char **cause)
 		*(sl == dir ? sl + 1 : sl) = '\0';
 	int ok = access(sl ? dir : ".", W_OK) == 0;
 	if (!ok)
-		*cause = xasprintf("'%s': its directory '%s' is missing or not writable", path, sl ? dir : ".");
+		*cause = xasprintf("'%s': its directory '%s' is missing or not writable", path, sl
+		    ? dir : ".");
 	free(dir);
 	return ok ? 0 : -1;
 }

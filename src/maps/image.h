@@ -33,7 +33,8 @@ struct image *image_read(const char *path, char **cause);
  * -1 (NULL) and *cause as image_read's, a non-finite EXR value naming
  * its texel in the whole image. */
 struct image_stream;
-struct image_stream *image_stream_open(const char *path, int *w, int *h, int *nch, int *bits, char **cause);
+struct image_stream *image_stream_open(const char *path, int *w, int *h, int *nch, int *bits,
+    char **cause);
 int image_stream_rows(struct image_stream *s, struct image *band, int nrows, char **cause);
 void image_stream_close(struct image_stream *s);	/* NULL is a no-op */
 struct image *image_new(int w, int h, int nch, int bits);

@@ -70,9 +70,11 @@ int mapset_write(const char *dir, const struct mapset *m, char **cause);
  * A failing call returns -1 (NULL) and *cause, leaves no output and frees
  * the writer; mapset_writer_abort drops a writer that has not failed. */
 struct mapset_writer;
-struct mapset_writer *mapset_writer_begin(const char *dir, const struct mapset *m, int fit, int threads,
+struct mapset_writer *mapset_writer_begin(const char *dir, const struct mapset *m, int fit,
+    int threads,
     char **cause);
-int mapset_writer_rows(struct mapset_writer *wr, int nrows, const float *const *v, const float *de2000,
+int mapset_writer_rows(struct mapset_writer *wr, int nrows, const float *const *v,
+    const float *de2000,
     const unsigned char *status, char **cause);
 int mapset_writer_end(struct mapset_writer *wr, const struct mapset *m, char **cause);
 void mapset_writer_abort(struct mapset_writer *wr);	/* NULL is a no-op */
@@ -107,5 +109,6 @@ int mapset_read_size(const char *dir, int *w, int *h, int *n, char **cause);
 /* Whether the maps fit family f: the same keys in the same order and
  * every value within the family's range; -1 and *cause naming the map
  * file, the texel, the value and the range otherwise. */
-int mapset_check_family(const struct mapset *m, const char *dir, const struct family *f, char **cause);
+int mapset_check_family(const struct mapset *m, const char *dir, const struct family *f,
+    char **cause);
 #endif

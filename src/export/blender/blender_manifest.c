@@ -74,8 +74,9 @@ static json_object *files_info(const struct blender_options *o, const struct ble
 		    "pixel"));
 	if (d->cavity != NULL) {
 		json_object *c = jfile("cavity.png", d->cavity_n, d->cavity_n, "gray", "16-bit PNG",
-		    "Non-Color", "cavity = value / 65535, the relief's ambient occlusion tiled like "
-		    "normal.png (docs/relief.md): multiplies the skin's shading");
+		    "Non-Color",
+		    "cavity = value / 65535, the relief's ambient occlusion tiled "
+		    "like normal.png (docs/relief.md): multiplies the skin's shading");
 		double sum = 0;
 		size_t np = (size_t)d->cavity_n * (size_t)d->cavity_n;
 		for (size_t i = 0; i < np; i++)

@@ -153,7 +153,8 @@ int blender_sss_auto(struct brdf_source *src, int textures, struct blender_sss *
 {
 	char *err = NULL;
 	if (textures || blender_sss_wrap(src, w, &err) != 0) {
-		const char *why = textures ? "--textures: the fitted node carries no detail normal map" : err;
+		const char *why = textures ?
+		    "--textures: the fitted node carries no detail normal map" : err;
 		*note = xasprintf("exact (--mode auto: %s)", why);
 		free(err);
 		return 0;

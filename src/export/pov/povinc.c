@@ -157,6 +157,33 @@ static int has_mesh(const struct scene *s, int k)
 	return 0;
 }
 
+/* The skin's relief as POV-Ray normals: the planar tile, the diffuse
+ * part's softer copy, their per-triangle mesh forms, and the cavity's black. */
+static void write_normals(FILE *fp, const struct scene *s, int k, const struct pov_skin *ps)
+{
+	const struct scene_skin *sk = &s->skins[k];
+	if (ps->height_png != NULL)
+		fprintf(fp, "// bump_size = H_range * n_px / tile = " SDL_G "; one tile = " SDL_G " units, planar\n"
+		    "// (map_type 0) projection along z: attach with the object's or the view's orientation.\n"
+		    "#declare SKIN_%s_Normal = normal { bump_map { png \"%s\" map_type 0 interpolate 2 "
+		    "bump_size " SDL_G " } scale " SDL_G " }\n", ps->bump_size, ps->tile_units, sk->name, ps->height_png,
+		    ps->bump_size, ps->tile_units);
+	if (ps->diffuse_png != NULL)
+		fprintf(fp, "#declare SKIN_%s_NormalDiffuse = normal { bump_map { png \"%s\" "
+		    "map_type 0 interpolate 2 bump_size " SDL_G " } scale " SDL_G " }\n", sk->name,
+		    ps->diffuse_png, ps->diffuse_bump_size, ps->tile_units);
+	if (ps->diffuse_png != NULL && has_mesh(s, k))
+		fprintf(fp, "#declare SKIN_%s_NormalDiffuseMesh = normal { bump_map { png "
+		    "\"%s\" map_type 0 interpolate 2 bump_size " SDL_G " } }\n", sk->name,
+		    ps->diffuse_png, ps->diffuse_bump_size);
+	if (ps->cavity_png != NULL)
+		fputs(MESH2_CAVITY_BLACK, fp);
+	if (ps->height_png != NULL && has_mesh(s, k))
+		fprintf(fp, "// On meshes each triangle maps the tile onto its UVs by its own matrix (docs/pov.md).\n"
+		    "#declare SKIN_%s_NormalMesh = normal { bump_map { png \"%s\" map_type 0 interpolate 2 "
+		    "bump_size " SDL_G " } }\n", sk->name, ps->height_png, ps->bump_size);
+}
+
 void povinc_write(FILE *fp, const struct scene *s, const struct pov_skin *skins, const struct pov_options *o,
     enum scene_strategy st, int layered, struct pov_report *r)
 {
@@ -244,26 +271,7 @@ void povinc_write(FILE *fp, const struct scene *s, const struct pov_skin *skins,
 			    "emission 0 specular 0%s }\n", sk->name, sep.brilliance,
 			    sk->reflection ? " reflection { 0, 1 fresnel on } conserve_energy" : "");
 		}
-		if (ps->height_png != NULL)
-			fprintf(fp, "// bump_size = H_range * n_px / tile = " SDL_G "; one tile = " SDL_G " units, planar\n"
-			    "// (map_type 0) projection along z: attach with the object's or the view's orientation.\n"
-			    "#declare SKIN_%s_Normal = normal { bump_map { png \"%s\" map_type 0 interpolate 2 "
-			    "bump_size " SDL_G " } scale " SDL_G " }\n", ps->bump_size, ps->tile_units, sk->name, ps->height_png,
-			    ps->bump_size, ps->tile_units);
-		if (ps->diffuse_png != NULL)
-			fprintf(fp, "#declare SKIN_%s_NormalDiffuse = normal { bump_map { png \"%s\" "
-			    "map_type 0 interpolate 2 bump_size " SDL_G " } scale " SDL_G " }\n", sk->name,
-			    ps->diffuse_png, ps->diffuse_bump_size, ps->tile_units);
-		if (ps->diffuse_png != NULL && has_mesh(s, k))
-			fprintf(fp, "#declare SKIN_%s_NormalDiffuseMesh = normal { bump_map { png "
-			    "\"%s\" map_type 0 interpolate 2 bump_size " SDL_G " } }\n", sk->name,
-			    ps->diffuse_png, ps->diffuse_bump_size);
-		if (ps->cavity_png != NULL)
-			fputs(MESH2_CAVITY_BLACK, fp);
-		if (ps->height_png != NULL && has_mesh(s, k))
-			fprintf(fp, "// On meshes each triangle maps the tile onto its UVs by its own matrix (docs/pov.md).\n"
-			    "#declare SKIN_%s_NormalMesh = normal { bump_map { png \"%s\" map_type 0 interpolate 2 "
-			    "bump_size " SDL_G " } }\n", sk->name, ps->height_png, ps->bump_size);
+		write_normals(fp, s, k, ps);
 		/* Stand-ins for comparison scenes (paper figure 7): the skin's
 		 * normal-incidence albedo as Lambert and as Phong. */
 		fprintf(fp, "#declare SKIN_%s_Lambert = texture { pigment { ", sk->name);
