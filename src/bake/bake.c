@@ -403,6 +403,7 @@ static int bake_solve(const struct bake_spec *s, const struct solver_run *run0, 
 		.n_wl = s->n_wl, .wl_nm = s->wl_nm, .slab = s->slab, .n_ti = s->n_ti, .theta_i = s->theta_i,
 		.grid = { .n_theta = s->n_to, .n_phi = s->n_phi, .n_r = s->n_r, .dr = s->dr },
 		.fresnel = s->opts.fresnel, .target_error = s->target_error,
+		.ad_cache = s->ad_cache,
 	};
 	double *pto = NULL, *pph = NULL;
 	if (bake_spec_points(s)) {

@@ -107,6 +107,9 @@ struct bake_spec {
 	long radial_photons;			/* its photons per wavelength at most;
 						 * 0 = BAKE_RADIAL_PHOTONS */
 	const struct bake_radial_given *radial_given;	/* Rd(r) already made (NULL: none) */
+	/* Adding-doubling layer solutions kept across bakes (engine/ad_cache.h;
+	 * the caller's); NULL: none. */
+	struct ad_cache *ad_cache;
 	/* Monte Carlo. */
 	uint64_t seed;
 	long batch_photons;			/* photons per batch; 0 = sized

@@ -190,7 +190,7 @@ static int level_run(const struct ad_model *md, const double *se, int E, const s
 	struct ad_level_opts lo = {
 		.density = n_quad, .n_min = n_quad / 16 > 1 ? n_quad / 16 : 1, .dtau_frac = o->dtau_frac,
 		.dm_terms = o->dm_terms, .max_orders = o->max_orders, .tol_f = 0.1 * o->tol, .threads = threads,
-		.doubling_only = o->doubling_only,
+		.doubling_only = o->doubling_only, .cache = o->cache,
 	};
 	struct ad_series *sr = xcalloc(1, sizeof *sr);
 	sr->md = *md;

@@ -54,6 +54,8 @@
 
 #define AD_MAX_BEAMS 256
 
+struct ad_cache;
+
 struct ad_opts {
 	double tol;		/* wanted accuracy: table RMS relative error and relative error of Rd, Tt;
 				 * (0, 0.1]; also sets where the Fourier series is cut */
@@ -68,6 +70,7 @@ struct ad_opts {
 	int threads;		/* OpenMP threads over Fourier orders; 0 = all */
 	int doubling_only;	/* 1: every layer by a diamond start and doubling (ad_layer.h), none
 				 * by its eigenvectors; for comparisons */
+	struct ad_cache *cache;	/* layer solutions kept across solves (ad_cache.h); NULL: none */
 };
 
 void ad_opts_default(struct ad_opts *o);

@@ -11,6 +11,7 @@
 #include <omp.h>
 #endif
 
+#include "engine/ad_cache.h"
 #include "engine/ad_layer.h"
 #include "engine/ad_phase.h"
 #include "engine/ad_rough.h"
@@ -205,8 +206,12 @@ static int layer_order(struct ctx *c, int k, int mo, struct ws *w, char **cause)
 		.doubling_only = c->o->doubling_only,
 	};
 	struct ad_layer_out out = { .R = w->lR, .T = w->lT, .dT = w->ldT };
-	if (ad_layer_solve(&in, &out, w->lwork, cause))
-		return -1;
+	if (c->o->cache == NULL || !ad_cache_get(c->o->cache, &in, &out)) {
+		if (ad_layer_solve(&in, &out, w->lwork, cause))
+			return -1;
+		if (c->o->cache)
+			ad_cache_put(c->o->cache, &in, &out);
+	}
 	struct ad_op *R = &w->R[k], *T = &w->T[k];
 	memset(R->a, 0, sizeof(double) * ((size_t)N * nc + E));
 	memset(T->a, 0, sizeof(double) * ((size_t)N * nc + E));

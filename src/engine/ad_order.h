@@ -38,6 +38,8 @@ struct ad_model {
 	double nstar[AD_MAX_IV];		/* pieces' Gauss variables [-] */
 };
 
+struct ad_cache;
+
 struct ad_level_opts {
 	double density;		/* nodes per unit cosine per hemisphere */
 	int n_min;		/* nodes at least per piece */
@@ -47,6 +49,7 @@ struct ad_level_opts {
 	double tol_f;		/* stop when two orders in a row add less than this, relative */
 	int threads;		/* OpenMP threads over orders (>= 1) */
 	int doubling_only;	/* 1: no layer by eigenvectors (ad_layer.h) */
+	struct ad_cache *cache;	/* layer solutions kept across solves (ad_cache.h); NULL: none */
 };
 
 /* The result of one solve. */

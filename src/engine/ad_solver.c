@@ -52,6 +52,7 @@ static void *ad_begin(const struct solver_problem *p, const void *settings, char
 	a->st.ad.tol = ad_solver_tol(st, p);
 	a->st.ad.n_to = p->grid.n_theta;
 	a->st.ad.n_phi = p->grid.n_phi;
+	a->st.ad.cache = p->ad_cache;
 	CHECK(a->st.ad.tol > 0.0 && a->st.ad.tol <= 0.1);
 	brdf_table_init(&a->t, p);
 	a->met = xcalloc((size_t)p->n_wl, sizeof *a->met);

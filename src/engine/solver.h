@@ -43,9 +43,13 @@ struct solver_problem {
 	 * the bin means when these are set; Monte Carlo ignores them (bin means). */
 	const double *point_theta_o;	/* [grid.n_theta] [rad], or NULL */
 	const double *point_phi;	/* [grid.n_phi] [rad], or NULL */
+	/* Adding-doubling's layer solutions kept across solves (ad_cache.h,
+	 * owned by the caller); NULL: none.  Other methods ignore it. */
+	struct ad_cache *ad_cache;
 };
 
 struct solver_ops;
+struct ad_cache;
 
 /* Checkpoints (bake/checkpoint.h keeps them in a file; the methods only
  * pack their state into bytes).  After begin, restore may put a saved state

@@ -43,6 +43,9 @@
 #define FAMILY_MAX_NODES 64
 #define FAMILY_MAX_MEMBERS 4096
 #define FAMILY_PILOT 17
+/* Bytes kept for adding-doubling layer solutions shared by the members
+ * (engine/ad_cache.h). */
+#define FAMILY_AD_CACHE_BYTES ((size_t)64 << 20)
 #define FAMILY_STENCIL_MAX 64	/* 4^FAMILY_MAX_AXES */
 
 enum family_spacing { FAMILY_SPACING_LIN, FAMILY_SPACING_LOG, FAMILY_SPACING_DE, FAMILY_SPACING_LIST };

@@ -7,6 +7,7 @@
 #include <stdlib.h>
 
 #include "base/util.h"
+#include "engine/ad_cache.h"
 #include "skin/colour.h"
 #include "skin/preset.h"
 
@@ -109,10 +110,16 @@ int family_place_nodes(struct family_plan *pl, char **cause)
 		ps->ad_tol = 0.01;
 	}
 	ps->ad_orders = 1;
+	/* The pilot's unchanged layers, solved once (engine/ad_cache.h). */
+	void *cblock = xmalloc(FAMILY_AD_CACHE_BYTES / 8);
+	struct ad_cache cache;
+	ad_cache_init(&cache, cblock, FAMILY_AD_CACHE_BYTES / 8);
+	ps->ad_cache = &cache;
 	int rc = 0;
 	for (int a = 0; a < pl->n_axes && rc == 0; a++)
 		if (pl->axis[a].spacing == FAMILY_SPACING_DE)
 			rc = place_axis(pl, a, ps, cause);
 	free(ps);
+	free(cblock);
 	return rc;
 }

@@ -17,6 +17,7 @@
 #include "family/family_pack.h"
 #include "family/family_radial.h"
 #include "bake/manifest.h"
+#include "engine/ad_cache.h"
 #include "skin/colour.h"
 #include "skin/preset.h"
 
@@ -368,6 +369,12 @@ int family_bake(const struct family_plan *pl, const char *dir, struct family **o
 	double *buf = xmalloc(sizeof(double) * nbuf);
 	struct bake_spec *s = xmalloc(sizeof *s);
 	*s = pl->spec;
+	/* The members' unchanged layers solve the same from member to member:
+	 * kept in a bounded block (engine/ad_cache.h; outputs unchanged). */
+	void *cblock = xmalloc(FAMILY_AD_CACHE_BYTES);
+	struct ad_cache cache;
+	ad_cache_init(&cache, cblock, FAMILY_AD_CACHE_BYTES);
+	s->ad_cache = &cache;
 	int rc = 0;
 	for (int round = 0; round * R < n_members; round++) {
 		memset(buf, 0, sizeof(double) * nbuf);
@@ -408,6 +415,7 @@ int family_bake(const struct family_plan *pl, const char *dir, struct family **o
 	}
 	free(buf);
 	free(s);
+	free(cblock);
 	if (shared)
 		family_radial_free(&fr);
 	if (rank == 0 && rc == 0)
