@@ -110,10 +110,46 @@ static void test_stated_error_honest(void **state)
 	assert_true(zmax < 4.0);
 }
 
+#include "bake/radial.h"
+
+/* A run with no spread (no photon in bins of 0.1 um) is not converged: it
+ * goes on past its pilot to the cap; at a cap where none coming back is
+ * plausible (photons x rd0 = 16 < RADIAL_ZERO_PLAUSIBLE) the mean radius's
+ * stated error is the bins' extent, never 0 (bake.c refuses a 0). */
+static void test_no_spread(void **state)
+{
+	(void)state;
+	static struct bake_result r;
+	bake_paper(7, 0.02, &r);
+	double rd[2], rd_err[2];
+	struct radial_spec sp = {
+		.slab = &spec.slab[N_WL - 1], .theta_in = 0.0, .opts = &spec.opts,
+		.n_r = 2, .dr = 1e-5, .rd0 = 0.5, .rd0_err = 0.001, .target = 0.02,
+		.pilot = 32, .cap = 32, .margin = 1.1, .rounds = 4, .seed = 7, .threads = 1,
+	};
+	struct radial_out o = { .rd_r = rd, .rd_r_err = rd_err };
+	radial_solve(&sp, &o);
+	print_message("# cap 32: %ld photons, mean radius %g +- %g cm\n", o.photons,
+	    o.mean_radius_cm, o.mean_radius_err_cm);
+	if (o.mean_radius_cm <= 0.0)
+		assert_true(o.mean_radius_err_cm == 2e-5);
+	assert_true(o.mean_radius_err_cm > 0.0);
+	sp.cap = 4096;
+	radial_solve(&sp, &o);
+	print_message("# cap 4096: %ld photons, mean radius %g +- %g cm\n", o.photons,
+	    o.mean_radius_cm, o.mean_radius_err_cm);
+	if (o.mean_radius_cm <= 0.0) {
+		assert_true(o.photons > 32 * RADIAL_BATCH);
+		assert_true(o.mean_radius_err_cm == 0.0);
+	}
+	bake_result_free(&r);
+}
+
 int main(void)
 {
 	const struct CMUnitTest tests[] = {
 		cmocka_unit_test(test_stated_error_honest),
+		cmocka_unit_test(test_no_spread),
 	};
 	return cmocka_run_group_tests(tests, NULL, NULL);
 }

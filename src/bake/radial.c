@@ -235,7 +235,13 @@ void radial_solve(const struct radial_spec *sp, struct radial_out *out)
 		}
 		have += nb;
 		estimate(sp, &mo, k, mu, mu_err, out);
-		double m = out->mean_radius_cm, rel = m > 0.0 ? out->mean_radius_err_cm / m : 0.0;
+		/* No spread although light comes back (rd0 > 0, or not known):
+		 * none or one bin scored so far, which is no convergence, so the
+		 * run goes on. */
+		double m = out->mean_radius_cm, e = out->mean_radius_err_cm;
+		double rel = sp->rd0 != 0.0 ? INFINITY : 0.0;
+		if (m > 0.0 && e > 0.0)
+			rel = e / m;
 		if (rel <= sp->target || have >= cap_b || round >= sp->rounds)
 			break;
 		double q = rel / sp->target, want = (double)have * (q * q * sp->margin - 1.0);
@@ -246,6 +252,15 @@ void radial_solve(const struct radial_spec *sp, struct radial_out *out)
 			nb = cap_b - have;
 	}
 	out->photons = have * bp;
+	/* Still no spread at the cap (nothing in the bins, or all of it in one):
+	 * where so few photons come back (photons x rd0 under
+	 * RADIAL_ZERO_PLAUSIBLE) that this is likely, the run only says that
+	 * the mean radius lies within the bins, and states their extent as its
+	 * error.  Beyond that a 0 stays 0 (an estimator failure the bake
+	 * refuses, bake.c). */
+	double expect = (double)out->photons * sp->rd0;
+	if (!(out->mean_radius_err_cm > 0.0) && sp->rd0 > 0.0 && expect < RADIAL_ZERO_PLAUSIBLE)
+		out->mean_radius_err_cm = sp->n_r * sp->dr;
 	out->seconds = util_now() - t0;
 	free(prof);
 	free(tot);

@@ -48,6 +48,9 @@
  * per unit cosine, 35 ms CPU of its 89 ms bake without the walk. */
 #define RADIAL_CV_TOL 1e-3
 #define RADIAL_BATCH 16			/* photons per batch */
+/* Expected photons back below which a run with none scored in the bins is
+ * plausible: P(none) = exp(-photons x rd0) > exp(-20) = 2e-9. */
+#define RADIAL_ZERO_PLAUSIBLE 20.0
 
 struct radial_spec {
 	const struct slab *slab;	/* prepared */
