@@ -220,6 +220,63 @@ int pngio_write(const char *path, int w, int h, int channels, int bits, const ui
  * more is corrupt, and is refused before anything is allocated. */
 #define PNG_MAX_INFLATE 1032.0
 
+/* The cause for a file libpng refused, with libpng's words when it gave any. */
+static char *unreadable(const char *path, const struct png_msg *m)
+{
+	if (m->text[0])
+		return xasprintf("%s: not a readable PNG file (%s)", path, m->text);
+	return xasprintf("%s: not a readable PNG file", path);
+}
+
+/* The header of the file FP (FILE_BYTES long) read, its size checked against
+ * PNG_MAX_INFLATE, palettes and low bit depths expanded to 8 or 16 bits per
+ * sample (*b); *rowbytes the bytes of one row.  Returns the interlace
+ * passes.  Errors long-jump to the caller's setjmp, with M's text set. */
+static int read_header(png_structp png, png_infop info, FILE *fp, double file_bytes,
+    struct png_msg *m, int *w, int *h, int *channels, int *bits, int *b, size_t *rowbytes)
+{
+	png_init_io(png, fp);
+	png_read_info(png, info);
+	png_uint_32 pw = png_get_image_width(png, info), ph = png_get_image_height(png, info);
+	double need = (double)png_get_rowbytes(png, info) * (double)ph;
+	if (need > PNG_MAX_INFLATE * file_bytes + 65536.0) {
+		snprintf(m->text, sizeof m->text, "%lu x %lu pixels cannot be held in %.0f bytes",
+		    (unsigned long)pw, (unsigned long)ph, file_bytes);
+		png_longjmp(png, 1);
+	}
+	int bd = png_get_bit_depth(png, info), ct = png_get_color_type(png, info);
+	if (ct == PNG_COLOR_TYPE_PALETTE)
+		png_set_palette_to_rgb(png);
+	if (bd < 8)
+		png_set_expand(png);
+	int passes = png_set_interlace_handling(png);
+	png_read_update_info(png, info);
+	*w = (int)pw;
+	*h = (int)ph;
+	*channels = png_get_channels(png, info);
+	*bits = bd < 8 ? 8 : bd;
+	*b = png_get_bit_depth(png, info);
+	*rowbytes = png_get_rowbytes(png, info);
+	if (*rowbytes != (size_t)*w * (size_t)*channels * (size_t)(*b / 8)) {
+		snprintf(m->text, sizeof m->text, "unexpected row layout");
+		png_longjmp(png, 1);
+	}
+	return passes;
+}
+
+/* N samples of B bits (8 or 16) in the file's bytes RAW to 16 bits in DST,
+ * which may be RAW itself: 16-bit samples move down (sample i from bytes 2i,
+ * 2i+1), 8-bit ones up from the end (byte i to sample i). */
+static void widen(uint16_t *dst, const unsigned char *raw, size_t n, int b)
+{
+	if (b == 16)	/* PNG is big-endian */
+		for (size_t i = 0; i < n; i++)
+			dst[i] = (uint16_t)((raw[2 * i] << 8) | raw[2 * i + 1]);
+	else
+		for (size_t i = n; i-- > 0;)
+			dst[i] = (uint16_t)(raw[i] * 257);
+}
+
 uint16_t *pngio_read(const char *path, int *w, int *h, int *channels, int *bits, char **cause)
 {
 	FILE *fp = fopen(path, "rb");
@@ -239,38 +296,15 @@ uint16_t *pngio_read(const char *path, int *w, int *h, int *channels, int *bits,
 		fclose(fp);
 		free(px);
 		free(rows);
-		*cause = msg.text[0] ? xasprintf("%s: not a readable PNG file (%s)", path, msg.text)
-				     : xasprintf("%s: not a readable PNG file", path);
+		*cause = unreadable(path, &msg);
 		return NULL;
 	}
-	png_init_io(png, fp);
-	png_read_info(png, info);
-	png_uint_32 pw = png_get_image_width(png, info), ph = png_get_image_height(png, info);
-	double need = (double)png_get_rowbytes(png, info) * (double)ph;
-	if (need > PNG_MAX_INFLATE * file_bytes + 65536.0) {
-		snprintf(msg.text, sizeof msg.text, "%lu x %lu pixels cannot be held in %.0f bytes",
-		    (unsigned long)pw, (unsigned long)ph, file_bytes);
-		png_longjmp(png, 1);
-	}
-	int bd = png_get_bit_depth(png, info), ct = png_get_color_type(png, info);
-	if (ct == PNG_COLOR_TYPE_PALETTE)
-		png_set_palette_to_rgb(png);
-	if (bd < 8)
-		png_set_expand(png);
-	png_set_interlace_handling(png);	/* Adam7 files are read whole */
-	png_read_update_info(png, info);
-	*w = (int)pw;
-	*h = (int)ph;
-	*channels = png_get_channels(png, info);
-	*bits = bd < 8 ? 8 : bd;
-	int b = png_get_bit_depth(png, info);
-	size_t n = (size_t)*w * (size_t)*channels, rowbytes = png_get_rowbytes(png, info);
-	if (rowbytes != n * (size_t)(b / 8)) {
-		snprintf(msg.text, sizeof msg.text, "unexpected row layout");
-		png_longjmp(png, 1);
-	}
-	/* Decode the bytes packed at the start of px, then widen them in place
-	 * from the end (sample i moves from byte i or 2i to bytes 2i, 2i+1). */
+	int b;
+	size_t rowbytes;
+	/* (Adam7 files are read whole: the passes do not matter here) */
+	read_header(png, info, fp, file_bytes, &msg, w, h, channels, bits, &b, &rowbytes);
+	size_t n = (size_t)*w * (size_t)*channels;
+	/* Decode the bytes packed at the start of px, then widen them in place. */
 	px = xmalloc(n * (size_t)*h * sizeof(uint16_t));
 	rows = xmalloc(sizeof(png_bytep) * (size_t)*h);
 	for (int y = 0; y < *h; y++)
@@ -280,14 +314,7 @@ uint16_t *pngio_read(const char *path, int *w, int *h, int *channels, int *bits,
 	png_destroy_read_struct(&png, &info, NULL);
 	fclose(fp);
 	free(rows);
-	unsigned char *raw = (unsigned char *)px;
-	size_t total = n * (size_t)*h;
-	if (b == 16)	/* PNG is big-endian */
-		for (size_t i = 0; i < total; i++)
-			px[i] = (uint16_t)((raw[2 * i] << 8) | raw[2 * i + 1]);
-	else
-		for (size_t i = total; i-- > 0;)
-			px[i] = (uint16_t)(raw[i] * 257);
+	widen(px, (unsigned char *)px, n * (size_t)*h, b);
 	return px;
 }
 
@@ -319,9 +346,7 @@ void pngio_reader_close(struct pngio_reader *rd)
 
 static void *reader_fail(struct pngio_reader *rd, char **cause)
 {
-	*cause = rd->msg.text[0] ? xasprintf("%s: not a readable PNG file (%s)", rd->path,
-	    rd->msg.text)
-				 : xasprintf("%s: not a readable PNG file", rd->path);
+	*cause = unreadable(rd->path, &rd->msg);
 	pngio_reader_close(rd);
 	return NULL;
 }
@@ -345,35 +370,11 @@ struct pngio_reader *pngio_reader_open(const char *path, int *w, int *h, int *ch
 		return reader_fail(rd, cause);
 	png_structp png = rd->png;
 	png_infop info = rd->info;
-	png_init_io(png, fp);
-	png_read_info(png, info);
-	png_uint_32 pw = png_get_image_width(png, info), ph = png_get_image_height(png, info);
-	double need = (double)png_get_rowbytes(png, info) * (double)ph;
-	if (need > PNG_MAX_INFLATE * file_bytes + 65536.0) {
-		snprintf(rd->msg.text, sizeof rd->msg.text,
-		    "%lu x %lu pixels cannot be held in %.0f bytes",
-		    (unsigned long)pw, (unsigned long)ph, file_bytes);
-		png_longjmp(png, 1);
-	}
-	int bd = png_get_bit_depth(png, info), ct = png_get_color_type(png, info);
-	if (ct == PNG_COLOR_TYPE_PALETTE)
-		png_set_palette_to_rgb(png);
-	if (bd < 8)
-		png_set_expand(png);
-	int passes = png_set_interlace_handling(png);
-	png_read_update_info(png, info);
-	*w = (int)pw;
-	*h = (int)ph;
-	*channels = png_get_channels(png, info);
-	*bits = bd < 8 ? 8 : bd;
+	size_t rowbytes;
+	int passes = read_header(png, info, fp, file_bytes, &rd->msg, w, h, channels, bits, &rd->b,
+	    &rowbytes);
 	rd->h = *h;
-	rd->b = png_get_bit_depth(png, info);
 	rd->n = (size_t)*w * (size_t)*channels;
-	size_t rowbytes = png_get_rowbytes(png, info);
-	if (rowbytes != rd->n * (size_t)(rd->b / 8)) {
-		snprintf(rd->msg.text, sizeof rd->msg.text, "unexpected row layout");
-		png_longjmp(png, 1);
-	}
 	if (passes > 1) {
 		/* Adam7: the image is read whole here, as pngio_read does. */
 		uint16_t *px;
@@ -411,29 +412,17 @@ int pngio_reader_rows(struct pngio_reader *rd, uint16_t *px, int nrows, char **c
 		return 0;
 	}
 	if (setjmp(png_jmpbuf(rd->png))) {
-		*cause = rd->msg.text[0] ? xasprintf("%s: not a readable PNG file (%s)", rd->path,
-		    rd->msg.text)
-					 : xasprintf("%s: not a readable PNG file", rd->path);
+		*cause = unreadable(rd->path, &rd->msg);
 		return -1;
 	}
 	for (int y = 0; y < nrows; y++) {
 		png_read_row(rd->png, rd->row, NULL);
-		uint16_t *dst = px + (size_t)y * rd->n;
-		const unsigned char *raw = rd->row;
-		if (rd->b == 16)	/* PNG is big-endian */
-			for (size_t i = 0; i < rd->n; i++)
-				dst[i] = (uint16_t)((raw[2 * i] << 8) | raw[2 * i + 1]);
-		else
-			for (size_t i = 0; i < rd->n; i++)
-				dst[i] = (uint16_t)(raw[i] * 257);
+		widen(px + (size_t)y * rd->n, rd->row, rd->n, rd->b);
 	}
 	rd->y += nrows;
 	if (rd->y == rd->h) {
 		if (setjmp(png_jmpbuf(rd->png))) {
-			*cause = rd->msg.text[0] ? xasprintf("%s: not a readable PNG file (%s)",
-			    rd->path, rd->msg.text)
-						 : xasprintf("%s: not a readable PNG file",
-						     rd->path);
+			*cause = unreadable(rd->path, &rd->msg);
 			return -1;
 		}
 		png_read_end(rd->png, NULL);
