@@ -302,6 +302,34 @@ def thickness_shader(nt, v, views, unit_scale, loc):
     return add.outputs[0]
 
 
+def checked_views(t):
+    """translucent.theta_o_deg of the manifest section T: at least 2 angles in [0, 90)."""
+    views = t.get("theta_o_deg")
+    if not isinstance(views, list) or len(views) < 2 or not all(
+            isinstance(y, (int, float)) and 0 <= y < 90 for y in views):
+        raise ImageSetError(f"manifest.json: translucent.theta_o_deg = {views!r} must be angles "
+                            "in [0, 90) degrees")
+    return views
+
+
+def check_rgb_per_view(x, views, name):
+    """X (named NAME in messages) must hold one [R, G, B] in [0, 1] per view."""
+    if not isinstance(x, list) or len(x) != len(views) or not all(
+            isinstance(e, list) and len(e) == 3 and all(isinstance(y, (int, float)) and 0 <= y <= 1
+                                                        for y in e) for e in x):
+        raise ImageSetError(f"{name} = {x!r} must be one [R, G, B] in [0, 1] "
+                            "per translucent.theta_o_deg")
+
+
+def detach_surface(nt):
+    """The active material output of node tree NT and the socket that fed its Surface, unlinked."""
+    out = next(n for n in nt.nodes if n.bl_idname == "ShaderNodeOutputMaterial" and n.is_active_output)
+    link = out.inputs["Surface"].links[0]
+    src = link.from_socket
+    nt.links.remove(link)
+    return out, src
+
+
 def far_field_fallback(mat, t):
     """A single bake's translucent set on a Blender without its own fit: no subsurface node (an
     uncalibrated walk would not match Rd(r)); the far field the set's table lost
@@ -309,21 +337,10 @@ def far_field_fallback(mat, t):
     so flat light sums to the baked BRDF as in the exact set, but no light travels under the
     surface.  Says so; returns MAT."""
     import bpy
-    views, far = t.get("theta_o_deg"), t.get("far_pi_f_removed")
-    if not isinstance(views, list) or len(views) < 2 or not all(
-            isinstance(y, (int, float)) and 0 <= y < 90 for y in views):
-        raise ImageSetError(f"manifest.json: translucent.theta_o_deg = {views!r} must be angles "
-                            "in [0, 90) degrees")
-    if not isinstance(far, list) or len(far) != len(views) or not all(
-            isinstance(e, list) and len(e) == 3 and all(isinstance(y, (int, float)) and 0 <= y <= 1
-                                                        for y in e) for e in far):
-        raise ImageSetError(f"manifest.json: translucent.far_pi_f_removed = {far!r} must be one "
-                            "[R, G, B] in [0, 1] per translucent.theta_o_deg")
+    views, far = checked_views(t), t.get("far_pi_f_removed")
+    check_rgb_per_view(far, views, "manifest.json: translucent.far_pi_f_removed")
     nt = mat.node_tree
-    out = next(n for n in nt.nodes if n.bl_idname == "ShaderNodeOutputMaterial" and n.is_active_output)
-    link = out.inputs["Surface"].links[0]
-    src = link.from_socket
-    nt.links.remove(link)
+    out, src = detach_surface(nt)
     dif = nt.nodes.new("ShaderNodeBsdfDiffuse")
     dif.label = "skinbake: the subsurface node's far field (no fit for this Blender)"
     dif.location = (out.location[0] - 400, out.location[1] - 300)
@@ -359,22 +376,11 @@ def add_subsurface(mat, m, unit_scale=1.0):
         if not isinstance(x, list) or len(x) != 3 or not all(isinstance(y, (int, float)) and y > 0
                                                              for y in x):
             raise ImageSetError(f"{where}.{key} = {x!r} must be 3 positive numbers")
-    views = t.get("theta_o_deg")
+    views = checked_views(t)
     extra = v.get("lambert_extra")
-    if not isinstance(views, list) or len(views) < 2 or not all(isinstance(y, (int, float)) and
-                                                                0 <= y < 90 for y in views):
-        raise ImageSetError(f"manifest.json: translucent.theta_o_deg = {views!r} must be angles "
-                            "in [0, 90) degrees")
-    if not isinstance(extra, list) or len(extra) != len(views) or not all(
-            isinstance(e, list) and len(e) == 3 and all(isinstance(y, (int, float)) and 0 <= y <= 1
-                                                        for y in e) for e in extra):
-        raise ImageSetError(f"{where}.lambert_extra = {extra!r} must be one [R, G, B] in [0, 1] "
-                            "per translucent.theta_o_deg")
+    check_rgb_per_view(extra, views, f"{where}.lambert_extra")
     nt = mat.node_tree
-    out = next(n for n in nt.nodes if n.bl_idname == "ShaderNodeOutputMaterial" and n.is_active_output)
-    link = out.inputs["Surface"].links[0]
-    src = link.from_socket
-    nt.links.remove(link)
+    out, src = detach_surface(nt)
     ss = nt.nodes.new("ShaderNodeSubsurfaceScattering")
     ss.label = "skinbake: subsurface fitted to Rd(r) (Cycles %s)" % v.get("version", "?")
     falloffs = [i.identifier for i in ss.bl_rna.properties["falloff"].enum_items]
