@@ -17,25 +17,13 @@ fam="$tmpd/fam"
 
 # Pictures for the tests: masks, an albedo with paint and transparent texels.
 python3 - "$tmpd" "$fam/family.json" <<'PY'
-import json, struct, sys, zlib
+import json, os, sys
+sys.path.insert(0, os.path.join(os.environ["top_srcdir"], "tests", "lib"))
+from images import write_png as png
 d = sys.argv[1]
 # a colour of the family: member 5's albedo, sRGB-encoded
 enc = lambda v: 12.92 * v if v <= 0.0031308 else 1.055 * v ** (1 / 2.4) - 0.055
 skin = [enc(v) for v in json.load(open(sys.argv[2]))['members'][5]['albedo_rgb']]
-def png(path, w, h, ch, f, bits=8):
-    top = 255 if bits == 8 else 65535
-    rows = []
-    for y in range(h):
-        r = b'\0'
-        for x in range(w):
-            for v in f(x, y):
-                q = max(0, min(top, round(top * v)))
-                r += bytes([q]) if bits == 8 else struct.pack('>H', q)
-        rows.append(r)
-    ct = {1: 0, 3: 2, 4: 6}[ch]
-    c = lambda t, b: struct.pack('>I', len(b)) + t + b + struct.pack('>I', zlib.crc32(t + b) & 0xffffffff)
-    open(path, 'wb').write(b'\x89PNG\r\n\x1a\n' + c(b'IHDR', struct.pack('>IIBBBBB', w, h, bits, ct, 0, 0, 0))
-        + c(b'IDAT', zlib.compress(b''.join(rows))) + c(b'IEND', b''))
 png(d + '/left.png', 96, 64, 1, lambda x, y: (1.0 if x < 48 else 0.0,))
 png(d + '/small.png', 32, 32, 1, lambda x, y: (1.0,))
 # a family colour with a blue paint square, a black square and a transparent strip

@@ -22,22 +22,10 @@ fam="$tmpd/fam"
 # an RGBA albedo with a transparent strip and a mask of the left half (16-bit
 # grey + alpha and 8-bit grey PNGs written here)
 python3 - "$tmpd" <<'PY'
-import struct, sys, zlib
+import os, sys
+sys.path.insert(0, os.path.join(os.environ["top_srcdir"], "tests", "lib"))
+from images import write_png as png
 d = sys.argv[1]
-def png(path, w, h, ch, f, bits):
-    top = 255 if bits == 8 else 65535
-    rows = []
-    for y in range(h):
-        r = b'\0'
-        for x in range(w):
-            for v in f(x, y):
-                q = max(0, min(top, round(top * v)))
-                r += bytes([q]) if bits == 8 else struct.pack('>H', q)
-        rows.append(r)
-    ct = {1: 0, 2: 4, 3: 2, 4: 6}[ch]
-    c = lambda t, b: struct.pack('>I', len(b)) + t + b + struct.pack('>I', zlib.crc32(t + b) & 0xffffffff)
-    open(path, 'wb').write(b'\x89PNG\r\n\x1a\n' + c(b'IHDR', struct.pack('>IIBBBBB', w, h, bits, ct, 0, 0, 0))
-        + c(b'IDAT', zlib.compress(b''.join(rows))) + c(b'IEND', b''))
 png(d + '/mask.png', 96, 150, 1, lambda x, y: (1.0 if x < 48 else 0.0,), 8)
 png(d + '/alpha.png', 96, 150, 2, lambda x, y: (0.55 + 0.1 * ((x * 7 + y * 3) % 11) / 11, 0.0 if 70 <= y < 75 else 1.0), 16)
 PY

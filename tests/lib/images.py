@@ -1,9 +1,9 @@
-"""Image files as the tests and scripts read them back, with the standard library only
-(python3 without numpy): PNG (8 or 16 bits, gray, RGB or RGBA, every filter, tEXt) and
-OpenEXR (scanline float32, compression NONE, ZIPS or ZIP: what skinbake writes).
+"""Image files as the tests and scripts read them back (and test pictures written), with the
+standard library only (python3 without numpy): PNG (8 or 16 bits, gray, RGB or RGBA, every
+filter, tEXt) and OpenEXR (scanline float32, compression NONE, ZIPS or ZIP: what skinbake writes).
 
     sys.path.insert(0, os.path.join(os.environ["top_srcdir"], "tests", "lib"))
-    from images import read_png, read_exr
+    from images import read_png, read_exr, write_png
 """
 import struct
 import zlib
@@ -109,3 +109,24 @@ def read_exr(path):
                 out[c][y - y0 + r] = struct.unpack_from("<%df" % w, d, q)
                 q += 4 * w
     return out
+
+
+def write_png(path, w, h, ch, f, bits=8):
+    """A W x H PNG of CH channels (gray, gray+alpha, RGB, RGBA) and BITS (8 or 16) per
+    sample, unfiltered, sample values f(x, y) in [0, 1] (clamped)."""
+    top = 255 if bits == 8 else 65535
+    rows = []
+    for y in range(h):
+        r = b'\0'
+        for x in range(w):
+            for v in f(x, y):
+                q = max(0, min(top, round(top * v)))
+                r += bytes([q]) if bits == 8 else struct.pack('>H', q)
+        rows.append(r)
+    ct = {1: 0, 2: 4, 3: 2, 4: 6}[ch]
+
+    def chunk(t, b):
+        return struct.pack('>I', len(b)) + t + b + struct.pack('>I', zlib.crc32(t + b) & 0xffffffff)
+    with open(path, 'wb') as fp:
+        fp.write(b'\x89PNG\r\n\x1a\n' + chunk(b'IHDR', struct.pack('>IIBBBBB', w, h, bits, ct, 0, 0, 0))
+                 + chunk(b'IDAT', zlib.compress(b''.join(rows))) + chunk(b'IEND', b''))
