@@ -239,17 +239,19 @@ static int load(struct checkpoint *c, char **cause)
 	return 0;
 }
 
-static int write_all(int fd, const void *v, size_t n)
+/* All n bytes of v to fd at offset at (pwrite, retried on EINTR and short writes). */
+static int write_at(int fd, const void *v, size_t n, off_t at)
 {
 	const unsigned char *p = v;
 	while (n > 0) {
-		ssize_t k = write(fd, p, n);
+		ssize_t k = pwrite(fd, p, n, at);
 		if (k < 0 && errno == EINTR)
 			continue;
 		if (k <= 0)
 			return -1;
 		p += k;
 		n -= (size_t)k;
+		at += k;
 	}
 	return 0;
 }
@@ -285,7 +287,7 @@ static int save_file(struct checkpoint *c, char **cause)
 	uint64_t sum = fnv(FNV0, b.p, b.len);
 	solver_buf_put(&b, &sum, sizeof sum);
 	int fd = open(c->tmp, O_WRONLY | O_CREAT | O_TRUNC | O_CLOEXEC, 0644);
-	int rc = fd < 0 || write_all(fd, b.p, b.len) != 0 || fsync(fd) != 0 ? -1 : 0;
+	int rc = fd < 0 || write_at(fd, b.p, b.len, 0) != 0 || fsync(fd) != 0 ? -1 : 0;
 	int err = errno;
 	if (fd >= 0 && close(fd) != 0 && rc == 0) {
 		rc = -1;
@@ -302,22 +304,6 @@ static int save_file(struct checkpoint *c, char **cause)
 		return -1;
 	}
 	sync_dir(c);
-	return 0;
-}
-
-static int pwrite_all(int fd, const void *v, size_t n, off_t at)
-{
-	const unsigned char *p = v;
-	while (n > 0) {
-		ssize_t k = pwrite(fd, p, n, at);
-		if (k < 0 && errno == EINTR)
-			continue;
-		if (k <= 0)
-			return -1;
-		p += k;
-		n -= (size_t)k;
-		at += k;
-	}
 	return 0;
 }
 
@@ -347,8 +333,8 @@ static int save_units(struct checkpoint *c, char **cause)
 		h = fnv(h, b.p + at, b.len - at);
 		solver_buf_put(&b, &h, sizeof h);
 	}
-	int rc = fd < 0 || ftruncate(fd, c->end) != 0 || pwrite_all(fd, b.p, b.len, c->end) != 0 ||
-	    fdatasync(fd) != 0 || pwrite_all(fd, &n, sizeof n, COUNT_AT) != 0 || fdatasync(fd) != 0 ?
+	int rc = fd < 0 || ftruncate(fd, c->end) != 0 || write_at(fd, b.p, b.len, c->end) != 0 ||
+	    fdatasync(fd) != 0 || write_at(fd, &n, sizeof n, COUNT_AT) != 0 || fdatasync(fd) != 0 ?
 	    -1 : 0;
 	int err = errno;
 	if (fd >= 0 && close(fd) != 0 && rc == 0) {
